@@ -1,0 +1,37 @@
+// Fixed-size Eigen aliases used throughout the core. N is the joint count, fixed at compile time.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace tpf {
+
+template <typename S, int N>
+using JointVector = Eigen::Matrix<S, N, 1>;
+template <typename S, int N>
+using JointMatrix = Eigen::Matrix<S, N, N>;
+template <typename S>
+using Vector3 = Eigen::Matrix<S, 3, 1>;
+template <typename S>
+using Matrix3 = Eigen::Matrix<S, 3, 3>;
+template <typename S>
+using Vector6 = Eigen::Matrix<S, 6, 1>;
+/// 6×N Jacobian, rows ordered [linear; angular].
+template <typename S, int N>
+using Jacobian = Eigen::Matrix<S, 6, N>;
+
+/// A rigid transform, rotation R and translation p: x_parent = R·x_child + p.
+template <typename S>
+struct Transform {
+  Matrix3<S> R = Matrix3<S>::Identity();
+  Vector3<S> p = Vector3<S>::Zero();
+
+  Vector3<S> apply(const Vector3<S>& x) const { return R * x + p; }
+  Transform operator*(const Transform& b) const { return {R * b.R, R * b.p + p}; }
+  template <typename T>
+  Transform<T> cast() const {
+    return {R.template cast<T>(), p.template cast<T>()};
+  }
+};
+
+}  // namespace tpf
