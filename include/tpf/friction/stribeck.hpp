@@ -1,0 +1,97 @@
+// Stribeck + viscous joint friction, with the load-dependent form and a smooth variant for fitting.
+//
+// Units: the model is unit-agnostic. Velocities are in rad/s (output side); torques are in the
+// effort unit of the parameter file (N·m for the digital twin, mA when identified on a current
+// log). Sign convention: τ_f is the friction torque the drive must overcome, i.e. it has the sign
+// of q̇ and enters τ_meas = τ_dyn + τ_f + τ_res with a plus sign.
+#pragma once
+
+#include <cmath>
+
+#include "tpf/common/types.hpp"
+
+namespace tpf {
+
+/// Per joint parameters of  τ_f(q̇) = [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇)
+///                                     + (b + α_v|G|)·q̇.
+/// The load terms scale with |G_j(q)|, the gravity torque of the joint, a proxy for the load on
+/// the transmission; α_c = α_v = 0 gives the plain Stribeck + viscous curve. The break-away
+/// excess (τ_s − τ_c) is load-independent, so each load term is linear in its coefficient.
+template <typename S, int N>
+struct StribeckParameters {
+  JointVector<S, N> coulomb = JointVector<S, N>::Zero();            ///< τ_c ≥ 0
+  JointVector<S, N> static_friction = JointVector<S, N>::Zero();    ///< τ_s ≥ 0 (break-away)
+  JointVector<S, N> stribeck_velocity = JointVector<S, N>::Ones();  ///< q̇_s > 0, rad/s
+  JointVector<S, N> stribeck_exponent = JointVector<S, N>::Constant(S(2));  ///< δ > 0
+  JointVector<S, N> viscous = JointVector<S, N>::Zero();                    ///< b ≥ 0, per rad/s
+  JointVector<S, N> load_coulomb = JointVector<S, N>::Zero();  ///< α_c ≥ 0, per unit |G|
+  JointVector<S, N> load_viscous = JointVector<S, N>::Zero();  ///< α_v ≥ 0, per unit |G|·rad/s
+};
+
+/// Default smoothing velocity ε of the smooth form, rad/s: ten steps of the PH54 velocity
+/// resolution (0.01 rev/min = 1.05e-3 rad/s), so measurement noise at rest does not flip the sign.
+template <typename S>
+inline constexpr S kDefaultFrictionSmoothing = S(0.01);
+
+/// Magnitude of the sliding friction of joint j without the viscous part:
+/// g_j(q̇) = τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ).
+template <typename S, int N>
+S stribeck_level(const StribeckParameters<S, N>& p, int j, S dq, S abs_gravity) {
+  using std::abs, std::exp, std::pow;
+  const S ratio = abs(dq / p.stribeck_velocity[j]);
+  return p.coulomb[j] + p.load_coulomb[j] * abs_gravity +
+         (p.static_friction[j] - p.coulomb[j]) * exp(-pow(ratio, p.stribeck_exponent[j]));
+}
+
+/// Viscous coefficient of joint j under load: b + α_v|G|.
+template <typename S, int N>
+S viscous_coefficient(const StribeckParameters<S, N>& p, int j, S abs_gravity) {
+  return p.viscous[j] + p.load_viscous[j] * abs_gravity;
+}
+
+/// Friction of joint j: τ_f = g_j(q̇)·sgn(q̇) + (b + α_v|G|)·q̇, with sgn(0) = 0.
+template <typename S, int N>
+S stribeck_friction(const StribeckParameters<S, N>& p, int j, S dq, S abs_gravity = S(0)) {
+  const S sign = dq > S(0) ? S(1) : (dq < S(0) ? S(-1) : S(0));
+  return stribeck_level(p, j, dq, abs_gravity) * sign + viscous_coefficient(p, j, abs_gravity) * dq;
+}
+
+/// Friction of every joint, no load: τ_f,j = g_j(q̇_j)·sgn(q̇_j) + b_j·q̇_j.
+template <typename S, int N>
+JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p,
+                                    const JointVector<S, N>& dq) {
+  JointVector<S, N> tau;
+  for (int j = 0; j < N; ++j)
+    tau[j] = stribeck_friction(p, j, dq[j]);
+  return tau;
+}
+
+/// Load-dependent friction of every joint, |G_j(q)| passed in `abs_gravity`:
+/// τ_f,j = [τ_c + α_c|G_j| + (τ_s − τ_c)·exp(−|q̇_j/q̇_s|^δ)]·sgn(q̇_j) + (b + α_v|G_j|)·q̇_j.
+template <typename S, int N>
+JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p, const JointVector<S, N>& dq,
+                                    const JointVector<S, N>& abs_gravity) {
+  JointVector<S, N> tau;
+  for (int j = 0; j < N; ++j)
+    tau[j] = stribeck_friction(p, j, dq[j], abs_gravity[j]);
+  return tau;
+}
+
+/// Smooth form for gradient-based fitting: sgn(q̇) is replaced by tanh(q̇/ε), which makes τ_f
+/// continuous and differentiable at q̇ = 0 (τ_f(0) = 0) and equal to the sharp form within a
+/// factor tanh(|q̇|/ε) ≥ 0.995 once |q̇| ≥ 3ε.
+template <typename S, int N>
+JointVector<S, N> smooth_stribeck_friction(const StribeckParameters<S, N>& p,
+                                           const JointVector<S, N>& dq,
+                                           const JointVector<S, N>& abs_gravity,
+                                           S epsilon = kDefaultFrictionSmoothing<S>) {
+  using std::tanh;
+  JointVector<S, N> tau;
+  for (int j = 0; j < N; ++j) {
+    tau[j] = stribeck_level(p, j, dq[j], abs_gravity[j]) * tanh(dq[j] / epsilon) +
+             viscous_coefficient(p, j, abs_gravity[j]) * dq[j];
+  }
+  return tau;
+}
+
+}  // namespace tpf
