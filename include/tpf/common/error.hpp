@@ -17,9 +17,10 @@ class Error : public std::runtime_error {
   static Error at(std::string_view file, long line, std::string_view field,
                   std::string_view message) {
     std::string text(file);
-    if (line > 0) text += ":" + std::to_string(line);
-    if (!field.empty()) text += std::string(": ") + std::string(field);
-    text += std::string(": ") + std::string(message);
+    // Appends piecewise: `a + b` temporaries trip a GCC 12 -Wrestrict false positive (PR105329).
+    if (line > 0) text.append(":").append(std::to_string(line));
+    if (!field.empty()) text.append(": ").append(field);
+    text.append(": ").append(message);
     return Error(text);
   }
 };
