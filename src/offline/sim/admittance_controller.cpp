@@ -1,0 +1,52 @@
+#include "offline/sim/admittance_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tpf::offline {
+
+namespace {
+constexpr double kContactThresholdKpa = 0.6;
+constexpr double kBaselineTimeConstant = 0.5;  // s
+constexpr double kMaxSpeed = 1.0;              // rad/s
+}  // namespace
+
+AdmittanceController::AdmittanceController(
+    const TeachingConfig& config, const StribeckParameters<double, kTwinJoints>& nominal_friction,
+    const TwinVector& start, const TwinVector& lower, const TwinVector& upper)
+    : config_(config), friction_(nominal_friction), lower_(lower), upper_(upper), q_ref_(start) {
+  friction_.load_coulomb.setZero();
+  friction_.load_viscous.setZero();
+}
+
+void AdmittanceController::update(const TwinArm& nominal, const TwinVector& q, const TwinVector& dq,
+                                  const TwinVector& current_ma, double max_pad_kpa, double dt) {
+  const TwinVector motor = nominal.torque_constant().cwiseProduct(current_ma) / 1000.0;
+  const TwinVector raw = -(motor - nominal.gravity(q) -
+                           smooth_stribeck_friction(friction_, dq, TwinVector(TwinVector::Zero())));
+  const bool contact = max_pad_kpa > kContactThresholdKpa;
+  if (!baseline_ready_) {
+    baseline_ = raw;
+    baseline_ready_ = true;
+  } else if (!contact && dq_ref_.cwiseAbs().maxCoeff() < 1e-3) {
+    baseline_ += (dt / kBaselineTimeConstant) * (raw - baseline_);
+  }
+  TwinVector tau = TwinVector::Zero();
+  if (contact) {
+    for (int j = 0; j < kTwinJoints; ++j) {
+      const double e = raw[j] - baseline_[j];
+      tau[j] = std::abs(e) > config_.dead_band_nm ? e - std::copysign(config_.dead_band_nm, e) : 0;
+    }
+  }
+  const TwinVector ddq = (tau - config_.admittance_damping * dq_ref_) / config_.admittance_inertia;
+  dq_ref_ = (dq_ref_ + dt * ddq).cwiseMax(-kMaxSpeed).cwiseMin(kMaxSpeed);
+  q_ref_ += dt * dq_ref_;
+  for (int j = 0; j < kTwinJoints; ++j) {
+    if (q_ref_[j] < lower_[j] || q_ref_[j] > upper_[j]) {
+      q_ref_[j] = std::clamp(q_ref_[j], lower_[j], upper_[j]);
+      dq_ref_[j] = 0.0;
+    }
+  }
+}
+
+}  // namespace tpf::offline

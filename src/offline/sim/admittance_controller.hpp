@@ -1,0 +1,36 @@
+// The teaching controller the twin closes the loop with: joint-space admittance on a simple
+// external-torque estimate from the motor currents, sending position references to the drives.
+//   τ̂ = −(K_t·i − G(q) − F_nom(q̇)) − b,   b frozen while a pad is pressed (else tracked, 0.5 s)
+//   M_a·q̈_a + D_a·q̇_a = deadband(τ̂),   q_ref += q̇_a·Δt (inside the joint range)
+// F_nom is the memoryless smooth Stribeck curve of the friction file, so this controller is
+// deliberately the "nominal model" kind a user would start with.
+#pragma once
+
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/twin_arm.hpp"
+#include "tpf/friction/stribeck.hpp"
+
+namespace tpf::offline {
+
+class AdmittanceController {
+ public:
+  AdmittanceController(const TeachingConfig& config,
+                       const StribeckParameters<double, kTwinJoints>& nominal_friction,
+                       const TwinVector& start, const TwinVector& lower, const TwinVector& upper);
+
+  /// One host cycle with the measurements (q rad, q̇ rad/s, i mA), the largest pad reading (kPa).
+  void update(const TwinArm& nominal, const TwinVector& q, const TwinVector& dq,
+              const TwinVector& current_ma, double max_pad_kpa, double dt);
+
+  const TwinVector& q_ref() const { return q_ref_; }
+  const TwinVector& dq_ref() const { return dq_ref_; }
+
+ private:
+  TeachingConfig config_;
+  StribeckParameters<double, kTwinJoints> friction_;
+  TwinVector lower_, upper_;
+  TwinVector q_ref_, dq_ref_ = TwinVector::Zero(), baseline_ = TwinVector::Zero();
+  bool baseline_ready_ = false;
+};
+
+}  // namespace tpf::offline

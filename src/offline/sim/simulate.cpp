@@ -1,0 +1,332 @@
+// The digital twin's main loop (see simulate.hpp and docs/twin.md).
+#include "offline/sim/simulate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <optional>
+#include <sstream>
+
+#include "offline/log/log_writer.hpp"
+#include "offline/sim/admittance_controller.hpp"
+#include "offline/sim/contact_script.hpp"
+#include "offline/sim/excitation_schedule.hpp"
+#include "offline/sim/human_hand.hpp"
+#include "offline/sim/pad_sensors.hpp"
+#include "offline/sim/ph54_drive.hpp"
+#include "offline/sim/random.hpp"
+#include "offline/sim/sensor_quantisation.hpp"
+#include "offline/sim/twin_arm.hpp"
+#include "offline/sim/twin_plant.hpp"
+#include "tpf/friction/friction_file.hpp"
+
+namespace tpf::offline {
+
+namespace {
+
+constexpr double kPadRateHz = 1000.0;
+constexpr double kLimitMargin = 0.05;  // rad kept clear of the joint limits by the scripts
+
+std::string join(const TwinVector& v) {
+  std::ostringstream s;
+  s.precision(17);
+  for (int j = 0; j < kTwinJoints; ++j)
+    s << (j ? "," : "") << v[j];
+  return s.str();
+}
+
+// The timing of the host's 400 Hz cycle: nominal instants on the inner grid, some taken one
+// inner step early or late (jitter), some lost (dropped rows), time stamps with a little noise.
+class SampleClock {
+ public:
+  SampleClock(const SensorConfig& config, long ratio, Random rng)
+      : config_(config), ratio_(ratio), rng_(std::move(rng)) {}
+
+  /// Inner step index of the next cycle and whether the row is dropped.
+  long next_step() const { return next_; }
+  bool dropped() const { return dropped_; }
+  void advance() {
+    ++cycle_;
+    long offset = 0;
+    if (rng_.chance(config_.jitter_probability)) offset = rng_.chance(0.5) ? 1 : -1;
+    next_ = cycle_ * ratio_ + offset;
+    dropped_ = rng_.chance(config_.drop_probability);
+  }
+  /// Host time stamp of an instant, µs resolution, strictly increasing.
+  double stamp(double t) {
+    double s = std::round((t + config_.timestamp_noise_s * rng_.normal()) * 1e6) / 1e6;
+    if (s <= last_stamp_) s = last_stamp_ + 1e-6;
+    last_stamp_ = s;
+    return s;
+  }
+
+ private:
+  SensorConfig config_;
+  long ratio_;
+  Random rng_;
+  long cycle_ = 0;
+  long next_ = 0;
+  bool dropped_ = false;
+  double last_stamp_ = -1.0;
+};
+
+}  // namespace
+
+std::vector<std::string> simulation_columns(int pad_count) {
+  std::vector<std::string> c{"t"};
+  for (const char* prefix : {"q", "dq", "i"})
+    for (int j = 1; j <= kTwinJoints; ++j)
+      c.push_back(indexed_name(prefix, j));
+  for (int k = 1; k <= pad_count; ++k)
+    c.push_back(indexed_name("p", k));
+  for (const char* prefix : {"temp", "gt_fric", "gt_tau_ext", "gt_ddq"})
+    for (int j = 1; j <= kTwinJoints; ++j)
+      c.push_back(indexed_name(prefix, j));
+  for (const char* name : {"gt_contact", "gt_fx", "gt_fy", "gt_fz"})
+    c.push_back(name);
+  return c;
+}
+
+LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double duration_s) {
+  LogMetadata m;
+  m.set("tpf-log", "1");
+  m.set("robot", "arm4");
+  std::ostringstream rate;
+  rate << s.log_rate_hz;
+  m.set("rate_hz", rate.str());
+  m.set("source", "simulated (tpf digital twin)");
+  m.set("seed", std::to_string(seed));
+  m.set("scenario",
+        s.name + " (" + to_string(s.kind) + (s.file.empty() ? "" : ", " + s.file) + ")");
+  std::ostringstream d;
+  d << duration_s;
+  m.set("duration_s", d.str());
+  m.set("note",
+        "ground truth in gt_* columns; gt_fric in mA, gt_tau_ext in N*m (torque the "
+        "environment applies to the robot), gt_f* in N, world frame");
+  return m;
+}
+
+SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double duration_s,
+                           const RowSink& sink, const ProgressSink& progress) {
+  const double duration = duration_s > 0 ? duration_s : scenario.duration_s;
+  const double h = 1.0 / scenario.inner_rate_hz;
+  const long ratio = std::lround(scenario.inner_rate_hz / scenario.log_rate_hz);
+  const long total_steps = std::lround(duration * scenario.inner_rate_hz);
+  const long pad_every = std::max(1L, std::lround(scenario.inner_rate_hz / kPadRateHz));
+  const auto& fx = scenario.effects;
+
+  Random root(seed);
+  Random plan_rng = root.split(), sensor_rng = root.split(), hand_rng = root.split();
+
+  const TwinArm arm(scenario);
+  Scenario nominal_scenario = scenario;
+  nominal_scenario.effects.payload.enabled = false;
+  const TwinArm nominal(nominal_scenario);
+  const auto friction = load_lugre_parameters<double, kTwinJoints>(scenario.friction_file);
+  const int pads = arm.pad_count();
+
+  // Script ranges: the scenario's range inside the joint limits.
+  const TwinVector lower =
+      scenario.excitation.lower.cwiseMax(arm.lower() + TwinVector::Constant(kLimitMargin));
+  const TwinVector upper =
+      scenario.excitation.upper.cwiseMin(arm.upper() - TwinVector::Constant(kLimitMargin));
+
+  TwinPlant plant(arm, friction, fx, h);
+  plant.reset(scenario.initial_q, TwinVector::Zero());
+  Ph54Drive drive(scenario.drive, arm.mass_matrix(scenario.initial_q).diagonal(),
+                  arm.torque_constant(), arm.current_limit(), arm.velocity_limit());
+  drive.reset(arm.gravity(scenario.initial_q).cwiseQuotient(arm.torque_constant()));
+
+  std::optional<MinJerkSchedule> schedule;
+  std::optional<ContactScript> contacts;
+  std::optional<HumanHand> hand;
+  std::optional<AdmittanceController> admittance;
+  switch (scenario.kind) {
+    case Scenario::Kind::kExcitation:
+      schedule = make_excitation_schedule(scenario.excitation, scenario.initial_q, lower, upper,
+                                          duration, plan_rng);
+      break;
+    case Scenario::Kind::kStaticContacts: {
+      auto plan = make_static_contact_plan(scenario.contacts, scenario.initial_q, lower, upper,
+                                           pads, duration, plan_rng);
+      schedule = std::move(plan.poses);
+      contacts = std::move(plan.contacts);
+      break;
+    }
+    case Scenario::Kind::kTeaching:
+      hand.emplace(scenario.teaching, lower, upper, hand_rng);
+      admittance.emplace(scenario.teaching, friction.stribeck, scenario.initial_q, lower, upper);
+      break;
+  }
+
+  PadSensors pad_sensors(scenario.pads, pads, root.split());
+  SampleClock clock(scenario.sensors, ratio, root.split());
+  std::vector<double> pad_force(pads, 0.0), pad_area(pads, 1.0);
+
+  // Delay line between the drive's current and the torque it produces (undeclared effect).
+  const long delay_steps = fx.delay.enabled ? std::lround(fx.delay.delay_s / h) : 0;
+  std::deque<TwinVector> delay_line;
+  TwinVector temperature = TwinVector::Constant(fx.thermal.initial_c);
+  const TwinMatrix coupling =
+      TwinMatrix::Identity() + (fx.coupling.enabled ? fx.coupling.matrix : TwinMatrix::Zero());
+
+  const auto columns = simulation_columns(pads);
+  std::vector<double> row(columns.size());
+  SimulationSummary summary;
+  TwinVector q_ref = scenario.initial_q, dq_ref = TwinVector::Zero();
+  double last_host_update = 0.0;
+
+  for (long n = 0; n <= total_steps; ++n) {
+    const double t = n * h;
+    const TwinVector& q = plant.q();
+    const TwinVector& dq = plant.dq();
+
+    // Contact force on the robot, world frame, and its joint torque τ_ext = J_vᵀ·F.
+    int contact_pad = -1;
+    Vector3<double> force = Vector3<double>::Zero();
+    double area = 1.0;
+    if (contacts) {
+      const ContactSample c = contacts->at(t);
+      if (c.pad >= 0) {
+        contact_pad = c.pad;
+        force = arm.pad_frame(q, c.pad).rotation * c.force_contact;
+        area = c.area_cm2;
+      }
+    } else if (hand) {
+      const HandForce f = hand->update(arm, t, q, dq);
+      contact_pad = f.pad;
+      force = f.force_world;
+      area = f.area_cm2;
+    }
+    TwinVector tau_ext = TwinVector::Zero();
+    if (contact_pad >= 0) {
+      const PadFrame frame = arm.pad_frame(q, contact_pad);
+      tau_ext = frame.linear_jacobian.transpose() * force;
+      std::fill(pad_force.begin(), pad_force.end(), 0.0);
+      pad_force[contact_pad] = -force.dot(frame.rotation.col(2));
+      pad_area[contact_pad] = area;
+    } else {
+      std::fill(pad_force.begin(), pad_force.end(), 0.0);
+    }
+    if (n % pad_every == 0) pad_sensors.update(pad_force, pad_area, pad_every * h);
+
+    // The host's cycle: what the drives and the pad board report.
+    if (n == clock.next_step()) {
+      const double stamp = clock.stamp(t);
+      TwinVector q_meas, dq_meas, i_meas;
+      for (int j = 0; j < kTwinJoints; ++j) {
+        q_meas[j] = quantise_position(q[j]);
+        dq_meas[j] = quantise_velocity(dq[j]);
+        i_meas[j] = quantise_current_ma(drive.current()[j] * 1000.0 +
+                                        scenario.sensors.current_noise_ma * sensor_rng.normal());
+      }
+      if (!clock.dropped()) {
+        std::size_t c = 0;
+        row[c++] = stamp;
+        for (const TwinVector* v : {&q_meas, &dq_meas, &i_meas})
+          for (int j = 0; j < kTwinJoints; ++j)
+            row[c++] = (*v)[j];
+        double max_pad = 0.0;
+        for (int k = 0; k < pads; ++k) {
+          row[c++] = pad_sensors.reading(k);
+          max_pad = std::max(max_pad, pad_sensors.reading(k));
+        }
+        for (int j = 0; j < kTwinJoints; ++j)
+          row[c++] = std::round(temperature[j]);
+        for (int j = 0; j < kTwinJoints; ++j)
+          row[c++] = plant.friction()[j] / arm.torque_constant()[j] * 1000.0;
+        for (int j = 0; j < kTwinJoints; ++j)
+          row[c++] = tau_ext[j];
+        for (int j = 0; j < kTwinJoints; ++j)
+          row[c++] = plant.ddq()[j];
+        row[c++] = contact_pad + 1;
+        for (int a = 0; a < 3; ++a)
+          row[c++] = force[a];
+        sink(row);
+        ++summary.rows;
+        if (admittance) {
+          admittance->update(nominal, q_meas, dq_meas, i_meas, max_pad, t - last_host_update);
+          last_host_update = t;
+        }
+      } else {
+        ++summary.dropped_rows;
+      }
+      clock.advance();
+    }
+    if (n == total_steps) break;
+
+    // Reference, drive, torque, mechanics, heat.
+    if (schedule) {
+      schedule->evaluate(t, q_ref, dq_ref);
+    } else if (admittance) {
+      q_ref = admittance->q_ref();
+      dq_ref = admittance->dq_ref();
+    }
+    TwinVector q_drive, dq_drive;
+    for (int j = 0; j < kTwinJoints; ++j) {
+      q_drive[j] = quantise_position(q[j]);
+      dq_drive[j] = quantise_velocity(dq[j]);
+    }
+    TwinVector current = drive.update(q_ref, dq_ref, q_drive, dq_drive, h);
+    if (delay_steps > 0) {
+      delay_line.push_back(current);
+      if (static_cast<long>(delay_line.size()) > delay_steps) {
+        current = delay_line.front();
+        delay_line.pop_front();
+      } else {
+        current = delay_line.front();
+      }
+    }
+    const TwinVector tau_motor = coupling * arm.torque_constant().cwiseProduct(current);
+    TwinVector viscous_scale = TwinVector::Ones();
+    if (fx.thermal.enabled)
+      viscous_scale =
+          (TwinVector::Ones() +
+           fx.thermal.viscous_per_k * (temperature - TwinVector::Constant(fx.thermal.initial_c)))
+              .cwiseMax(0.1);
+    plant.step(tau_motor + tau_ext, viscous_scale);
+    const TwinVector& i_now = drive.current();
+    temperature += h * (fx.thermal.heating_k_per_a2s * i_now.cwiseProduct(i_now) -
+                        (temperature - TwinVector::Constant(fx.thermal.ambient_c)) /
+                            fx.thermal.time_constant_s);
+
+    if (progress && n % static_cast<long>(scenario.inner_rate_hz) == 0)
+      progress(static_cast<double>(n) / static_cast<double>(total_steps));
+  }
+  if (progress) progress(1.0);
+  summary.simulated_s = duration;
+  return summary;
+}
+
+SimulationSummary simulate_to_file(const Scenario& scenario, std::uint64_t seed, double duration_s,
+                                   const std::filesystem::path& path,
+                                   const ProgressSink& progress) {
+  const double duration = duration_s > 0 ? duration_s : scenario.duration_s;
+  const int pads = TwinArm(scenario).pad_count();
+  LogWriter writer(path, simulation_metadata(scenario, seed, duration), simulation_columns(pads));
+  const auto summary = simulate(
+      scenario, seed, duration, [&](std::span<const double> row) { writer.write_row(row); },
+      progress);
+  writer.close();
+  return summary;
+}
+
+Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duration_s) {
+  const double duration = duration_s > 0 ? duration_s : scenario.duration_s;
+  Log log;
+  log.source = "simulated";
+  log.columns = simulation_columns(TwinArm(scenario).pad_count());
+  log.meta = simulation_metadata(scenario, seed, duration);
+  std::vector<double> values;
+  const auto summary = simulate(scenario, seed, duration, [&](std::span<const double> row) {
+    values.insert(values.end(), row.begin(), row.end());
+  });
+  const auto cols = static_cast<Eigen::Index>(log.columns.size());
+  log.values =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          values.data(), static_cast<Eigen::Index>(summary.rows), cols);
+  return log;
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,52 @@
+// The digital twin's entry point: runs a scenario and emits log rows in the project format
+// (shared/docs/log-format.md) with gt_* ground truth. Same scenario + seed → same rows, bit for
+// bit.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "offline/log/log.hpp"
+#include "offline/log/log_metadata.hpp"
+#include "offline/sim/scenario.hpp"
+
+namespace tpf::offline {
+
+/// Receives one log row, values in the order of simulation_columns().
+using RowSink = std::function<void(std::span<const double>)>;
+/// Receives the simulated fraction in [0, 1], about once per simulated second.
+using ProgressSink = std::function<void(double)>;
+
+struct SimulationSummary {
+  std::size_t rows = 0;          ///< rows emitted
+  std::size_t dropped_rows = 0;  ///< cycles lost on purpose (sensor model)
+  double simulated_s = 0.0;
+};
+
+/// Columns of a simulated log: t, q<j>, dq<j>, i<j>, p<k>, temp<j>, then ground truth
+/// gt_fric<j> (mA), gt_tau_ext<j> (N·m), gt_ddq<j> (rad/s²), gt_contact, gt_fx, gt_fy, gt_fz (N).
+std::vector<std::string> simulation_columns(int pad_count);
+
+/// Metadata: tpf-log 1, robot arm4, rate_hz, source "simulated (tpf digital twin)", seed,
+/// scenario (name and file), duration, torque constants.
+LogMetadata simulation_metadata(const Scenario& scenario, std::uint64_t seed, double duration_s);
+
+/// Runs `scenario` for `duration_s` (the scenario's duration when ≤ 0) with `seed`.
+/// Sign convention of the ground truth: gt_tau_ext = Jᵀ·F with F the force the environment (the
+/// hand) applies to the robot, so at rest K_t·i ≈ G(q) + friction − gt_tau_ext.
+SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double duration_s,
+                           const RowSink& sink, const ProgressSink& progress = {});
+
+/// simulate() into a log file written with LogWriter (atomic: nothing is left on failure).
+SimulationSummary simulate_to_file(const Scenario& scenario, std::uint64_t seed, double duration_s,
+                                   const std::filesystem::path& path,
+                                   const ProgressSink& progress = {});
+
+/// simulate() into memory (tests, small runs).
+Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duration_s);
+
+}  // namespace tpf::offline

@@ -1,0 +1,60 @@
+// The mechanical plant of the twin: rigid-body arm (with armature) + joint friction + position-
+// dependent undeclared torques, advanced at the fixed inner rate.
+//
+// Integration per step of length h (Lie splitting):
+//  1. RK4 of M(q)q̈ + C(q,q̇)q̇ + G(q) = τ_in + τ_pos(q), with τ_in (motor + external torques)
+//     held over the step and τ_pos (ripple, spring) evaluated at each stage → (q*, q̇*).
+//  2. Friction impulse, implicit in the velocity correction δ:
+//       M(q*)·δ + h·F(v0 + δ, z) = 0,   v0 = (q* − q_k)/h,
+//     solved by Newton's method (F_j depends on joint j only), where F is the LuGre torque with
+//     the exponential bristle update over h at the displacement velocity v = v0 + δ (stable for
+//     any bristle stiffness). Then q ← q* + h·δ, q̇ ← q̇* + δ, z ← z(v). The bristles absorb
+//     exactly the displacement the joint made, so the arm does not creep while it sticks.
+// With friction off step 2 vanishes and the scheme is plain RK4 (energy-conserving to O(h⁴)).
+#pragma once
+
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/twin_arm.hpp"
+#include "tpf/friction/lugre.hpp"
+
+namespace tpf::offline {
+
+class TwinPlant {
+ public:
+  TwinPlant(const TwinArm& arm, const LuGreParameters<double, kTwinJoints>& friction,
+            const EffectsConfig& effects, double dt);
+
+  /// Sets the state (bristles relaxed).
+  void reset(const TwinVector& q, const TwinVector& dq);
+
+  /// Advances one step with τ_in (N·m) held; `viscous_scale` multiplies b (temperature drift).
+  void step(const TwinVector& tau_in, const TwinVector& viscous_scale);
+
+  const TwinVector& q() const { return q_; }
+  const TwinVector& dq() const { return dq_; }
+  /// Joint acceleration over the last step, (q̇_k+1 − q̇_k)/h.
+  const TwinVector& ddq() const { return ddq_; }
+  /// Friction torque applied during the last step (N·m, opposes motion: enters M q̈ with −).
+  const TwinVector& friction() const { return friction_; }
+  const TwinVector& bristles() const { return state_.z; }
+  /// Torque of the position-dependent undeclared effects (ripple + spring) at q, N·m.
+  TwinVector position_torque(const TwinVector& q) const;
+  /// Total mechanical energy T + V (J).
+  double energy() const { return arm_.energy(q_, dq_); }
+  const TwinArm& arm() const { return arm_; }
+
+ private:
+  TwinVector acceleration(const TwinVector& q, const TwinVector& dq, const TwinVector& tau_in);
+  double joint_friction(int j, double v, double abs_gravity, double viscous_scale,
+                        double* z_out) const;
+
+  TwinArm arm_;
+  LuGreParameters<double, kTwinJoints> friction_parameters_;
+  EffectsConfig effects_;
+  double dt_;
+  TwinVector q_ = TwinVector::Zero(), dq_ = TwinVector::Zero(), ddq_ = TwinVector::Zero();
+  TwinVector friction_ = TwinVector::Zero();
+  LuGreState<double, kTwinJoints> state_;
+};
+
+}  // namespace tpf::offline
