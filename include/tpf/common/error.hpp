@@ -16,10 +16,12 @@ class Error : public std::runtime_error {
   /// "<file>:<line>: <field>: <message>"; line <= 0 and an empty field are left out.
   static Error at(std::string_view file, long line, std::string_view field,
                   std::string_view message) {
-    std::string text(file);
-    if (line > 0) text += ":" + std::to_string(line);
-    if (!field.empty()) text += std::string(": ") + std::string(field);
-    text += std::string(": ") + std::string(message);
+    std::string text;
+    text.reserve(file.size() + field.size() + message.size() + 24);
+    text.append(file);
+    if (line > 0) text.append(":").append(std::to_string(line));
+    if (!field.empty()) text.append(": ").append(field);
+    text.append(": ").append(message);
     return Error(text);
   }
 };
