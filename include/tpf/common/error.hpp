@@ -16,8 +16,9 @@ class Error : public std::runtime_error {
   /// "<file>:<line>: <field>: <message>"; line <= 0 and an empty field are left out.
   static Error at(std::string_view file, long line, std::string_view field,
                   std::string_view message) {
-    std::string text(file);
-    // Appends piecewise: `a + b` temporaries trip a GCC 12 -Wrestrict false positive (PR105329).
+    std::string text;
+    text.reserve(file.size() + field.size() + message.size() + 24);
+    text.append(file);
     if (line > 0) text.append(":").append(std::to_string(line));
     if (!field.empty()) text.append(": ").append(field);
     text.append(": ").append(message);

@@ -3,8 +3,14 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <type_traits>
 
 namespace tpf {
+
+/// A parameter type that takes no part in template deduction: S and N come from the Model, and
+/// Eigen expressions (q + h * dq, Vec::Zero()) convert to the fixed-size type on the stack.
+template <typename T>
+using NoDeduce = std::type_identity_t<T>;
 
 template <typename S, int N>
 using JointVector = Eigen::Matrix<S, N, 1>;
@@ -33,5 +39,13 @@ struct Transform {
     return {R.template cast<T>(), p.template cast<T>()};
   }
 };
+
+/// The cross-product matrix [v]×, with [v]× w = v × w.
+template <typename S>
+Matrix3<S> skew(const Vector3<S>& v) {
+  Matrix3<S> m;
+  m << S(0), -v.z(), v.y(), v.z(), S(0), -v.x(), -v.y(), v.x(), S(0);
+  return m;
+}
 
 }  // namespace tpf

@@ -1,0 +1,41 @@
+// Start-up helpers for reading the project's JSON files (robot, pads, parameters, weights) with
+// errors that name the file and the field. Not for the per-cycle path.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <string_view>
+
+#include "tpf/common/types.hpp"
+
+namespace tpf::json {
+
+/// Parses a JSON file; tpf::Error names the file, line and column of a syntax error.
+nlohmann::json read_file(const std::filesystem::path& path);
+
+/// Checks `"format": <format>` and `"version": <= max_version`.
+void check_format(const nlohmann::json& j, const std::string& file, std::string_view format,
+                  int max_version);
+
+/// The member `key` of object `j` (at JSON path `where`), or tpf::Error "file: where.key: missing".
+const nlohmann::json& member(const nlohmann::json& j, const std::string& file,
+                             const std::string& where, const std::string& key);
+
+/// A finite number; the error names the field.
+double number(const nlohmann::json& j, const std::string& file, const std::string& where,
+              const std::string& key);
+
+/// A string field.
+std::string string(const nlohmann::json& j, const std::string& file, const std::string& where,
+                   const std::string& key);
+
+/// A 3-vector of finite numbers.
+Vector3<double> vector3(const nlohmann::json& j, const std::string& file, const std::string& where,
+                        const std::string& key);
+
+/// Refuses any member of object `j` not in `allowed` (a typo must not be silently ignored).
+void only_keys(const nlohmann::json& j, const std::string& file, const std::string& where,
+               std::initializer_list<std::string_view> allowed);
+
+}  // namespace tpf::json

@@ -1,0 +1,76 @@
+// The immutable description of a serial arm of N revolute joints (Pinocchio's Model).
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "tpf/common/types.hpp"
+#include "tpf/model/inertia.hpp"
+
+namespace tpf {
+
+/// A serial chain of N revolute joints with its inertias and drive data. Immutable after loading;
+/// every per-cycle function takes it by const reference together with a Data workspace.
+///
+/// Frames: link 0 is the base (world frame). Link k (1..N) moves with joint k. The frame of joint k
+/// sits at joint_placements[k-1] in link k−1's frame; link k's frame is that frame rotated by q_k
+/// about axes[k-1]. Joint indices in vectors are 0-based (q(0) is joint 1).
+template <typename S, int N>
+struct Model {
+  static_assert(N >= 1, "a model has at least one joint");
+  using Scalar = S;
+  static constexpr int joints = N;
+
+  std::string name;
+  std::array<std::string, N> joint_names;
+  std::array<std::string, N + 1> link_names;  ///< [0] is the base link.
+
+  std::array<Transform<S>, N> joint_placements;  ///< joint k frame in link k−1 frame, at q = 0.
+  std::array<Vector3<S>, N> axes;                ///< unit rotation axis in the joint frame.
+  std::array<Inertia<S>, N + 1> inertias;  ///< per link, in its own frame ([0]: base, unused).
+
+  JointVector<S, N> armature = JointVector<S, N>::Zero();  ///< reflected rotor inertia [kg·m²].
+  JointVector<S, N> gear_ratio = JointVector<S, N>::Ones();
+  JointVector<S, N> torque_constant = JointVector<S, N>::Ones();  ///< [N·m/A], output side.
+  JointVector<S, N> current_limit = JointVector<S, N>::Zero();    ///< [mA].
+  JointVector<S, N> lower = JointVector<S, N>::Zero();            ///< position limits [rad].
+  JointVector<S, N> upper = JointVector<S, N>::Zero();
+  JointVector<S, N> velocity_limit = JointVector<S, N>::Zero();  ///< [rad/s].
+  JointVector<S, N> effort_limit = JointVector<S, N>::Zero();    ///< [N·m].
+
+  Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  ///< in the world frame [m/s²].
+
+  /// Index (1..N) of the link called `link_name`, or −1.
+  int link_index(const std::string& link_name) const {
+    for (int k = 0; k <= N; ++k)
+      if (link_names[k] == link_name) return k;
+    return -1;
+  }
+
+  /// The same model in another scalar type (e.g. float for a controller).
+  template <typename T>
+  Model<T, N> cast() const {
+    Model<T, N> m;
+    m.name = name;
+    m.joint_names = joint_names;
+    m.link_names = link_names;
+    for (int k = 0; k < N; ++k) {
+      m.joint_placements[k] = joint_placements[k].template cast<T>();
+      m.axes[k] = axes[k].template cast<T>();
+    }
+    for (int k = 0; k <= N; ++k)
+      m.inertias[k] = inertias[k].template cast<T>();
+    m.armature = armature.template cast<T>();
+    m.gear_ratio = gear_ratio.template cast<T>();
+    m.torque_constant = torque_constant.template cast<T>();
+    m.current_limit = current_limit.template cast<T>();
+    m.lower = lower.template cast<T>();
+    m.upper = upper.template cast<T>();
+    m.velocity_limit = velocity_limit.template cast<T>();
+    m.effort_limit = effort_limit.template cast<T>();
+    m.gravity = gravity.template cast<T>();
+    return m;
+  }
+};
+
+}  // namespace tpf

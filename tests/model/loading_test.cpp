@@ -1,0 +1,129 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "support/arm_fixture.hpp"
+
+namespace tpf::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Writes `text` to a fresh file in a test folder and returns its path.
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "tpf_model_tests";
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const char* kLink = R"(<link name="%s"><inertial><mass value="1"/><origin xyz="0 0 0.1"/>
+  <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>)";
+
+std::string link(const std::string& name) {
+  std::string s = kLink;
+  return s.replace(s.find("%s"), 2, name);
+}
+
+std::string joint(const std::string& name, const std::string& type, const std::string& parent,
+                  const std::string& child) {
+  return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
+         "\"/><child link=\"" + child +
+         "\"/><origin xyz=\"0 0 0.2\"/><axis xyz=\"0 1 0\"/>"
+         "<limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"1\"/></joint>";
+}
+
+TEST(Loading, TheArmHasFourJointsWithPublishedMassesAndPositiveArmature) {
+  const Arm& model = arm();
+  EXPECT_EQ(model.joint_names[0], "joint1");
+  EXPECT_EQ(model.link_names[4], "link5");
+  EXPECT_DOUBLE_EQ(model.inertias[2].mass, 1.3026);  // link k moves with joint k: [2] is URDF link3
+  EXPECT_NEAR(model.armature(0), 3.33e-6 * 501.923 * 501.923, 1e-9);
+  EXPECT_DOUBLE_EQ(model.current_limit(3), 15900);
+  EXPECT_EQ(load_pads(data_path("arm4.pads.json"), model).size(), 11u);
+}
+
+TEST(Loading, WrongJointCountIsRefusedNamingTheFile) {
+  const std::string msg = message_of([] { load_robot<double, 3>(data_path("arm4.robot.json")); });
+  EXPECT_NE(msg.find("arm4.urdf"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("has 4 revolute joints"), std::string::npos) << msg;
+}
+
+TEST(Loading, PrismaticJointIsRefusedNamingTheJoint) {
+  const fs::path p =
+      write("prismatic.urdf", "<robot name=\"r\">" + link("a") + link("b") +
+                                  joint("slide", "prismatic", "a", "b") + "</robot>");
+  const std::string msg = message_of([&] { load_urdf_chain(p); });
+  EXPECT_NE(msg.find("prismatic.urdf"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("joint 'slide'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("is prismatic"), std::string::npos) << msg;
+}
+
+TEST(Loading, BranchingTreeIsRefusedNamingTheLink) {
+  const fs::path p = write("branch.urdf", "<robot name=\"r\">" + link("a") + link("b") + link("c") +
+                                              joint("j1", "revolute", "a", "b") +
+                                              joint("j2", "revolute", "a", "c") + "</robot>");
+  const std::string msg = message_of([&] { load_urdf_chain(p); });
+  EXPECT_NE(msg.find("link 'a'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("branches"), std::string::npos) << msg;
+}
+
+TEST(Loading, MalformedXmlIsRefusedNamingTheFile) {
+  const fs::path p = write("broken.urdf", "<robot name=\"r\"><link name=\"a\">");
+  const std::string msg = message_of([&] { load_urdf_chain(p); });
+  EXPECT_NE(msg.find("broken.urdf"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not a valid URDF"), std::string::npos) << msg;
+}
+
+TEST(Loading, FixedLinksAreFoldedIntoTheirMovingParent) {
+  // b carries a fixed child f of 1 kg at 0.2 m: the chain has one joint, link b weighs 2 kg.
+  const fs::path p = write("fixed.urdf", "<robot name=\"r\">" + link("a") + link("b") + link("f") +
+                                             joint("j1", "revolute", "a", "b") +
+                                             joint("tool", "fixed", "b", "f") + "</robot>");
+  const ChainDescription chain = load_urdf_chain(p);
+  ASSERT_EQ(chain.joints.size(), 1u);
+  EXPECT_DOUBLE_EQ(chain.inertias[1].mass, 2.0);
+  EXPECT_NEAR(chain.inertias[1].com.z(), 0.2, 1e-15);  // (0.1 + 0.3) / 2
+  // Steiner: each 1 kg body sits 0.1 m from the common centre: Ixx = 2·0.01 + 2·1·0.1².
+  EXPECT_NEAR(chain.inertias[1].rotational(0, 0), 0.04, 1e-15);
+}
+
+TEST(Loading, RobotFileWithUnknownKeyIsRefusedNamingIt) {
+  const fs::path urdf = write("one.urdf", "<robot name=\"r\">" + link("a") + link("b") +
+                                              joint("j1", "revolute", "a", "b") + "</robot>");
+  const fs::path robot = write("one.robot.json", R"({"format": "tpf-robot", "version": 1,
+    "urdf": "one.urdf", "joints": [{"name": "j1", "gear_ratio": 100, "rotor_inertia": 1e-6,
+    "torque_constant": 2, "current_limit": 1000, "gear_ration": 3}]})");
+  (void)urdf;
+  const std::string msg = message_of([&] { load_robot<double, 1>(robot); });
+  EXPECT_NE(msg.find("one.robot.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("joints[0].gear_ration"), std::string::npos) << msg;
+}
+
+TEST(Loading, JsonSyntaxErrorNamesTheLine) {
+  const fs::path robot =
+      write("bad.robot.json", "{\n\"format\": \"tpf-robot\",\n\"version\": 1,,\n}");
+  const std::string msg = message_of([&] { load_robot_description(robot); });
+  EXPECT_NE(msg.find("bad.robot.json:3"), std::string::npos) << msg;
+}
+
+TEST(Loading, PadOnUnknownLinkIsRefusedNamingThePad) {
+  const fs::path pads = write("pads.json", R"({"format": "tpf-pads", "version": 1, "pads": [
+    {"name": "elbow", "link": "link9", "center": [0, 0, 0], "normal": [0, 0, 1], "area": 0.001}]})");
+  const std::string msg = message_of([&] { load_pads(pads, arm()); });
+  EXPECT_NE(msg.find("pads[0].link"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'elbow'"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace tpf::test
