@@ -41,6 +41,9 @@ void run_simulate(const SimulateOptions& o) {
 
 }  // namespace
 
+namespace tpf::cli {
+
+/// Adds `tpf simulate` to the app.
 void register_simulate_command(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand(
@@ -60,3 +63,5 @@ void register_simulate_command(CLI::App& app) {
   cmd->add_flag("--quiet", options->quiet, "No progress line");
   cmd->callback([options] { run_simulate(*options); });
 }
+
+}  // namespace tpf::cli

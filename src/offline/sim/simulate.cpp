@@ -101,6 +101,8 @@ LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double du
   std::ostringstream d;
   d << duration_s;
   m.set("duration_s", d.str());
+  m.set("torque_constant_nm_per_a", join(TwinArm(s).torque_constant()));
+  m.set("friction_file", s.friction_file);
   m.set("note",
         "ground truth in gt_* columns; gt_fric in mA, gt_tau_ext in N*m (torque the "
         "environment applies to the robot), gt_f* in N, world frame");

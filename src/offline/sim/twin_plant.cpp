@@ -83,7 +83,7 @@ void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) 
     TwinVector delta = TwinVector::Zero(), force, slope;
     for (int it = 0; it < kNewtonIterations; ++it) {
       for (int j = 0; j < kTwinJoints; ++j) {
-        const double v = v0[j] + delta[j];
+        const double v = v0[j] + 0.5 * delta[j];
         const double e = 1e-7 * (1.0 + std::abs(v));
         force[j] = joint_friction(j, v, abs_gravity[j], viscous_scale[j], nullptr);
         slope[j] = (joint_friction(j, v + e, abs_gravity[j], viscous_scale[j], nullptr) -
@@ -92,15 +92,15 @@ void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) 
       }
       const TwinVector residual = M * delta + h * force;
       TwinMatrix J = M;
-      J.diagonal() += h * slope.cwiseMax(0.0);
+      J.diagonal() += 0.5 * h * slope.cwiseMax(0.0);
       const TwinVector step = J.ldlt().solve(residual);
       delta -= step;
       if (step.cwiseAbs().maxCoeff() < 1e-13 * (1.0 + v0.cwiseAbs().maxCoeff())) break;
     }
     for (int j = 0; j < kTwinJoints; ++j)
       friction_[j] =
-          joint_friction(j, v0[j] + delta[j], abs_gravity[j], viscous_scale[j], &state_.z[j]);
-    q += h * delta;
+          joint_friction(j, v0[j] + 0.5 * delta[j], abs_gravity[j], viscous_scale[j], &state_.z[j]);
+    q += 0.5 * h * delta;
     dq += delta;
   } else {
     friction_.setZero();

@@ -4,12 +4,13 @@
 // Integration per step of length h (Lie splitting):
 //  1. RK4 of M(q)q̈ + C(q,q̇)q̇ + G(q) = τ_in + τ_pos(q), with τ_in (motor + external torques)
 //     held over the step and τ_pos (ripple, spring) evaluated at each stage → (q*, q̇*).
-//  2. Friction impulse, implicit in the velocity correction δ:
-//       M(q*)·δ + h·F(v0 + δ, z) = 0,   v0 = (q* − q_k)/h,
-//     solved by Newton's method (F_j depends on joint j only), where F is the LuGre torque with
-//     the exponential bristle update over h at the displacement velocity v = v0 + δ (stable for
-//     any bristle stiffness). Then q ← q* + h·δ, q̇ ← q̇* + δ, z ← z(v). The bristles absorb
-//     exactly the displacement the joint made, so the arm does not creep while it sticks.
+//  2. Friction as a torque held over the step, implicit in its velocity change δ = −h·M⁻¹·F:
+//       M(q*)·δ + h·F(v, z) = 0,   v = v0 + δ/2,   v0 = (q* − q_k)/h,
+//     solved by Newton's method (F_j depends on joint j only). A torque held over h moves the
+//     joint by h·δ/2, so v is exactly the step's mean velocity; F is the LuGre torque with the
+//     exponential bristle update over h at that velocity (stable for any bristle stiffness).
+//     Then q ← q* + h·δ/2, q̇ ← q̇* + δ, z ← z(v). The bristles absorb exactly the displacement
+//     the joint made, and a sticking joint keeps q̇ = 0 (no creep, no velocity bias).
 // With friction off step 2 vanishes and the scheme is plain RK4 (energy-conserving to O(h⁴)).
 #pragma once
 
