@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "tpf 0.1.0");
   tpf::cli::register_info_command(app);
   tpf::cli::register_demo_command(app);
+  tpf::cli::register_simulate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

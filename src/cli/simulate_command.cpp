@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "commands.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 

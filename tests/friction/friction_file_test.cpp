@@ -31,13 +31,13 @@ const char* kValid = R"({"coulomb":[1,2],"static":[1.5,2.5],"stribeck_velocity":
 
 TEST(FrictionFile, LoadsTheTwinParameters) {
   const auto p = tpf::load_lugre_parameters<double, 4>(TPF_TEST_DATA_DIR "/arm4.friction.json");
-  EXPECT_DOUBLE_EQ(p.stribeck.coulomb[0], 1.30);
+  EXPECT_DOUBLE_EQ(p.stribeck.coulomb[0], 1.05);
   EXPECT_DOUBLE_EQ(p.stribeck.load_viscous[3], 0.100);
   EXPECT_DOUBLE_EQ(p.bristle_stiffness[1], 1.4e4);
   EXPECT_DOUBLE_EQ(p.bristle_damping[0], 100.0);
   EXPECT_EQ(tpf::friction_effort_unit(TPF_TEST_DATA_DIR "/arm4.friction.json"), "N*m");
   const auto s = tpf::load_stribeck_parameters<double, 4>(TPF_TEST_DATA_DIR "/arm4.friction.json");
-  EXPECT_DOUBLE_EQ(s.static_friction[2], 1.45);
+  EXPECT_DOUBLE_EQ(s.static_friction[2], 0.90);
 }
 
 TEST(FrictionFile, ValidSmallFileLoadsWithDefaultsForOptionalKeys) {

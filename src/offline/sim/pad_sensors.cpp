@@ -29,7 +29,8 @@ void PadSensors::update(const std::vector<double>& normal_force,
     offset_[k] += drift * rng_.normal();
     double p = pressure_[k] + offset_[k] + config_.noise_kpa * rng_.normal();
     if (config_.adc_step_kpa > 0) p = std::round(p / config_.adc_step_kpa) * config_.adc_step_kpa;
-    reading_[k] = std::clamp(p, 0.0, config_.full_scale_kpa);
+    // Reported with 0.1 Pa resolution, so the log shows 0.21 rather than 0.21000000000000002.
+    reading_[k] = std::round(std::clamp(p, 0.0, config_.full_scale_kpa) * 1e4) / 1e4;
   }
 }
 
