@@ -1,0 +1,174 @@
+// End-to-end runs of the twin: determinism by seed, log round trip, sensor resolution, the
+// equation of motion at rest in the logged data (K_t·i = G + τ_f − τ_ext), contacts and pads,
+// teaching in closed loop, undeclared effects.
+#include "offline/sim/simulate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "offline/log/read_log.hpp"
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/sensor_quantisation.hpp"
+#include "tpf/dynamics/rnea.hpp"
+#include "tpf/model/data.hpp"
+#include "tpf/model/load_robot.hpp"
+
+namespace {
+
+using namespace tpf::offline;
+
+Scenario scenario(const std::string& name) {
+  return load_scenario(std::string(TPF_TEST_DATA_DIR "/scenarios/") + name);
+}
+
+// RMS of K_t·i − (G(q) + τ_f − τ_ext) over samples at rest, mA, per joint.
+TwinVector rest_equation_error(const Log& log, const Scenario& s) {
+  const auto model = tpf::load_robot<double, kTwinJoints>(s.robot_file);
+  tpf::Data<double, kTwinJoints> data(model);
+  TwinVector sq = TwinVector::Zero();
+  long n = 0;
+  for (Eigen::Index k = 0; k < log.rows(); ++k) {
+    TwinVector q, dq;
+    for (int j = 0; j < kTwinJoints; ++j) {
+      q[j] = log.col(indexed_name("q", j + 1))(k);
+      dq[j] = log.col(indexed_name("dq", j + 1))(k);
+    }
+    if (dq.cwiseAbs().maxCoeff() > 0) continue;
+    const TwinVector g = tpf::compute_gravity(model, data, q);
+    for (int j = 0; j < kTwinJoints; ++j) {
+      const double kt = model.torque_constant[j];
+      const double expected = (g[j] - log.col(indexed_name("gt_tau_ext", j + 1))(k)) / kt * 1000 +
+                              log.col(indexed_name("gt_fric", j + 1))(k);
+      const double e = log.col(indexed_name("i", j + 1))(k) - expected;
+      sq[j] += e * e;
+    }
+    ++n;
+  }
+  EXPECT_GT(n, 100);
+  return (sq / static_cast<double>(n)).cwiseSqrt();
+}
+
+TEST(Simulate, SameSeedSameLogBitForBitOtherSeedDiffers) {
+  const Scenario s = scenario("excitation.json");
+  const Log a = simulate_to_log(s, 7, 4.0), b = simulate_to_log(s, 7, 4.0);
+  ASSERT_EQ(a.values.rows(), b.values.rows());
+  EXPECT_EQ(std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(double)), 0);
+  const Log c = simulate_to_log(s, 8, 4.0);
+  EXPECT_FALSE(c.values.rows() == a.values.rows() && c.values == a.values);
+}
+
+TEST(Simulate, LogWriteReadRoundTrip) {
+  const Scenario s = scenario("static-contacts.json");
+  const auto path = std::filesystem::temp_directory_path() / "tpf_twin_roundtrip.csv";
+  const auto summary = simulate_to_file(s, 3, 3.0, path);
+  const Log written = simulate_to_log(s, 3, 3.0);
+  const Log read = read_log(path);
+  EXPECT_EQ(read.columns, written.columns);
+  ASSERT_EQ(static_cast<std::size_t>(read.rows()), summary.rows);
+  EXPECT_TRUE(read.values == written.values);  // shortest round-trip formatting: exact
+  EXPECT_EQ(read.meta.get("source").value_or(""), "simulated (tpf digital twin)");
+  EXPECT_EQ(read.meta.get("seed").value_or(""), "3");
+  EXPECT_EQ(read.joint_count(), kTwinJoints);
+  EXPECT_EQ(read.pad_count(), 11);
+  std::filesystem::remove(path);
+}
+
+TEST(Simulate, SensorsReportAtHardwareResolutionWithGapsAndJitter) {
+  Scenario s = scenario("excitation.json");
+  s.sensors.drop_probability = 0.05;
+  s.sensors.jitter_probability = 0.2;
+  const Log log = simulate_to_log(s, 11, 5.0);
+  const auto t = log.col("t");
+  int gaps = 0, jittered = 0;
+  for (Eigen::Index k = 1; k < log.rows(); ++k) {
+    const double dt = t(k) - t(k - 1);
+    ASSERT_GT(dt, 0.0);
+    if (dt > 0.0045) ++gaps;
+    if (std::abs(dt - 0.0025) > 3e-4 && dt < 0.0045) ++jittered;
+  }
+  EXPECT_GT(gaps, 40);       // ≈ 5 % of 2000 cycles
+  EXPECT_GT(jittered, 100);  // ≈ 20 % moved by ±0.5 ms
+  for (int j = 1; j <= kTwinJoints; ++j) {
+    for (Eigen::Index k = 0; k < log.rows(); ++k) {
+      const double q = log.col(indexed_name("q", j))(k) / kPositionStep;
+      const double dq = log.col(indexed_name("dq", j))(k) / kVelocityStep;
+      const double i = log.col(indexed_name("i", j))(k);
+      ASSERT_NEAR(q, std::round(q), 1e-6);
+      ASSERT_NEAR(dq, std::round(dq), 1e-6);
+      ASSERT_EQ(i, std::round(i));
+    }
+  }
+}
+
+TEST(Simulate, ExcitationObeysTheEquationOfMotionAtRest) {
+  const Scenario s = scenario("excitation.json");
+  const Log log = simulate_to_log(s, 5, 20.0);
+  const TwinVector error = rest_equation_error(log, s);
+  // Noise 6 mA plus the drive's current loop lag and pre-sliding accelerations.
+  EXPECT_LT(error.maxCoeff(), 25.0) << error.transpose();
+  // The friction at rest is large and history-dependent: far from zero at many rest samples.
+  const auto f = log.col("gt_fric2"), dq = log.col("dq2");
+  int large = 0;
+  for (Eigen::Index k = 0; k < log.rows(); ++k)
+    if (dq(k) == 0 && std::abs(f(k)) > 100) ++large;
+  EXPECT_GT(large, 200);
+}
+
+TEST(Simulate, StaticContactsPushPadsAndShowInCurrents) {
+  const Scenario s = scenario("static-contacts.json");
+  const Log log = simulate_to_log(s, 2, 12.0);
+  const TwinVector error = rest_equation_error(log, s);
+  EXPECT_LT(error.maxCoeff(), 25.0) << error.transpose();
+  const auto contact = log.col("gt_contact");
+  int pushed = 0, seen = 0;
+  for (Eigen::Index k = 0; k < log.rows(); ++k) {
+    const int pad = static_cast<int>(contact(k));
+    if (pad == 0) continue;
+    const double f = std::sqrt(std::pow(log.col("gt_fx")(k), 2) + std::pow(log.col("gt_fy")(k), 2) +
+                               std::pow(log.col("gt_fz")(k), 2));
+    if (f < 2.0) continue;
+    ++pushed;
+    if (log.col(indexed_name("p", pad))(k) > 1.0) ++seen;
+    EXPECT_GT(log.col("gt_tau_ext2").cwiseAbs().maxCoeff(), 0.0);
+  }
+  EXPECT_GT(pushed, 400);
+  EXPECT_GT(seen, 0.9 * pushed);  // the pressed pad reads its push (after its 15 ms lag)
+}
+
+TEST(Simulate, TeachingMovesTheArmByHand) {
+  Scenario s = scenario("teaching.json");
+  const Log log = simulate_to_log(s, 4, 20.0);
+  const auto contact = log.col("gt_contact");
+  EXPECT_GT((contact.array() > 0).cast<double>().mean(), 0.3);
+  double travel = 0.0;
+  for (int j = 2; j <= kTwinJoints; ++j) {
+    const auto q = log.col(indexed_name("q", j));
+    travel = std::max(travel, q.maxCoeff() - q.minCoeff());
+  }
+  EXPECT_GT(travel, 0.1) << "the admittance controller must follow the hand";
+  EXPECT_TRUE(log.values.allFinite());
+}
+
+TEST(Simulate, UndeclaredEffectsShowUp) {
+  Scenario s = scenario("excitation.json");
+  s.effects.thermal.enabled = true;
+  s.effects.thermal.heating_k_per_a2s = 2.0;
+  s.effects.thermal.time_constant_s = 60.0;
+  const Log hot = simulate_to_log(s, 6, 10.0);
+  const auto temp = hot.col("temp2");
+  EXPECT_GT(temp(temp.size() - 1), temp(0) + 1.0);
+  // A spring on joint 1 (no gravity there) shifts the holding current by −k·(q − q0)/K_t.
+  Scenario spring = scenario("excitation.json");
+  spring.effects.spring.enabled = true;
+  spring.effects.spring.stiffness = TwinVector(5.0, 0, 0, 0);
+  const Log with = simulate_to_log(spring, 6, 10.0);
+  const Log without = simulate_to_log(scenario("excitation.json"), 6, 10.0);
+  double corr = 0;
+  for (Eigen::Index k = 0; k < std::min(with.rows(), without.rows()); ++k)
+    corr += (with.col("i1")(k) - without.col("i1")(k)) * with.col("q1")(k);
+  EXPECT_GT(corr, 0.0);  // motor must add +k·q to hold against the spring
+}
+
+}  // namespace
