@@ -29,6 +29,7 @@ constexpr double kMovingVelocity = 1e-3;  // rad/s, a sample that clearly moves
 struct Series {
   std::string label, colour;
   std::vector<double> t, y;
+  bool dots = false;  ///< scattered samples (every 4th) instead of a line
 };
 
 // A plain SVG line plot: one panel per group of series, shared time axis.
@@ -74,10 +75,17 @@ void write_svg(const std::string& path, const std::string& title,
         << oy + panel_h / 2 << ")' text-anchor='middle'>" << y_labels[p] << "</text>\n";
     double legend_x = left + 10;
     for (const auto& s : panels[p]) {
-      svg << "<polyline fill='none' stroke='" << s.colour << "' stroke-width='1.2' points='";
-      for (std::size_t k = 0; k < s.t.size(); ++k)
-        svg << X(s.t[k]) << ',' << Y(s.y[k]) << ' ';
-      svg << "'/>\n<text x='" << legend_x << "' y='" << oy + 16 << "' fill='" << s.colour << "'>"
+      if (s.dots) {
+        for (std::size_t k = 0; k < s.t.size(); k += 4)
+          svg << "<circle cx='" << X(s.t[k]) << "' cy='" << Y(s.y[k]) << "' r='1.3' fill='"
+              << s.colour << "'/>\n";
+      } else {
+        svg << "<polyline fill='none' stroke='" << s.colour << "' stroke-width='1.2' points='";
+        for (std::size_t k = 0; k < s.t.size(); ++k)
+          svg << X(s.t[k]) << ',' << Y(s.y[k]) << ' ';
+        svg << "'/>\n";
+      }
+      svg << "<text x='" << legend_x << "' y='" << oy + 16 << "' fill='" << s.colour << "'>"
           << s.label << "</text>\n";
       legend_x += 10 + 7.0 * static_cast<double>(s.label.size());
     }
@@ -146,12 +154,13 @@ int main(int argc, char** argv) {
   std::printf("all joints: static RMSE %.1f mA (original work: 280.17 mA)\n",
               std::sqrt(total_sq / total_n));
 
-  // Plot window: the first 12 s stretch with at least 4 onsets of the plotted joint.
+  // Plot window: the first 12 s stretch after 30 s (past the start-up) with at least 4 onsets.
   const auto t = log.col("t");
   const auto dq = log.col(indexed_name("dq", plot_joint + 1));
   std::vector<double> onsets;
   for (Eigen::Index k = 1; k < rows; ++k)
-    if (std::abs(dq(k - 1)) < kRestVelocity && std::abs(dq(k)) >= kRestVelocity)
+    if (t(k) > std::min(30.0, 0.5 * duration) && std::abs(dq(k - 1)) < kRestVelocity &&
+        std::abs(dq(k)) >= kRestVelocity)
       onsets.push_back(t(k));
   double begin = t(0);
   for (std::size_t a = 0; a + 3 < onsets.size(); ++a)
@@ -162,7 +171,7 @@ int main(int argc, char** argv) {
   const double end = begin + 12.0;
   Series current{"measured current i (mA)", "#1f77b4", {}, {}};
   Series fric{"true friction gt_fric (mA)", "#d62728", {}, {}};
-  Series res{"nominal residual at rest (mA)", "#2ca02c", {}, {}};
+  Series res{"nominal residual at rest (mA)", "#2ca02c", {}, {}, true};
   Series vel{"velocity dq (mrad/s)", "#333333", {}, {}};
   for (Eigen::Index k = 0; k < rows; ++k) {
     if (t(k) < begin || t(k) > end) continue;
