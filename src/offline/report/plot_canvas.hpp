@@ -14,7 +14,7 @@ struct PlotOptions {
   std::string title;
   std::string x_label;
   std::string y_label;
-  int width = 760;  ///< SVG user units (px)
+  int width = 900;  ///< SVG user units (px); the page column is 920 px wide
   int height = 300;
   bool y_include_zero = false;  ///< extend the y range to 0 (bar charts always do)
 };
