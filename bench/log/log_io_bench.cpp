@@ -1,6 +1,7 @@
 // Read and write speed of a 1-hour 400 Hz log: 1.44 M rows, 4 joints, 8 pads, 30 columns with
 // values quantised as the hardware reports them (docs/log-format-notes.md lists the figures).
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -48,13 +49,17 @@ Log hour_log() {
   return log;
 }
 
+/// The generated log on disk, removed when the program ends.
+struct BenchFile {
+  std::filesystem::path path = std::filesystem::temp_directory_path() /
+                               ("tpf_bench_hour_log_" + std::to_string(::getpid()) + ".csv");
+  BenchFile() { write_log(path, hour_log()); }
+  ~BenchFile() { std::filesystem::remove(path); }
+};
+
 const std::filesystem::path& bench_file() {
-  static const std::filesystem::path path = [] {
-    const auto p = std::filesystem::temp_directory_path() / "tpf_bench_hour_log.csv";
-    write_log(p, hour_log());
-    return p;
-  }();
-  return path;
+  static const BenchFile file;
+  return file.path;
 }
 
 void BM_ReadLogHour(benchmark::State& state) {

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -259,7 +260,8 @@ TEST(HtmlReport, SampleReportIsWellFormedSelfContainedAndEscaped) {
 }
 
 TEST(HtmlReport, WritesAtomically) {
-  const auto dir = std::filesystem::temp_directory_path() / "tpf_report_test";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("tpf_report_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const HtmlReport report = sample_report();
