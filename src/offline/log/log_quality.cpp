@@ -1,0 +1,39 @@
+#include "offline/log/log_quality.hpp"
+
+#include <cstdio>
+#include <numeric>
+
+namespace tpf::offline {
+
+std::size_t LogQuality::missing_total() const {
+  return std::accumulate(missing_per_column.begin(), missing_per_column.end(), std::size_t{0});
+}
+
+std::string LogQuality::summary(const std::vector<std::string>& columns) const {
+  char head[160];
+  std::snprintf(head, sizeof head, "%zu rows, %.1f s at %g Hz; %zu gap%s; ", rows, duration_s,
+                rate_hz, gaps, gaps == 1 ? "" : "s");
+  std::string text = head;
+  const std::size_t missing = missing_total();
+  if (missing == 0) return text + "no missing values";
+  text += std::to_string(missing) + " missing value" + (missing == 1 ? "" : "s");
+  std::string detail;
+  int listed = 0;
+  for (std::size_t c = 0; c < missing_per_column.size(); ++c) {
+    if (missing_per_column[c] == 0) continue;
+    if (listed++ == 8) {
+      detail += ", ...";
+      break;
+    }
+    if (!detail.empty()) detail += ", ";
+    detail += (c < columns.size() ? columns[c] : "column " + std::to_string(c + 1)) + ": " +
+              std::to_string(missing_per_column[c]);
+  }
+  return text + "\n  missing per column: " + detail;
+}
+
+std::string LogQuality::summary() const {
+  return summary({});
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,328 @@
+#include "offline/log/read_log.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <initializer_list>
+#include <limits>
+#include <memory>
+#include <set>
+#include <thread>
+
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// Below this many bytes of data the second thread costs more than it saves.
+constexpr std::size_t kParallelBytes = 256 << 10;
+
+struct FileBytes {
+  std::unique_ptr<char[]> data;
+  std::size_t size = 0;
+};
+
+FileBytes read_whole_file(const std::filesystem::path& path) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                       &std::fclose);
+  if (!file)
+    throw Error::at(path.string(), 0, "", std::string("cannot open: ") + std::strerror(errno));
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw Error::at(path.string(), 0, "", "cannot read size: " + ec.message());
+  FileBytes bytes{std::unique_ptr<char[]>(new char[size + 1]), static_cast<std::size_t>(size)};
+  if (std::fread(bytes.data.get(), 1, bytes.size, file.get()) != bytes.size)
+    throw Error::at(path.string(), 0, "", "read failed (file changed while reading?)");
+  bytes.data[bytes.size] = '\n';  // sentinel: every scan stops at a line end
+  return bytes;
+}
+
+/// Joins text pieces (also sidesteps a GCC 12 -Wrestrict false positive on "literal" + string).
+std::string concat(std::initializer_list<std::string_view> parts) {
+  std::string text;
+  for (const std::string_view part : parts)
+    text.append(part);
+  return text;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
+  return s;
+}
+
+/// Splits off the line at `pos` (without '\n' and a trailing '\r') and advances `pos`.
+std::string_view next_line(std::string_view text, std::size_t& pos) {
+  const std::size_t end = std::min(text.find('\n', pos), text.size());
+  std::string_view line = text.substr(pos, end - pos);
+  pos = end + 1;
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
+/// The first problem found in a chunk of data lines.
+struct ParseError {
+  std::size_t row = std::numeric_limits<std::size_t>::max();
+  int column = -1;  // -1: the line as a whole
+  std::string message;
+};
+
+/// Result of parsing one chunk of data lines into rows [first_row, ...) of the matrix.
+struct ChunkResult {
+  std::vector<std::size_t> missing;
+  ParseError error;
+  std::exception_ptr exception;
+};
+
+std::size_t count_fields(const char* begin, const char* end) {
+  return 1 + static_cast<std::size_t>(std::count(begin, end, ','));
+}
+
+/// Parses lines in [begin, end) (each ending in '\n', except possibly the last) into rows
+/// first_row.. of `values`. Stops at the first malformed line. Never throws.
+void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool ends_mid_line,
+                 Eigen::MatrixXd& values, ChunkResult& result) {
+  try {
+    const std::size_t columns = static_cast<std::size_t>(values.cols());
+    const std::size_t rows = static_cast<std::size_t>(values.rows());
+    double* const data = values.data();
+    result.missing.assign(columns, 0);
+    std::size_t row = first_row;
+    const char* p = begin;
+    while (p < end) {
+      const char* line_end = static_cast<const char*>(std::memchr(p, '\n', end - p));
+      if (line_end == nullptr) line_end = end;
+      const char* content_end = (line_end > p && line_end[-1] == '\r') ? line_end - 1 : line_end;
+      const auto fail = [&](int column, std::string message) {
+        result.error = {row, column, std::move(message)};
+      };
+      const char* field = p;
+      for (std::size_t c = 0; c < columns; ++c) {
+        while (field < content_end && (*field == ' ' || *field == '\t'))
+          ++field;
+        double value = kNaN;
+        const char* after = field;
+        if (field < content_end && *field != ',') {
+          const char* number = (*field == '+') ? field + 1 : field;
+          const auto [ptr, ec] = std::from_chars(number, content_end, value);
+          after = ptr;
+          while (after < content_end && (*after == ' ' || *after == '\t'))
+            ++after;
+          if (ec != std::errc{} || (after < content_end && *after != ',')) {
+            const char* stop = std::find(field, content_end, ',');
+            fail(static_cast<int>(c),
+                 concat({"'", std::string_view(field, stop - field),
+                         ec == std::errc::result_out_of_range ? "' is out of range for a double"
+                                                              : "' is not a number"}));
+            return;
+          }
+          if (std::isinf(value)) {
+            fail(static_cast<int>(c),
+                 concat({"'", std::string_view(field, after - field), "' is not a finite number"}));
+            return;
+          }
+        }
+        if (std::isnan(value)) {
+          value = kNaN;
+          ++result.missing[c];
+        }
+        data[c * rows + row] = value;
+        const bool last = c + 1 == columns;
+        if (!last && after >= content_end) {
+          const std::size_t found = count_fields(p, content_end);
+          fail(-1,
+               concat(
+                   {ends_mid_line && line_end == end ? "the file ends mid-line (truncated?): " : "",
+                    "expected ", std::to_string(columns), " fields, found ",
+                    std::to_string(found)}));
+          return;
+        }
+        if (last && after < content_end) {
+          fail(-1, concat({"expected ", std::to_string(columns), " fields, found ",
+                           std::to_string(count_fields(p, content_end))}));
+          return;
+        }
+        field = after + 1;
+      }
+      if (ends_mid_line && line_end == end && columns > 1 && content_end[-1] == ',') {
+        fail(-1, "the file ends mid-line (truncated?) after an empty last field");
+        return;
+      }
+      ++row;
+      p = line_end + 1;
+    }
+  } catch (...) {
+    result.exception = std::current_exception();
+  }
+}
+
+/// Median of the positive steps of t (used when 'rate_hz' is absent).
+double median_step(const Eigen::VectorXd& t) {
+  if (t.size() < 2) return kNaN;
+  std::vector<double> steps(static_cast<std::size_t>(t.size() - 1));
+  for (Eigen::Index r = 1; r < t.size(); ++r)
+    steps[static_cast<std::size_t>(r - 1)] = t[r] - t[r - 1];
+  auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), middle, steps.end());
+  return *middle;
+}
+
+}  // namespace
+
+Log read_log(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const FileBytes bytes = read_whole_file(path);
+  const std::string_view text(bytes.data.get(), bytes.size);
+
+  Log log;
+  log.source = file;
+
+  // Metadata lines, then the header.
+  std::size_t pos =
+      text.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // UTF-8 byte-order mark (spreadsheets)
+  long line_no = 0;
+  long version_line = 0, rate_line = 0;
+  std::string_view header;
+  bool have_header = false;
+  while (pos < text.size()) {
+    const std::string_view line = next_line(text, pos);
+    ++line_no;
+    if (trim(line).empty()) continue;
+    if (line.front() != '#') {
+      header = line;
+      have_header = true;
+      break;
+    }
+    const std::string_view body = trim(line.substr(1));
+    const std::size_t colon = body.find(':');
+    if (colon == std::string_view::npos) {
+      log.meta.entries.emplace_back(std::string(), std::string(body));
+      continue;
+    }
+    const std::string key(trim(body.substr(0, colon)));
+    if (key == "tpf-log") version_line = line_no;
+    if (key == "rate_hz") rate_line = line_no;
+    log.meta.entries.emplace_back(key, std::string(trim(body.substr(colon + 1))));
+  }
+  if (!have_header)
+    throw Error::at(
+        file, 0, "",
+        text.empty() ? "the file is empty (no header line)" : "no header line after the metadata");
+  try {
+    const int version = log.meta.version();
+    if (version > 1)
+      throw Error::at(file, version_line, "tpf-log",
+                      concat({"version ", std::to_string(version),
+                              " is newer than this reader understands (1); update tpf"}));
+  } catch (const Error& e) {
+    if (version_line > 0 && std::string_view(e.what()).substr(0, file.size()) == file) throw;
+    throw Error::at(file, version_line, "tpf-log", "not a version number");
+  }
+  try {
+    static_cast<void>(log.meta.rate_hz());
+  } catch (const Error&) {
+    throw Error::at(file, rate_line, "rate_hz",
+                    concat({"'", *log.meta.get("rate_hz"), "' is not a positive number"}));
+  }
+
+  // Header: names, unique, non-empty, with t.
+  const long header_line = line_no;
+  {
+    std::set<std::string_view> seen;
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t comma = std::min(header.find(',', start), header.size());
+      const std::string_view name = trim(header.substr(start, comma - start));
+      const std::string where = "column " + std::to_string(log.columns.size() + 1);
+      if (name.empty()) throw Error::at(file, header_line, where, "empty column name");
+      if (!seen.insert(name).second)
+        throw Error::at(file, header_line, std::string(name), "column name appears twice");
+      log.columns.emplace_back(name);
+      if (comma == header.size()) break;
+      start = comma + 1;
+    }
+  }
+  if (!log.has("t")) throw Error::at(file, header_line, "t", "the required time column is missing");
+
+  // Data region: drop trailing blank lines; a last line without '\n' may be cut off.
+  const char* const data_begin = text.data() + std::min(pos, text.size());
+  const char* data_end = text.data() + text.size();
+  const bool ends_mid_line = data_end > data_begin && data_end[-1] != '\n';
+  while (data_end > data_begin && (data_end[-1] == '\n' || data_end[-1] == '\r' ||
+                                   data_end[-1] == ' ' || data_end[-1] == '\t'))
+    --data_end;
+  const std::size_t rows =
+      data_end > data_begin ? 1 + static_cast<std::size_t>(std::count(data_begin, data_end, '\n'))
+                            : 0;
+  const long first_data_line = header_line + 1;
+  const std::size_t columns = log.columns.size();
+  log.values.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(columns));
+
+  // Split at a line boundary near the middle and parse both halves at once.
+  const char* split = data_end;
+  std::size_t second_first_row = rows;
+  if (static_cast<std::size_t>(data_end - data_begin) >= kParallelBytes) {
+    const char* middle = data_begin + (data_end - data_begin) / 2;
+    split = static_cast<const char*>(std::memchr(middle, '\n', data_end - middle)) + 1;
+    split = std::min(split, data_end);
+    second_first_row = static_cast<std::size_t>(std::count(data_begin, split, '\n'));
+  }
+  ChunkResult first, second;
+  if (split < data_end) {
+    std::thread helper(
+        [&] { parse_chunk(split, data_end, second_first_row, ends_mid_line, log.values, second); });
+    parse_chunk(data_begin, split, 0, false, log.values, first);
+    helper.join();
+  } else {
+    parse_chunk(data_begin, data_end, 0, ends_mid_line, log.values, first);
+    second.missing.assign(columns, 0);
+  }
+  for (const ChunkResult* chunk : {&first, &second})
+    if (chunk->exception) std::rethrow_exception(chunk->exception);
+  const ParseError& error = first.error.row <= second.error.row ? first.error : second.error;
+  if (!error.message.empty())
+    throw Error::at(file, first_data_line + static_cast<long>(error.row),
+                    error.column >= 0 ? log.columns[static_cast<std::size_t>(error.column)] : "",
+                    error.message);
+
+  // Time: present on every line and increasing.
+  const Eigen::VectorXd t = log.col("t");
+  for (Eigen::Index r = 0; r < t.size(); ++r) {
+    const long line = first_data_line + static_cast<long>(r);
+    if (std::isnan(t[r])) throw Error::at(file, line, "t", "the sample time is missing");
+    if (r > 0 && !(t[r] > t[r - 1])) {
+      char message[160];
+      std::snprintf(message, sizeof message,
+                    "t = %.17g does not increase (previous line has t = %.17g)", t[r], t[r - 1]);
+      throw Error::at(file, line, "t", message);
+    }
+  }
+
+  // Quality: missing values and gaps (dt > 1.5 / rate).
+  LogQuality& quality = log.quality;
+  quality.rows = rows;
+  quality.missing_per_column.resize(columns);
+  for (std::size_t c = 0; c < columns; ++c)
+    quality.missing_per_column[c] = first.missing[c] + second.missing[c];
+  const double rate = log.meta.rate_hz();
+  quality.rate_hz = std::isnan(rate) ? 1.0 / median_step(t) : rate;
+  if (rows > 1) {
+    quality.duration_s = t[t.size() - 1] - t[0];
+    const double gap_step = 1.5 / quality.rate_hz;
+    for (Eigen::Index r = 1; r < t.size(); ++r)
+      if (t[r] - t[r - 1] > gap_step) quality.gap_rows.push_back(static_cast<std::size_t>(r));
+  } else {
+    quality.rate_hz = std::isnan(rate) ? 0.0 : rate;
+  }
+  quality.gaps = quality.gap_rows.size();
+  return log;
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,221 @@
+#include "offline/log/read_log.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "log_test_files.hpp"
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+namespace {
+
+using test::TempDir;
+using test::write_text;
+
+/// The message of the tpf::Error that read_log throws for `text`.
+std::string read_error(const TempDir& dir, const std::string& text) {
+  const auto path = dir / "bad.csv";
+  write_text(path, text);
+  try {
+    read_log(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return {};
+}
+
+TEST(ReadLog, MetadataColumnsAndValues) {
+  TempDir dir("basic");
+  write_text(dir / "a.csv",
+             "# tpf-log: 1\n# robot: arm4\n# rate_hz: 400\n# custom_key: kept: with colon\n"
+             "# free comment\n"
+             "q1,t,dq1,i1,p1,my_extra\n"
+             "0.5,0.0,1e-3,-12,3.25,7\n"
+             "0.25,0.0025,-2.5E-1,+4,,nan\n");
+  const Log log = read_log(dir / "a.csv");
+  EXPECT_EQ(log.source, (dir / "a.csv").string());
+  ASSERT_EQ(log.meta.entries.size(), 5u);
+  EXPECT_EQ(log.meta.get("robot"), "arm4");
+  EXPECT_EQ(log.meta.get("custom_key"), "kept: with colon");
+  EXPECT_EQ(log.meta.entries[4].first, "");
+  EXPECT_EQ(log.meta.entries[4].second, "free comment");
+  EXPECT_EQ(log.meta.version(), 1);
+  EXPECT_DOUBLE_EQ(log.meta.rate_hz(), 400.0);
+  ASSERT_EQ(log.columns, (std::vector<std::string>{"q1", "t", "dq1", "i1", "p1", "my_extra"}));
+  ASSERT_EQ(log.values.rows(), 2);
+  EXPECT_EQ(log.col("t")[1], 0.0025);
+  EXPECT_EQ(log.col("dq1")[0], 1e-3);
+  EXPECT_EQ(log.col("dq1")[1], -0.25);
+  EXPECT_EQ(log.col("i1")[1], 4.0);
+  EXPECT_EQ(log.col("my_extra")[0], 7.0);
+  EXPECT_TRUE(std::isnan(log.col("p1")[1]));
+  EXPECT_TRUE(std::isnan(log.col("my_extra")[1]));
+  EXPECT_EQ(log.quality.rows, 2u);
+  EXPECT_EQ(log.quality.missing_per_column, (std::vector<std::size_t>{0, 0, 0, 0, 1, 1}));
+  EXPECT_EQ(log.quality.missing_total(), 2u);
+  EXPECT_EQ(log.quality.gaps, 0u);
+  EXPECT_EQ(log.joint_count(), 1);
+  EXPECT_EQ(log.pad_count(), 1);
+  EXPECT_EQ(log.effort_prefix(), "i");
+  EXPECT_NE(log.quality.summary(log.columns).find("p1: 1"), std::string::npos);
+}
+
+TEST(ReadLog, CrLfSpacesAndNoVersionLine) {
+  TempDir dir("crlf");
+  write_text(dir / "a.csv", "t, q1 ,dq1\r\n0, 1.5 ,2\r\n0.1,NaN,  3\r\n");
+  const Log log = read_log(dir / "a.csv");
+  EXPECT_EQ(log.meta.version(), 1);
+  EXPECT_EQ(log.columns[1], "q1");
+  EXPECT_EQ(log.col("q1")[0], 1.5);
+  EXPECT_TRUE(std::isnan(log.col("q1")[1]));
+  EXPECT_EQ(log.col("dq1")[1], 3.0);
+}
+
+TEST(ReadLog, ByteOrderMarkAndSummary) {
+  TempDir dir("bom");
+  write_text(dir / "a.csv",
+             "\xEF\xBB\xBF# tpf-log: 1\n# rate_hz: 400\nt,q1\n0,1\n0.0025,\n0.01,2\n");
+  const Log log = read_log(dir / "a.csv");
+  EXPECT_EQ(log.meta.entries.front().first, "tpf-log");
+  EXPECT_EQ(log.quality.summary(log.columns),
+            "3 rows, 0.0 s at 400 Hz; 1 gap; 1 missing value\n  missing per column: q1: 1");
+  EXPECT_EQ(log.quality.summary(),
+            "3 rows, 0.0 s at 400 Hz; 1 gap; 1 missing value\n  missing per column: column 2: 1");
+}
+
+TEST(ReadLog, GapsAreCountedFromRateOrMedianStep) {
+  TempDir dir("gaps");
+  // 400 Hz: dt = 2.5 ms; 3.75 ms is the gap limit. Rows 3 and 6 follow gaps.
+  const std::string body = "t,q1\n0,0\n0.0025,0\n0.005,0\n0.010,0\n0.0125,0\n0.0150,0\n0.0200,0\n";
+  write_text(dir / "a.csv", "# rate_hz: 400\n" + body);
+  const Log with_rate = read_log(dir / "a.csv");
+  EXPECT_EQ(with_rate.quality.gaps, 2u);
+  EXPECT_EQ(with_rate.quality.gap_rows, (std::vector<std::size_t>{3, 6}));
+  write_text(dir / "b.csv", body);
+  const Log without_rate = read_log(dir / "b.csv");
+  EXPECT_DOUBLE_EQ(without_rate.quality.rate_hz, 400.0);
+  EXPECT_EQ(without_rate.quality.gap_rows, (std::vector<std::size_t>{3, 6}));
+  EXPECT_NEAR(without_rate.quality.duration_s, 0.02, 1e-15);
+  // Jitter below 1.5 periods is not a gap.
+  write_text(dir / "c.csv", "# rate_hz: 400\nt\n0\n0.0037\n0.0050\n");
+  EXPECT_EQ(read_log(dir / "c.csv").quality.gaps, 0u);
+}
+
+TEST(ReadLog, EmptyFileAndHeaderOnly) {
+  TempDir dir("empty");
+  EXPECT_NE(read_error(dir, "").find("empty"), std::string::npos);
+  EXPECT_NE(read_error(dir, "# tpf-log: 1\n").find("no header"), std::string::npos);
+  write_text(dir / "h.csv", "# tpf-log: 1\nt,q1,dq1\n");
+  const Log log = read_log(dir / "h.csv");
+  EXPECT_EQ(log.values.rows(), 0);
+  EXPECT_EQ(log.values.cols(), 3);
+  EXPECT_EQ(log.quality.rows, 0u);
+  EXPECT_EQ(log.quality.missing_per_column, (std::vector<std::size_t>{0, 0, 0}));
+}
+
+TEST(ReadLog, RefusesNewerMajorVersion) {
+  TempDir dir("version");
+  const std::string message = read_error(dir, "# robot: x\n# tpf-log: 2\nt\n0\n");
+  EXPECT_NE(message.find("bad.csv:2: tpf-log: version 2 is newer"), std::string::npos) << message;
+  write_text(dir / "minor.csv", "# tpf-log: 1.3\nt\n0\n");
+  EXPECT_NO_THROW(read_log(dir / "minor.csv"));
+  EXPECT_NE(read_error(dir, "# tpf-log: one\nt\n0\n").find("bad.csv:1: tpf-log"),
+            std::string::npos);
+}
+
+TEST(ReadLog, MalformedLinesNameFileLineAndColumn) {
+  TempDir dir("malformed");
+  const std::string head = "# tpf-log: 1\nt,q1,dq1\n0,1,2\n";
+  std::string message = read_error(dir, head + "0.1,abc,2\n");
+  EXPECT_NE(message.find("bad.csv:4: q1: 'abc' is not a number"), std::string::npos) << message;
+  message = read_error(dir, head + "0.1,1.5x,2\n");
+  EXPECT_NE(message.find("bad.csv:4: q1: '1.5x' is not a number"), std::string::npos) << message;
+  message = read_error(dir, head + "0.1,1\n");
+  EXPECT_NE(message.find("bad.csv:4: expected 3 fields, found 2"), std::string::npos) << message;
+  message = read_error(dir, head + "0.1,1,2,3\n");
+  EXPECT_NE(message.find("bad.csv:4: expected 3 fields, found 4"), std::string::npos) << message;
+  message = read_error(dir, head + "0.1,1,inf\n");
+  EXPECT_NE(message.find("bad.csv:4: dq1: 'inf' is not a finite number"), std::string::npos)
+      << message;
+  message = read_error(dir, head + "0.1,1,1e999\n");
+  EXPECT_NE(message.find("bad.csv:4: dq1: '1e999' is out of range"), std::string::npos) << message;
+  message = read_error(dir, "t,q1,q1\n");
+  EXPECT_NE(message.find("bad.csv:1: q1: column name appears twice"), std::string::npos) << message;
+  message = read_error(dir, "q1,dq1\n1,2\n");
+  EXPECT_NE(message.find("bad.csv:1: t: the required time column is missing"), std::string::npos)
+      << message;
+}
+
+TEST(ReadLog, TruncatedLastLine) {
+  TempDir dir("truncated");
+  std::string message = read_error(dir, "t,q1,dq1\n0,1,2\n0.1,1");
+  EXPECT_NE(
+      message.find("bad.csv:3: the file ends mid-line (truncated?): expected 3 fields, found 2"),
+      std::string::npos)
+      << message;
+  message = read_error(dir, "t,q1,dq1\n0,1,2\n0.1,1,");
+  EXPECT_NE(message.find("bad.csv:3: the file ends mid-line"), std::string::npos) << message;
+  // A complete last line without '\n' is fine.
+  write_text(dir / "ok.csv", "t,q1,dq1\n0,1,2\n0.1,1,3");
+  EXPECT_EQ(read_log(dir / "ok.csv").col("dq1")[1], 3.0);
+}
+
+TEST(ReadLog, TimeMustBePresentAndIncrease) {
+  TempDir dir("time");
+  std::string message = read_error(dir, "t,q1\n0,1\n0.1,1\n0.1,1\n");
+  EXPECT_NE(message.find("bad.csv:4: t: t = 0.10000000000000001 does not increase"),
+            std::string::npos)
+      << message;
+  message = read_error(dir, "t,q1\n0,1\n-1,1\n");
+  EXPECT_NE(message.find("bad.csv:3: t: t = -1 does not increase"), std::string::npos) << message;
+  message = read_error(dir, "t,q1\n0,1\n,1\n");
+  EXPECT_NE(message.find("bad.csv:3: t: the sample time is missing"), std::string::npos) << message;
+}
+
+TEST(ReadLog, MissingFileIsAClearError) {
+  TempDir dir("nofile");
+  try {
+    read_log(dir / "absent.csv");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("absent.csv: cannot open"), std::string::npos);
+  }
+}
+
+TEST(ReadLog, ErrorsInTheSecondParallelChunkNameTheRightLine) {
+  TempDir dir("parallel");
+  std::string text = "# tpf-log: 1\nt,a,b,c,d\n";
+  constexpr int kRows = 60000;  // > 256 KiB of data: parsed on two threads
+  for (int r = 0; r < kRows; ++r) {
+    text += std::to_string(r) + ".5,1.25,-2.5,";
+    text += (r == 50000) ? "x" : "3";
+    text += ",123456.789\n";
+  }
+  const std::string message = read_error(dir, text);
+  EXPECT_NE(message.find("bad.csv:50003: c: 'x' is not a number"), std::string::npos) << message;
+}
+
+TEST(ReadLog, ParallelParseMatchesEveryValue) {
+  TempDir dir("parallel_ok");
+  std::string text = "t,a,b\n";
+  constexpr int kRows = 70000;
+  for (int r = 0; r < kRows; ++r)
+    text += std::to_string(r) + "," + std::to_string(r % 7) + "," +
+            (r % 1000 == 999 ? "" : std::to_string(-r)) + "\n";
+  write_text(dir / "big.csv", text);
+  const Log log = read_log(dir / "big.csv");
+  ASSERT_EQ(log.values.rows(), kRows);
+  for (int r = 0; r < kRows; ++r) {
+    ASSERT_EQ(log.values(r, 0), r);
+    ASSERT_EQ(log.values(r, 1), r % 7);
+    if (r % 1000 != 999) {
+      ASSERT_EQ(log.values(r, 2), -r);
+    }
+  }
+  EXPECT_EQ(log.quality.missing_per_column[2], 70u);
+}
+
+}  // namespace
+}  // namespace tpf::offline
