@@ -1,6 +1,8 @@
 // Small helpers for log tests: a fresh temporary directory and whole-file text I/O.
 #pragma once
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,7 +14,8 @@ namespace tpf::offline::test {
 class TempDir {
  public:
   explicit TempDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() / ("tpf_log_test_" + name)) {
+      : path_(std::filesystem::temp_directory_path() /
+              ("tpf_log_test_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

@@ -73,6 +73,18 @@ TEST(ReadLog, CrLfSpacesAndNoVersionLine) {
   EXPECT_EQ(log.col("dq1")[1], 3.0);
 }
 
+TEST(ReadLog, ByteOrderMarkAndSummary) {
+  TempDir dir("bom");
+  write_text(dir / "a.csv",
+             "\xEF\xBB\xBF# tpf-log: 1\n# rate_hz: 400\nt,q1\n0,1\n0.0025,\n0.01,2\n");
+  const Log log = read_log(dir / "a.csv");
+  EXPECT_EQ(log.meta.entries.front().first, "tpf-log");
+  EXPECT_EQ(log.quality.summary(log.columns),
+            "3 rows, 0.0 s at 400 Hz; 1 gap; 1 missing value\n  missing per column: q1: 1");
+  EXPECT_EQ(log.quality.summary(),
+            "3 rows, 0.0 s at 400 Hz; 1 gap; 1 missing value\n  missing per column: column 2: 1");
+}
+
 TEST(ReadLog, GapsAreCountedFromRateOrMedianStep) {
   TempDir dir("gaps");
   // 400 Hz: dt = 2.5 ms; 3.75 ms is the gap limit. Rows 3 and 6 follow gaps.

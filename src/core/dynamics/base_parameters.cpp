@@ -26,7 +26,10 @@ std::string BaseParameters::describe(int i, const std::vector<std::string>& name
     else if (v < 0)
       out << "-";
     if (std::abs(std::abs(v) - 1.0) > tol) out << std::abs(v) << "·";
-    out << (c < static_cast<Eigen::Index>(names.size()) ? names[c] : "p" + std::to_string(c));
+    if (c < static_cast<Eigen::Index>(names.size()))
+      out << names[c];
+    else
+      out << 'p' << c;
     first = false;
   }
   return out.str();

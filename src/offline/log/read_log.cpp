@@ -185,7 +185,8 @@ Log read_log(const std::filesystem::path& path) {
   log.source = file;
 
   // Metadata lines, then the header.
-  std::size_t pos = 0;
+  std::size_t pos =
+      text.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // UTF-8 byte-order mark (spreadsheets)
   long line_no = 0;
   long version_line = 0, rate_line = 0;
   std::string_view header;

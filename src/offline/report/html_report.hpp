@@ -1,0 +1,50 @@
+// A self-contained HTML report: inline CSS and SVG, no scripts, no network.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tpf::offline {
+
+/// A table of text cells. Cells that read as numbers (digits, sign, '.', 'e', '%', '–') are
+/// right-aligned with tabular figures; cells of a percent-change column are coloured green when
+/// negative (an error got smaller) and red when positive.
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::string caption;
+  int percent_column = -1;  ///< index of the percent-change column, −1 for none
+};
+
+/// Builder of one report page. Text is escaped; SVG from the plot functions is inserted as is.
+class HtmlReport {
+ public:
+  explicit HtmlReport(std::string title);
+
+  /// Shows a "SIMULATED DATA" banner on top: results come from the digital twin, not a robot.
+  void mark_simulated(std::string detail = "results from the digital twin, not from a robot");
+  /// Subtitle line under the title (e.g. source log and date).
+  void subtitle(const std::string& text);
+  void heading(const std::string& text, int level = 2);
+  void paragraph(const std::string& text);
+  /// A bulleted list of text items.
+  void list(const std::vector<std::string>& items);
+  void table(const Table& table);
+  /// An SVG plot (from line_plot, scatter_plot, bar_chart, histogram) with an optional caption.
+  void figure(const std::string& svg, const std::string& caption = "");
+  /// A small monospace block (e.g. a command line or the log quality summary).
+  void preformatted(const std::string& text);
+
+  /// The complete page.
+  std::string html() const;
+  /// Writes the page atomically (temporary + rename). Throws tpf::Error on I/O failure.
+  void write(const std::filesystem::path& path) const;
+
+ private:
+  std::string title_;
+  std::string banner_;
+  std::string body_;
+};
+
+}  // namespace tpf::offline

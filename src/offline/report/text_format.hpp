@@ -1,0 +1,24 @@
+// Text helpers for reports: HTML escaping and number formatting for tables and axes.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace tpf::offline {
+
+/// Escapes &, <, >, " and ' for use in HTML/SVG text and attribute values.
+std::string html_escape(std::string_view text);
+
+/// `value` with `significant` significant digits, fixed notation for 1e-3 ≤ |v| < 1e6 (no
+/// trailing zeros beyond what the digits need), scientific otherwise; "–" for NaN; "−" as minus.
+/// Examples: 280.17 → "280.2" (4 digits), 0.000123 → "1.23e−4", 1234567 → "1.235e6".
+std::string format_number(double value, int significant = 4);
+
+/// `value` with exactly `decimals` decimals, "−" as minus, "–" for NaN.
+std::string format_fixed(double value, int decimals);
+
+/// Percent change 100·(after − before)/before as "−88.6 %" (one decimal, sign always shown);
+/// "–" when undefined.
+std::string format_percent_change(double before, double after);
+
+}  // namespace tpf::offline
