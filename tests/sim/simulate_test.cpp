@@ -11,6 +11,7 @@
 #include "offline/log/read_log.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/sensor_quantisation.hpp"
+#include "tpf/common/error.hpp"
 #include "tpf/dynamics/rnea.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -169,6 +170,18 @@ TEST(Simulate, UndeclaredEffectsShowUp) {
   for (Eigen::Index k = 0; k < std::min(with.rows(), without.rows()); ++k)
     corr += (with.col("i1")(k) - without.col("i1")(k)) * with.col("q1")(k);
   EXPECT_GT(corr, 0.0);  // motor must add +k·q to hold against the spring
+}
+
+TEST(Simulate, RangeOutsideTheJointLimitsIsRefused) {
+  Scenario s = scenario("excitation.json");
+  s.excitation.lower[1] = 2.5;  // joint 2's limit is ±2.0 rad
+  s.excitation.upper[1] = 3.0;
+  try {
+    simulate_to_log(s, 1, 0.1);
+    FAIL() << "expected an error";
+  } catch (const tpf::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("excitation.lower_rad[1]"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "offline/sim/sensor_quantisation.hpp"
 #include "offline/sim/twin_arm.hpp"
 #include "offline/sim/twin_plant.hpp"
+#include "tpf/common/error.hpp"
 #include "tpf/friction/friction_file.hpp"
 
 namespace tpf::offline {
@@ -133,6 +134,11 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
       scenario.excitation.lower.cwiseMax(arm.lower() + TwinVector::Constant(kLimitMargin));
   const TwinVector upper =
       scenario.excitation.upper.cwiseMin(arm.upper() - TwinVector::Constant(kLimitMargin));
+
+  for (int j = 0; j < kTwinJoints; ++j)
+    if (!(lower[j] < upper[j]))
+      throw Error::at(scenario.file, 0, "excitation.lower_rad[" + std::to_string(j) + "]",
+                      "the range lies outside the joint limits of " + scenario.robot_file);
 
   TwinPlant plant(arm, friction, fx, h);
   plant.reset(scenario.initial_q, TwinVector::Zero());
