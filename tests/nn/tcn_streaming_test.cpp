@@ -55,10 +55,17 @@ TEST(TcnStreaming, EqualsNaiveFullWindowConvolutionWithIdentitySkip) {
 }
 
 TEST(TcnStreaming, DefaultPerJointShapeCoversWellOver70msAt400Hz) {
-  using PerJoint = Tcn<double, 4, 32, 5>;
-  EXPECT_EQ(PerJoint::kReceptiveField, 94);  // 1 + 3·(2⁵ − 1)
-  EXPECT_GT(PerJoint::kReceptiveField / 400.0, 0.2);
-  expect_streaming_equals_naive<PerJoint>({4, 32, 5, 4, 1}, 13);
+  using PerJoint = Tcn<double, 4, 32, 4>;
+  EXPECT_EQ(PerJoint::kReceptiveField, 46);  // 1 + 3·(2⁴ − 1)
+  EXPECT_EQ(PerJoint::kReceptiveField, offline::TcnArchitecture{}.receptive_field());
+  EXPECT_GT(PerJoint::kReceptiveField / 400.0, 1.5 * 0.070);
+  expect_streaming_equals_naive<PerJoint>({4, 32, 4, 4, 1}, 13);
+}
+
+TEST(TcnStreaming, FiveLevelsSixtyFourChannelsEqualNaive) {
+  using Wide = Tcn<double, 4, 64, 5>;
+  EXPECT_EQ(Wide::kReceptiveField, 94);
+  expect_streaming_equals_naive<Wide>({4, 64, 5, 4, 1}, 14);
 }
 
 TEST(TcnStreaming, FloatEngineTracksDouble) {

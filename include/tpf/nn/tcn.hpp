@@ -91,13 +91,13 @@ class Tcn {
       const int dilation = Shape::dilation(l);
       head = heads_[l];
       history_column(l, head) = hidden_;
-      scratch_.noalias() = weights_.bias[l - 1] + hidden_;
+      HiddenVector z = weights_.bias[l - 1] + hidden_;
       for (int j = 0; j < Kernel; ++j) {
-        scratch_.noalias() +=
-            weights_.taps[l - 1][j] * history_column(l, wrap(head - j * dilation, length));
+        add_product(z, weights_.taps[l - 1][j],
+                    history_column(l, wrap(head - j * dilation, length)).data());
       }
       heads_[l] = next(head, length);
-      hidden_ = scratch_.cwiseMax(S(0));
+      hidden_ = z.cwiseMax(S(0));
     }
     apply_heads();
     return output_;
@@ -122,6 +122,13 @@ class Tcn {
     return HiddenColumn(hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column));
   }
 
+  /// z += W·x, one column axpy at a time: keeps z in registers, which beats Eigen's general
+  /// matrix–vector kernel at these sizes (see docs/tcn.md).
+  template <typename Matrix>
+  static void add_product(HiddenVector& z, const Matrix& w, const S* x) noexcept {
+    for (int c = 0; c < Matrix::ColsAtCompileTime; ++c) z.noalias() += w.col(c) * x[c];
+  }
+
   void apply_heads() noexcept {
     low_.noalias() = weights_.low_bias + weights_.low_weight * hidden_;
     high_.noalias() = weights_.high_bias + weights_.high_weight * hidden_;
@@ -133,7 +140,6 @@ class Tcn {
     hidden_history_.fill(S(0));
     heads_.fill(0);
     hidden_.setZero();
-    scratch_.setZero();
     low_.setZero();
     high_.setZero();
     output_.setZero();
@@ -147,7 +153,6 @@ class Tcn {
   alignas(64) std::array<S, Hidden * Shape::hidden_history_columns> hidden_history_{};
   std::array<int, Levels> heads_{};  ///< next column to write in each ring
   HiddenVector hidden_;
-  HiddenVector scratch_;
   Output low_;
   Output high_;
   Output output_;

@@ -12,12 +12,13 @@
 namespace tpf::offline {
 
 /// Hyperparameters of the TCN (see tpf::Tcn for the equations). Defaults: the per-joint network,
-/// 4 inputs [q, q̇, q̈, τ̂_fric,s] → 1 output per head, 32 channels, 5 levels, kernel 4
-/// (receptive field 94 samples = 235 ms at 400 Hz).
+/// 4 inputs [q, q̇, q̈, τ̂_fric,s] → 1 output per head, 32 channels, 4 levels, kernel 4
+/// (receptive field 46 samples = 115 ms at 400 Hz; 5 levels give 94 samples = 235 ms at
+/// ≈ 1.35× the step cost, see docs/tcn.md).
 struct TcnArchitecture {
   int inputs = 4;
   int hidden = 32;
-  int levels = 5;
+  int levels = 4;
   int kernel = 4;
   int outputs = 1;
 
