@@ -1,0 +1,161 @@
+// Streaming inference of the friction-compensator TCN: one sample in, the friction residual out.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+
+#include "tpf/nn/tcn_architecture.hpp"
+#include "tpf/nn/tcn_weights.hpp"
+
+namespace tpf {
+
+/// A temporal convolutional network evaluated one sample at a time, with compile-time sizes.
+///
+///   In      inputs per step, e.g. [q, q̇, q̈, τ̂_fric,s] of one joint (4), or of all N joints (4·N)
+///   Hidden  channels of every residual block
+///   Levels  residual blocks; block l has dilation d_l = 2^l
+///   Kernel  taps per causal convolution (4 by default)
+///   Out     outputs per head, e.g. 1 (one joint) or N (all joints) [N·m]
+///
+/// With h_{−1}(t) = x(t) the raw input and d_l = 2^l, each block is
+///   h_l(t) = ReLU( b_l + Σ_{j=0}^{K−1} W_{l,j}·h_{l−1}(t − j·d_l) + P_l·h_{l−1}(t) ),
+/// P_0 a 1×1 projection In → Hidden (with the normalisation (x − μ)/σ folded into W_0, b_0, P_0),
+/// P_l = I for l ≥ 1. Two linear heads read the last block at the current step:
+///   low(t) = A_low·h_{L−1}(t) + c_low,  high(t) = A_high·h_{L−1}(t) + c_high,
+///   output(t) = low(t) + high(t)   (the predicted friction residual τ_TCN, N·m).
+/// The activation is ReLU. The output depends on the last R = 1 + (K − 1)·(2^Levels − 1) inputs.
+///
+/// Streaming: block l keeps a ring buffer of its last (K − 1)·d_l + 1 inputs, so `step` costs
+/// Levels·K matrix–vector products (O(Levels·Hidden²·K)) whatever the dilation; it allocates
+/// nothing, throws nothing and never branches on data size.
+template <typename S, int In, int Hidden, int Levels, int Kernel = 4, int Out = 1>
+class Tcn {
+ public:
+  using Scalar = S;
+  using Shape = TcnShape<Levels, Kernel>;
+  using Weights = TcnWeights<S, In, Hidden, Levels, Kernel, Out>;
+  using Input = Eigen::Matrix<S, In, 1>;
+  using Output = Eigen::Matrix<S, Out, 1>;
+  using HiddenVector = Eigen::Matrix<S, Hidden, 1>;
+
+  static constexpr int kInputs = In;
+  static constexpr int kHidden = Hidden;
+  static constexpr int kLevels = Levels;
+  static constexpr int kKernel = Kernel;
+  static constexpr int kOutputs = Out;
+  /// R = 1 + (K − 1)·(2^Levels − 1) samples.
+  static constexpr int kReceptiveField = Shape::receptive_field;
+
+  /// All-zero weights and history (output 0) until weights are loaded, see load_tcn_weights.
+  Tcn() { clear_history(); }
+  explicit Tcn(const Weights& weights) : weights_(weights) { clear_history(); }
+
+  const Weights& weights() const noexcept { return weights_; }
+  /// Mutable weights, for loaders; call reset() after changing them.
+  Weights& weights() noexcept { return weights_; }
+
+  /// Prewarms every block's history with the activations a constant input x̄ produces, i.e. the
+  /// state reached after feeding x̄ for R steps: h_l = ReLU(b_l + (Σ_j W_{l,j} + P_l)·h_{l−1}).
+  /// Also sets low(), high() and output() to their steady values.
+  void reset(const Input& steady_input) noexcept {
+    input_history_.colwise() = steady_input;
+    heads_.fill(0);
+    hidden_.noalias() = weights_.input_bias + weights_.input_projection * steady_input;
+    for (int j = 0; j < Kernel; ++j)
+      hidden_.noalias() += weights_.input_taps[j] * steady_input;
+    hidden_ = hidden_.cwiseMax(S(0));
+    for (int l = 1; l < Levels; ++l) {
+      for (int c = 0; c < Shape::history_length(l); ++c)
+        history_column(l, c) = hidden_;
+      HiddenVector z = weights_.bias[l - 1] + hidden_;
+      for (int j = 0; j < Kernel; ++j)
+        z.noalias() += weights_.taps[l - 1][j] * hidden_;
+      hidden_ = z.cwiseMax(S(0));
+    }
+    apply_heads();
+  }
+
+  /// Advances one sample: pushes x(t) and returns output(t) = low(t) + high(t) [N·m].
+  const Output& step(const Input& input) noexcept {
+    int head = heads_[0];
+    input_history_.col(head) = input;
+    hidden_.noalias() = weights_.input_bias + weights_.input_projection * input;
+    for (int j = 0; j < Kernel; ++j) {
+      hidden_.noalias() += weights_.input_taps[j] * input_history_.col(wrap(head - j, Kernel));
+    }
+    heads_[0] = next(head, Kernel);
+    hidden_ = hidden_.cwiseMax(S(0));
+
+    for (int l = 1; l < Levels; ++l) {
+      const int length = Shape::history_length(l);
+      const int dilation = Shape::dilation(l);
+      head = heads_[l];
+      history_column(l, head) = hidden_;
+      HiddenVector z = weights_.bias[l - 1] + hidden_;
+      for (int j = 0; j < Kernel; ++j) {
+        add_product(z, weights_.taps[l - 1][j],
+                    history_column(l, wrap(head - j * dilation, length)).data());
+      }
+      heads_[l] = next(head, length);
+      hidden_ = z.cwiseMax(S(0));
+    }
+    apply_heads();
+    return output_;
+  }
+
+  /// Low-frequency part of the last output [N·m].
+  const Output& low() const noexcept { return low_; }
+  /// High-frequency part of the last output [N·m].
+  const Output& high() const noexcept { return high_; }
+  /// low() + high() [N·m].
+  const Output& output() const noexcept { return output_; }
+
+ private:
+  using HiddenColumn = Eigen::Map<HiddenVector, Eigen::Unaligned>;
+
+  /// i in [−n, n) ↦ i mod n.
+  static int wrap(int i, int n) noexcept { return i < 0 ? i + n : i; }
+  /// (i + 1) mod n for i in [0, n).
+  static int next(int i, int n) noexcept { return i + 1 == n ? 0 : i + 1; }
+
+  HiddenColumn history_column(int level, int column) noexcept {
+    return HiddenColumn(hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column));
+  }
+
+  /// z += W·x, one column axpy at a time: keeps z in registers, which beats Eigen's general
+  /// matrix–vector kernel at these sizes (see docs/tcn.md).
+  template <typename Matrix>
+  static void add_product(HiddenVector& z, const Matrix& w, const S* x) noexcept {
+    for (int c = 0; c < Matrix::ColsAtCompileTime; ++c) z.noalias() += w.col(c) * x[c];
+  }
+
+  void apply_heads() noexcept {
+    low_.noalias() = weights_.low_bias + weights_.low_weight * hidden_;
+    high_.noalias() = weights_.high_bias + weights_.high_weight * hidden_;
+    output_ = low_ + high_;
+  }
+
+  void clear_history() noexcept {
+    input_history_.setZero();
+    hidden_history_.fill(S(0));
+    heads_.fill(0);
+    hidden_.setZero();
+    low_.setZero();
+    high_.setZero();
+    output_.setZero();
+  }
+
+  static constexpr std::array<int, Levels + 1> kHiddenOffsets = Shape::hidden_history_offsets();
+
+  Weights weights_;
+  Eigen::Matrix<S, In, Kernel> input_history_;  ///< ring of the raw inputs (block 0, d = 1)
+  /// Rings of blocks 1 … Levels−1, Hidden × ((K − 1)·d_l + 1) each, column-major, back to back.
+  alignas(64) std::array<S, Hidden * Shape::hidden_history_columns> hidden_history_{};
+  std::array<int, Levels> heads_{};  ///< next column to write in each ring
+  HiddenVector hidden_;
+  Output low_;
+  Output high_;
+  Output output_;
+};
+
+}  // namespace tpf

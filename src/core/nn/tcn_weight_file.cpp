@@ -1,0 +1,218 @@
+// Reading, validating and writing TCN weight files (start-up code: allocates and throws).
+#include "tpf/nn/tcn_weight_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <sstream>
+
+#include "tpf/common/error.hpp"
+
+namespace tpf {
+namespace {
+
+constexpr std::string_view kFormat = "tpf-tcn-weights";
+
+std::string shape_text(const std::vector<int>& shape) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < shape.size(); ++i) {
+    if (i > 0) text += ", ";
+    text += std::to_string(shape[i]);
+  }
+  return text + "]";
+}
+
+[[noreturn]] void fail(const std::string& path, std::string_view field, std::string_view what) {
+  throw Error::at(path, 0, field, what);
+}
+
+const nlohmann::json& member(const nlohmann::json& object, const std::string& key,
+                             const std::string& path, const std::string& field) {
+  if (!object.is_object() || !object.contains(key)) fail(path, field, "missing");
+  return object.at(key);
+}
+
+int positive_int(const nlohmann::json& object, const std::string& key, const std::string& path,
+                 const std::string& prefix) {
+  const std::string field = prefix + "." + key;
+  const nlohmann::json& value = member(object, key, path, field);
+  if (!value.is_number_integer() || value.get<long long>() <= 0 ||
+      value.get<long long>() > 1'000'000) {
+    fail(path, field, "must be a positive integer, got " + value.dump());
+  }
+  return value.get<int>();
+}
+
+std::vector<double> finite_numbers(const nlohmann::json& array, const std::string& path,
+                                   const std::string& field) {
+  if (!array.is_array()) fail(path, field, "must be an array of numbers");
+  std::vector<double> values;
+  values.reserve(array.size());
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    if (!array[i].is_number()) {
+      fail(path, field, "element " + std::to_string(i) + " is not a number: " + array[i].dump());
+    }
+    const double v = array[i].get<double>();
+    if (!std::isfinite(v)) fail(path, field, "element " + std::to_string(i) + " is not finite");
+    values.push_back(v);
+  }
+  return values;
+}
+
+TcnTensor read_tensor(const nlohmann::json& json, const std::string& path,
+                      const std::string& field) {
+  TcnTensor tensor;
+  const nlohmann::json& shape = member(json, "shape", path, field + ".shape");
+  if (!shape.is_array() || shape.empty()) fail(path, field + ".shape", "must be a non-empty array");
+  for (const auto& d : shape) {
+    if (!d.is_number_integer() || d.get<long long>() <= 0 || d.get<long long>() > 1'000'000) {
+      fail(path, field + ".shape", "dimensions must be positive integers, got " + shape.dump());
+    }
+    tensor.shape.push_back(d.get<int>());
+  }
+  tensor.values =
+      finite_numbers(member(json, "values", path, field + ".values"), path, field + ".values");
+  const long long expected =
+      std::accumulate(tensor.shape.begin(), tensor.shape.end(), 1LL, std::multiplies<long long>());
+  if (static_cast<long long>(tensor.values.size()) != expected) {
+    fail(path, field + ".values",
+         std::to_string(tensor.values.size()) + " values for shape " + shape_text(tensor.shape) +
+             " (" + std::to_string(expected) + " expected)");
+  }
+  return tensor;
+}
+
+}  // namespace
+
+std::string tcn_conv_weight_name(int block) {
+  return "blocks." + std::to_string(block) + ".conv.weight";
+}
+std::string tcn_conv_bias_name(int block) {
+  return "blocks." + std::to_string(block) + ".conv.bias";
+}
+std::string tcn_downsample_name() {
+  return "blocks.0.downsample.weight";
+}
+std::string tcn_head_weight_name(bool high) {
+  return high ? "head_high.weight" : "head_low.weight";
+}
+std::string tcn_head_bias_name(bool high) {
+  return high ? "head_high.bias" : "head_low.bias";
+}
+
+const TcnTensor& TcnWeightFile::tensor(std::string_view name, const std::vector<int>& shape) const {
+  const std::string field = "tensors." + std::string(name);
+  const auto it = tensors.find(std::string(name));
+  if (it == tensors.end()) fail(path, field, "missing (expected shape " + shape_text(shape) + ")");
+  if (it->second.shape != shape) {
+    fail(path, field,
+         "shape " + shape_text(it->second.shape) + " in the file, " + shape_text(shape) +
+             " expected by the compiled network");
+  }
+  return it->second;
+}
+
+void TcnWeightFile::require_architecture(int in, int hid, int lev, int ker, int out) const {
+  const std::pair<const char*, std::pair<int, int>> checks[] = {{"inputs", {inputs, in}},
+                                                                {"hidden", {hidden, hid}},
+                                                                {"levels", {levels, lev}},
+                                                                {"kernel", {kernel, ker}},
+                                                                {"outputs", {outputs, out}}};
+  for (const auto& [name, values] : checks) {
+    if (values.first != values.second) {
+      fail(path, std::string("architecture.") + name,
+           std::to_string(values.first) + " in the file, " + std::to_string(values.second) +
+               " expected by the compiled network");
+    }
+  }
+}
+
+TcnWeightFile read_tcn_weight_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail(path, "", "cannot open the TCN weight file");
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    fail(path, "", std::string("not valid JSON: ") + e.what());
+  }
+
+  const nlohmann::json& format = member(json, "format", path, "format");
+  if (format != kFormat) fail(path, "format", "expected \"tpf-tcn-weights\", got " + format.dump());
+  const nlohmann::json& version = member(json, "version", path, "version");
+  if (version != TcnWeightFile::kVersion) {
+    fail(path, "version", "unsupported version " + version.dump() + " (this build reads 1)");
+  }
+
+  TcnWeightFile file;
+  file.path = path;
+  const nlohmann::json& arch = member(json, "architecture", path, "architecture");
+  file.inputs = positive_int(arch, "inputs", path, "architecture");
+  file.hidden = positive_int(arch, "hidden", path, "architecture");
+  file.levels = positive_int(arch, "levels", path, "architecture");
+  file.kernel = positive_int(arch, "kernel", path, "architecture");
+  file.outputs = positive_int(arch, "outputs", path, "architecture");
+  if (file.levels > 16) fail(path, "architecture.levels", "at most 16 levels are supported");
+  const nlohmann::json& activation = member(arch, "activation", path, "architecture.activation");
+  if (activation != "relu") {
+    fail(path, "architecture.activation", "only \"relu\" is supported, got " + activation.dump());
+  }
+
+  const nlohmann::json& norm = member(json, "normalisation", path, "normalisation");
+  file.input_mean =
+      finite_numbers(member(norm, "mean", path, "normalisation.mean"), path, "normalisation.mean");
+  file.input_std =
+      finite_numbers(member(norm, "std", path, "normalisation.std"), path, "normalisation.std");
+  for (const auto* field : {"mean", "std"}) {
+    const auto& v = std::string(field) == "mean" ? file.input_mean : file.input_std;
+    if (static_cast<int>(v.size()) != file.inputs) {
+      fail(path, std::string("normalisation.") + field,
+           std::to_string(v.size()) + " values, architecture.inputs is " +
+               std::to_string(file.inputs));
+    }
+  }
+  for (std::size_t i = 0; i < file.input_std.size(); ++i) {
+    if (!(file.input_std[i] > 0.0)) {
+      fail(path, "normalisation.std", "element " + std::to_string(i) + " must be > 0");
+    }
+  }
+
+  const nlohmann::json& tensors = member(json, "tensors", path, "tensors");
+  if (!tensors.is_object()) fail(path, "tensors", "must be an object of named tensors");
+  for (const auto& [name, value] : tensors.items()) {
+    file.tensors.emplace(name, read_tensor(value, path, "tensors." + name));
+  }
+  return file;
+}
+
+void write_tcn_weight_file(const std::string& path, const TcnWeightFile& file) {
+  nlohmann::json json;
+  json["format"] = kFormat;
+  json["version"] = TcnWeightFile::kVersion;
+  std::vector<int> dilations;
+  for (int l = 0; l < file.levels; ++l)
+    dilations.push_back(1 << l);
+  json["architecture"] = {{"inputs", file.inputs},
+                          {"hidden", file.hidden},
+                          {"levels", file.levels},
+                          {"kernel", file.kernel},
+                          {"outputs", file.outputs},
+                          {"activation", "relu"},
+                          {"dilations", dilations},
+                          {"receptive_field", 1 + (file.kernel - 1) * ((1 << file.levels) - 1)}};
+  json["normalisation"] = {{"mean", file.input_mean}, {"std", file.input_std}};
+  nlohmann::json tensors = nlohmann::json::object();
+  for (const auto& [name, tensor] : file.tensors) {
+    tensors[name] = {{"shape", tensor.shape}, {"values", tensor.values}};
+  }
+  json["tensors"] = std::move(tensors);
+
+  std::ofstream out(path);
+  if (!out) fail(path, "", "cannot write the TCN weight file");
+  out << json.dump(1) << '\n';
+  if (!out) fail(path, "", "writing the TCN weight file failed");
+}
+
+}  // namespace tpf

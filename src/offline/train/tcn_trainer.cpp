@@ -1,0 +1,307 @@
+#include "offline/train/tcn_trainer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <thread>
+
+#include "offline/train/progress_bar.hpp"
+#include "offline/train/zero_phase_lowpass.hpp"
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+namespace {
+
+[[noreturn]] void fail(std::string_view field, const std::string& message) {
+  throw Error::at("TCN training", 0, field, message);
+}
+
+void check_options(const TcnTrainOptions& o) {
+  const TcnArchitecture& a = o.architecture;
+  if (a.inputs < 1 || a.hidden < 1 || a.outputs < 1 || a.kernel < 2 || a.levels < 1 ||
+      a.levels > 16) {
+    fail("options.architecture", "needs inputs, hidden, outputs ≥ 1, kernel ≥ 2, levels 1…16");
+  }
+  if (o.window_outputs < 1) fail("options.window_outputs", "must be ≥ 1");
+  if (o.batch_windows < 1) fail("options.batch_windows", "must be ≥ 1");
+  if (o.threads < 1) fail("options.threads", "must be ≥ 1");
+  if (o.max_epochs < 1) fail("options.max_epochs", "must be ≥ 1");
+  if (!(o.validation_fraction > 0.0 && o.validation_fraction < 1.0)) {
+    fail("options.validation_fraction", "must lie in (0, 1)");
+  }
+  if (!(o.weight_low >= 0.0 && o.weight_high >= 0.0 && o.weight_low + o.weight_high > 0.0)) {
+    fail("options.weight_low/weight_high", "must be ≥ 0 and not both 0");
+  }
+}
+
+/// Row ranges [begin, end) of `sequence` whose inputs and residual are all finite.
+std::vector<std::pair<Eigen::Index, Eigen::Index>> finite_runs(const TcnSequence& s) {
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;
+  Eigen::Index begin = 0;
+  for (Eigen::Index r = 0; r <= s.inputs.rows(); ++r) {
+    const bool finite =
+        r < s.inputs.rows() && s.inputs.row(r).allFinite() && s.residual.row(r).allFinite();
+    if (finite) continue;
+    if (r > begin) runs.emplace_back(begin, r);
+    begin = r + 1;
+  }
+  return runs;
+}
+
+}  // namespace
+
+TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options)
+    : options_(options) {
+  check_options(options_);
+  const TcnArchitecture& a = options_.architecture;
+  const Eigen::Index field = a.receptive_field();
+
+  // Finite runs long enough for one output; NaN/inf rows are skipped by cutting there.
+  struct Run {
+    const TcnSequence* sequence;
+    Eigen::Index begin, end;
+  };
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < dataset.sequences.size(); ++i) {
+    const TcnSequence& s = dataset.sequences[i];
+    const std::string name = "sequences[" + std::to_string(i) + "]";
+    if (s.inputs.cols() != a.inputs) {
+      fail(name + ".inputs", std::to_string(s.inputs.cols()) + " columns, architecture.inputs is " +
+                                 std::to_string(a.inputs));
+    }
+    if (s.residual.cols() != a.outputs) {
+      fail(name + ".residual", std::to_string(s.residual.cols()) +
+                                   " columns, architecture.outputs is " +
+                                   std::to_string(a.outputs));
+    }
+    if (s.residual.rows() != s.inputs.rows()) {
+      fail(name + ".residual", std::to_string(s.residual.rows()) + " rows, inputs have " +
+                                   std::to_string(s.inputs.rows()));
+    }
+    Eigen::Index finite_rows = 0;
+    for (const auto& [begin, end] : finite_runs(s)) {
+      finite_rows += end - begin;
+      if (end - begin >= field) runs.push_back({&s, begin, end});
+    }
+    skipped_samples_ += s.inputs.rows() - finite_rows;
+  }
+
+  // Normalisation over every usable sample.
+  Eigen::Index count = 0;
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(a.inputs);
+  Eigen::VectorXd sum_sq = Eigen::VectorXd::Zero(a.inputs);
+  for (const Run& r : runs) {
+    const auto rows = r.sequence->inputs.middleRows(r.begin, r.end - r.begin);
+    sum += rows.colwise().sum().transpose();
+    sum_sq += rows.array().square().colwise().sum().matrix().transpose();
+    count += rows.rows();
+  }
+  if (count == 0)
+    fail("dataset", "no finite run of at least R = " + std::to_string(field) + " samples");
+  input_mean_ = sum / static_cast<double>(count);
+  input_std_ =
+      (sum_sq / static_cast<double>(count) - input_mean_.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
+  for (Eigen::Index c = 0; c < a.inputs; ++c) {
+    if (!(input_std_[c] > 1e-9 * (1.0 + std::abs(input_mean_[c])))) input_std_[c] = 1.0;
+  }
+
+  // Segments (normalised, channels × time), target split, windows.
+  std::vector<Window> windows;
+  for (const Run& r : runs) {
+    Segment seg;
+    const Eigen::Index length = r.end - r.begin;
+    seg.inputs =
+        ((r.sequence->inputs.middleRows(r.begin, length).rowwise() - input_mean_.transpose())
+             .array()
+             .rowwise() /
+         input_std_.transpose().array())
+            .matrix()
+            .transpose();
+    seg.low.resize(a.outputs, length);
+    for (int o = 0; o < a.outputs; ++o) {
+      seg.low.row(o) = zero_phase_lowpass(r.sequence->residual.col(o).segment(r.begin, length),
+                                          options_.split_cutoff_hz, options_.sample_rate_hz)
+                           .transpose();
+    }
+    seg.high = r.sequence->residual.middleRows(r.begin, length).transpose() - seg.low;
+    const int index = static_cast<int>(segments_.size());
+    segments_.push_back(std::move(seg));
+    for (Eigen::Index first = field - 1; first < length; first += options_.window_outputs) {
+      windows.push_back(
+          {index, first, std::min<Eigen::Index>(options_.window_outputs, length - first)});
+    }
+  }
+  if (windows.size() < 2) {
+    fail("dataset", "only " + std::to_string(windows.size()) +
+                        " window(s); at least 2 are needed (one held out)");
+  }
+
+  // Seeded held-out choice.
+  std::mt19937_64 rng(options_.seed);
+  std::vector<std::size_t> order(windows.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), rng);
+  const std::size_t held_out = std::clamp<std::size_t>(
+      static_cast<std::size_t>(std::lround(options_.validation_fraction * windows.size())), 1,
+      windows.size() - 1);
+  std::sort(order.begin(), order.begin() + held_out);
+  std::sort(order.begin() + held_out, order.end());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    (i < held_out ? validation_ : training_).push_back(windows[order[i]]);
+  }
+}
+
+Eigen::Index TcnTrainer::output_count(const std::vector<Window>& windows) const {
+  Eigen::Index n = 0;
+  for (const Window& w : windows)
+    n += w.outputs;
+  return n * options_.architecture.outputs;
+}
+
+double TcnTrainer::sum_loss(const TcnParameters& parameters, const std::vector<Window>& windows,
+                            TcnParameters* gradient) const {
+  const Eigen::Index field = options_.architecture.receptive_field();
+  std::array<double, kChunks> losses{};
+  std::vector<TcnParameters> gradients;
+  if (gradient != nullptr) gradients.assign(kChunks, zero_tcn_parameters(options_.architecture));
+
+  auto run_chunk = [&](int c) {
+    TcnWindowWorkspace workspace;
+    const std::size_t begin = windows.size() * c / kChunks;
+    const std::size_t end = windows.size() * (c + 1) / kChunks;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Window& w = windows[i];
+      const Segment& s = segments_[w.segment];
+      losses[c] += tcn_window_loss(
+          parameters, s.inputs.middleCols(w.first_output - (field - 1), w.outputs + field - 1),
+          s.low.middleCols(w.first_output, w.outputs), s.high.middleCols(w.first_output, w.outputs),
+          options_.weight_low, options_.weight_high, workspace,
+          gradient != nullptr ? &gradients[c] : nullptr);
+    }
+  };
+  const int threads = std::min(options_.threads, kChunks);
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threads; ++t) {
+    workers.emplace_back([&, t] {
+      for (int c = t; c < kChunks; c += threads)
+        run_chunk(c);
+    });
+  }
+  for (int c = 0; c < kChunks; c += threads)
+    run_chunk(c);
+  for (auto& w : workers)
+    w.join();
+
+  // Fixed reduction order: the result does not depend on scheduling or thread count.
+  double total = 0.0;
+  for (int c = 0; c < kChunks; ++c)
+    total += losses[c];
+  if (gradient != nullptr) {
+    Eigen::VectorXd sum = flatten(*gradient);
+    for (int c = 0; c < kChunks; ++c)
+      sum += flatten(gradients[c]);
+    unflatten(sum, *gradient);
+  }
+  return total;
+}
+
+double TcnTrainer::loss(const TcnParameters& parameters, bool validation) const {
+  const std::vector<Window>& windows = validation ? validation_ : training_;
+  return sum_loss(parameters, windows, nullptr) / static_cast<double>(output_count(windows));
+}
+
+TcnTrainResult TcnTrainer::train(const TcnProgressCallback& progress) {
+  return train(init_tcn_parameters(options_.architecture, options_.seed), progress);
+}
+
+TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCallback& progress) {
+  const TcnArchitecture& a = options_.architecture;
+  const TcnArchitecture& s = parameters.architecture;
+  if (s.inputs != a.inputs || s.hidden != a.hidden || s.levels != a.levels ||
+      s.kernel != a.kernel || s.outputs != a.outputs) {
+    fail("start parameters", "architecture differs from options.architecture");
+  }
+  parameters.input_mean = input_mean_;
+  parameters.input_std = input_std_;
+
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  std::mt19937_64 rng(options_.seed ^ 0x9e3779b97f4a7c15ULL);
+  Eigen::VectorXd theta = flatten(parameters);
+  AdamOptimizer adam(theta.size(), options_.adam);
+  TcnParameters gradient = zero_tcn_parameters(a);
+
+  TcnTrainResult result;
+  result.best = parameters;
+  result.best_validation_loss = loss(parameters, true);
+  std::vector<Window> order = training_;
+  std::vector<Window> batch;
+  for (int epoch = 1; epoch <= options_.max_epochs; ++epoch) {
+    std::shuffle(order.begin(), order.end(), rng);
+    double epoch_loss = 0.0;
+    for (std::size_t first = 0; first < order.size(); first += options_.batch_windows) {
+      const std::size_t last = std::min(order.size(), first + options_.batch_windows);
+      batch.assign(order.begin() + first, order.begin() + last);
+      unflatten(Eigen::VectorXd::Zero(theta.size()), gradient);
+      epoch_loss += sum_loss(parameters, batch, &gradient);
+      adam.step(theta, flatten(gradient) / static_cast<double>(output_count(batch)));
+      unflatten(theta, parameters);
+    }
+
+    TcnTrainProgress p;
+    p.epoch = epoch;
+    p.max_epochs = options_.max_epochs;
+    p.train_loss = epoch_loss / static_cast<double>(output_count(order));
+    p.validation_loss = loss(parameters, true);
+    if (p.validation_loss < result.best_validation_loss || result.best_epoch == 0) {
+      result.best = parameters;
+      result.best_validation_loss = p.validation_loss;
+      result.best_epoch = epoch;
+      if (!options_.checkpoint_path.empty()) {
+        write_tcn_weight_file(options_.checkpoint_path, to_weight_file(result.best));
+      }
+    }
+    p.best_validation_loss = result.best_validation_loss;
+    p.best_epoch = result.best_epoch;
+    p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    p.remaining_seconds = p.elapsed_seconds / epoch * (options_.max_epochs - epoch);
+    const bool out_of_time =
+        options_.max_seconds > 0.0 && p.elapsed_seconds >= options_.max_seconds;
+    if (options_.max_seconds > 0.0) {
+      p.remaining_seconds =
+          std::min(p.remaining_seconds, std::max(0.0, options_.max_seconds - p.elapsed_seconds));
+    }
+    result.stopped_early = epoch - result.best_epoch >= options_.patience;
+    p.last = result.stopped_early || out_of_time || epoch == options_.max_epochs;
+    if (p.last) p.remaining_seconds = 0.0;
+    result.history.push_back(p);
+    if (progress) progress(p);
+    if (p.last) break;
+  }
+  return result;
+}
+
+TcnTrainResult train_tcn(const TcnDataset& dataset, const TcnTrainOptions& options,
+                         const TcnProgressCallback& progress) {
+  return TcnTrainer(dataset, options).train(progress);
+}
+
+TcnProgressCallback tcn_progress_bar(std::ostream& out) {
+  auto bar = std::make_shared<TerminalProgressBar>(out);
+  return [bar](const TcnTrainProgress& p) {
+    char status[160];
+    std::snprintf(status, sizeof status, "epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d", p.epoch,
+                  p.max_epochs, p.train_loss, p.validation_loss, p.best_validation_loss,
+                  p.best_epoch);
+    bar->update(p.last ? 1.0 : static_cast<double>(p.epoch) / p.max_epochs, status,
+                p.remaining_seconds);
+    if (p.last) bar->finish();
+  };
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,73 @@
+// Backpropagation through the full-window TCN against central finite differences, every tensor.
+#include <gtest/gtest.h>
+
+#include "offline/train/tcn_window_model.hpp"
+#include "tcn_test_support.hpp"
+
+namespace tpf::offline {
+namespace {
+
+void expect_gradient_matches_finite_differences(const TcnArchitecture& a, std::uint64_t seed) {
+  TcnParameters p = test::random_tcn_parameters(a, seed);
+  p.input_mean.setZero();  // the window model takes normalised inputs
+  p.input_std.setOnes();
+  const Eigen::Index outputs = 9, width = a.receptive_field() - 1 + outputs;
+  const Eigen::MatrixXd x = test::random_inputs(a.inputs, width, seed + 1);
+  const Eigen::MatrixXd low = test::random_inputs(a.outputs, outputs, seed + 2);
+  const Eigen::MatrixXd high = test::random_inputs(a.outputs, outputs, seed + 3);
+  const double w_low = 0.7, w_high = 1.9;
+
+  TcnWindowWorkspace ws;
+  TcnParameters g = zero_tcn_parameters(a);
+  tcn_window_loss(p, x, low, high, w_low, w_high, ws, &g);
+  const Eigen::VectorXd analytic = flatten(g);
+
+  std::vector<std::string> names;
+  for_each_tcn_tensor(p, [&](const std::string& name, double*, Eigen::Index size) {
+    for (Eigen::Index i = 0; i < size; ++i)
+      names.push_back(name + "[" + std::to_string(i) + "]");
+  });
+  ASSERT_EQ(static_cast<Eigen::Index>(names.size()), tcn_parameter_count(a));
+
+  Eigen::VectorXd theta = flatten(p);
+  const double h = 1e-6;
+  int nonzero = 0;
+  for (Eigen::Index k = 0; k < theta.size(); ++k) {
+    const double saved = theta[k];
+    theta[k] = saved + h;
+    unflatten(theta, p);
+    const double up = tcn_window_loss(p, x, low, high, w_low, w_high, ws, nullptr);
+    theta[k] = saved - h;
+    unflatten(theta, p);
+    const double down = tcn_window_loss(p, x, low, high, w_low, w_high, ws, nullptr);
+    theta[k] = saved;
+    const double numeric = (up - down) / (2 * h);
+    EXPECT_NEAR(analytic[k], numeric, 1e-6 * (1.0 + std::abs(numeric))) << names[k];
+    nonzero += std::abs(analytic[k]) > 1e-8;
+  }
+  EXPECT_GT(nonzero, theta.size() / 2);  // most units alive: the check is not vacuous
+}
+
+TEST(TcnGradient, EveryTensorMatchesFiniteDifferencesWithProjection) {
+  expect_gradient_matches_finite_differences({3, 5, 3, 3, 2}, 101);
+}
+
+TEST(TcnGradient, EveryTensorMatchesFiniteDifferencesWithIdentitySkip) {
+  expect_gradient_matches_finite_differences({4, 4, 2, 4, 1}, 202);
+}
+
+TEST(TcnGradient, WindowForwardEqualsNaiveNetwork) {
+  const TcnArchitecture a{4, 8, 3, 4, 2};
+  TcnParameters p = test::random_tcn_parameters(a, 303);
+  const Eigen::MatrixXd raw = test::random_inputs(4, a.receptive_field() + 40, 304);
+  const Eigen::MatrixXd normalised =
+      (raw.colwise() - p.input_mean).array().colwise() / p.input_std.array();
+  TcnWindowWorkspace ws;
+  tcn_window_forward(p, normalised, ws);
+  const Eigen::MatrixXd naive = test::naive_tcn(p, raw);
+  EXPECT_LT((ws.low - naive.topRows(2)).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((ws.high - naive.bottomRows(2)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+}  // namespace
+}  // namespace tpf::offline

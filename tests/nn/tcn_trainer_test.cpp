@@ -1,0 +1,123 @@
+// Trainer: overfits a tiny set, is deterministic, and its file loads into the core engine.
+#include "offline/train/tcn_trainer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <limits>
+#include <memory>
+
+#include "offline/train/synthetic_friction_data.hpp"
+#include "tcn_test_support.hpp"
+#include "tpf/common/error.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
+
+namespace tpf::offline {
+namespace {
+
+TcnTrainOptions small_options() {
+  TcnTrainOptions o;
+  o.architecture = {4, 8, 3, 4, 1};  // R = 22
+  o.window_outputs = 64;
+  o.batch_windows = 4;
+  o.max_epochs = 4;
+  o.seed = 7;
+  return o;
+}
+
+TEST(TcnTrainer, OverfitsATinySetToNearZeroLoss) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(0.4, 400.0, 3, 0.0));  // 160, noiseless
+  TcnTrainOptions o = small_options();
+  o.architecture.hidden = 16;
+  o.window_outputs = 70;  // two windows: one trained, one held out
+  o.batch_windows = 1;
+  o.max_epochs = 600;
+  o.patience = o.max_epochs;
+  o.adam.learning_rate = 3e-3;
+  TcnTrainer trainer(data, o);
+  ASSERT_EQ(trainer.training_windows(), 1u);
+  const TcnParameters start = init_tcn_parameters(o.architecture, o.seed);
+  const double initial = trainer.loss(start, false);
+  const TcnTrainResult result = trainer.train(start);
+  EXPECT_LT(result.history.back().train_loss, 1e-4 * initial)
+      << "initial " << initial << ", final " << result.history.back().train_loss;
+}
+
+TEST(TcnTrainer, IsDeterministicWhateverTheThreadCount) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 1));
+  TcnTrainOptions o = small_options();
+  o.threads = 1;
+  const TcnTrainResult one = train_tcn(data, o);
+  o.threads = 2;
+  const TcnTrainResult two = train_tcn(data, o);
+  TcnParameters a = one.best, b = two.best;
+  EXPECT_EQ(flatten(a), flatten(b));
+  EXPECT_EQ(one.best_validation_loss, two.best_validation_loss);
+  ASSERT_EQ(one.history.size(), two.history.size());
+  EXPECT_LT(one.history.back().train_loss, one.history.front().train_loss);
+}
+
+TEST(TcnTrainer, CheckpointLoadsIntoTheCoreEngineWithTheSameOutputs) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 2));
+  TcnTrainOptions o = small_options();
+  o.checkpoint_path = (std::filesystem::temp_directory_path() /
+                       ("tpf_nn_checkpoint_" + std::to_string(::getpid()) + ".json"))
+                          .string();
+  int calls = 0;
+  const TcnTrainResult result = train_tcn(data, o, [&](const TcnTrainProgress& p) {
+    ++calls;
+    EXPECT_EQ(p.epoch, calls);
+    EXPECT_GE(p.remaining_seconds, 0.0);
+  });
+  EXPECT_EQ(calls, static_cast<int>(result.history.size()));
+  EXPECT_TRUE(result.history.back().last);
+
+  Tcn<double, 4, 8, 3, 4, 1> tcn;
+  load_tcn_weights(o.checkpoint_path, tcn);
+  std::filesystem::remove(o.checkpoint_path);
+
+  // Stream the raw sequence from a steady start and compare with the trainer's window pass.
+  const TcnSequence& s = data.sequences[0];
+  const Eigen::Index r = o.architecture.receptive_field();
+  Eigen::MatrixXd raw(4, r - 1 + s.inputs.rows());
+  raw.leftCols(r - 1).colwise() = s.inputs.row(0).transpose();
+  raw.rightCols(s.inputs.rows()) = s.inputs.transpose();
+  const Eigen::MatrixXd normalised =
+      (raw.colwise() - result.best.input_mean).array().colwise() / result.best.input_std.array();
+  TcnWindowWorkspace ws;
+  tcn_window_forward(result.best, normalised, ws);
+  tcn.reset(s.inputs.row(0).transpose());
+  double worst = 0.0;
+  for (Eigen::Index t = 0; t < s.inputs.rows(); ++t) {
+    tcn.step(s.inputs.row(t).transpose());
+    worst = std::max(
+        {worst, std::abs(tcn.low()(0) - ws.low(0, t)), std::abs(tcn.high()(0) - ws.high(0, t))});
+  }
+  EXPECT_LT(worst, 1e-10);
+}
+
+TEST(TcnTrainer, SkipsNonFiniteRowsAndRefusesBadShapes) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(3.0, 400.0, 4));
+  data.sequences[0].inputs(500, 2) = std::numeric_limits<double>::quiet_NaN();
+  data.sequences[0].residual(700, 0) = std::numeric_limits<double>::infinity();
+  TcnTrainer trainer(data, small_options());
+  EXPECT_EQ(trainer.skipped_samples(), 2);
+  EXPECT_TRUE(trainer.input_mean().allFinite());
+  EXPECT_TRUE(
+      std::isfinite(trainer.loss(init_tcn_parameters(small_options().architecture, 1), false)));
+
+  data.sequences[0].residual.conservativeResize(Eigen::NoChange, 2);
+  try {
+    TcnTrainer bad(data, small_options());
+    FAIL() << "two residual columns accepted for one output";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("sequences[0].residual"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tpf::offline
