@@ -3,9 +3,9 @@
 
 #include <array>
 
+#include "dynamixel/protocol/fast_sync_read.hpp"
+#include "dynamixel/protocol/packet_receiver.hpp"
 #include "hex.hpp"
-#include "protocol/fast_sync_read.hpp"
-#include "protocol/packet_receiver.hpp"
 
 namespace tpf::dxl {
 namespace {

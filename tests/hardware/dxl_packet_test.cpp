@@ -3,11 +3,11 @@
 
 #include <array>
 
+#include "dynamixel/protocol/crc16.hpp"
+#include "dynamixel/protocol/instructions.hpp"
+#include "dynamixel/protocol/packet_builder.hpp"
+#include "dynamixel/protocol/packet_receiver.hpp"
 #include "hex.hpp"
-#include "protocol/crc16.hpp"
-#include "protocol/instructions.hpp"
-#include "protocol/packet_builder.hpp"
-#include "protocol/packet_receiver.hpp"
 
 namespace tpf::dxl {
 namespace {

@@ -1,10 +1,10 @@
-#include "bus/bus.hpp"
+#include "dynamixel/bus/bus.hpp"
 
 #include <algorithm>
 
-#include "protocol/fast_sync_read.hpp"
-#include "protocol/instructions.hpp"
-#include "protocol/packet_builder.hpp"
+#include "dynamixel/protocol/fast_sync_read.hpp"
+#include "dynamixel/protocol/instructions.hpp"
+#include "dynamixel/protocol/packet_builder.hpp"
 
 namespace tpf::dxl {
 

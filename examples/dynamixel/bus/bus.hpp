@@ -4,9 +4,9 @@
 
 #include <cstdint>
 
-#include "protocol/packet.hpp"
-#include "protocol/packet_receiver.hpp"
-#include "serial/byte_transport.hpp"
+#include "dynamixel/protocol/packet.hpp"
+#include "dynamixel/protocol/packet_receiver.hpp"
+#include "dynamixel/serial/byte_transport.hpp"
 
 namespace tpf::dxl {
 

@@ -1,4 +1,4 @@
-#include "ph54/chain_setup.hpp"
+#include "dynamixel/ph54/chain_setup.hpp"
 
 #include <string>
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "bus/bus.hpp"
-#include "ph54/control_table.hpp"
+#include "dynamixel/bus/bus.hpp"
+#include "dynamixel/ph54/control_table.hpp"
 
 namespace tpf::dxl::ph54 {
 

@@ -1,9 +1,9 @@
-#include "ph54/chain_state_reader.hpp"
+#include "dynamixel/ph54/chain_state_reader.hpp"
 
 #include <algorithm>
 
-#include "ph54/control_table.hpp"
-#include "ph54/units.hpp"
+#include "dynamixel/ph54/control_table.hpp"
+#include "dynamixel/ph54/units.hpp"
 
 namespace tpf::dxl::ph54 {
 

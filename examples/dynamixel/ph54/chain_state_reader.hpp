@@ -5,7 +5,7 @@
 #include <array>
 #include <cstdint>
 
-#include "bus/bus.hpp"
+#include "dynamixel/bus/bus.hpp"
 
 namespace tpf::dxl::ph54 {
 

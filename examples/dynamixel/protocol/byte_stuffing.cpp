@@ -1,4 +1,4 @@
-#include "protocol/byte_stuffing.hpp"
+#include "dynamixel/protocol/byte_stuffing.hpp"
 
 namespace tpf::dxl {
 namespace {

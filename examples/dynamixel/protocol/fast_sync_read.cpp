@@ -1,8 +1,8 @@
-#include "protocol/fast_sync_read.hpp"
+#include "dynamixel/protocol/fast_sync_read.hpp"
 
 #include <algorithm>
 
-#include "protocol/crc16.hpp"
+#include "dynamixel/protocol/crc16.hpp"
 
 namespace tpf::dxl {
 

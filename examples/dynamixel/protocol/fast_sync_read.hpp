@@ -3,7 +3,7 @@
 // CRCk is the running CRC-16 of the packet from its first FF up to block k; CRCn is the packet CRC.
 #pragma once
 
-#include "protocol/packet.hpp"
+#include "dynamixel/protocol/packet.hpp"
 
 namespace tpf::dxl {
 

@@ -1,8 +1,8 @@
-#include "protocol/instructions.hpp"
+#include "dynamixel/protocol/instructions.hpp"
 
 #include <algorithm>
 
-#include "protocol/packet_builder.hpp"
+#include "dynamixel/protocol/packet_builder.hpp"
 
 namespace tpf::dxl {
 namespace {

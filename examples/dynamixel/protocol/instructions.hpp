@@ -2,7 +2,7 @@
 // Each returns the packet size written to `out`, or 0 if it does not fit.
 #pragma once
 
-#include "protocol/packet.hpp"
+#include "dynamixel/protocol/packet.hpp"
 
 namespace tpf::dxl {
 

@@ -1,9 +1,9 @@
-#include "protocol/packet_builder.hpp"
+#include "dynamixel/protocol/packet_builder.hpp"
 
 #include <algorithm>
 
-#include "protocol/byte_stuffing.hpp"
-#include "protocol/crc16.hpp"
+#include "dynamixel/protocol/byte_stuffing.hpp"
+#include "dynamixel/protocol/crc16.hpp"
 
 namespace tpf::dxl {
 namespace {

@@ -1,7 +1,7 @@
 // Builds complete Protocol 2.0 packets (header, LEN, stuffing, CRC) into a caller's buffer.
 #pragma once
 
-#include "protocol/packet.hpp"
+#include "dynamixel/protocol/packet.hpp"
 
 namespace tpf::dxl {
 

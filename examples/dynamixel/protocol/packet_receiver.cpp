@@ -1,9 +1,9 @@
-#include "protocol/packet_receiver.hpp"
+#include "dynamixel/protocol/packet_receiver.hpp"
 
 #include <algorithm>
 #include <cstring>
 
-#include "protocol/crc16.hpp"
+#include "dynamixel/protocol/crc16.hpp"
 
 namespace tpf::dxl {
 

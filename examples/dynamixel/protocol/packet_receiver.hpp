@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "protocol/packet.hpp"
+#include "dynamixel/protocol/packet.hpp"
 
 namespace tpf::dxl {
 

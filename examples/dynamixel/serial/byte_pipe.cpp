@@ -1,4 +1,4 @@
-#include "serial/byte_pipe.hpp"
+#include "dynamixel/serial/byte_pipe.hpp"
 
 #include <algorithm>
 #include <chrono>

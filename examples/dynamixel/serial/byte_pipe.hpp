@@ -5,7 +5,7 @@
 #include <deque>
 #include <mutex>
 
-#include "serial/byte_transport.hpp"
+#include "dynamixel/serial/byte_transport.hpp"
 
 namespace tpf::serial {
 

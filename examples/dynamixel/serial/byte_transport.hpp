@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "serial/monotonic_clock.hpp"
+#include "dynamixel/serial/monotonic_clock.hpp"
 
 namespace tpf::serial {
 

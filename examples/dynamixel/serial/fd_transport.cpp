@@ -1,4 +1,4 @@
-#include "serial/fd_transport.hpp"
+#include "dynamixel/serial/fd_transport.hpp"
 
 #include <errno.h>
 #include <poll.h>

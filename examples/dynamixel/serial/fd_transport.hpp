@@ -1,7 +1,7 @@
 // ByteTransport over a non-blocking file descriptor (tty, pty master), with poll() and deadlines.
 #pragma once
 
-#include "serial/byte_transport.hpp"
+#include "dynamixel/serial/byte_transport.hpp"
 
 namespace tpf::serial {
 

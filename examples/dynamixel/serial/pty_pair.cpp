@@ -1,4 +1,4 @@
-#include "serial/pty_pair.hpp"
+#include "dynamixel/serial/pty_pair.hpp"
 
 #include <errno.h>
 #include <fcntl.h>

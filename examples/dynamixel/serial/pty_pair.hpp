@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "serial/fd_transport.hpp"
+#include "dynamixel/serial/fd_transport.hpp"
 
 namespace tpf::serial {
 

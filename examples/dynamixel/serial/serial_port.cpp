@@ -1,4 +1,4 @@
-#include "serial/serial_port.hpp"
+#include "dynamixel/serial/serial_port.hpp"
 
 #include <asm/termbits.h>  // termios2, BOTHER, TCGETS2/TCSETS2
 #include <errno.h>

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "serial/fd_transport.hpp"
+#include "dynamixel/serial/fd_transport.hpp"
 
 namespace tpf::serial {
 
