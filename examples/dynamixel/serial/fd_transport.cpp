@@ -51,20 +51,22 @@ bool FdTransport::write(std::span<const std::uint8_t> bytes, MonoNs deadline) {
 
 ReadResult FdTransport::read(std::span<std::uint8_t> out, MonoNs deadline) {
   if (fd_ < 0) return {0, true};
+  bool hung_up = false;
   for (;;) {
+    // A tty in raw mode with VMIN = VTIME = 0 returns 0 when it has no data, so 0 alone is not
+    // EOF: a hang-up shows as POLLHUP/POLLERR (or EIO), then nothing left to read.
     const ssize_t n = ::read(fd_, out.data(), out.size());
     if (n > 0) return {static_cast<std::size_t>(n), false};
-    if (n == 0) return {0, true};  // EOF: the other end went away
-    if (errno == EINTR) continue;
-    if (errno != EAGAIN && errno != EWOULDBLOCK) return {0, true};  // EIO, ENODEV, ...
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) return {0, true};  // EIO, ENODEV, ...
+    if (hung_up) return {0, true};
     const int timeout = poll_timeout_ms(deadline);
     if (timeout == 0 && monotonic_now() >= deadline) return {0, false};
     pollfd p{fd_, POLLIN, 0};
     const int ready = ::poll(&p, 1, timeout);
     if (ready < 0 && errno != EINTR) return {0, true};
     if (ready == 0 && monotonic_now() >= deadline) return {0, false};
-    if (p.revents & (POLLERR | POLLNVAL)) return {0, true};
-    // POLLIN or POLLHUP: the next read() returns the data, or EIO/0 when the device is gone.
+    hung_up = (p.revents & (POLLHUP | POLLERR | POLLNVAL)) != 0;  // drain what is left first
   }
 }
 
