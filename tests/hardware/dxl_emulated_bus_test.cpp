@@ -22,8 +22,8 @@ namespace {
 using emu::FirstOrderPlant;
 using emu::MotorChainEmulator;
 
-// Generous deadlines: the emulator is a thread on a shared 2-core machine (and under sanitizers).
-constexpr BusTiming kTestTiming{4'000'000, 1.0, 20.0};
+// Generous deadlines: the emulator is a thread on a shared, loaded machine (and under sanitizers).
+constexpr BusTiming kTestTiming{4'000'000, 1.0, 200.0};
 
 struct PipeRig {
   serial::BytePipe pipe;
@@ -124,9 +124,9 @@ TEST(DxlEmulatedBus, SilentMotorTimesOutAndIsCounted) {
   ph54::ChainStateReader fast(rig.bus, ids, info.fast_sync_read);
   ph54::ChainStateReader slow(rig.bus, ids, false);
   const serial::MonoNs start = serial::monotonic_now();
-  EXPECT_EQ(fast.read(joints), CommResult::rx_timeout);     // cut-off packet
-  EXPECT_EQ(slow.read(joints), CommResult::rx_timeout);     // status of ID 3 missing
-  EXPECT_LT(serial::monotonic_now() - start, 200'000'000);  // bounded by the deadlines
+  EXPECT_EQ(fast.read(joints), CommResult::rx_timeout);       // cut-off packet
+  EXPECT_EQ(slow.read(joints), CommResult::rx_timeout);       // status of ID 3 missing
+  EXPECT_LT(serial::monotonic_now() - start, 2'000'000'000);  // bounded by the deadlines
   EXPECT_EQ(rig.bus.counters().timeouts, 2u);
   rig.emulator.set_silent(3, false);
   EXPECT_EQ(fast.read(joints), CommResult::success);

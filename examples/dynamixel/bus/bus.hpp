@@ -77,6 +77,8 @@ class Bus {
 
   const BusCounters& counters() const noexcept { return counters_; }
   const BusTiming& timing() const noexcept { return timing_; }
+  /// E.g. a generous timeout during start-up, a tight one in the loop.
+  void set_timing(const BusTiming& timing) noexcept { timing_ = timing; }
 
  private:
   /// Clears the input, sends tx_[0..n); false (counted) on failure.

@@ -5,6 +5,7 @@
 
 #include "dynamixel/protocol/fast_sync_read.hpp"
 #include "dynamixel/protocol/packet_builder.hpp"
+#include "dynamixel/serial/thread_priority.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::dxl::emu {
@@ -36,10 +37,13 @@ MotorChainEmulator::~MotorChainEmulator() {
   stop();
 }
 
-void MotorChainEmulator::start() {
+void MotorChainEmulator::start(int realtime_priority) {
   if (running_.exchange(true)) return;
   boot_ns_ = last_step_ns_ = last_instruction_ns_ = monotonic_now();
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this, realtime_priority] {
+    serial::set_current_thread_fifo(realtime_priority);
+    run();
+  });
 }
 
 void MotorChainEmulator::stop() {
@@ -122,7 +126,7 @@ void MotorChainEmulator::reply(std::span<const std::uint8_t> bytes) {
   }
   for (std::size_t at = 0; at < n; at += 3) {
     bus_.write(std::span(out).subspan(at, std::min<std::size_t>(3, n - at)), deadline);
-    const timespec pause{0, 100'000};
+    const timespec pause{0, 20'000};
     clock_nanosleep(CLOCK_MONOTONIC, 0, &pause, nullptr);
   }
 }

@@ -34,13 +34,14 @@ class MotorChainEmulator {
   MotorChainEmulator(const MotorChainEmulator&) = delete;
   MotorChainEmulator& operator=(const MotorChainEmulator&) = delete;
 
-  void start();
+  /// Starts the device thread; priority > 0 asks for SCHED_FIFO (best effort).
+  void start(int realtime_priority = 0);
   void stop();
 
   // Fault injection (any thread).
   /// The next n responses go out with a wrong CRC.
   void corrupt_next_responses(int n) noexcept { corrupt_.fetch_add(n); }
-  /// Responses are written in 3-byte pieces with 100 µs pauses (partial reads on the host).
+  /// Responses are written in 3-byte pieces with 20 µs pauses (partial reads on the host).
   void split_responses(bool on) noexcept { split_.store(on); }
   /// `n` bytes of noise precede the next response.
   void garbage_before_next_response(int n) noexcept { garbage_.fetch_add(n); }

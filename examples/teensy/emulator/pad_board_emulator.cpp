@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "dynamixel/serial/monotonic_clock.hpp"
+#include "dynamixel/serial/thread_priority.hpp"
 
 namespace tpf::pad {
 
@@ -51,7 +52,10 @@ void PadBoardEmulator::replug() {
 
 void PadBoardEmulator::start() {
   if (running_.exchange(true)) return;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    serial::set_current_thread_fifo(options_.realtime_priority);
+    run();
+  });
 }
 
 void PadBoardEmulator::stop() {

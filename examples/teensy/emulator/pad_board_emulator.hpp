@@ -19,6 +19,7 @@ struct PadBoardEmulatorOptions {
   double rate_hz = 1000.0;
   double clock_drift_ppm = 0.0;   ///< device micros() runs fast by this much
   int startup_garbage_bytes = 0;  ///< noise sent before the first frame of each connection
+  int realtime_priority = 0;      ///< > 0: SCHED_FIFO for the streaming thread (best effort)
 };
 
 class PadBoardEmulator {

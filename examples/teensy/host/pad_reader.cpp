@@ -4,6 +4,7 @@
 #include <array>
 
 #include "dynamixel/serial/serial_port.hpp"
+#include "dynamixel/serial/thread_priority.hpp"
 #include "teensy/host/device_clock_aligner.hpp"
 #include "teensy/host/pad_stream_parser.hpp"
 #include "tpf/common/error.hpp"
@@ -23,7 +24,10 @@ PadReader::~PadReader() {
 
 void PadReader::start() {
   if (running_.exchange(true)) return;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    serial::set_current_thread_fifo(options_.realtime_priority);
+    run();
+  });
 }
 
 void PadReader::stop() {

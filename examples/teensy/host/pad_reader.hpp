@@ -37,6 +37,7 @@ struct PadReaderOptions {
   double backoff_initial_ms = 10.0;  ///< first retry after an unplug
   double backoff_max_ms = 500.0;     ///< retries double up to this
   double poll_ms = 20.0;             ///< read wait, bounds the stop() latency
+  int realtime_priority = 0;         ///< > 0: SCHED_FIFO for the reader thread (best effort)
 };
 
 class PadReader {
