@@ -109,6 +109,7 @@ ArmLoopReport ArmLoop::report() const {
   ArmLoopReport r = report_;
   r.timing = statistics_.summarize();
   r.bus = bus_.counters();
+  r.pads_used = pads_ != nullptr;
   if (pads_ != nullptr) r.pads = pads_->stats();
   if (log_ != nullptr) r.log_rows_dropped = log_->rows_dropped();
   return r;

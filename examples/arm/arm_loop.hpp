@@ -29,6 +29,7 @@ struct ArmLoopReport {
   std::uint64_t alert_events = 0;  ///< onsets of the Alert bit, per motor
   std::array<std::uint8_t, dxl::ph54::kMaxChainMotors> hardware_error{};  ///< last 518 read
   std::uint64_t pad_stale_cycles = 0;
+  bool pads_used = false;
   pad::PadReaderStats pads;
   std::uint64_t log_rows_dropped = 0;
 };

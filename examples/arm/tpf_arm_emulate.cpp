@@ -25,17 +25,21 @@ int main(int argc, char** argv) {
   std::string pads_link = "/tmp/tpf_pads";
   int firmware = 12;
   double duration = 0.0;
+  int priority = 0;
   app.add_option("--pads-link", pads_link, "symlink to the pad board's pty");
   app.add_option("--firmware", firmware, "motor firmware version (< 12: no Fast Sync Read)");
   app.add_option("--duration", duration, "seconds to run (0: until Ctrl-C)");
+  app.add_option("--priority", priority, "SCHED_FIFO priority of the device threads (0: normal)");
   CLI11_PARSE(app, argc, argv);
 
   serial::PtyPair motors_pty;
   dxl::emu::FirstOrderPlant plant(4);
   dxl::emu::MotorChainEmulator motors(motors_pty.master(), plant,
                                       dxl::emu::arm_chain(static_cast<std::uint8_t>(firmware)));
-  pad::PadBoardEmulator pads(pad::PadBoardEmulatorOptions{pads_link});
-  motors.start();
+  pad::PadBoardEmulatorOptions pad_options{pads_link};
+  pad_options.realtime_priority = priority;
+  pad::PadBoardEmulator pads(pad_options);
+  motors.start(priority);
   pads.start();
   std::printf("motors: %s\npads:   %s\n(simulated devices; Ctrl-C to stop)\n",
               motors_pty.slave_path().c_str(), pads_link.c_str());

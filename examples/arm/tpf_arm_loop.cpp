@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     const dxl::BusTiming timing{baud, 1.0, margin_ms};
     if (set_baud_from > 0) {
       serial::FdTransport slow = serial::open_serial_port(motors_path, set_baud_from);
-      dxl::Bus bus(slow, dxl::BusTiming{set_baud_from, 1.0, margin_ms});
+      dxl::Bus bus(slow, dxl::BusTiming{set_baud_from, 1.0, 100.0});
       dxl::ph54::set_torque(bus, id_bytes, false);
       const auto code = baud == 4'000'000   ? dxl::ph54::BaudCode::b4M
                         : baud == 2'000'000 ? dxl::ph54::BaudCode::b2M
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
           stderr,
           "note: ASYNC_LOW_LATENCY not set on %s (set the FTDI latency_timer to 1 via udev)\n",
           motors_path.c_str());
-    dxl::Bus bus(port, timing);
+    dxl::Bus bus(port, dxl::BusTiming{baud, 1.0, 100.0});  // start-up: generous timeouts
     dxl::ph54::ChainConfig config;
     config.ids = id_bytes;
     config.bus_watchdog_20ms = static_cast<std::uint8_t>(watchdog);
@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
     std::printf("per-cycle read: %s (574, 10 bytes)\n",
                 chain.fast_sync_read ? "Fast Sync Read" : "Sync Read (firmware < 12)");
     if (excite > 0.0) dxl::ph54::set_torque(bus, id_bytes, true);
+    bus.set_timing(timing);  // in the loop: wire time + 1 ms USB turnaround + margin
 
     std::unique_ptr<pad::PadReader> pads;
     if (!pads_path.empty()) {
