@@ -26,16 +26,20 @@ void print_report(std::FILE* out, const ArmLoopReport& r, std::size_t motors) {
     if (r.hardware_error[j] != 0)
       std::fprintf(out, "motor %zu: hardware error status 0x%02X\n", j + 1, r.hardware_error[j]);
   const pad::PadReaderStats& p = r.pads;
-  std::fprintf(
-      out,
-      "pads: frames %llu, frames lost %llu, CRC errors %llu, COBS errors %llu, "
-      "format errors %llu, connects %llu, disconnects %llu, stale cycles %llu, "
-      "clock drift %.1f ppm\n",
-      static_cast<unsigned long long>(p.frames), static_cast<unsigned long long>(p.lost_frames),
-      static_cast<unsigned long long>(p.crc_errors), static_cast<unsigned long long>(p.cobs_errors),
-      static_cast<unsigned long long>(p.format_errors), static_cast<unsigned long long>(p.connects),
-      static_cast<unsigned long long>(p.disconnects),
-      static_cast<unsigned long long>(r.pad_stale_cycles), p.drift_ppm);
+  if (!r.pads_used)
+    std::fputs("pads: not used\n", out);
+  else
+    std::fprintf(
+        out,
+        "pads: frames %llu, frames lost %llu, CRC errors %llu, COBS errors %llu, "
+        "format errors %llu, connects %llu, disconnects %llu, stale cycles %llu, "
+        "clock drift %.1f ppm\n",
+        static_cast<unsigned long long>(p.frames), static_cast<unsigned long long>(p.lost_frames),
+        static_cast<unsigned long long>(p.crc_errors),
+        static_cast<unsigned long long>(p.cobs_errors),
+        static_cast<unsigned long long>(p.format_errors),
+        static_cast<unsigned long long>(p.connects), static_cast<unsigned long long>(p.disconnects),
+        static_cast<unsigned long long>(r.pad_stale_cycles), p.drift_ppm);
   std::fprintf(out, "alert onsets %llu, log rows dropped %llu\n",
                static_cast<unsigned long long>(r.alert_events),
                static_cast<unsigned long long>(r.log_rows_dropped));
