@@ -1,6 +1,7 @@
 #include "arm/arm_loop.hpp"
 
 #include <algorithm>
+#include <cerrno>
 
 #include "arm/estimator_hook.hpp"
 #include "arm/excitation.hpp"
@@ -28,7 +29,7 @@ void ArmLoop::run() {
   for (std::uint64_t n = 0; !stop_.load(std::memory_order_relaxed); ++n) {
     if (options_.cycles != 0 && n >= options_.cycles) break;
     const timespec wake = serial::to_timespec(deadline);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) != 0) {
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) == EINTR) {
     }
     const MonoNs woke = monotonic_now();
     sample_.cycle = n;

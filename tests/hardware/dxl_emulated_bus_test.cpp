@@ -103,6 +103,15 @@ TEST(DxlEmulatedBus, EepromWriteWithTorqueOnIsAnAccessError) {
   EXPECT_THROW(ph54::write_baud_rate(rig.bus, {1}, ph54::BaudCode::b4M), Error);
 }
 
+TEST(DxlEmulatedBus, BaudRateIsWrittenWithTorqueOff) {
+  PipeRig rig;
+  ph54::set_up_chain(rig.bus, {});
+  ph54::write_baud_rate(rig.bus, {1, 2, 3, 4}, ph54::BaudCode::b4M);
+  for (std::uint8_t id = 1; id <= 4; ++id)
+    EXPECT_EQ(rig.emulator.register_value(id, ph54::baud_rate, 1), 6u);
+  EXPECT_EQ(ph54::baud_rate_of(ph54::BaudCode::b4M), 4'000'000);
+}
+
 TEST(DxlEmulatedBus, CorruptCrcIsCountedAndTheNextReadWorks) {
   PipeRig rig;
   const ph54::ChainInfo info = ph54::set_up_chain(rig.bus, {});

@@ -56,7 +56,8 @@ class Bus {
   Bus(serial::ByteTransport& port, BusTiming timing) noexcept : port_(port), timing_(timing) {}
 
   CommResult ping(std::uint8_t id, PingInfo& info) noexcept;
-  /// Reads data.size() bytes from `address` of device `id`.
+  /// Reads data.size() bytes from `address` of device `id`. An error status carries no data:
+  /// then the result is success, `error` holds the error number and `data` is left unchanged.
   CommResult read(std::uint8_t id, std::uint16_t address, std::span<std::uint8_t> data,
                   StatusError& error) noexcept;
   CommResult write(std::uint8_t id, std::uint16_t address, std::span<const std::uint8_t> data,
