@@ -45,6 +45,8 @@ class ArmLoop {
   void request_stop() noexcept { stop_.store(true); }
   /// Call after run() (allocates for the percentiles).
   ArmLoopReport report() const;
+  /// The sample of the last cycle run.
+  const CycleSample& last_sample() const noexcept { return sample_; }
 
  private:
   void cycle(std::int64_t start_ns);

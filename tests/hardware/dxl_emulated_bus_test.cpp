@@ -15,6 +15,7 @@
 #include "dynamixel/serial/serial_port.hpp"
 #include "support/allocation_counter.hpp"
 #include "tpf/common/error.hpp"
+#include "wait_until.hpp"
 
 namespace tpf::dxl {
 namespace {
@@ -76,15 +77,17 @@ TEST(DxlEmulatedBus, FastSyncReadReturnsQuantisedPlantState) {
   ASSERT_EQ(rig.bus.sync_write(ph54::goal_current, 2, ids, goal), CommResult::success);
   ph54::ChainStateReader reader(rig.bus, ids, info.fast_sync_read);
   std::array<ph54::JointReading, 4> joints;
-  const timespec wait{0, 100'000'000};
-  clock_nanosleep(CLOCK_MONOTONIC, 0, &wait, nullptr);
   {
     test::AllocationCounter allocations;
     ASSERT_EQ(reader.read(joints), CommResult::success);
     EXPECT_EQ(allocations.count(), 0u);
   }
+  // The plant runs in real time: poll (bounded) until joint 2 has spun up.
+  ASSERT_TRUE(test::wait_until([&] {
+    return reader.read(joints) == CommResult::success && joints[1].velocity_rad_s > 0.45;
+  }));
   EXPECT_NEAR(joints[1].current_mA, 500.0, 1.0);
-  EXPECT_GT(joints[1].velocity_rad_s, 0.3);
+  EXPECT_LE(joints[1].velocity_rad_s, 0.5 + 1e-3);  // k_v · 0.5 A
   EXPECT_GT(joints[1].position_rad, 0.01);
   EXPECT_EQ(joints[0].current_mA, 0.0);
   // Quantisation: the position is an integer number of pulses.
