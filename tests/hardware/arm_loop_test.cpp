@@ -172,7 +172,6 @@ TEST(ArmLoop, FaultsAreCountedAndTheLoopKeepsItsPeriod) {
   EXPECT_GE(r.bus.garbage_bytes, 9u);
   EXPECT_GE(r.pads.disconnects, 1u);
   EXPECT_GE(r.pads.connects, 2u);
-  EXPECT_GT(r.pads.startup_bytes, 0u);
   EXPECT_GT(r.pad_stale_cycles, 10u);       // no pad data while unplugged
   EXPECT_LT(r.timing.lateness_max_s, 0.5);  // generous: no cycle stalled the loop
 }

@@ -11,12 +11,17 @@ std::string motor_name(std::uint8_t id) {
   return "dynamixel id " + std::to_string(id);
 }
 
+/// Start-up transactions are retried: a single lost or corrupted status must not abort it.
+constexpr int kAttempts = 3;
+
 /// One-byte register write that must succeed with no error status.
 void write_u8(Bus& bus, std::uint8_t id, std::uint16_t address, std::uint8_t value,
               const char* field) {
   StatusError error{};
   const std::uint8_t data[] = {value};
-  const CommResult r = bus.write(id, address, data, error);
+  CommResult r = CommResult::rx_timeout;
+  for (int attempt = 0; attempt < kAttempts && r != CommResult::success; ++attempt)
+    r = bus.write(id, address, data, error);
   if (r != CommResult::success)
     throw Error::at(motor_name(id), 0, field, std::string("write failed: ") + to_string(r));
   if (error.number() != StatusError::none)
@@ -31,7 +36,9 @@ ChainInfo set_up_chain(Bus& bus, const ChainConfig& config) {
   chain.fast_sync_read = !config.ids.empty();
   for (const std::uint8_t id : config.ids) {
     PingInfo ping;
-    const CommResult r = bus.ping(id, ping);
+    CommResult r = CommResult::rx_timeout;
+    for (int attempt = 0; attempt < kAttempts && r != CommResult::success; ++attempt)
+      r = bus.ping(id, ping);
     if (r != CommResult::success)
       throw Error::at(motor_name(id), 0, "ping", std::string("no answer: ") + to_string(r));
     if (ping.model != kModelPh54_200 && ping.model != kModelPh54_100)

@@ -42,6 +42,7 @@ void PadBoardEmulator::plug_locked() {
 
 void PadBoardEmulator::unplug() {
   std::lock_guard lock(mutex_);
+  ::unlink(options_.link_path.c_str());  // udev removes the symlink; the pts number may be reused
   pty_.reset();
 }
 
@@ -78,7 +79,7 @@ void PadBoardEmulator::run() {
     const MonoNs deadline = monotonic_now();  // never block: drop like the Teensy does
     for (; garbage_left_ > 0; --garbage_left_) {
       noise = noise * 1664525u + 1013904223u;
-      const std::uint8_t b = static_cast<std::uint8_t>(noise >> 24);
+      const auto b = static_cast<std::uint8_t>((noise >> 24) | 1);  // no 0x00: one run of noise
       pty_->master().write(std::span(&b, 1), deadline);
     }
     const double device_s = static_cast<double>(monotonic_now() - boot_ns_) * 1e-9 *

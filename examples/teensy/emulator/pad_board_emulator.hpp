@@ -38,7 +38,8 @@ class PadBoardEmulator {
   void corrupt_next_frames(int n) noexcept { corrupt_.fetch_add(n); }
   /// Skips n frames (seq advances, nothing sent), as the Teensy's 120 ms TX-timeout drop.
   void drop_next_frames(int n) noexcept { drop_.fetch_add(n); }
-  /// Closes the pty: the host's reads fail with EIO, its reopen fails until replug().
+  /// Closes the pty and removes the link: the host's reads fail with EIO, its reopen fails
+  /// (ENOENT) until replug().
   void unplug();
   /// A fresh pty behind the same link; seq and micros() restart from 0.
   void replug();
