@@ -78,6 +78,12 @@ TEST(DxlBuild, StatusVectors) {
   EXPECT_EQ(built(build_status(1, {}, read, out), out),
             "FF FF FD 00 01 08 00 55 00 A6 00 00 00 8C C0");
   EXPECT_EQ(built(build_status(1, {}, {}, out), out), "FF FF FD 00 01 04 00 55 00 A1 0C");
+  std::array<std::uint8_t, 10> state{};
+  put_le(std::span(state).subspan(0, 2), static_cast<std::uint16_t>(-150));
+  put_le(std::span(state).subspan(2, 4), 1234);
+  put_le(std::span(state).subspan(6, 4), 250961);
+  EXPECT_EQ(built(build_status(1, {}, state, out), out),
+            "FF FF FD 00 01 0E 00 55 00 6A FF D2 04 00 00 51 D4 03 00 43 63");
   const std::uint8_t stuffed[] = {0xFF, 0xFF, 0xFD, 0xFF};
   EXPECT_EQ(built(build_status(1, {}, stuffed, out), out),
             "FF FF FD 00 01 09 00 55 00 FF FF FD FD FF DA 9E");

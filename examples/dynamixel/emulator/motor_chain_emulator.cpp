@@ -146,93 +146,101 @@ void MotorChainEmulator::send_status(std::size_t k, StatusError error,
   reply(std::span(out).first(build_status(motors_[k].id, error, params, out)));
 }
 
+namespace {
+
+std::uint16_t u16_at(std::span<const std::uint8_t> params, std::size_t at) {
+  return static_cast<std::uint16_t>(params[at] | (params[at + 1] << 8));
+}
+
+}  // namespace
+
 void MotorChainEmulator::handle(const Packet& p) {
-  const auto params = p.parameters();
-  const auto u16 = [&](std::size_t at) {
-    return static_cast<std::uint16_t>(params[at] | (params[at + 1] << 8));
-  };
-  std::array<std::uint8_t, kMaxParams> data;
-  const bool broadcast = p.id == kBroadcastId;
   switch (p.instruction) {
     case Instruction::ping:
-      for (std::size_t k = 0; k < motors_.size(); ++k) {
-        if (!broadcast && motors_[k].id != p.id) continue;
-        const std::uint8_t info[] = {static_cast<std::uint8_t>(motors_[k].model & 0xFF),
-                                     static_cast<std::uint8_t>(motors_[k].model >> 8),
-                                     motors_[k].firmware};
-        send_status(k, registers_[k].alert_bits(), info);
-      }
-      return;
+      return on_ping(p.id);
     case Instruction::read:
     case Instruction::write:
-    case Instruction::reboot: {
-      const int k = index_of(p.id);
-      if (k < 0) return;
-      if (p.instruction == Instruction::reboot) {
-        registers_[k].reboot();
-        send_status(k, {}, {});
-      } else if (params.size() < 4 && p.instruction == Instruction::read) {
-        send_status(k, {StatusError::data_length}, {});
-      } else if (p.instruction == Instruction::read) {
-        const std::uint16_t length = std::min<std::uint16_t>(u16(2), kMaxParams - 1);
-        const StatusError e = registers_[k].read(u16(0), std::span(data).first(length));
-        send_status(k, e,
-                    e.number() == StatusError::none ? std::span(data).first(length)
-                                                    : std::span<std::uint8_t>{});
-      } else if (params.size() < 3) {
-        send_status(k, {StatusError::data_length}, {});
-      } else {
-        send_status(k, registers_[k].write(u16(0), params.subspan(2)), {});
-      }
-      return;
-    }
-    case Instruction::sync_write: {
-      if (params.size() < 4) return;
-      const std::uint16_t address = u16(0), length = u16(2);
-      for (std::size_t at = 4; at + 1 + length <= params.size(); at += 1 + length)
-        if (const int k = index_of(params[at]); k >= 0)
-          registers_[k].write(address, params.subspan(at + 1, length));
-      return;
-    }
+    case Instruction::reboot:
+      return on_unicast(p);
+    case Instruction::sync_write:
+      return on_sync_write(p.parameters());
     case Instruction::sync_read:
-    case Instruction::fast_sync_read: {
-      if (params.size() < 5) return;
-      const std::uint16_t address = u16(0), length = u16(2);
-      const auto ids = params.subspan(4);
-      if (ids.size() > 64) return;
-      if (p.instruction == Instruction::sync_read) {
-        for (const std::uint8_t id : ids)
-          if (const int k = index_of(id); k >= 0) {
-            const StatusError e = registers_[k].read(address, std::span(data).first(length));
-            send_status(static_cast<std::size_t>(k), e, std::span(data).first(length));
-          }
-        return;
-      }
-      // Fast Sync Read: one combined packet; it ends where a listed motor is missing or silent.
-      std::array<StatusError, 64> errors;
-      std::size_t answered = 0;
-      for (; answered < ids.size() && answered < errors.size(); ++answered) {
-        const int k = index_of(ids[answered]);
-        if (k < 0 || silent_[k] || motors_[k].firmware < ph54::kFastSyncReadMinFirmware) break;
-        if ((answered + 1) * length > data.size()) break;
-        errors[answered] =
-            registers_[k].read(address, std::span(data).subspan(answered * length, length));
-      }
-      if (answered == 0) return;
-      std::array<std::uint8_t, kMaxPacketBytes> out;
-      const std::size_t n =
-          build_fast_sync_read(length, ids, std::span(data).first(ids.size() * length),
-                               std::span(errors).first(ids.size()), out);
-      if (n == 0) return;
-      const std::size_t cut = answered == ids.size() ? n : 8 + answered * (length + 4u);
-      return_delay(0);
-      reply(std::span(out).first(cut));
-      return;
-    }
+      return on_sync_read(p.parameters());
+    case Instruction::fast_sync_read:
+      return on_fast_sync_read(p.parameters());
     default:
       if (const int k = index_of(p.id); k >= 0) send_status(k, {StatusError::instruction}, {});
       return;
   }
+}
+
+void MotorChainEmulator::on_ping(std::uint8_t id) {
+  for (std::size_t k = 0; k < motors_.size(); ++k) {
+    if (id != kBroadcastId && motors_[k].id != id) continue;
+    const std::uint8_t info[] = {static_cast<std::uint8_t>(motors_[k].model & 0xFF),
+                                 static_cast<std::uint8_t>(motors_[k].model >> 8),
+                                 motors_[k].firmware};
+    send_status(k, registers_[k].alert_bits(), info);
+  }
+}
+
+void MotorChainEmulator::on_unicast(const Packet& p) {
+  const int k = index_of(p.id);
+  if (k < 0) return;
+  const auto params = p.parameters();
+  if (p.instruction == Instruction::reboot) {
+    registers_[k].reboot();
+    send_status(k, {}, {});
+  } else if (p.instruction == Instruction::read) {
+    if (params.size() != 4 || u16_at(params, 2) > data_.size())
+      return send_status(k, {StatusError::data_length}, {});
+    const auto out = std::span(data_).first(u16_at(params, 2));
+    const StatusError e = registers_[k].read(u16_at(params, 0), out);
+    send_status(k, e, e.number() == StatusError::none ? out : std::span<std::uint8_t>{});
+  } else {  // write
+    if (params.size() < 3) return send_status(k, {StatusError::data_length}, {});
+    send_status(k, registers_[k].write(u16_at(params, 0), params.subspan(2)), {});
+  }
+}
+
+void MotorChainEmulator::on_sync_write(std::span<const std::uint8_t> params) {
+  if (params.size() < 4) return;
+  const std::uint16_t address = u16_at(params, 0), length = u16_at(params, 2);
+  for (std::size_t at = 4; at + 1 + length <= params.size(); at += 1 + length)
+    if (const int k = index_of(params[at]); k >= 0)
+      registers_[k].write(address, params.subspan(at + 1, length));
+}
+
+void MotorChainEmulator::on_sync_read(std::span<const std::uint8_t> params) {
+  if (params.size() < 5 || u16_at(params, 2) > data_.size()) return;
+  const auto out = std::span(data_).first(u16_at(params, 2));
+  for (const std::uint8_t id : params.subspan(4))  // each motor answers in list order
+    if (const int k = index_of(id); k >= 0)
+      send_status(k, registers_[k].read(u16_at(params, 0), out), out);
+}
+
+void MotorChainEmulator::on_fast_sync_read(std::span<const std::uint8_t> params) {
+  if (params.size() < 5) return;
+  const std::uint16_t address = u16_at(params, 0), length = u16_at(params, 2);
+  const auto ids = params.subspan(4);
+  std::array<StatusError, kMaxChain> errors{};
+  if (ids.size() > errors.size() || ids.size() * length > data_.size()) return;
+  // One combined packet; it ends where a listed motor is missing, silent or on old firmware.
+  std::size_t answered = 0;
+  for (; answered < ids.size(); ++answered) {
+    const int k = index_of(ids[answered]);
+    if (k < 0 || silent_[k] || motors_[k].firmware < ph54::kFastSyncReadMinFirmware) break;
+    errors[answered] =
+        registers_[k].read(address, std::span(data_).subspan(answered * length, length));
+  }
+  if (answered == 0) return;
+  std::array<std::uint8_t, kMaxPacketBytes> out;
+  const std::size_t n =
+      build_fast_sync_read(length, ids, std::span(data_).first(ids.size() * length),
+                           std::span(errors).first(ids.size()), out);
+  if (n == 0) return;
+  return_delay(0);
+  reply(std::span(out).first(answered == ids.size() ? n : 8 + answered * (length + 4u)));
 }
 
 }  // namespace tpf::dxl::emu

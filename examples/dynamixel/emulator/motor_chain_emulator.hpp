@@ -3,6 +3,7 @@
 // the host uses, advances a MotorPlant in real time, and injects faults on request.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -57,6 +58,11 @@ class MotorChainEmulator {
   void run();
   void advance_plant();
   void handle(const Packet& p);
+  void on_ping(std::uint8_t id);
+  void on_unicast(const Packet& p);  ///< Read, Write, Reboot
+  void on_sync_write(std::span<const std::uint8_t> params);
+  void on_sync_read(std::span<const std::uint8_t> params);
+  void on_fast_sync_read(std::span<const std::uint8_t> params);
   void reply(std::span<const std::uint8_t> bytes);
   void send_status(std::size_t k, StatusError error, std::span<const std::uint8_t> params);
   void return_delay(std::size_t k);
@@ -71,6 +77,8 @@ class MotorChainEmulator {
   std::mutex mutex_;  // guards registers_, silent_ and the plant against the test thread
   PacketReceiver rx_{PacketReceiver::Accept::instructions};
   Packet packet_;
+  std::array<std::uint8_t, kMaxParams - 1> data_{};  ///< read-back buffer of one response
+  static constexpr std::size_t kMaxChain = 64;
   std::int64_t boot_ns_ = 0, last_step_ns_ = 0, last_instruction_ns_ = 0;
   std::atomic<int> corrupt_{0}, garbage_{0};
   std::atomic<bool> split_{false}, running_{false};
