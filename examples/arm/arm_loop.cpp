@@ -19,7 +19,7 @@ ArmLoop::ArmLoop(dxl::Bus& bus, dxl::ph54::ChainStateReader& motors,
                  ArmLoopOptions options)
     : bus_(bus), motors_(motors), pads_(pads), log_(log), options_(options) {
   std::copy_n(ids.begin(), std::min(ids.size(), ids_.size()), ids_.begin());
-  sample_.joints = motors_.size();
+  sample_.joints = std::min(motors_.size(), kMaxJoints);  // the log and estimator take ≤ 8
 }
 
 void ArmLoop::run() {
@@ -48,7 +48,7 @@ void ArmLoop::cycle(MonoNs start) {
   sample_.t = static_cast<double>(t0 - start) * 1e-9;
   sample_.motors_valid = r == dxl::CommResult::success;
   if (sample_.motors_valid) {
-    for (std::size_t j = 0; j < motors_.size(); ++j) {
+    for (std::size_t j = 0; j < sample_.joints; ++j) {
       sample_.q[j] = joints_[j].position_rad;
       sample_.dq[j] = joints_[j].velocity_rad_s;
       sample_.i[j] = joints_[j].current_mA;

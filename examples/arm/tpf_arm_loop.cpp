@@ -35,18 +35,26 @@ int main(int argc, char** argv) {
   app.add_option("--baud", baud, "bus rate in bit/s (motors must already use it)");
   app.add_option("--set-baud-from", set_baud_from,
                  "open at this rate first and switch the motors to --baud");
-  app.add_option("--ids", ids, "motor IDs in chain order")->delimiter(',');
-  app.add_option("--rate", rate, "loop rate [Hz]");
-  app.add_option("--duration", duration, "seconds to run (0: until Ctrl-C)");
+  app.add_option("--ids", ids, "motor IDs in chain order")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 252));
+  app.add_option("--rate", rate, "loop rate [Hz]")->check(CLI::Range(1.0, 2000.0));
+  app.add_option("--duration", duration, "seconds to run (0: until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--log", log_path, "CSV log to write (tpf log format v1)");
   app.add_option("--note", note, "free text for the log's '# note:'");
-  app.add_option("--excite", excite, "multisine amplitude [rad] in position mode; 0: torque off");
-  app.add_option("--watchdog", watchdog, "bus watchdog in 20 ms units (0 disables)");
+  app.add_option("--excite", excite, "multisine amplitude [rad] in position mode; 0: torque off")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--watchdog", watchdog, "bus watchdog in 20 ms units (0 disables)")
+      ->check(CLI::Range(0, 127));
   app.add_option("--timeout-margin", margin_ms, "extra response timeout [ms]");
   app.add_option("--priority", priority, "SCHED_FIFO priority");
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (ids.empty() || ids.size() > arm::kMaxJoints)
+      throw Error::at("--ids", 0, "",
+                      "give 1 to " + std::to_string(arm::kMaxJoints) + " motor IDs");
     std::vector<std::uint8_t> id_bytes(ids.begin(), ids.end());
     const dxl::BusTiming timing{baud, 1.0, margin_ms};
     if (set_baud_from > 0) {
