@@ -1,0 +1,48 @@
+#include "arm/report_printer.hpp"
+
+namespace tpf::arm {
+
+void print_report(std::FILE* out, const ArmLoopReport& r, std::size_t motors) {
+  const TimingSummary& t = r.timing;
+  std::fprintf(out, "cycles %llu, missed deadlines %llu, cycles without motor data %llu\n",
+               static_cast<unsigned long long>(t.cycles),
+               static_cast<unsigned long long>(r.missed_deadlines),
+               static_cast<unsigned long long>(r.motor_read_failures));
+  std::fprintf(out, "period jitter (wake-up lateness) p50 %.1f us, p99 %.1f us, max %.1f us\n",
+               t.lateness_p50_s * 1e6, t.lateness_p99_s * 1e6, t.lateness_max_s * 1e6);
+  std::fprintf(out, "bus time per cycle p50 %.1f us, p99 %.1f us, max %.1f us\n", t.bus_p50_s * 1e6,
+               t.bus_p99_s * 1e6, t.bus_max_s * 1e6);
+  const dxl::BusCounters& b = r.bus;
+  std::fprintf(
+      out,
+      "bus: transactions %llu, timeouts %llu, CRC errors %llu, disconnects %llu, "
+      "bad status %llu, garbage bytes %llu, status errors %llu, alerts %llu\n",
+      static_cast<unsigned long long>(b.transactions), static_cast<unsigned long long>(b.timeouts),
+      static_cast<unsigned long long>(b.crc_errors), static_cast<unsigned long long>(b.disconnects),
+      static_cast<unsigned long long>(b.bad_status),
+      static_cast<unsigned long long>(b.garbage_bytes),
+      static_cast<unsigned long long>(b.status_errors), static_cast<unsigned long long>(b.alerts));
+  for (std::size_t j = 0; j < motors; ++j)
+    if (r.hardware_error[j] != 0)
+      std::fprintf(out, "motor %zu: hardware error status 0x%02X\n", j + 1, r.hardware_error[j]);
+  const pad::PadReaderStats& p = r.pads;
+  if (!r.pads_used)
+    std::fputs("pads: not used\n", out);
+  else
+    std::fprintf(
+        out,
+        "pads: frames %llu, frames lost %llu, CRC errors %llu, COBS errors %llu, "
+        "format errors %llu, connects %llu, disconnects %llu, stale cycles %llu, "
+        "clock drift %.1f ppm\n",
+        static_cast<unsigned long long>(p.frames), static_cast<unsigned long long>(p.lost_frames),
+        static_cast<unsigned long long>(p.crc_errors),
+        static_cast<unsigned long long>(p.cobs_errors),
+        static_cast<unsigned long long>(p.format_errors),
+        static_cast<unsigned long long>(p.connects), static_cast<unsigned long long>(p.disconnects),
+        static_cast<unsigned long long>(r.pad_stale_cycles), p.drift_ppm);
+  std::fprintf(out, "alert onsets %llu, log rows dropped %llu\n",
+               static_cast<unsigned long long>(r.alert_events),
+               static_cast<unsigned long long>(r.log_rows_dropped));
+}
+
+}  // namespace tpf::arm
