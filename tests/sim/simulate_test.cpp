@@ -105,7 +105,7 @@ TEST(Simulate, SensorsReportAtHardwareResolutionWithGapsAndJitter) {
 
 TEST(Simulate, ExcitationObeysTheEquationOfMotionAtRest) {
   const Scenario s = scenario("excitation.json");
-  const Log log = simulate_to_log(s, 5, 20.0);
+  const Log log = simulate_to_log(s, 5, 10.0);
   const TwinVector error = rest_equation_error(log, s);
   // Noise 6 mA plus the drive's current loop lag and pre-sliding accelerations.
   EXPECT_LT(error.maxCoeff(), 25.0) << error.transpose();
@@ -114,7 +114,7 @@ TEST(Simulate, ExcitationObeysTheEquationOfMotionAtRest) {
   int large = 0;
   for (Eigen::Index k = 0; k < log.rows(); ++k)
     if (dq(k) == 0 && std::abs(f(k)) > 100) ++large;
-  EXPECT_GT(large, 200);
+  EXPECT_GT(large, 100);
 }
 
 TEST(Simulate, StaticContactsPushPadsAndShowInCurrents) {
@@ -140,7 +140,7 @@ TEST(Simulate, StaticContactsPushPadsAndShowInCurrents) {
 
 TEST(Simulate, TeachingMovesTheArmByHand) {
   Scenario s = scenario("teaching.json");
-  const Log log = simulate_to_log(s, 4, 20.0);
+  const Log log = simulate_to_log(s, 4, 12.0);
   const auto contact = log.col("gt_contact");
   EXPECT_GT((contact.array() > 0).cast<double>().mean(), 0.3);
   double travel = 0.0;
@@ -157,15 +157,15 @@ TEST(Simulate, UndeclaredEffectsShowUp) {
   s.effects.thermal.enabled = true;
   s.effects.thermal.heating_k_per_a2s = 2.0;
   s.effects.thermal.time_constant_s = 60.0;
-  const Log hot = simulate_to_log(s, 6, 10.0);
+  const Log hot = simulate_to_log(s, 6, 6.0);
   const auto temp = hot.col("temp2");
   EXPECT_GT(temp(temp.size() - 1), temp(0) + 1.0);
   // A spring on joint 1 (no gravity there) shifts the holding current by −k·(q − q0)/K_t.
   Scenario spring = scenario("excitation.json");
   spring.effects.spring.enabled = true;
   spring.effects.spring.stiffness = TwinVector(5.0, 0, 0, 0);
-  const Log with = simulate_to_log(spring, 6, 10.0);
-  const Log without = simulate_to_log(scenario("excitation.json"), 6, 10.0);
+  const Log with = simulate_to_log(spring, 6, 6.0);
+  const Log without = simulate_to_log(scenario("excitation.json"), 6, 6.0);
   double corr = 0;
   for (Eigen::Index k = 0; k < std::min(with.rows(), without.rows()); ++k)
     corr += (with.col("i1")(k) - without.col("i1")(k)) * with.col("q1")(k);
