@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
   app.add_option("--baud", baud, "bus rate in bit/s (motors must already use it)");
   app.add_option("--set-baud-from", set_baud_from,
                  "open at this rate first and switch the motors to --baud");
-  app.add_option("--ids", ids, "motor IDs in chain order")
+  app.add_option("--ids", ids, "motor IDs in chain order (0-252)")
+      ->check(CLI::Range(0, 252))
       ->delimiter(',')
       ->check(CLI::Range(0, 252));
   app.add_option("--rate", rate, "loop rate [Hz]")->check(CLI::Range(1.0, 2000.0));
@@ -55,7 +56,9 @@ int main(int argc, char** argv) {
     if (ids.empty() || ids.size() > arm::kMaxJoints)
       throw Error::at("--ids", 0, "",
                       "give 1 to " + std::to_string(arm::kMaxJoints) + " motor IDs");
-    std::vector<std::uint8_t> id_bytes(ids.begin(), ids.end());
+    std::vector<std::uint8_t> id_bytes;
+    id_bytes.reserve(ids.size());
+    for (const int id : ids) id_bytes.push_back(static_cast<std::uint8_t>(id));
     const dxl::BusTiming timing{baud, 1.0, margin_ms};
     if (set_baud_from > 0) {
       serial::FdTransport slow = serial::open_serial_port(motors_path, set_baud_from);
