@@ -35,8 +35,7 @@ int main(int argc, char** argv) {
   app.add_option("--baud", baud, "bus rate in bit/s (motors must already use it)");
   app.add_option("--set-baud-from", set_baud_from,
                  "open at this rate first and switch the motors to --baud");
-  app.add_option("--ids", ids, "motor IDs in chain order (0-252)")
-      ->check(CLI::Range(0, 252))
+  app.add_option("--ids", ids, "motor IDs in chain order")
       ->delimiter(',')
       ->check(CLI::Range(0, 252));
   app.add_option("--rate", rate, "loop rate [Hz]")->check(CLI::Range(1.0, 2000.0));
