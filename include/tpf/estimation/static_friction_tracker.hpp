@@ -163,15 +163,16 @@ class StaticFrictionTracker {
     if (count_ < History) ++count_;
   }
 
-  /// Mean of joint j's residual over history samples with t ∈ [from, to) where j was static;
+  /// Mean of joint j's residual over the history samples with t ∈ [from, to) of its current
+  /// static stretch (samples from before its last motion belong to another friction state);
   /// `fallback` when there is none.
   S window_mean(int j, S from, S to, S fallback) const noexcept {
     S sum = S(0);
     int n = 0;
     for (int i = 0; i < count_; ++i) {
       const Entry& e = history_[(head_ - 1 - i + 2 * History) % History];
-      if (e.t < from) break;
-      if (e.t < to && (e.is_static & (Mask(1) << j))) {
+      if (e.t < from || !(e.is_static & (Mask(1) << j))) break;
+      if (e.t < to) {
         sum += e.residual[j];
         ++n;
       }
