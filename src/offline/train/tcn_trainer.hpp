@@ -89,7 +89,8 @@ class TcnTrainer {
   /// two windows of R samples remain.
   TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options);
 
-  /// Trains from init_tcn_parameters(architecture, seed), or from `start` if given.
+  /// Trains from init_tcn_parameters(architecture, seed), or from `start` if given (its
+  /// normalisation is replaced by this dataset's, so start from parameters of similar data).
   TcnTrainResult train(const TcnProgressCallback& progress = {});
   TcnTrainResult train(TcnParameters start, const TcnProgressCallback& progress = {});
 
