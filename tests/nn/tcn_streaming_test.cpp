@@ -1,6 +1,7 @@
 // Streaming TCN inference against a naive full-window network; causality; prewarm; allocations.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 
 #include "support/allocation_counter.hpp"
@@ -122,6 +123,23 @@ TEST(TcnStreaming, ResetEqualsFeedingTheSteadyInputForOneReceptiveField) {
   const Eigen::MatrixXd after = test::random_inputs(4, 80, 43);
   const Eigen::MatrixXd fo = stream(fed, after, 0), po = stream(prewarmed, after, 0);
   EXPECT_LT((fo - po).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(TcnStreaming, NonFiniteSampleIsFlaggedAndHeldOver) {
+  const offline::TcnParameters p = test::random_tcn_parameters({4, 8, 3, 4, 2}, 61);
+  Tcn<double, 4, 8, 3, 4, 2> clean, dirty;
+  test::load_parameters(p, clean);
+  test::load_parameters(p, dirty);
+  Eigen::MatrixXd raw = test::random_inputs(4, 60, 62);
+  clean.reset(raw.col(0));
+  dirty.reset(raw.col(0));
+  Eigen::MatrixXd held = raw;
+  held.col(30) = held.col(29);  // what the engine must substitute
+  raw(1, 30) = std::numeric_limits<double>::quiet_NaN();
+  const Eigen::MatrixXd a = stream(clean, held, 0), b = stream(dirty, raw, 0);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(dirty.skipped_inputs(), 1);
+  EXPECT_EQ(clean.skipped_inputs(), 0);
 }
 
 TEST(TcnStreaming, StepAndResetAllocateNothing) {
