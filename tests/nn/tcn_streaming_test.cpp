@@ -25,14 +25,15 @@ Eigen::MatrixXd stream(Engine& tcn, const Eigen::MatrixXd& raw, Eigen::Index fro
 }
 
 template <typename Engine>
-void expect_streaming_equals_naive(const TcnArchitecture& a, std::uint64_t seed) {
+void expect_streaming_equals_naive(const TcnArchitecture& a, std::uint64_t seed,
+                                   Eigen::Index steps = 300) {
   const offline::TcnParameters p = test::random_tcn_parameters(a, seed);
   auto tcn = std::make_unique<Engine>();
   test::load_parameters(p, *tcn);
   ASSERT_EQ(Engine::kReceptiveField, a.receptive_field());
 
-  // Steady prefix of R − 1 samples = what reset() assumes, then 300 random samples.
-  const Eigen::Index r = a.receptive_field(), steps = 300;
+  // Steady prefix of R − 1 samples = what reset() assumes, then `steps` random samples.
+  const Eigen::Index r = a.receptive_field();
   Eigen::MatrixXd raw(a.inputs, r - 1 + steps);
   const Eigen::VectorXd steady = test::random_inputs(a.inputs, 1, seed + 7);
   raw.leftCols(r - 1).colwise() = steady;
@@ -60,13 +61,13 @@ TEST(TcnStreaming, DefaultPerJointShapeCoversWellOver70msAt400Hz) {
   EXPECT_EQ(PerJoint::kReceptiveField, 46);  // 1 + 3·(2⁴ − 1)
   EXPECT_EQ(PerJoint::kReceptiveField, offline::TcnArchitecture{}.receptive_field());
   EXPECT_GT(PerJoint::kReceptiveField / 400.0, 1.5 * 0.070);
-  expect_streaming_equals_naive<PerJoint>({4, 32, 4, 4, 1}, 13);
+  expect_streaming_equals_naive<PerJoint>({4, 32, 4, 4, 1}, 13, 100);
 }
 
 TEST(TcnStreaming, FiveLevelsSixtyFourChannelsEqualNaive) {
   using Wide = Tcn<double, 4, 64, 5>;
   EXPECT_EQ(Wide::kReceptiveField, 94);
-  expect_streaming_equals_naive<Wide>({4, 64, 5, 4, 1}, 14);
+  expect_streaming_equals_naive<Wide>({4, 64, 5, 4, 1}, 14, 40);
 }
 
 TEST(TcnStreaming, FloatEngineTracksDouble) {
