@@ -56,6 +56,10 @@ TEST(TcnStreaming, EqualsNaiveFullWindowConvolutionWithIdentitySkip) {
   expect_streaming_equals_naive<Tcn<double, 6, 6, 4, 3, 1>>({6, 6, 4, 3, 1}, 12);
 }
 
+TEST(TcnStreaming, EqualsNaiveWithOneLevelAndKernelTwo) {
+  expect_streaming_equals_naive<Tcn<double, 3, 5, 1, 2, 1>>({3, 5, 1, 2, 1}, 15, 50);
+}
+
 TEST(TcnStreaming, DefaultPerJointShapeCoversWellOver70msAt400Hz) {
   using PerJoint = Tcn<double, 4, 32, 4>;
   EXPECT_EQ(PerJoint::kReceptiveField, 46);  // 1 + 3·(2⁴ − 1)

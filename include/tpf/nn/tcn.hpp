@@ -131,8 +131,8 @@ class Tcn {
     return HiddenColumn(hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column));
   }
 
-  /// z += W·x, one column axpy at a time: keeps z in registers, which beats Eigen's general
-  /// matrix–vector kernel at these sizes (see docs/tcn.md).
+  /// z += W·x, one column axpy at a time: keeps z in registers, 4–14 % faster than Eigen's
+  /// general matrix–vector kernel at these sizes (see docs/tcn.md).
   template <typename Matrix>
   static void add_product(HiddenVector& z, const Matrix& w, const S* x) noexcept {
     for (int c = 0; c < Matrix::ColsAtCompileTime; ++c)
