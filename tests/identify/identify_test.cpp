@@ -1,9 +1,10 @@
 // Identification on twin logs: the true rigid body and friction are recovered where identifiable.
+#include "offline/identify/identify.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
-#include "offline/identify/identify.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "support/arm_fixture.hpp"
@@ -52,9 +53,9 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
   for (int j = 0; j < kJoints; ++j) {
     const double rigid_error = std::sqrt(se_rigid[j] / ss_rigid[j]);
     const double friction_error = std::sqrt(se_fric[j] / ss_fric[j]);
-    std::printf("joint %d: rigid error %.3f %%, friction error %.3f %% (held-out), moving RMSE %.1f mA\n",
-                j + 1, 100 * rigid_error, 100 * friction_error,
-                id.heldout[j][Regime::Moving].rmse);
+    std::printf(
+        "joint %d: rigid error %.3f %%, friction error %.3f %% (held-out), moving RMSE %.1f mA\n",
+        j + 1, 100 * rigid_error, 100 * friction_error, id.heldout[j][Regime::Moving].rmse);
     // Within 3 % of the rigid torque, or within the current noise (6 mA) on the light wrist.
     const double count = static_cast<double>(s.size()) / 4.0;
     EXPECT_LT(std::sqrt(se_rigid[j] / count), std::max(0.03 * std::sqrt(ss_rigid[j] / count), 8.0))

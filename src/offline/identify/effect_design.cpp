@@ -10,9 +10,13 @@
 namespace tpf::offline {
 namespace {
 
-std::string joint_name(int j) { return "joint " + std::to_string(j + 1); }
+std::string joint_name(int j) {
+  return "joint " + std::to_string(j + 1);
+}
 
-int regime_index(Regime r) { return static_cast<int>(r); }  // Static 0, StaticToKinetic 1, Moving 2
+int regime_index(Regime r) {
+  return static_cast<int>(r);
+}  // Static 0, StaticToKinetic 1, Moving 2
 
 }  // namespace
 
@@ -47,7 +51,11 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
   add_group(rigid, base.size());
   for (int j = 0; j < N; ++j) {
     const std::string n = std::to_string(j + 1);
-    add_group({"friction", "Coulomb and viscous friction, " + joint_name(j), j, true, {},
+    add_group({"friction",
+               "Coulomb and viscous friction, " + joint_name(j),
+               j,
+               true,
+               {},
                {"fc" + n, "fv" + n, "rest" + n}},
               3);
   }
@@ -58,7 +66,11 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
     add_group(payload, 10);
     for (int j = 0; j < N; ++j) {
       const std::string n = std::to_string(j + 1);
-      add_group({"load_friction", "load-dependent friction, " + joint_name(j), j, false, {},
+      add_group({"load_friction",
+                 "load-dependent friction, " + joint_name(j),
+                 j,
+                 false,
+                 {},
                  {"alpha_c" + n, "alpha_v" + n, "alpha_rest" + n}},
                 3);
       if (candidates_.ripple_cycles.size() == N && candidates_.ripple_cycles[j] > 0) {
@@ -74,19 +86,31 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
         add_group({"ripple_motor", title, j, false, {}, {"motor_sin" + n, "motor_cos" + n}}, 2);
       }
       if (has_temperature_)
-        add_group({"thermal", "temperature-dependent friction, " + joint_name(j), j, false, {},
+        add_group({"thermal",
+                   "temperature-dependent friction, " + joint_name(j),
+                   j,
+                   false,
+                   {},
                    {"beta_v" + n}},
                   1);
-      add_group({"spring", "joint spring or cable torque (k·q + offset), " + joint_name(j), j,
-                 false, {}, {"k" + n, "offset" + n}},
+      add_group({"spring",
+                 "joint spring or cable torque (k·q + offset), " + joint_name(j),
+                 j,
+                 false,
+                 {},
+                 {"k" + n, "offset" + n}},
                 2);
       if (candidates_.prediction_rate.cols() == N)
-        add_group({"delay", "delay between effort and motion, " + joint_name(j), j, false, {},
+        add_group({"delay",
+                   "delay between effort and motion, " + joint_name(j),
+                   j,
+                   false,
+                   {},
                    {"lead_s" + n}},
                   1);
       if (N > 1) {
-        FeatureGroup coupling{"coupling", "coupling from other joints' motion, " + joint_name(j),
-                              j, false, {}, {}};
+        FeatureGroup coupling{
+            "coupling", "coupling from other joints' motion, " + joint_name(j), j, false, {}, {}};
         for (int k = 0; k < N; ++k)
           if (k != j) {
             coupling.column_names.push_back("cv" + n + "_" + std::to_string(k + 1));
@@ -99,8 +123,8 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
   local_.assign(N, {});
   for (int j = 0; j < N; ++j) {
     for (const FeatureGroup& g : groups_)
-      if (g.joint == -1 || g.joint == j) local_[j].insert(local_[j].end(), g.columns.begin(),
-                                                         g.columns.end());
+      if (g.joint == -1 || g.joint == j)
+        local_[j].insert(local_[j].end(), g.columns.begin(), g.columns.end());
     max_local_ = std::max<int>(max_local_, static_cast<int>(local_[j].size()));
   }
 }
@@ -234,7 +258,8 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s) const {
 }
 
 template <int N>
-Eigen::MatrixXd EffectDesign<N>::predict(const JointSamples& s, const Eigen::VectorXd& theta) const {
+Eigen::MatrixXd EffectDesign<N>::predict(const JointSamples& s,
+                                         const Eigen::VectorXd& theta) const {
   const Eigen::Index n = s.size();
   Eigen::MatrixXd prediction(n, N);
   std::vector<Eigen::VectorXd> local_theta(N);
@@ -253,8 +278,7 @@ Eigen::MatrixXd EffectDesign<N>::predict(const JointSamples& s, const Eigen::Vec
       }
       fill(s, k, ws);
       for (int j = 0; j < N; ++j)
-        prediction(k, j) =
-            ws.local.row(j).head(local_theta[j].size()).dot(local_theta[j]);
+        prediction(k, j) = ws.local.row(j).head(local_theta[j].size()).dot(local_theta[j]);
     }
   };
   std::thread helper([&] { work(n / 2, n); });

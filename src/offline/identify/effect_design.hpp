@@ -42,7 +42,7 @@ struct CandidateInputs {
 ///   load_friction: |G|s, |G|q̇_j, |G|h        ripple: sin(nq_j), cos(nq_j)
 ///   ripple_motor: sin(n r_j q_j), cos(n r_j q_j)   payload: Y(j, link N)·e_j (10 columns)
 ///   thermal: (T_j − T_ref)q̇_j    spring: q_j, 1
-///   delay: dŷ_j/dt (coefficient = the effort's lead over the motion, s)
+///   delay: d(rigid-body prediction_j)/dt (coefficient = the effort's lead over the motion, s)
 ///   coupling: q̇_k, q̈_k for every k ≠ j
 template <int N>
 class EffectDesign {

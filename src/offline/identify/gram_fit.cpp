@@ -58,8 +58,7 @@ ResidualSums residual_sums(const DesignGrams& grams, const Eigen::VectorXd& thet
   ResidualSums s;
   s.count = g(p + 1, p + 1);
   const auto G = g.topLeftCorner(p, p);
-  s.sum_squares = std::max(
-      0.0, theta.dot(G * theta) - 2.0 * theta.dot(g.col(p).head(p)) + g(p, p));
+  s.sum_squares = std::max(0.0, theta.dot(G * theta) - 2.0 * theta.dot(g.col(p).head(p)) + g(p, p));
   s.sum = g(p, p + 1) - theta.dot(g.col(p + 1).head(p));
   return s;
 }

@@ -17,7 +17,7 @@ namespace tpf::offline {
 struct DesignGrams {
   static constexpr int kRegimes = 3;  ///< Regime::Static, StaticToKinetic, Moving
   int joints = 0;
-  int features = 0;                 ///< P
+  int features = 0;                     ///< P
   std::vector<Eigen::MatrixXd> blocks;  ///< (P+2)², index (joint·3 + regime)·2 + split
 
   DesignGrams() = default;

@@ -18,7 +18,8 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& s, const Eigen::
   for (int j = 0; j < s.joints(); ++j) {
     Eigen::VectorXd r = residual.col(j);
     for (Eigen::Index k = 0; k < r.size(); ++k)
-      if (static_cast<bool>(s.heldout[k]) != heldout) r[k] = std::numeric_limits<double>::quiet_NaN();
+      if (static_cast<bool>(s.heldout[k]) != heldout)
+        r[k] = std::numeric_limits<double>::quiet_NaN();
     stats.push_back(regime_stats(r, s.regimes[j]));
   }
   return stats;
@@ -216,14 +217,14 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   return out;
 }
 
-#define TPF_INSTANTIATE_IDENTIFY(N)                                                              \
-  template Identification<N> identify<N>(const Log&, const Model<double, N>&,                    \
-                                         const IdentifyOptions&);                                \
-  template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);                \
-  template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                   \
-                                               const JointSamples&);                             \
-  template StribeckParameters<double, N> fit_friction_curves<N>(                                 \
-      const Model<double, N>&, const JointSamples&, const Eigen::MatrixXd&,                      \
+#define TPF_INSTANTIATE_IDENTIFY(N)                                               \
+  template Identification<N> identify<N>(const Log&, const Model<double, N>&,     \
+                                         const IdentifyOptions&);                 \
+  template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&); \
+  template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,    \
+                                               const JointSamples&);              \
+  template StribeckParameters<double, N> fit_friction_curves<N>(                  \
+      const Model<double, N>&, const JointSamples&, const Eigen::MatrixXd&,       \
       const StribeckParameters<double, N>&, bool, int, const Eigen::VectorXd&);
 TPF_INSTANTIATE_IDENTIFY(1)
 TPF_INSTANTIATE_IDENTIFY(2)

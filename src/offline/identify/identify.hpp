@@ -18,7 +18,7 @@ using ProgressLine = std::function<void(const std::string&)>;
 
 struct IdentifyOptions {
   SampleOptions samples;
-  bool fit_load_friction = true;       ///< α_c, α_v free in the nonlinear friction fit
+  bool fit_load_friction = true;           ///< α_c, α_v free in the nonlinear friction fit
   int friction_samples_per_joint = 20000;  ///< subsample of moving training samples for Ceres
   ProgressLine progress;
 };
@@ -36,10 +36,10 @@ template <int N>
 struct Identification {
   NominalModel<double, N> nominal;
   JointSamples samples;
-  Eigen::MatrixXd residual;             ///< effort − prediction, per sample and joint (NaN invalid)
-  std::vector<RegimeStats> heldout;     ///< per joint, residual on held-out blocks per regime
-  std::vector<RegimeStats> training;    ///< per joint, on the training blocks
-  Eigen::VectorXd joint_weights;        ///< 1/σ_j² of the weighted least squares
+  Eigen::MatrixXd residual;           ///< effort − prediction, per sample and joint (NaN invalid)
+  std::vector<RegimeStats> heldout;   ///< per joint, residual on held-out blocks per regime
+  std::vector<RegimeStats> training;  ///< per joint, on the training blocks
+  Eigen::VectorXd joint_weights;      ///< 1/σ_j² of the weighted least squares
   ConsistencyCheck consistency;
 };
 

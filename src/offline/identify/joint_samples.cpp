@@ -31,9 +31,9 @@ JointSamples extract_joint_samples(const Log& log, const SampleOptions& options)
     s.dq.col(j - 1) = log.col(indexed_name("dq", j));
     s.effort.col(j - 1) = log.col(indexed_name(prefix, j));
     const std::string acc = indexed_name("ddq", j);
-    s.ddq.col(j - 1) = log.has(acc) ? Eigen::VectorXd(log.col(acc))
-                                     : derive_acceleration(s.t, s.dq.col(j - 1),
-                                                           options.acceleration_cutoff_hz);
+    s.ddq.col(j - 1) =
+        log.has(acc) ? Eigen::VectorXd(log.col(acc))
+                     : derive_acceleration(s.t, s.dq.col(j - 1), options.acceleration_cutoff_hz);
     if (has_temperature) s.temperature.col(j - 1) = log.col(indexed_name("temp", j));
   }
 

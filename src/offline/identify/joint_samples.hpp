@@ -25,10 +25,10 @@ struct JointSamples {
   bool simulated = false;   ///< metadata 'source' says simulated
   Eigen::VectorXd t;
   Eigen::MatrixXd q, dq, ddq, effort;
-  Eigen::MatrixXd temperature;  ///< temp<j> in °C; 0 columns when the log has none
+  Eigen::MatrixXd temperature;               ///< temp<j> in °C; 0 columns when the log has none
   std::vector<std::vector<Regime>> regimes;  ///< [joint][sample], from label_regimes
-  std::vector<char> valid;    ///< every joint's q, dq, ddq, effort (and temp) finite
-  std::vector<char> heldout;  ///< the sample belongs to a held-out block
+  std::vector<char> valid;                   ///< every joint's q, dq, ddq, effort (and temp) finite
+  std::vector<char> heldout;                 ///< the sample belongs to a held-out block
   /// Sign of the last motion of each joint (|q̇| ≥ threshold): +1, −1, 0 before any motion or
   /// after a gap. Held through rests: a stopped geared joint keeps the friction it stopped with.
   Eigen::MatrixXd held_sign;

@@ -25,8 +25,8 @@ struct StribeckResidual {
 }  // namespace
 
 JointStribeck fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                           const Eigen::VectorXd& target, const JointStribeck& start,
-                           bool fit_load, double robust_scale) {
+                           const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load,
+                           double robust_scale) {
   double x[7] = {std::max(start.coulomb, 0.0),
                  std::max(start.coulomb, 0.0) * 1.3,
                  std::clamp(start.stribeck_velocity, 2e-3, 1.0),

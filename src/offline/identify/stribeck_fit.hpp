@@ -18,7 +18,7 @@ struct JointStribeck {
 /// `start` holds the linear fit (τ_c, b, α). Cauchy loss at `robust_scale` (the effort noise
 /// level) keeps stuck or bumped samples from pulling the curve.
 JointStribeck fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                           const Eigen::VectorXd& target, const JointStribeck& start,
-                           bool fit_load, double robust_scale);
+                           const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load,
+                           double robust_scale);
 
 }  // namespace tpf::offline
