@@ -101,7 +101,9 @@ void write_diagnosis_report(const Diagnosis<N>& d, const std::filesystem::path& 
   BarSeries before{"before", {}, ""}, after{"after", {}, ""};
   for (int i = 0; i < N; ++i)
     for (int r = 0; r < 3; ++r) {
-      groups.push_back("j" + std::to_string(i + 1) + " " + kRegimeNames[r]);
+      std::string label = "j";  // appended piecewise: GCC 12 -Wrestrict false positive on a + b + c
+      label.append(std::to_string(i + 1)).append(" ").append(kRegimeNames[r]);
+      groups.push_back(label);
       before.values.push_back(d.before[i][r].rmse());
       after.values.push_back(d.after[i][r].rmse());
     }
