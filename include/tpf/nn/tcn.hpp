@@ -126,7 +126,8 @@ class Tcn {
   /// matrix–vector kernel at these sizes (see docs/tcn.md).
   template <typename Matrix>
   static void add_product(HiddenVector& z, const Matrix& w, const S* x) noexcept {
-    for (int c = 0; c < Matrix::ColsAtCompileTime; ++c) z.noalias() += w.col(c) * x[c];
+    for (int c = 0; c < Matrix::ColsAtCompileTime; ++c)
+      z.noalias() += w.col(c) * x[c];
   }
 
   void apply_heads() noexcept {
