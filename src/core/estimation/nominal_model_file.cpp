@@ -213,7 +213,7 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
     json::only_keys(
         a, file, w,
         {"ripple", "spring_stiffness", "spring_offset", "coupling_velocity",
-         "coupling_acceleration", "thermal_viscous", "reference_temperature", "effort_delay_s"});
+         "coupling_acceleration", "thermal_viscous", "reference_temperature", "effort_lead_s"});
     AddedEffects<double, N>& e = nominal.added;
     read_vector<N>(a, file, w, "spring_stiffness", e.spring_stiffness, false);
     read_vector<N>(a, file, w, "spring_offset", e.spring_offset, false);
@@ -222,10 +222,10 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
     read_vector<N>(a, file, w, "thermal_viscous", e.thermal_viscous, false);
     if (a.contains("reference_temperature"))
       e.reference_temperature = json::number(a, file, w, "reference_temperature");
-    if (a.contains("effort_delay_s")) {
-      e.effort_delay_s = json::number(a, file, w, "effort_delay_s");
-      if (e.effort_delay_s < 0.0 || e.effort_delay_s > 1.0)
-        throw Error::at(file, 0, w + ".effort_delay_s", "must be in [0, 1] s");
+    if (a.contains("effort_lead_s")) {
+      e.effort_lead_s = json::number(a, file, w, "effort_lead_s");
+      if (std::abs(e.effort_lead_s) > 1.0)
+        throw Error::at(file, 0, w + ".effort_lead_s", "must be within ±1 s");
     }
     if (a.contains("ripple")) {
       const Json& r = a.at("ripple");
@@ -316,7 +316,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
                         {"coupling_acceleration", matrix_to_json<N>(e.coupling_acceleration)},
                         {"thermal_viscous", array_json(e.thermal_viscous)},
                         {"reference_temperature", e.reference_temperature},
-                        {"effort_delay_s", e.effort_delay_s}};
+                        {"effort_lead_s", e.effort_lead_s}};
   if (!fit_quality_json.empty()) {
     try {
       j["fit"] = Json::parse(fit_quality_json);
