@@ -9,13 +9,16 @@
 #include <vector>
 
 #include "offline/common/data_files.hpp"
+#include "offline/diagnose/diagnose.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
+#include "offline/identify/identify.hpp"
 #include "offline/log/atomic_file.hpp"
-#include "offline/pipeline/declared_model.hpp"
+#include "offline/pipeline/diagnose_page.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"
 #include "offline/training/estimator_samples.hpp"
+#include "tpf/model/load_robot.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -63,15 +66,16 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
                  const std::vector<SimulationJob>& jobs) {
   HtmlReport page("tpf demo: the whole loop on the digital twin");
   page.mark_simulated();
-  page.paragraph("simulate → nominal model → (diagnose) → train → evaluate, in " +
+  page.paragraph("simulate → identify → diagnose → train → evaluate, in " +
                  format_number(r.seconds, 3) + " s.");
   page.heading("Pages");
-  page.list(
-      {"evaluate.html — the three estimators side by side (Table I, dead bands, detection, "
-       "force, teaching)",
-       "diagnose: not run — `tpf diagnose` (branch loop) is not part of this build; the "
-       "pipeline uses the declared model of the robot files as its nominal model"});
-  page.paragraph("Open evaluate.html in this folder for the full report.");
+  page.links({{"diagnose.html", "diagnose",
+               "— what the declared model misses, the effects added, held-out before/after"},
+              {"evaluate.html", "evaluate",
+               "— tactile-only, proprioceptive-only and fusion side by side (Table I, dead "
+               "bands, detection, force, teaching)"}});
+  page.heading("Diagnosis");
+  page.list(r.findings);
   page.heading("Headline");
   page.preformatted(evaluation_headline(r.evaluation));
   page.heading("Stages");
@@ -79,10 +83,8 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
   for (const SimulationJob& j : jobs)
     stages.push_back("log: " + j.log.source);
   stages.push_back(
-      "nominal model: declared (robot file rigid body and armature + friction file Stribeck "
-      "curve, mA) — written to nominal.params.json. Identification (`tpf identify`) is not in "
-      "this build; the twin's undeclared effects (ripple, payload, thermal drift) are therefore "
-      "left to the TCN.");
+      "nominal model: identify then diagnose on the training log (identified.params.json, "
+      "nominal.params.json = identified + the effects diagnosis added)");
   std::string nets;
   for (const TcnTrainResult& t : r.training.results)
     nets += " best epoch " + std::to_string(t.best_epoch) + " of " +
@@ -120,18 +122,30 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   simulate_all(jobs, o.threads, say);
   const Log& training_log = jobs[0].log;
 
-  // 2. Nominal model (identification is not in this build: the declared model).
-  say("[2/5] nominal model: declared model of data/arm4.robot.json + data/arm4.friction.json "
-      "(tpf identify not available in this build)");
-  ArmEstimatorSetup setup;
-  setup.nominal = declared_nominal_model(
-      data_file("arm4.robot.json"), data_file("arm4.friction.json"), training_log.effort_prefix());
-  save_nominal_model<kArmJoints>(o.out / "nominal.params.json", setup.nominal,
-                                 "declared model (robot + friction files)");
-  setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
+  // 2. Identify the declared model on the training log.
+  say("[2/5] identify: declared model (base parameters, armature, Stribeck + load friction) on "
+      "the training log");
+  const auto model = load_robot<double, kArmJoints>(data_file("arm4.robot.json"));
+  IdentifyOptions identify_options;
+  identify_options.progress = say;
+  const Identification<kArmJoints> identified = identify(training_log, model, identify_options);
+  save_nominal_model<kArmJoints>(o.out / "identified.params.json", identified.nominal,
+                                 training_log.source);
 
-  // 3. Diagnose: not in this build.
-  say("[3/5] diagnose: skipped (tpf diagnose is not in this build)");
+  // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
+  say("[3/5] diagnose: candidate effects on the training log's held-out blocks");
+  DiagnoseOptions diagnose_options;
+  diagnose_options.progress = say;
+  const Diagnosis<kArmJoints> diagnosis = diagnose(training_log, model, diagnose_options);
+  for (const std::string& f : diagnosis.findings)
+    say("diagnose: " + f);
+  save_nominal_model<kArmJoints>(o.out / "nominal.params.json", diagnosis.nominal,
+                                 training_log.source);
+  diagnose_page(diagnosis, true).write(o.out / "diagnose.html");
+  result.findings = diagnosis.findings;
+  ArmEstimatorSetup setup;
+  setup.nominal = diagnosis.nominal;
+  setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
 
   // 4. Train.
   say("[4/5] train: estimator features on the training log, then the TCN (budget " +
@@ -142,6 +156,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   CompensatorTrainingOptions training;
   training.per_joint = o.per_joint;
   training.tcn.max_seconds = o.training_budget_s;
+  training.tcn.max_epochs = o.training_epochs;
   training.tcn.threads = o.threads;
   training.tcn.seed = o.training_seed;
   int last_epoch = 0;
@@ -173,7 +188,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   setup.parameters = arm_estimator_parameters(estimate_sensor_noise(jobs[3].log));
   result.evaluation = evaluate(setup, logs, say);
   std::vector<std::string> notes{
-      "nominal model: declared (robot + friction files); tpf identify/diagnose not in this build",
+      "nominal model: identified and diagnosed on the training log (nominal.params.json)",
       "compensator: one network " + std::string(o.per_joint ? "per joint" : "for all joints") +
           ", trained " + format_number(result.training.seconds, 3) + " s on " + jobs[0].log.source};
   for (const SimulationJob& j : jobs)

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/training/train_compensator.hpp"
@@ -28,6 +29,7 @@ struct DemoOptions {
   double teaching_s = 60.0;
   /// Training budget [s] (wall clock; the full `tpf train` default is 270 s).
   double training_budget_s = 90.0;
+  int training_epochs = 200;  ///< upper bound on epochs (early stopping usually ends sooner)
   bool per_joint = false;
   int threads = 2;
 };
@@ -35,13 +37,15 @@ struct DemoOptions {
 struct DemoResult {
   Evaluation evaluation;
   CompensatorTraining training;
-  std::filesystem::path index;  ///< the report's entry page
+  std::vector<std::string> findings;  ///< the diagnosis, in plain sentences
+  std::filesystem::path index;        ///< the report's entry page
   double seconds = 0.0;
 };
 
-/// simulate (training, calibration and held-out logs, two at a time) → nominal model → train →
-/// evaluate → report (out/index.html linking out/evaluate.html; parameters, weights and
-/// evaluation.json beside it). `progress` gets one line per stage. Everything is SIMULATED.
+/// simulate (training, calibration and held-out logs, two at a time) → identify → diagnose (the
+/// nominal model: declared + added effects) → train → evaluate → report (out/index.html linking
+/// out/diagnose.html and out/evaluate.html; parameters, weights and evaluation.json beside it).
+/// `progress` gets one line per stage. Everything is SIMULATED.
 DemoResult run_demo(const DemoOptions& options,
                     const std::function<void(const std::string&)>& progress = {});
 

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "offline/train/tcn_parameters.hpp"
+#include "offline/training/baseline_start.hpp"
 #include "offline/training/training_dataset.hpp"
 
 namespace tpf::offline {
@@ -29,11 +30,20 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     TcnTrainer trainer(dataset, o);
     out.training_windows += trainer.training_windows();
     out.validation_windows += trainer.validation_windows();
-    TcnTrainResult result = trainer.train(progress);
+    const Eigen::VectorXd scale = options.per_joint
+                                      ? Eigen::VectorXd::Constant(1, effort_per_newton_metre[joint])
+                                      : effort_per_newton_metre;
+    Eigen::VectorXi baseline(o.architecture.outputs);
+    for (int k = 0; k < o.architecture.outputs; ++k)
+      baseline[k] = options.per_joint ? 3 : 3 * kArmJoints + k;
+    TcnTrainResult result =
+        options.start_from_baseline
+            ? trainer.train(baseline_start(o.architecture, o.seed, trainer.input_mean(),
+                                           trainer.input_std(), baseline, scale),
+                            progress)
+            : trainer.train(progress);
     TcnParameters best = result.best;
-    scale_tcn_outputs(best, options.per_joint
-                                ? Eigen::VectorXd::Constant(1, effort_per_newton_metre[joint])
-                                : effort_per_newton_metre);
+    scale_tcn_outputs(best, scale);
     out.files.push_back(to_weight_file(best));
     out.results.push_back(std::move(result));
   }

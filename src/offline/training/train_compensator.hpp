@@ -16,6 +16,8 @@ struct CompensatorTrainingOptions {
   /// stay kArmHidden/kArmLevels (the compiled networks). max_seconds is the whole budget.
   TcnTrainOptions tcn;
   bool per_joint = false;  ///< one network per joint instead of one for all joints
+  /// Start from baseline_start (the network predicts τ̂_fric,s) instead of a random network.
+  bool start_from_baseline = true;
 };
 
 struct CompensatorTraining {
