@@ -1,5 +1,6 @@
 // `tpf evaluate`: tactile-only, proprioceptive-only and fusion side by side on held-out logs.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -12,12 +13,16 @@
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/log/atomic_file.hpp"
 #include "offline/log/read_log.hpp"
+#include "offline/sim/scenario.hpp"
 
 namespace {
 
 struct EvaluateCommandOptions {
   std::string params, weights, robot, pads, calibration, contacts, teaching, out;
   std::vector<std::string> excitation;
+  std::string teaching_scenario;
+  std::uint64_t teaching_seed = 5;
+  double teaching_duration = 60.0;
   bool quiet = false;
 };
 
@@ -54,6 +59,13 @@ void run_evaluate(const EvaluateCommandOptions& o) {
   }
   if (!o.contacts.empty()) logs.contacts = &contacts;
   if (!o.teaching.empty()) logs.teaching = &teaching;
+  Scenario scenario;
+  if (!o.teaching_scenario.empty()) {
+    scenario = load_scenario(o.teaching_scenario);
+    logs.teaching_scenario = &scenario;
+    logs.teaching_seed = o.teaching_seed;
+    logs.teaching_duration_s = o.teaching_duration;
+  }
   const Evaluation ev = evaluate(setup, logs, say);
 
   std::filesystem::create_directories(o.out);
@@ -106,6 +118,13 @@ void register_evaluate_command(CLI::App& app) {
   cmd->add_option("--contacts", o->contacts, "Static-contacts log (detection, force error)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--teaching", o->teaching, "Teaching log")->check(CLI::ExistingFile);
+  cmd->add_option("--teaching-scenario", o->teaching_scenario,
+                  "Teaching scenario to simulate in closed loop through the estimators")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--teaching-seed", o->teaching_seed, "Seed of the closed-loop runs")
+      ->capture_default_str();
+  cmd->add_option("--teaching-duration", o->teaching_duration, "Closed-loop run length [s]")
+      ->capture_default_str();
   cmd->add_option("--out", o->out, "Output folder (evaluate.html, evaluation.json)")->required();
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   cmd->callback([o] { run_evaluate(*o); });

@@ -174,6 +174,12 @@ Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
     teaching_metrics(*logs.teaching, ev.teaching_trace, scale, ev);
     ev.has_teaching = true;
   }
+  if (logs.teaching_scenario) {
+    say("evaluate: closed-loop teaching, the admittance controller following each estimator");
+    ev.closed_loop = closed_loop_teaching(setup, *logs.teaching_scenario, logs.teaching_seed,
+                                          logs.teaching_duration_s);
+    ev.has_closed_loop = true;
+  }
   return ev;
 }
 
@@ -229,6 +235,17 @@ std::string evaluation_json(const Evaluation& ev) {
     if (ev.has_teaching)
       j["teaching"][name] = {{"rmse_nm", vec(ev.teaching.rmse[m])},
                              {"onset_rmse_nm", vec(ev.teaching.onset_rmse[m])}};
+  }
+  for (const TeachingLoop& l : ev.closed_loop) {
+    if (!ev.has_closed_loop) break;
+    j["closed_loop_teaching"].push_back(
+        {{"mode", l.name},
+         {"onsets", l.onsets},
+         {"overshoots", l.overshoots},
+         {"undershoots", l.undershoots},
+         {"mean_overshoot_percent", num(l.mean_overshoot_percent)},
+         {"mean_undershoot_percent", num(l.mean_undershoot_percent)},
+         {"torque_rmse_nm", vec(l.torque_rmse)}});
   }
   if (ev.has_teaching)
     j["teaching"]["rows"] = {{"contact", ev.teaching.contact_rows},

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "offline/evaluate/closed_loop_teaching.hpp"
 #include "offline/evaluate/contact_detection.hpp"
 #include "offline/evaluate/force_error.hpp"
 #include "offline/evaluate/residual_table.hpp"
@@ -30,6 +31,10 @@ struct EvaluationLogs {
   std::vector<const Log*> excitation;
   const Log* contacts = nullptr;
   const Log* teaching = nullptr;
+  /// Closed-loop teaching: the scenario is simulated again with the estimator in the loop.
+  const Scenario* teaching_scenario = nullptr;
+  std::uint64_t teaching_seed = 0;
+  double teaching_duration_s = 0.0;
 };
 
 /// Per joint dead bands (effort unit) and the pad's on level.
@@ -58,6 +63,8 @@ struct Evaluation {
   std::array<DetectionStats, kModalityCount> detection{};
   std::array<ForceErrorStats, kModalityCount> force{};
   TeachingErrors teaching;
+  bool has_closed_loop = false;
+  std::array<TeachingLoop, 2> closed_loop;  ///< without / with the compensator
   /// Traces kept for the plots (first excitation log, contacts, teaching).
   EstimatorTrace excitation_trace, contacts_trace, teaching_trace;
   /// Teaching log: τ̂_ext of each modality and gt_tau_ext [N·m], T × N.

@@ -211,6 +211,44 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
     page.figure(line_plot({"Teaching, joint 2: external torque", "t [s]", "τ_ext [N·m]"}, s),
                 "The hand drags the arm; each estimator replayed on the recording.");
   }
+  if (ev.has_closed_loop) {
+    page.heading("Kinesthetic teaching in closed loop");
+    Table ct;
+    ct.header = {"admittance follows",
+                 "onsets",
+                 "overshoots",
+                 "mean overshoot [%]",
+                 "undershoots",
+                 "mean undershoot [%]",
+                 "τ RMSE j1",
+                 "j2",
+                 "j3",
+                 "j4"};
+    ct.caption =
+        "The twin's admittance controller (M_a q̈ + D_a q̇ = τ̂_ext) driven by each "
+        "estimator inside the simulation, same hand (same seed). Peak joint speed in the "
+        "first 0.5 s after the hand takes the pad against the ideal admittance response "
+        "to the true external torque; τ RMSE over contact rows [N·m].";
+    for (const TeachingLoop& l : ev.closed_loop) {
+      std::vector<std::string> row{l.name,
+                                   std::to_string(l.onsets),
+                                   std::to_string(l.overshoots),
+                                   fmt(l.mean_overshoot_percent),
+                                   std::to_string(l.undershoots),
+                                   fmt(l.mean_undershoot_percent)};
+      for (int j = 0; j < kArmJoints; ++j)
+        row.push_back(fmt(l.torque_rmse[j]));
+      ct.rows.push_back(row);
+    }
+    page.table(ct);
+    std::vector<Series> s;
+    for (const TeachingLoop& l : ev.closed_loop) {
+      const Eigen::Index n = std::min<Eigen::Index>(l.log.rows(), 8000);
+      s.push_back({"q̇2, " + l.name, l.log.col("t").head(n), l.log.col("dq2").head(n), ""});
+    }
+    page.figure(line_plot({"Closed-loop teaching, joint 2 velocity", "t [s]", "q̇ [rad/s]"}, s),
+                "The same hand guiding the arm; the admittance follows each estimator.");
+  }
   return page;
 }
 
@@ -237,6 +275,16 @@ std::string evaluation_headline(const Evaluation& ev) {
           modality_name(static_cast<Modality>(m)), ev.detection[m].detected, ev.detection[m].events,
           1000.0 * ev.detection[m].median_latency_s, ev.force[m].median_angle_deg,
           ev.force[m].magnitude_rmse);
+      out += line;
+    }
+  }
+  if (ev.has_closed_loop) {
+    for (const TeachingLoop& l : ev.closed_loop) {
+      char line[240];
+      std::snprintf(line, sizeof line,
+                    "  teaching, %-42s overshoot %.0f %% (%d), undershoot %.0f %% (%d)\n",
+                    l.name.c_str(), l.mean_overshoot_percent, l.overshoots,
+                    l.mean_undershoot_percent, l.undershoots);
       out += line;
     }
   }

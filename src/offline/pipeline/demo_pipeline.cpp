@@ -185,6 +185,10 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   logs.excitation = {&jobs[1].log};
   logs.contacts = &jobs[2].log;
   logs.teaching = &jobs[4].log;
+  const Scenario teaching = load_scenario(data_file("scenarios/teaching.json").string());
+  logs.teaching_scenario = &teaching;
+  logs.teaching_seed = o.teaching_seed;
+  logs.teaching_duration_s = o.teaching_s;
   setup.parameters = arm_estimator_parameters(estimate_sensor_noise(jobs[3].log));
   result.evaluation = evaluate(setup, logs, say);
   std::vector<std::string> notes{

@@ -129,6 +129,16 @@ EstimatorTrace trace_arm_estimator(const ArmEstimatorSetup& setup,
   return with_arm_estimator(setup, [&](auto& e) { return trace_estimator(e, samples); });
 }
 
+ArmEstimatorStep make_arm_estimator_step(const ArmEstimatorSetup& setup) {
+  return with_arm_estimator(setup, [](auto& e) -> ArmEstimatorStep {
+    using E = std::decay_t<decltype(e)>;
+    auto shared = std::make_shared<E>(std::move(e));
+    return [shared](const ArmSample& s) -> const EstimatorOutput<double, kArmJoints>& {
+      return shared->update(s);
+    };
+  });
+}
+
 TransitionSigma<double, kArmJoints> calibrate_arm_sigma(ArmEstimatorSetup& setup,
                                                         const std::vector<ArmSample>& samples,
                                                         const std::string& source) {

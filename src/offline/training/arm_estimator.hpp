@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,12 @@ std::filesystem::path joint_weight_path(const std::filesystem::path& path, int j
 /// Runs the estimator of `setup` over `samples` (trace_estimator).
 EstimatorTrace trace_arm_estimator(const ArmEstimatorSetup& setup,
                                    const std::vector<ArmSample>& samples);
+
+/// One estimator of `setup`, kept alive inside the returned callable: each call feeds one sample
+/// (in time order) and returns the estimator's output (valid until the next call).
+using ArmEstimatorStep =
+    std::function<const EstimatorOutput<double, kArmJoints>&(const ArmSample&)>;
+ArmEstimatorStep make_arm_estimator_step(const ArmEstimatorSetup& setup);
 
 /// calibrate_transition_sigma on contact-free `samples` with the setup's compensator; the result
 /// is stored in setup.parameters (nominal_sigma, fused_sigma) and returned.
