@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <Eigen/Geometry>
 #include <numbers>
 
 #include "offline/evaluate/contact_detection.hpp"
