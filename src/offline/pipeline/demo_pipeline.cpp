@@ -157,6 +157,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   training.per_joint = o.per_joint;
   training.tcn.max_seconds = o.training_budget_s;
   training.tcn.max_epochs = o.training_epochs;
+  training.tcn.split_cutoff_hz = o.split_cutoff_hz;
   training.tcn.threads = o.threads;
   training.tcn.seed = o.training_seed;
   int last_epoch = 0;
