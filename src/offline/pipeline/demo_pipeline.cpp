@@ -95,7 +95,7 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
       ", budget " + format_number(o.training_budget_s) +
       " s (the demo's short "
       "budget; `tpf train` defaults to 270 s), took " +
-      format_number(r.training.seconds, 3) + " s;" + nets + " weights in tcn.json");
+      format_number(r.training.seconds, 3) + " s;" + nets + " weights in tcn.json or tcn.joint<j>.json");
   page.list(stages);
   page.write(out / "index.html");
 }
