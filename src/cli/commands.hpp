@@ -8,6 +8,8 @@ namespace tpf::cli {
 void register_info_command(CLI::App& app);
 void register_demo_command(CLI::App& app);
 void register_simulate_command(CLI::App& app);
+void register_identify_command(CLI::App& app);
+void register_diagnose_command(CLI::App& app);
 void register_train_command(CLI::App& app);
 void register_evaluate_command(CLI::App& app);
 

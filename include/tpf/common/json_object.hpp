@@ -1,0 +1,100 @@
+// Strict reading of the project's JSON files (robot, pads, friction, parameters, weights,
+// scenarios): every key must be known, every number finite and in range; errors name the file and
+// the full key path ("joints[2].gear_ratio"). Start-up and offline code only (allocates, throws
+// tpf::Error).
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tpf::json {
+
+class Object {
+ public:
+  /// `path` is the key path of this object inside the file ("" for the top level).
+  Object(const nlohmann::json& object, std::string file, std::string path);
+
+  /// Reads the JSON file `path` (its top level must be an object). A syntax error names the line.
+  static Object read_file(const std::filesystem::path& path);
+  /// Reads `path`, checks `"format": format` and `"version" <= max_version`, and returns the top
+  /// level. A syntax error names the line.
+  static Object read_document(const std::filesystem::path& path, std::string_view format,
+                              int max_version);
+
+  /// A number in [lo, hi]; `fallback` when absent.
+  double number(const std::string& key, double fallback, double lo, double hi);
+  /// A required number in [lo, hi].
+  double number(const std::string& key, double lo, double hi);
+  /// An array of exactly `size` numbers in [lo, hi]; `fallback` when absent.
+  std::vector<double> numbers(const std::string& key, std::vector<double> fallback, double lo,
+                              double hi, std::size_t size);
+  /// A required array of exactly `size` numbers in [lo, hi].
+  std::vector<double> numbers(const std::string& key, double lo, double hi, std::size_t size);
+  /// A required [x, y, z] of finite numbers.
+  Eigen::Vector3d vector3(const std::string& key);
+  /// Lower bound of joint_vector entries; the message says "must be >= 0 (non-negative)" etc.
+  enum class Bound { kAny, kNonNegative, kPositive };
+  /// An array of exactly N numbers into `out` (unchanged when absent and not required).
+  template <int N>
+  void joint_vector(const std::string& key, Eigen::Matrix<double, N, 1>& out, bool required,
+                    Bound bound = Bound::kAny) {
+    if (!required && !has(key)) return;
+    const std::vector<double> v = numbers(key, -kInfinity, kInfinity, N);
+    for (int i = 0; i < N; ++i) {
+      check_bound(key + "[" + std::to_string(i) + "]", v[i], bound);
+      out[i] = v[i];
+    }
+  }
+  /// An array of N rows of N numbers into `out` (unchanged when absent).
+  template <int N>
+  void joint_matrix(const std::string& key, Eigen::Matrix<double, N, N>& out) {
+    if (!has(key)) return;
+    const std::vector<std::vector<double>> rows = number_rows(key, N, N);
+    for (int r = 0; r < N; ++r)
+      for (int c = 0; c < N; ++c)
+        out(r, c) = rows[r][c];
+  }
+  /// A required array of `rows` arrays of `cols` finite numbers.
+  std::vector<std::vector<double>> number_rows(const std::string& key, std::size_t rows,
+                                               std::size_t cols);
+  /// A required whole number in [lo, hi].
+  int integer(const std::string& key, int lo, int hi);
+  bool boolean(const std::string& key, bool fallback);
+  /// A required string.
+  std::string text(const std::string& key);
+  std::string text(const std::string& key, std::string fallback);
+  /// One of `choices`.
+  std::string choice(const std::string& key, std::string fallback,
+                     const std::vector<std::string>& choices);
+  bool has(const std::string& key) const { return object_.contains(key); }
+  /// A nested object (an empty one when absent).
+  Object child(const std::string& key);
+  /// Array of objects.
+  std::vector<Object> children(const std::string& key);
+  /// Throws tpf::Error naming the first key that was never read.
+  void finish() const;
+  /// "file: path.key: message" error.
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+
+  const std::string& file() const { return file_; }
+
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+ private:
+  void check_bound(const std::string& item, double value, Bound bound) const;
+  std::string key_path(const std::string& key) const;
+  const nlohmann::json& get(const std::string& key);
+
+  nlohmann::json object_;
+  std::string file_;
+  std::string path_;
+  std::set<std::string> used_;
+};
+
+}  // namespace tpf::json
