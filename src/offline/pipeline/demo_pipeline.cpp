@@ -13,7 +13,7 @@
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/atomic_file.hpp"
-#include "offline/pipeline/diagnose_page.hpp"
+#include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"
@@ -141,7 +141,10 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
     say("diagnose: " + f);
   save_nominal_model<kArmJoints>(o.out / "nominal.params.json", diagnosis.nominal,
                                  training_log.source);
-  diagnose_page(diagnosis, true).write(o.out / "diagnose.html");
+  write_diagnosis_report(diagnosis, o.out / "diagnose.html");
+  AtomicFile diagnosis_file(o.out / "diagnosis.json");
+  diagnosis_file.write(diagnosis_json(diagnosis));
+  diagnosis_file.commit();
   result.findings = diagnosis.findings;
   ArmEstimatorSetup setup;
   setup.nominal = diagnosis.nominal;
