@@ -23,7 +23,11 @@ void register_demo_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--test-duration", o->test_s, "simulated held-out excitation log [s]")
       ->capture_default_str();
-  cmd->add_flag("--per-joint", o->per_joint, "one network per joint instead of one for all");
+  cmd->add_option("--split-cutoff", o->split_cutoff_hz,
+                  "cut-off of the zero-phase low/high split of the TCN target [Hz]")
+      ->capture_default_str();
+  cmd->add_flag("!--all-joints", o->per_joint,
+                "one network for all joints instead of one per joint (the default)");
   cmd->callback([o, out] {
     o->out = *out;
     std::printf("tpf demo: the whole loop on the digital twin (SIMULATED), output in %s\n",

@@ -25,6 +25,7 @@ struct TrainCommandOptions {
   std::string checkpoint;
   bool per_joint = false;
   bool quiet = false;
+  int onset_copies = 1;
   tpf::offline::TcnTrainOptions tcn;
 };
 
@@ -44,6 +45,7 @@ void run_train(TrainCommandOptions o) {
   options.tcn = o.tcn;
   options.tcn.checkpoint_path = o.checkpoint;
   options.per_joint = o.per_joint;
+  options.onset_copies = o.onset_copies;
   const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
   const CompensatorTraining result = train_compensator(
       traces, scale, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
@@ -102,6 +104,9 @@ void register_train_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--checkpoint", o->checkpoint,
                   "Write the best model so far here at each improvement (outputs in N*m)");
+  cmd->add_option("--onset-copies", o->onset_copies,
+                  "Extra copies of one window per motion onset (weighs break-away; 0: none)")
+      ->capture_default_str();
   cmd->add_flag("--quiet", o->quiet, "No progress bar");
   cmd->callback([o] { run_train(*o); });
 }

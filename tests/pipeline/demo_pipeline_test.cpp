@@ -58,10 +58,16 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   const auto nominal = load_nominal_model<kArmJoints>(
       o.out / "nominal.params.json", std::string(TPF_TEST_DATA_DIR) + "/arm4.robot.json");
   EXPECT_EQ(nominal.effort_unit, "mA");
-  auto tcn = std::make_unique<AllJointsTcn>();
-  load_tcn_weights((o.out / "tcn.json").string(), *tcn);
-  EXPECT_EQ(r.training.results.size(), 1u);
-  EXPECT_LE(r.training.results[0].history.size(), 2u);
+  CompensatorLayout layout = CompensatorLayout::None;
+  const auto files = compensator_files(o.out / "tcn.json", layout);  // one network per joint
+  EXPECT_EQ(layout, CompensatorLayout::PerJoint);
+  ASSERT_EQ(files.size(), 4u);
+  auto tcn = std::make_unique<JointTcns>();
+  for (int j = 0; j < kArmJoints; ++j)
+    load_tcn_weights(files[j], tcn->network(j));
+  ASSERT_EQ(r.training.results.size(), 4u);
+  for (const auto& t : r.training.results)
+    EXPECT_LE(t.history.size(), 2u);
   std::filesystem::remove_all(o.out);
 }
 

@@ -13,7 +13,7 @@
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/atomic_file.hpp"
-#include "offline/pipeline/diagnose_page.hpp"
+#include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"
@@ -95,7 +95,7 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
       ", budget " + format_number(o.training_budget_s) +
       " s (the demo's short "
       "budget; `tpf train` defaults to 270 s), took " +
-      format_number(r.training.seconds, 3) + " s;" + nets + " weights in tcn.json");
+      format_number(r.training.seconds, 3) + " s;" + nets + " weights in tcn.json or tcn.joint<j>.json");
   page.list(stages);
   page.write(out / "index.html");
 }
@@ -141,7 +141,10 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
     say("diagnose: " + f);
   save_nominal_model<kArmJoints>(o.out / "nominal.params.json", diagnosis.nominal,
                                  training_log.source);
-  diagnose_page(diagnosis, true).write(o.out / "diagnose.html");
+  write_diagnosis_report(diagnosis, o.out / "diagnose.html");
+  AtomicFile diagnosis_file(o.out / "diagnosis.json");
+  diagnosis_file.write(diagnosis_json(diagnosis));
+  diagnosis_file.commit();
   result.findings = diagnosis.findings;
   ArmEstimatorSetup setup;
   setup.nominal = diagnosis.nominal;
@@ -157,6 +160,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   training.per_joint = o.per_joint;
   training.tcn.max_seconds = o.training_budget_s;
   training.tcn.max_epochs = o.training_epochs;
+  training.tcn.split_cutoff_hz = o.split_cutoff_hz;
   training.tcn.threads = o.threads;
   training.tcn.seed = o.training_seed;
   int last_epoch = 0;

@@ -19,9 +19,15 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
   for (int net = 0; net < networks; ++net) {
     const int joint = options.per_joint ? net : -1;
     TcnDataset dataset;
-    for (const EstimatorTrace& trace : traces)
-      dataset.sequences.push_back(training_sequence(trace, effort_per_newton_metre, joint));
     TcnTrainOptions o = options.tcn;
+    for (const EstimatorTrace& trace : traces) {
+      dataset.sequences.push_back(training_sequence(trace, effort_per_newton_metre, joint));
+      for (int copy = 0; copy < options.onset_copies; ++copy)
+        for (TcnSequence& s : onset_sequences(trace, effort_per_newton_metre, joint,
+                                              o.architecture.receptive_field(), o.window_outputs,
+                                              options.onset_lead))
+          dataset.sequences.push_back(std::move(s));
+    }
     o.architecture.inputs = options.per_joint ? 4 : 4 * kArmJoints;
     o.architecture.outputs = options.per_joint ? 1 : kArmJoints;
     if (o.max_seconds > 0) o.max_seconds /= networks;

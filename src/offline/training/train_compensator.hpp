@@ -18,6 +18,10 @@ struct CompensatorTrainingOptions {
   bool per_joint = false;  ///< one network per joint instead of one for all joints
   /// Start from baseline_start (the network predicts τ̂_fric,s) instead of a random network.
   bool start_from_baseline = true;
+  /// Copies of onset_sequences (one window per motion onset, starting onset_lead rows before it)
+  /// added to the data to weigh the static-to-kinetic transition; 0: none.
+  int onset_copies = 1;
+  int onset_lead = 16;
 };
 
 struct CompensatorTraining {

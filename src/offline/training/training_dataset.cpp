@@ -1,5 +1,7 @@
 #include "offline/training/training_dataset.hpp"
 
+#include <cmath>
+
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
@@ -21,6 +23,32 @@ TcnSequence training_sequence(const EstimatorTrace& trace,
     s.inputs.col(c) = trace.inputs.col(c * n + joint);
   s.residual = trace.residual.col(joint) / effort_per_newton_metre[joint];
   return s;
+}
+
+std::vector<TcnSequence> onset_sequences(const EstimatorTrace& trace,
+                                         const Eigen::VectorXd& effort_per_newton_metre, int joint,
+                                         int receptive_field, int outputs, int lead,
+                                         double static_velocity) {
+  const TcnSequence all = training_sequence(trace, effort_per_newton_metre, joint);
+  const Eigen::Index length = receptive_field - 1 + outputs;
+  std::vector<TcnSequence> out;
+  Eigen::Index last_first = -1;
+  for (Eigen::Index k = 1; k < trace.rows(); ++k) {
+    bool onset = false;
+    for (Eigen::Index j = 0; j < trace.dq.cols(); ++j) {
+      if (joint >= 0 && j != joint) continue;
+      onset = onset || (std::abs(trace.dq(k - 1, j)) < static_velocity &&
+                        std::abs(trace.dq(k, j)) >= static_velocity);
+    }
+    if (!onset) continue;
+    const Eigen::Index first = k - lead - (receptive_field - 1);
+    if (first < 0 || first + length > trace.rows() || first < last_first + length / 2) continue;
+    TcnSequence s{all.inputs.middleRows(first, length), all.residual.middleRows(first, length)};
+    if (!s.inputs.allFinite() || !s.residual.allFinite()) continue;
+    out.push_back(std::move(s));
+    last_first = first;
+  }
+  return out;
 }
 
 void scale_tcn_outputs(TcnParameters& p, const Eigen::VectorXd& scale) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "offline/train/tcn_trainer.hpp"
 #include "offline/training/estimator_trace.hpp"
@@ -18,6 +19,17 @@ namespace tpf::offline {
 /// Throws tpf::Error when the sizes disagree.
 TcnSequence training_sequence(const EstimatorTrace& trace,
                               const Eigen::VectorXd& effort_per_newton_metre, int joint = -1);
+
+/// Extra sequences that put weight on break-away: for every static → moving transition of any
+/// joint in the trace (|q̇_j| crossing `static_velocity` after a static row), the rows
+/// [k₀ − lead − (receptive_field − 1), k₀ − lead + outputs), i.e. exactly one training window of
+/// `outputs` supervised steps that starts `lead` rows before the onset. Same columns as
+/// training_sequence(trace, scale, joint). Windows that would leave the trace or hold a NaN row
+/// are left out. These rows also occur in the plain sequence: the emphasis is a duplication.
+std::vector<TcnSequence> onset_sequences(const EstimatorTrace& trace,
+                                         const Eigen::VectorXd& effort_per_newton_metre, int joint,
+                                         int receptive_field, int outputs, int lead,
+                                         double static_velocity = 1e-4);
 
 /// Multiplies output o of both heads (weights and bias) by scale[o]: a network trained on
 /// residual/scale then predicts the residual itself (the heads are linear, so this is exact).
