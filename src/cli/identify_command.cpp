@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "joint_dispatch.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_log.hpp"
 #include "tpf/common/error.hpp"
@@ -84,24 +85,7 @@ void register_identify_command(CLI::App& app) {
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
     const offline::Log log = offline::read_log(a->log);
-    switch (log.joint_count()) {
-      case 1:
-        return run<1>(log, *a);
-      case 2:
-        return run<2>(log, *a);
-      case 3:
-        return run<3>(log, *a);
-      case 4:
-        return run<4>(log, *a);
-      case 5:
-        return run<5>(log, *a);
-      case 6:
-        return run<6>(log, *a);
-      default:
-        throw Error::at(a->log, 0, "",
-                        "logs of 1 to 6 joints are supported, this one has " +
-                            std::to_string(log.joint_count()));
-    }
+    with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
   });
 }
 
