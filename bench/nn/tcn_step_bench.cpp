@@ -15,7 +15,8 @@ void BM_TcnStep(benchmark::State& state) {
   auto tcn = std::make_unique<Engine>();
   tpf::offline::TcnParameters p =
       tpf::offline::init_tcn_parameters({In, Hidden, Levels, 4, Out}, 1);
-  for (auto& b : p.blocks) b.bias.setConstant(0.05);  // keep most units active
+  for (auto& b : p.blocks)
+    b.bias.setConstant(0.05);  // keep most units active
   tpf::TcnWeightFile file = tpf::offline::to_weight_file(p);
   tpf::tcn_weights_from_file(file, tcn->weights());
   typename Engine::Input x = Engine::Input::LinSpaced(S(-0.5), S(0.5));

@@ -9,9 +9,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "offline/report/line_plot.hpp"
+#include "offline/report/plot_canvas.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "tpf/dynamics/rnea.hpp"
@@ -26,71 +29,34 @@ constexpr int N = kTwinJoints;
 constexpr double kRestVelocity = 1e-4;    // rad/s, the original work's static threshold
 constexpr double kMovingVelocity = 1e-3;  // rad/s, a sample that clearly moves
 
-struct Series {
+/// One time series for the onset plot; NaN leaves a gap (e.g. the residual while moving).
+struct Trace {
   std::string label, colour;
   std::vector<double> t, y;
-  bool dots = false;  ///< scattered samples (every 4th) instead of a line
 };
 
-// A plain SVG line plot: one panel per group of series, shared time axis.
+/// One line plot per panel (report kit), stacked into a single SVG file.
 void write_svg(const std::string& path, const std::string& title,
-               const std::vector<std::vector<Series>>& panels,
+               const std::vector<std::vector<Trace>>& panels,
                const std::vector<std::string>& y_labels) {
-  const double width = 900, panel_h = 230, left = 70, right = 20, top = 40, gap = 40;
-  const double height = top + panels.size() * (panel_h + gap);
-  std::ofstream svg(path);
-  svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
-      << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' "
-         "fill='white'/>\n<text x='"
-      << left << "' y='22' font-size='14'>" << title << "</text>\n";
+  constexpr int kWidth = 900, kPanel = 280;
+  std::vector<std::string> plots;
   for (std::size_t p = 0; p < panels.size(); ++p) {
-    double t0 = 1e300, t1 = -1e300, y0 = 1e300, y1 = -1e300;
-    for (const auto& s : panels[p])
-      for (std::size_t k = 0; k < s.t.size(); ++k) {
-        t0 = std::min(t0, s.t[k]);
-        t1 = std::max(t1, s.t[k]);
-        y0 = std::min(y0, s.y[k]);
-        y1 = std::max(y1, s.y[k]);
-      }
-    const double pad = 0.05 * (y1 - y0 + 1e-9);
-    y0 -= pad;
-    y1 += pad;
-    const double oy = top + p * (panel_h + gap);
-    const double w = width - left - right;
-    auto X = [&](double t) { return left + (t - t0) / (t1 - t0) * w; };
-    auto Y = [&](double y) { return oy + panel_h - (y - y0) / (y1 - y0) * panel_h; };
-    svg << "<rect x='" << left << "' y='" << oy << "' width='" << w << "' height='" << panel_h
-        << "' fill='none' stroke='#888'/>\n";
-    for (int g = 0; g <= 4; ++g) {
-      const double y = y0 + g * (y1 - y0) / 4, t = t0 + g * (t1 - t0) / 4;
-      svg << "<text x='" << left - 6 << "' y='" << Y(y) + 4 << "' text-anchor='end'>"
-          << static_cast<long>(std::lround(y)) << "</text>\n";
-      svg << "<text x='" << X(t) << "' y='" << oy + panel_h + 16 << "' text-anchor='middle'>"
-          << std::round(t * 10) / 10 << " s</text>\n";
+    PlotOptions options;
+    options.title = p == 0 ? title : "";
+    options.x_label = p + 1 == panels.size() ? "time [s]" : "";
+    options.y_label = y_labels[p];
+    options.width = kWidth;
+    options.height = kPanel;
+    std::vector<Series> series;
+    for (const Trace& trace : panels[p]) {
+      const auto n = static_cast<Eigen::Index>(trace.t.size());
+      series.push_back({trace.label, Eigen::Map<const Eigen::VectorXd>(trace.t.data(), n),
+                        Eigen::Map<const Eigen::VectorXd>(trace.y.data(), n), trace.colour});
     }
-    if (y0 < 0 && y1 > 0)
-      svg << "<line x1='" << left << "' x2='" << left + w << "' y1='" << Y(0) << "' y2='" << Y(0)
-          << "' stroke='#ccc'/>\n";
-    svg << "<text x='14' y='" << oy + panel_h / 2 << "' transform='rotate(-90 14 "
-        << oy + panel_h / 2 << ")' text-anchor='middle'>" << y_labels[p] << "</text>\n";
-    double legend_x = left + 10;
-    for (const auto& s : panels[p]) {
-      if (s.dots) {
-        for (std::size_t k = 0; k < s.t.size(); k += 4)
-          svg << "<circle cx='" << X(s.t[k]) << "' cy='" << Y(s.y[k]) << "' r='1.3' fill='"
-              << s.colour << "'/>\n";
-      } else {
-        svg << "<polyline fill='none' stroke='" << s.colour << "' stroke-width='1.2' points='";
-        for (std::size_t k = 0; k < s.t.size(); ++k)
-          svg << X(s.t[k]) << ',' << Y(s.y[k]) << ' ';
-        svg << "'/>\n";
-      }
-      svg << "<text x='" << legend_x << "' y='" << oy + 16 << "' fill='" << s.colour << "'>"
-          << s.label << "</text>\n";
-      legend_x += 10 + 7.0 * static_cast<double>(s.label.size());
-    }
+    plots.push_back(line_plot(options, series));
   }
-  svg << "</svg>\n";
+  std::ofstream(path) << standalone_svg(plots, kWidth, kPanel);
 }
 
 }  // namespace
@@ -169,27 +135,27 @@ int main(int argc, char** argv) {
       break;
     }
   const double end = begin + 12.0;
-  Series current{"measured current i (mA)", "#1f77b4", {}, {}};
-  Series fric{"true friction gt_fric (mA)", "#d62728", {}, {}};
-  Series res{"nominal residual at rest (mA)", "#2ca02c", {}, {}, true};
-  Series vel{"velocity dq (mrad/s)", "#333333", {}, {}};
+  Trace current{"measured current i (mA)", "#1f77b4", {}, {}};
+  Trace fric{"true friction gt_fric (mA)", "#d62728", {}, {}};
+  Trace res{"nominal residual at rest (mA)", "#2ca02c", {}, {}};
+  Trace vel{"velocity dq (mrad/s)", "#333333", {}, {}};
   for (Eigen::Index k = 0; k < rows; ++k) {
     if (t(k) < begin || t(k) > end) continue;
     current.t.push_back(t(k));
     current.y.push_back(log.col(indexed_name("i", plot_joint + 1))(k));
     fric.t.push_back(t(k));
     fric.y.push_back(log.col(indexed_name("gt_fric", plot_joint + 1))(k));
-    if (std::abs(dq(k)) < kRestVelocity) {
-      res.t.push_back(t(k));
-      res.y.push_back(residual(k, plot_joint));
-    }
+    res.t.push_back(t(k));
+    res.y.push_back(std::abs(dq(k)) < kRestVelocity ? residual(k, plot_joint)
+                                                    : std::numeric_limits<double>::quiet_NaN());
     vel.t.push_back(t(k));
     vel.y.push_back(1000.0 * dq(k));
   }
   write_svg(svg_path,
             "Simulated (tpf digital twin): joint " + std::to_string(plot_joint + 1) +
                 ", current and friction around motion onsets",
-            {{current, fric}, {fric, res}, {vel}}, {"mA", "mA", "mrad/s"});
+            {{current, fric}, {fric, res}, {vel}},
+            {"current [mA]", "current [mA]", "velocity [mrad/s]"});
   std::printf("wrote %s (joint %d, %.1f–%.1f s)\n", svg_path.c_str(), plot_joint + 1, begin, end);
   return 0;
 }

@@ -71,3 +71,29 @@ TEST(TcnGradient, WindowForwardEqualsNaiveNetwork) {
 
 }  // namespace
 }  // namespace tpf::offline
+
+namespace tpf::offline {
+namespace {
+
+TEST(TcnGradient, FloatEvaluationTracksDouble) {
+  const TcnArchitecture a{4, 16, 3, 4, 1};
+  TcnParameters p = test::random_tcn_parameters(a, 404);
+  const Eigen::Index outputs = 50, width = a.receptive_field() - 1 + outputs;
+  const Eigen::MatrixXd x = test::random_inputs(a.inputs, width, 405);
+  const Eigen::MatrixXd low = test::random_inputs(1, outputs, 406);
+  const Eigen::MatrixXd high = test::random_inputs(1, outputs, 407);
+  TcnWindowWorkspace wd;
+  BasicTcnWindowWorkspace<float> wf;
+  TcnParameters gd = zero_tcn_parameters(a);
+  BasicTcnParameters<float> gf = gd.cast<float>();
+  const double ld = tcn_window_loss(p, x, low, high, 1.0, 2.0, wd, &gd);
+  const double lf = tcn_window_loss(p.cast<float>(), x.cast<float>(), low.cast<float>(),
+                                    high.cast<float>(), 1.0, 2.0, wf, &gf);
+  EXPECT_NEAR(lf, ld, 1e-4 * ld);
+  TcnParameters gf_double = gf.cast<double>();
+  const Eigen::VectorXd a_d = flatten(gd), a_f = flatten(gf_double);
+  EXPECT_LT((a_f - a_d).norm(), 1e-4 * a_d.norm());
+}
+
+}  // namespace
+}  // namespace tpf::offline

@@ -1,6 +1,7 @@
 // Streaming TCN inference against a naive full-window network; causality; prewarm; allocations.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 
 #include "support/allocation_counter.hpp"
@@ -24,14 +25,15 @@ Eigen::MatrixXd stream(Engine& tcn, const Eigen::MatrixXd& raw, Eigen::Index fro
 }
 
 template <typename Engine>
-void expect_streaming_equals_naive(const TcnArchitecture& a, std::uint64_t seed) {
+void expect_streaming_equals_naive(const TcnArchitecture& a, std::uint64_t seed,
+                                   Eigen::Index steps = 300) {
   const offline::TcnParameters p = test::random_tcn_parameters(a, seed);
   auto tcn = std::make_unique<Engine>();
   test::load_parameters(p, *tcn);
   ASSERT_EQ(Engine::kReceptiveField, a.receptive_field());
 
-  // Steady prefix of R − 1 samples = what reset() assumes, then 300 random samples.
-  const Eigen::Index r = a.receptive_field(), steps = 300;
+  // Steady prefix of R − 1 samples = what reset() assumes, then `steps` random samples.
+  const Eigen::Index r = a.receptive_field();
   Eigen::MatrixXd raw(a.inputs, r - 1 + steps);
   const Eigen::VectorXd steady = test::random_inputs(a.inputs, 1, seed + 7);
   raw.leftCols(r - 1).colwise() = steady;
@@ -54,18 +56,22 @@ TEST(TcnStreaming, EqualsNaiveFullWindowConvolutionWithIdentitySkip) {
   expect_streaming_equals_naive<Tcn<double, 6, 6, 4, 3, 1>>({6, 6, 4, 3, 1}, 12);
 }
 
+TEST(TcnStreaming, EqualsNaiveWithOneLevelAndKernelTwo) {
+  expect_streaming_equals_naive<Tcn<double, 3, 5, 1, 2, 1>>({3, 5, 1, 2, 1}, 15, 50);
+}
+
 TEST(TcnStreaming, DefaultPerJointShapeCoversWellOver70msAt400Hz) {
   using PerJoint = Tcn<double, 4, 32, 4>;
   EXPECT_EQ(PerJoint::kReceptiveField, 46);  // 1 + 3·(2⁴ − 1)
   EXPECT_EQ(PerJoint::kReceptiveField, offline::TcnArchitecture{}.receptive_field());
   EXPECT_GT(PerJoint::kReceptiveField / 400.0, 1.5 * 0.070);
-  expect_streaming_equals_naive<PerJoint>({4, 32, 4, 4, 1}, 13);
+  expect_streaming_equals_naive<PerJoint>({4, 32, 4, 4, 1}, 13, 100);
 }
 
 TEST(TcnStreaming, FiveLevelsSixtyFourChannelsEqualNaive) {
   using Wide = Tcn<double, 4, 64, 5>;
   EXPECT_EQ(Wide::kReceptiveField, 94);
-  expect_streaming_equals_naive<Wide>({4, 64, 5, 4, 1}, 14);
+  expect_streaming_equals_naive<Wide>({4, 64, 5, 4, 1}, 14, 40);
 }
 
 TEST(TcnStreaming, FloatEngineTracksDouble) {
@@ -122,6 +128,23 @@ TEST(TcnStreaming, ResetEqualsFeedingTheSteadyInputForOneReceptiveField) {
   const Eigen::MatrixXd after = test::random_inputs(4, 80, 43);
   const Eigen::MatrixXd fo = stream(fed, after, 0), po = stream(prewarmed, after, 0);
   EXPECT_LT((fo - po).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(TcnStreaming, NonFiniteSampleIsFlaggedAndHeldOver) {
+  const offline::TcnParameters p = test::random_tcn_parameters({4, 8, 3, 4, 2}, 61);
+  Tcn<double, 4, 8, 3, 4, 2> clean, dirty;
+  test::load_parameters(p, clean);
+  test::load_parameters(p, dirty);
+  Eigen::MatrixXd raw = test::random_inputs(4, 60, 62);
+  clean.reset(raw.col(0));
+  dirty.reset(raw.col(0));
+  Eigen::MatrixXd held = raw;
+  held.col(30) = held.col(29);  // what the engine must substitute
+  raw(1, 30) = std::numeric_limits<double>::quiet_NaN();
+  const Eigen::MatrixXd a = stream(clean, held, 0), b = stream(dirty, raw, 0);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(dirty.skipped_inputs(), 1);
+  EXPECT_EQ(clean.skipped_inputs(), 0);
 }
 
 TEST(TcnStreaming, StepAndResetAllocateNothing) {

@@ -102,6 +102,12 @@ TEST(TcnWeightFile, MissingTensorAndBadValuesAreNamed) {
   write_json(path, missing);
   EXPECT_NE(load_error(path).find("tensors.head_high.bias: missing"), std::string::npos);
 
+  nlohmann::json extra = json;
+  extra["tensors"]["blocks.3.conv.bias"] = json["tensors"]["blocks.2.conv.bias"];
+  write_json(path, extra);
+  EXPECT_NE(load_error(path).find("tensors.blocks.3.conv.bias: not a tensor of the compiled"),
+            std::string::npos);
+
   nlohmann::json nan = json;
   nan["tensors"]["blocks.0.conv.bias"]["values"][3] = nullptr;  // what a NaN becomes in JSON
   write_json(path, nan);

@@ -80,7 +80,7 @@ TEST(Scenario, ImpossibleValuesAreRefusedByKey) {
         "friction: file not found");
   check("tpf_s9.json", R"({"kind":"excitation","effects":{"payload":{"mass_kg":"heavy"}}})",
         "effects.payload.mass_kg: must be a number");
-  check("tpf_s10.json", R"({"kind":"excitation",)", "invalid JSON");
+  check("tpf_s10.json", R"({"kind":"excitation",)", "tpf_s10.json:1: not valid JSON");
 }
 
 }  // namespace

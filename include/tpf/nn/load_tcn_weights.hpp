@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "tpf/nn/tcn.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
@@ -13,22 +14,32 @@ namespace tpf {
 /// D = diag(1/σ), into block 0 (W̃, b̃, P̃ act on x̃; P̃ = I when In == Hidden):
 ///   W_{0,j} = W̃_{0,j}·D,   P_0 = P̃_0·D,   b_0 = b̃_0 − (Σ_j W̃_{0,j} + P̃_0)·D·μ.
 /// The file's kernel index k is the lag j = K − 1 − k. Throws tpf::Error naming the file and the
-/// field if an architecture hyperparameter or a tensor shape differs from the compiled sizes.
+/// field if an architecture hyperparameter or a tensor shape differs from the compiled sizes, or if
+/// a tensor is missing or unknown; `weights` are left unchanged then.
 template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
 void tcn_weights_from_file(const TcnWeightFile& file,
                            TcnWeights<S, In, Hidden, Levels, Kernel, Out>& weights) {
   using MatrixXd = Eigen::MatrixXd;
   // Check everything before touching `weights`, so a refused file leaves them unchanged.
   file.require_architecture(In, Hidden, Levels, Kernel, Out);
+  std::vector<std::string> names;
   for (int l = 0; l < Levels; ++l) {
-    file.tensor(tcn_conv_weight_name(l), {Hidden, l == 0 ? In : Hidden, Kernel});
-    file.tensor(tcn_conv_bias_name(l), {Hidden});
+    names.push_back(tcn_conv_weight_name(l));
+    file.tensor(names.back(), {Hidden, l == 0 ? In : Hidden, Kernel});
+    names.push_back(tcn_conv_bias_name(l));
+    file.tensor(names.back(), {Hidden});
   }
-  if constexpr (In != Hidden) file.tensor(tcn_downsample_name(), {Hidden, In, 1});
+  if constexpr (In != Hidden) {
+    names.push_back(tcn_downsample_name());
+    file.tensor(names.back(), {Hidden, In, 1});
+  }
   for (bool high : {false, true}) {
-    file.tensor(tcn_head_weight_name(high), {Out, Hidden});
-    file.tensor(tcn_head_bias_name(high), {Out});
+    names.push_back(tcn_head_weight_name(high));
+    file.tensor(names.back(), {Out, Hidden});
+    names.push_back(tcn_head_bias_name(high));
+    file.tensor(names.back(), {Out});
   }
+  file.refuse_unexpected_tensors(names);
 
   // Row-major [rows, cols, K] tensor → the rows×cols matrix of lag j.
   auto tap = [](const TcnTensor& t, int j) {

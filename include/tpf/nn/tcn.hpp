@@ -58,6 +58,7 @@ class Tcn {
   /// state reached after feeding x̄ for R steps: h_l = ReLU(b_l + (Σ_j W_{l,j} + P_l)·h_{l−1}).
   /// Also sets low(), high() and output() to their steady values.
   void reset(const Input& steady_input) noexcept {
+    last_input_ = steady_input;
     input_history_.colwise() = steady_input;
     heads_.fill(0);
     hidden_.noalias() = weights_.input_bias + weights_.input_projection * steady_input;
@@ -76,7 +77,13 @@ class Tcn {
   }
 
   /// Advances one sample: pushes x(t) and returns output(t) = low(t) + high(t) [N·m].
-  const Output& step(const Input& input) noexcept {
+  /// A sample with a non-finite value is flagged (skipped_inputs() counts it) and replaced by the
+  /// last finite one, so it cannot poison the next R outputs.
+  const Output& step(const Input& raw_input) noexcept {
+    const bool finite = raw_input.allFinite();
+    skipped_inputs_ += finite ? 0 : 1;
+    if (finite) last_input_ = raw_input;
+    const Input& input = last_input_;
     int head = heads_[0];
     input_history_.col(head) = input;
     hidden_.noalias() = weights_.input_bias + weights_.input_projection * input;
@@ -109,6 +116,8 @@ class Tcn {
   const Output& high() const noexcept { return high_; }
   /// low() + high() [N·m].
   const Output& output() const noexcept { return output_; }
+  /// Number of non-finite samples replaced since construction.
+  long skipped_inputs() const noexcept { return skipped_inputs_; }
 
  private:
   using HiddenColumn = Eigen::Map<HiddenVector, Eigen::Unaligned>;
@@ -122,11 +131,12 @@ class Tcn {
     return HiddenColumn(hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column));
   }
 
-  /// z += W·x, one column axpy at a time: keeps z in registers, which beats Eigen's general
-  /// matrix–vector kernel at these sizes (see docs/tcn.md).
+  /// z += W·x, one column axpy at a time: keeps z in registers, 4–14 % faster than Eigen's
+  /// general matrix–vector kernel at these sizes (see docs/tcn.md).
   template <typename Matrix>
   static void add_product(HiddenVector& z, const Matrix& w, const S* x) noexcept {
-    for (int c = 0; c < Matrix::ColsAtCompileTime; ++c) z.noalias() += w.col(c) * x[c];
+    for (int c = 0; c < Matrix::ColsAtCompileTime; ++c)
+      z.noalias() += w.col(c) * x[c];
   }
 
   void apply_heads() noexcept {
@@ -136,6 +146,7 @@ class Tcn {
   }
 
   void clear_history() noexcept {
+    last_input_.setZero();
     input_history_.setZero();
     hidden_history_.fill(S(0));
     heads_.fill(0);
@@ -152,6 +163,8 @@ class Tcn {
   /// Rings of blocks 1 … Levels−1, Hidden × ((K − 1)·d_l + 1) each, column-major, back to back.
   alignas(64) std::array<S, Hidden * Shape::hidden_history_columns> hidden_history_{};
   std::array<int, Levels> heads_{};  ///< next column to write in each ring
+  Input last_input_;                 ///< last finite input, stands in for a non-finite one
+  long skipped_inputs_ = 0;
   HiddenVector hidden_;
   Output low_;
   Output high_;

@@ -43,6 +43,10 @@ struct TcnWeightFile {
   /// "<path>: tensors.<name>: shape [a, b] in the file, [c, d] expected" (or "missing").
   const TcnTensor& tensor(std::string_view name, const std::vector<int>& shape) const;
 
+  /// Throws tpf::Error naming the first tensor of the file that is not in `expected_names`
+  /// ("<path>: tensors.<name>: not a tensor of the compiled network").
+  void refuse_unexpected_tensors(const std::vector<std::string>& expected_names) const;
+
   /// Throws tpf::Error naming the first hyperparameter that differs from the given ones
   /// (e.g. "<path>: architecture.hidden: 16 in the file, 32 expected").
   void require_architecture(int inputs, int hidden, int levels, int kernel, int outputs) const;

@@ -2,105 +2,85 @@
 #include "tpf/friction/friction_file.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <nlohmann/json.hpp>
-#include <set>
+#include <limits>
 
 #include "tpf/common/error.hpp"
+#include "tpf/common/json_object.hpp"
 
 namespace tpf {
 namespace {
 
-using nlohmann::json;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
-const std::set<std::string> kStribeckKeys = {
-    "effort_unit", "coulomb",      "static",       "stribeck_velocity", "stribeck_exponent",
-    "viscous",     "load_coulomb", "load_viscous", "description"};
-const std::set<std::string> kLuGreKeys = {"bristle_stiffness", "bristle_damping"};
-
-json read_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error::at(path, 0, "", "cannot open friction parameter file");
-  try {
-    json j = json::parse(in);
-    if (!j.is_object()) throw Error::at(path, 0, "", "top level must be a JSON object");
-    for (const auto& [key, value] : j.items()) {
-      if (!kStribeckKeys.count(key) && !kLuGreKeys.count(key))
-        throw Error::at(path, 0, key, "unknown key");
-    }
-    const std::string unit = j.value("effort_unit", std::string("N*m"));
-    if (unit != "N*m" && unit != "mA")
-      throw Error::at(path, 0, "effort_unit", "must be \"N*m\" or \"mA\", got \"" + unit + "\"");
-    return j;
-  } catch (const json::exception& e) {
-    throw Error::at(path, 0, "", std::string("invalid JSON: ") + e.what());
-  }
+/// Opens a friction file; effort_unit and description are read here, the arrays by the callers.
+json::Object open_friction_file(const std::string& path) {
+  json::Object o = json::Object::read_file(path);
+  o.choice("effort_unit", "N*m", {"N*m", "mA"});
+  o.text("description", "");
+  return o;
 }
 
 enum class Bound { kNonNegative, kPositive };
 
 // Fills `out` from the array `key`; a missing optional key leaves the default in place.
 template <typename S, int N>
-void read_vector(const json& j, const std::string& path, const std::string& key, Bound bound,
-                 bool required, JointVector<S, N>& out) {
-  if (!j.contains(key)) {
-    if (required) throw Error::at(path, 0, key, "missing");
-    return;
-  }
-  const json& a = j.at(key);
-  if (!a.is_array() || a.size() != static_cast<std::size_t>(N))
-    throw Error::at(path, 0, key, "must be an array of " + std::to_string(N) + " numbers");
+void read_vector(json::Object& o, const std::string& key, Bound bound, bool required,
+                 JointVector<S, N>& out) {
+  if (!required && !o.has(key)) return;
+  const std::vector<double> v = o.numbers(key, -kInf, kInf, N);
   for (int i = 0; i < N; ++i) {
-    if (!a[i].is_number())
-      throw Error::at(path, 0, key + "[" + std::to_string(i) + "]", "must be a number");
-    const double v = a[i].get<double>();
-    const bool ok = std::isfinite(v) && (bound == Bound::kPositive ? v > 0.0 : v >= 0.0);
-    if (!ok)
-      throw Error::at(path, 0, key + "[" + std::to_string(i) + "]",
-                      std::string("must be ") +
-                          (bound == Bound::kPositive ? "positive" : "non-negative") + ", got " +
-                          std::to_string(v));
-    out[i] = static_cast<S>(v);
+    if (bound == Bound::kPositive ? !(v[i] > 0.0) : !(v[i] >= 0.0)) {
+      o.fail(key + "[" + std::to_string(i) + "]",
+             std::string("must be ") + (bound == Bound::kPositive ? "positive" : "non-negative") +
+                 ", got " + std::to_string(v[i]));
+    }
+    out[i] = static_cast<S>(v[i]);
   }
 }
 
 template <typename S, int N>
-StribeckParameters<S, N> parse_stribeck(const json& j, const std::string& path) {
+StribeckParameters<S, N> read_stribeck(json::Object& o) {
   StribeckParameters<S, N> p;
-  read_vector<S, N>(j, path, "coulomb", Bound::kNonNegative, true, p.coulomb);
-  read_vector<S, N>(j, path, "static", Bound::kNonNegative, true, p.static_friction);
-  read_vector<S, N>(j, path, "stribeck_velocity", Bound::kPositive, true, p.stribeck_velocity);
-  read_vector<S, N>(j, path, "stribeck_exponent", Bound::kPositive, true, p.stribeck_exponent);
-  read_vector<S, N>(j, path, "viscous", Bound::kNonNegative, true, p.viscous);
-  read_vector<S, N>(j, path, "load_coulomb", Bound::kNonNegative, false, p.load_coulomb);
-  read_vector<S, N>(j, path, "load_viscous", Bound::kNonNegative, false, p.load_viscous);
+  read_vector<S, N>(o, "coulomb", Bound::kNonNegative, true, p.coulomb);
+  read_vector<S, N>(o, "static", Bound::kNonNegative, true, p.static_friction);
+  read_vector<S, N>(o, "stribeck_velocity", Bound::kPositive, true, p.stribeck_velocity);
+  read_vector<S, N>(o, "stribeck_exponent", Bound::kPositive, true, p.stribeck_exponent);
+  read_vector<S, N>(o, "viscous", Bound::kNonNegative, true, p.viscous);
+  read_vector<S, N>(o, "load_coulomb", Bound::kNonNegative, false, p.load_coulomb);
+  read_vector<S, N>(o, "load_viscous", Bound::kNonNegative, false, p.load_viscous);
   return p;
+}
+
+template <typename S, int N>
+void read_bristles(json::Object& o, bool required, LuGreParameters<S, N>& p) {
+  read_vector<S, N>(o, "bristle_stiffness", Bound::kPositive, required, p.bristle_stiffness);
+  read_vector<S, N>(o, "bristle_damping", Bound::kNonNegative, required, p.bristle_damping);
 }
 
 }  // namespace
 
 template <typename S, int N>
 StribeckParameters<S, N> load_stribeck_parameters(const std::string& path) {
-  const json j = read_json(path);
-  LuGreParameters<S, N> unused;
-  read_vector<S, N>(j, path, "bristle_stiffness", Bound::kPositive, false,
-                    unused.bristle_stiffness);
-  read_vector<S, N>(j, path, "bristle_damping", Bound::kNonNegative, false, unused.bristle_damping);
-  return parse_stribeck<S, N>(j, path);
+  json::Object o = open_friction_file(path);
+  LuGreParameters<S, N> lugre;  // validated, not returned
+  read_bristles<S, N>(o, false, lugre);
+  const StribeckParameters<S, N> p = read_stribeck<S, N>(o);
+  o.finish();
+  return p;
 }
 
 template <typename S, int N>
 LuGreParameters<S, N> load_lugre_parameters(const std::string& path) {
-  const json j = read_json(path);
+  json::Object o = open_friction_file(path);
   LuGreParameters<S, N> p;
-  p.stribeck = parse_stribeck<S, N>(j, path);
-  read_vector<S, N>(j, path, "bristle_stiffness", Bound::kPositive, true, p.bristle_stiffness);
-  read_vector<S, N>(j, path, "bristle_damping", Bound::kNonNegative, true, p.bristle_damping);
+  p.stribeck = read_stribeck<S, N>(o);
+  read_bristles<S, N>(o, true, p);
+  o.finish();
   return p;
 }
 
 std::string friction_effort_unit(const std::string& path) {
-  return read_json(path).value("effort_unit", std::string("N*m"));
+  return open_friction_file(path).choice("effort_unit", "N*m", {"N*m", "mA"});
 }
 
 #define TPF_INSTANTIATE_FRICTION_FILE(N)                                                          \

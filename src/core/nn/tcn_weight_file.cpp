@@ -1,6 +1,7 @@
 // Reading, validating and writing TCN weight files (start-up code: allocates and throws).
 #include "tpf/nn/tcn_weight_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -112,6 +113,14 @@ const TcnTensor& TcnWeightFile::tensor(std::string_view name, const std::vector<
              " expected by the compiled network");
   }
   return it->second;
+}
+
+void TcnWeightFile::refuse_unexpected_tensors(const std::vector<std::string>& expected) const {
+  for (const auto& [name, tensor] : tensors) {
+    if (std::find(expected.begin(), expected.end(), name) == expected.end()) {
+      fail(path, "tensors." + name, "not a tensor of the compiled network");
+    }
+  }
 }
 
 void TcnWeightFile::require_architecture(int in, int hid, int lev, int ker, int out) const {

@@ -7,6 +7,41 @@
 #include "offline/report/text_format.hpp"
 
 namespace tpf::offline {
+
+const char* plot_style_sheet() {
+  return R"(
+svg.plot { --ink: #1d2430; --muted: #5b6575; display: block; max-width: 100%; height: auto;
+  font-size: 12px; font-family: system-ui, -apple-system, "Segoe UI", Roboto, Arial, sans-serif; }
+svg.plot .title { font-size: 14px; font-weight: 600; fill: var(--ink); }
+svg.plot .tick-labels text { fill: var(--muted); font-variant-numeric: tabular-nums; }
+svg.plot .axis-label { fill: var(--ink); font-size: 12.5px; }
+svg.plot .legend text { fill: var(--ink); }
+svg.plot .grid line { stroke: #e6e9ee; stroke-width: 1; }
+svg.plot .axis { fill: none; stroke: #3a4350; stroke-width: 1.2; }
+svg.plot .zero { stroke: #9aa3af; stroke-width: 1; stroke-dasharray: 4 3; }
+svg.plot .line { fill: none; stroke-width: 1.4; stroke-linejoin: round; }
+svg.plot .dots { fill-opacity: .45; }
+svg.plot .hist { fill-opacity: .28; stroke-width: 1.4; }
+svg.plot .bar-value { fill: var(--muted); font-size: 11px; }
+)";
+}
+
+std::string standalone_svg(const std::vector<std::string>& plots, int width, int height) {
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) +
+                  "\" height=\"" + std::to_string(height * static_cast<int>(plots.size())) +
+                  "\">\n<style>" + plot_style_sheet() +
+                  "svg.plot { max-width: none; height: " + std::to_string(height) +
+                  "px; }</style>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+  for (std::size_t i = 0; i < plots.size(); ++i) {
+    // A plot is an <svg> of the given size: place it as a nested viewport.
+    std::string plot = plots[i];
+    if (plot.rfind("<svg", 0) == 0) {
+      plot.insert(4, " y=\"" + std::to_string(height * static_cast<int>(i)) + "\"");
+    }
+    s += plot + "\n";
+  }
+  return s + "</svg>\n";
+}
 namespace {
 
 std::string tick_label(double value, int decimals, double step) {

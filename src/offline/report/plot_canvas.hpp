@@ -29,6 +29,14 @@ struct AxisMap {
   }
 };
 
+/// The CSS that styles every plot (class "plot"): the HTML report embeds it in its page and
+/// standalone_svg() in a single SVG file.
+const char* plot_style_sheet();
+
+/// Stacks plots (each made with the same width) vertically into one self-contained SVG document,
+/// e.g. for a figure in docs/: each plot is `height` units tall.
+std::string standalone_svg(const std::vector<std::string>& plots, int width, int height);
+
 /// Colour of series i: a colour-blind-safe palette (Okabe–Ito order, starting with blue).
 const char* series_colour(std::size_t i);
 

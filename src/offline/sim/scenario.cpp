@@ -6,15 +6,15 @@
 #include <fstream>
 #include <limits>
 
-#include "offline/sim/strict_json.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/common/json_object.hpp"
 
 namespace tpf::offline {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-TwinVector vector_of(StrictObject& o, const std::string& key, const TwinVector& fallback, double lo,
+TwinVector vector_of(json::Object& o, const std::string& key, const TwinVector& fallback, double lo,
                      double hi) {
   const auto v =
       o.numbers(key, {fallback.data(), fallback.data() + kTwinJoints}, lo, hi, kTwinJoints);
@@ -22,14 +22,14 @@ TwinVector vector_of(StrictObject& o, const std::string& key, const TwinVector& 
 }
 
 // Reads lo/hi keys of a range and checks lo <= hi.
-void range(StrictObject& o, const std::string& lo_key, const std::string& hi_key, double& lo,
+void range(json::Object& o, const std::string& lo_key, const std::string& hi_key, double& lo,
            double& hi, double min, double max) {
   lo = o.number(lo_key, lo, min, max);
   hi = o.number(hi_key, hi, min, max);
   if (lo > hi) o.fail(hi_key, "must not be smaller than " + lo_key);
 }
 
-std::string resolve(StrictObject& o, const std::string& key, const std::filesystem::path& dir,
+std::string resolve(json::Object& o, const std::string& key, const std::filesystem::path& dir,
                     const std::string& default_name) {
   const std::string value = o.text(key, "");
   if (value.empty()) return (std::filesystem::path(TPF_DATA_DIR) / default_name).string();
@@ -39,7 +39,7 @@ std::string resolve(StrictObject& o, const std::string& key, const std::filesyst
   return p.lexically_normal().string();
 }
 
-void read_drive(StrictObject o, DriveConfig& d) {
+void read_drive(json::Object o, DriveConfig& d) {
   d.enabled = o.boolean("enabled", d.enabled);
   d.position_bandwidth_hz = o.number("position_bandwidth_hz", d.position_bandwidth_hz, 0.0, 50.0);
   d.velocity_bandwidth_hz = o.number("velocity_bandwidth_hz", d.velocity_bandwidth_hz, 0.1, 200.0);
@@ -49,7 +49,7 @@ void read_drive(StrictObject o, DriveConfig& d) {
   o.finish();
 }
 
-void read_sensors(StrictObject o, SensorConfig& s) {
+void read_sensors(json::Object o, SensorConfig& s) {
   s.current_noise_ma = o.number("current_noise_ma", s.current_noise_ma, 0.0, 1000.0);
   s.jitter_probability = o.number("jitter_probability", s.jitter_probability, 0.0, 1.0);
   s.timestamp_noise_s = o.number("timestamp_noise_s", s.timestamp_noise_s, 0.0, 2e-4);
@@ -57,7 +57,7 @@ void read_sensors(StrictObject o, SensorConfig& s) {
   o.finish();
 }
 
-void read_pads(StrictObject o, PadSensorConfig& p) {
+void read_pads(json::Object o, PadSensorConfig& p) {
   p.time_constant_s = o.number("time_constant_s", p.time_constant_s, 1e-4, 1.0);
   p.gain_kpa_per_n = o.number("gain_kpa_per_n", p.gain_kpa_per_n, 0.0, 100.0);
   p.reference_area_cm2 = o.number("reference_area_cm2", p.reference_area_cm2, 0.01, 1000.0);
@@ -69,7 +69,7 @@ void read_pads(StrictObject o, PadSensorConfig& p) {
   o.finish();
 }
 
-void read_effects(StrictObject o, EffectsConfig& e) {
+void read_effects(json::Object o, EffectsConfig& e) {
   const std::string f = o.choice("friction", "lugre", {"lugre", "stribeck", "none"});
   e.friction = f == "lugre"      ? EffectsConfig::Friction::kLuGre
                : f == "stribeck" ? EffectsConfig::Friction::kStribeck
@@ -77,7 +77,7 @@ void read_effects(StrictObject o, EffectsConfig& e) {
   e.load_dependent_friction = o.boolean("load_dependent_friction", e.load_dependent_friction);
   e.gravity = o.boolean("gravity", e.gravity);
   {
-    StrictObject r = o.child("ripple");
+    json::Object r = o.child("ripple");
     e.ripple.enabled = r.boolean("enabled", e.ripple.enabled);
     e.ripple.amplitude = vector_of(r, "amplitude_nm", e.ripple.amplitude, 0.0, 50.0);
     e.ripple.cycles_per_rev = vector_of(r, "cycles_per_rev", e.ripple.cycles_per_rev, 0.0, 1e4);
@@ -85,7 +85,7 @@ void read_effects(StrictObject o, EffectsConfig& e) {
     r.finish();
   }
   {
-    StrictObject p = o.child("payload");
+    json::Object p = o.child("payload");
     e.payload.enabled = p.boolean("enabled", e.payload.enabled);
     e.payload.mass = p.number("mass_kg", e.payload.mass, 0.0, 10.0);
     const auto x = p.numbers("position_m", {0.0, 0.0, 0.0}, -1.0, 1.0, 3);
@@ -93,7 +93,7 @@ void read_effects(StrictObject o, EffectsConfig& e) {
     p.finish();
   }
   {
-    StrictObject t = o.child("thermal");
+    json::Object t = o.child("thermal");
     e.thermal.enabled = t.boolean("enabled", e.thermal.enabled);
     e.thermal.ambient_c = t.number("ambient_c", e.thermal.ambient_c, -20.0, 60.0);
     e.thermal.initial_c = t.number("initial_c", e.thermal.initial_c, -20.0, 80.0);
@@ -104,20 +104,20 @@ void read_effects(StrictObject o, EffectsConfig& e) {
     t.finish();
   }
   {
-    StrictObject s = o.child("spring");
+    json::Object s = o.child("spring");
     e.spring.enabled = s.boolean("enabled", e.spring.enabled);
     e.spring.stiffness = vector_of(s, "stiffness_nm_per_rad", e.spring.stiffness, 0.0, 1e3);
     e.spring.neutral = vector_of(s, "neutral_rad", e.spring.neutral, -10.0, 10.0);
     s.finish();
   }
   {
-    StrictObject d = o.child("delay");
+    json::Object d = o.child("delay");
     e.delay.enabled = d.boolean("enabled", e.delay.enabled);
     e.delay.delay_s = d.number("delay_s", e.delay.delay_s, 0.0, 0.1);
     d.finish();
   }
   {
-    StrictObject c = o.child("coupling");
+    json::Object c = o.child("coupling");
     e.coupling.enabled = c.boolean("enabled", e.coupling.enabled);
     const auto m = c.numbers("matrix", std::vector<double>(kTwinJoints * kTwinJoints, 0.0), -0.5,
                              0.5, kTwinJoints * kTwinJoints);
@@ -129,7 +129,7 @@ void read_effects(StrictObject o, EffectsConfig& e) {
   o.finish();
 }
 
-void read_excitation(StrictObject o, ExcitationConfig& x) {
+void read_excitation(json::Object o, ExcitationConfig& x) {
   range(o, "rest_min_s", "rest_max_s", x.rest_min_s, x.rest_max_s, 0.0, 60.0);
   range(o, "move_min_rad", "move_max_rad", x.move_min_rad, x.move_max_rad, 1e-4, 6.0);
   range(o, "speed_min", "speed_max", x.speed_min, x.speed_max, 1e-3, 3.0);
@@ -142,7 +142,7 @@ void read_excitation(StrictObject o, ExcitationConfig& x) {
   o.finish();
 }
 
-void read_contacts(StrictObject o, ContactConfig& c) {
+void read_contacts(json::Object o, ContactConfig& c) {
   range(o, "force_min_n", "force_max_n", c.force_min_n, c.force_max_n, 0.0, 200.0);
   c.shear_ratio_max = o.number("shear_ratio_max", c.shear_ratio_max, 0.0, 2.0);
   range(o, "area_min_cm2", "area_max_cm2", c.area_min_cm2, c.area_max_cm2, 0.01, 1000.0);
@@ -154,7 +154,7 @@ void read_contacts(StrictObject o, ContactConfig& c) {
   o.finish();
 }
 
-void read_teaching(StrictObject o, TeachingConfig& t) {
+void read_teaching(json::Object o, TeachingConfig& t) {
   t.hand_stiffness = o.number("hand_stiffness", t.hand_stiffness, 1.0, 1e4);
   t.hand_damping = o.number("hand_damping", t.hand_damping, 0.0, 1e3);
   t.max_force_n = o.number("max_force_n", t.max_force_n, 1.0, 200.0);
@@ -182,15 +182,7 @@ std::string to_string(Scenario::Kind kind) {
 }
 
 Scenario load_scenario(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error::at(path, 0, "", "cannot open scenario file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error::at(path, 0, "", std::string("invalid JSON: ") + e.what());
-  }
-  StrictObject o(json, path, "");
+  json::Object o = json::Object::read_file(path);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   Scenario s;
   s.file = path;

@@ -19,6 +19,9 @@ class AdamOptimizer {
 
   AdamOptimizer(Eigen::Index size, const Settings& settings);
 
+  double learning_rate() const { return settings_.learning_rate; }
+  void set_learning_rate(double rate) { settings_.learning_rate = rate; }
+
   /// One update of `parameters` along `gradient` (same size).
   void step(Eigen::VectorXd& parameters, const Eigen::VectorXd& gradient);
 

@@ -31,23 +31,56 @@ struct TcnArchitecture {
 };
 
 /// One residual block: z = b + Σ_j taps[j]·x(t − j·d) + P·x(t), y = ReLU(z).
-struct TcnBlockParameters {
-  std::vector<Eigen::MatrixXd> taps;  ///< taps[j] (C_out × C_in) multiplies the input at lag j·d
-  Eigen::VectorXd bias;
-  Eigen::MatrixXd projection;  ///< 1×1 projection P (C_out × C_in); empty when C_in = C_out (P = I)
+template <typename S>
+struct BasicTcnBlockParameters {
+  using Matrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+
+  std::vector<Matrix> taps;  ///< taps[j] (C_out × C_in) multiplies the input at lag j·d
+  Vector bias;
+  Matrix projection;  ///< 1×1 projection P (C_out × C_in); empty when C_in = C_out (P = I)
 };
 
-/// All trainable tensors, acting on the normalised input x̃ = (x − mean)/std.
-struct TcnParameters {
+/// All trainable tensors, acting on the normalised input x̃ = (x − mean)/std. Training keeps
+/// them in double (TcnParameters) and may evaluate windows in float (cast<float>()).
+template <typename S>
+struct BasicTcnParameters {
+  using Matrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+
   TcnArchitecture architecture;
   Eigen::VectorXd input_mean;
   Eigen::VectorXd input_std;
-  std::vector<TcnBlockParameters> blocks;
-  Eigen::MatrixXd low_weight;  ///< Out × Hidden
-  Eigen::VectorXd low_bias;
-  Eigen::MatrixXd high_weight;
-  Eigen::VectorXd high_bias;
+  std::vector<BasicTcnBlockParameters<S>> blocks;
+  Matrix low_weight;  ///< Out × Hidden
+  Vector low_bias;
+  Matrix high_weight;
+  Vector high_bias;
+
+  /// The same parameters in scalar T.
+  template <typename T>
+  BasicTcnParameters<T> cast() const {
+    BasicTcnParameters<T> p;
+    p.architecture = architecture;
+    p.input_mean = input_mean;
+    p.input_std = input_std;
+    p.blocks.resize(blocks.size());
+    for (std::size_t l = 0; l < blocks.size(); ++l) {
+      for (const auto& w : blocks[l].taps)
+        p.blocks[l].taps.push_back(w.template cast<T>());
+      p.blocks[l].bias = blocks[l].bias.template cast<T>();
+      p.blocks[l].projection = blocks[l].projection.template cast<T>();
+    }
+    p.low_weight = low_weight.template cast<T>();
+    p.low_bias = low_bias.template cast<T>();
+    p.high_weight = high_weight.template cast<T>();
+    p.high_bias = high_bias.template cast<T>();
+    return p;
+  }
 };
+
+using TcnBlockParameters = BasicTcnBlockParameters<double>;
+using TcnParameters = BasicTcnParameters<double>;
 
 /// Parameters of the right shapes, all zero, normalisation mean 0 and std 1.
 TcnParameters zero_tcn_parameters(const TcnArchitecture& architecture);

@@ -113,7 +113,7 @@ TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options
   // Segments (normalised, channels × time), target split, windows.
   std::vector<Window> windows;
   for (const Run& r : runs) {
-    Segment seg;
+    Segment<double> seg;
     const Eigen::Index length = r.end - r.begin;
     seg.inputs =
         ((r.sequence->inputs.middleRows(r.begin, length).rowwise() - input_mean_.transpose())
@@ -130,6 +130,10 @@ TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options
     }
     seg.high = r.sequence->residual.middleRows(r.begin, length).transpose() - seg.low;
     const int index = static_cast<int>(segments_.size());
+    if (options_.single_precision) {
+      float_segments_.push_back(
+          {seg.inputs.cast<float>(), seg.low.cast<float>(), seg.high.cast<float>()});
+    }
     segments_.push_back(std::move(seg));
     for (Eigen::Index first = field - 1; first < length; first += options_.window_outputs) {
       windows.push_back(
@@ -165,19 +169,31 @@ Eigen::Index TcnTrainer::output_count(const std::vector<Window>& windows) const 
 
 double TcnTrainer::sum_loss(const TcnParameters& parameters, const std::vector<Window>& windows,
                             TcnParameters* gradient) const {
+  if (options_.single_precision) {
+    return sum_loss_in(parameters.cast<float>(), float_segments_, windows, gradient);
+  }
+  return sum_loss_in(parameters, segments_, windows, gradient);
+}
+
+template <typename S>
+double TcnTrainer::sum_loss_in(const BasicTcnParameters<S>& parameters,
+                               const std::vector<Segment<S>>& segments,
+                               const std::vector<Window>& windows, TcnParameters* gradient) const {
   const Eigen::Index field = options_.architecture.receptive_field();
   std::array<double, kChunks> losses{};
-  std::vector<TcnParameters> gradients;
-  if (gradient != nullptr) gradients.assign(kChunks, zero_tcn_parameters(options_.architecture));
+  std::vector<BasicTcnParameters<S>> gradients;
+  if (gradient != nullptr) {
+    gradients.assign(kChunks, zero_tcn_parameters(options_.architecture).cast<S>());
+  }
 
   auto run_chunk = [&](int c) {
-    TcnWindowWorkspace workspace;
+    BasicTcnWindowWorkspace<S> workspace;
     const std::size_t begin = windows.size() * c / kChunks;
     const std::size_t end = windows.size() * (c + 1) / kChunks;
     for (std::size_t i = begin; i < end; ++i) {
       const Window& w = windows[i];
-      const Segment& s = segments_[w.segment];
-      losses[c] += tcn_window_loss(
+      const Segment<S>& s = segments[w.segment];
+      losses[c] += tcn_window_loss<S>(
           parameters, s.inputs.middleCols(w.first_output - (field - 1), w.outputs + field - 1),
           s.low.middleCols(w.first_output, w.outputs), s.high.middleCols(w.first_output, w.outputs),
           options_.weight_low, options_.weight_high, workspace,
@@ -197,14 +213,16 @@ double TcnTrainer::sum_loss(const TcnParameters& parameters, const std::vector<W
   for (auto& w : workers)
     w.join();
 
-  // Fixed reduction order: the result does not depend on scheduling or thread count.
+  // Fixed reduction order (in double): the result does not depend on scheduling or thread count.
   double total = 0.0;
   for (int c = 0; c < kChunks; ++c)
     total += losses[c];
   if (gradient != nullptr) {
     Eigen::VectorXd sum = flatten(*gradient);
-    for (int c = 0; c < kChunks; ++c)
-      sum += flatten(gradients[c]);
+    for (int c = 0; c < kChunks; ++c) {
+      TcnParameters chunk = gradients[c].template cast<double>();
+      sum += flatten(chunk);
+    }
     unflatten(sum, *gradient);
   }
   return total;
@@ -241,6 +259,7 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
   result.best_validation_loss = loss(parameters, true);
   std::vector<Window> order = training_;
   std::vector<Window> batch;
+  int last_decay = 0;
   for (int epoch = 1; epoch <= options_.max_epochs; ++epoch) {
     std::shuffle(order.begin(), order.end(), rng);
     double epoch_loss = 0.0;
@@ -254,6 +273,7 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
     }
 
     TcnTrainProgress p;
+    p.learning_rate = adam.learning_rate();
     p.epoch = epoch;
     p.max_epochs = options_.max_epochs;
     p.train_loss = epoch_loss / static_cast<double>(output_count(order));
@@ -265,6 +285,11 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
       if (!options_.checkpoint_path.empty()) {
         write_tcn_weight_file(options_.checkpoint_path, to_weight_file(result.best));
       }
+    }
+    const int stale = epoch - std::max(result.best_epoch, last_decay);
+    if (options_.decay_patience > 0 && stale >= options_.decay_patience) {
+      adam.set_learning_rate(0.5 * adam.learning_rate());
+      last_decay = epoch;
     }
     p.best_validation_loss = result.best_validation_loss;
     p.best_epoch = result.best_epoch;
@@ -295,9 +320,9 @@ TcnProgressCallback tcn_progress_bar(std::ostream& out) {
   auto bar = std::make_shared<TerminalProgressBar>(out);
   return [bar](const TcnTrainProgress& p) {
     char status[160];
-    std::snprintf(status, sizeof status, "epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d", p.epoch,
-                  p.max_epochs, p.train_loss, p.validation_loss, p.best_validation_loss,
-                  p.best_epoch);
+    std::snprintf(status, sizeof status, "epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d  lr %.2g",
+                  p.epoch, p.max_epochs, p.train_loss, p.validation_loss, p.best_validation_loss,
+                  p.best_epoch, p.learning_rate);
     bar->update(p.last ? 1.0 : static_cast<double>(p.epoch) / p.max_epochs, status,
                 p.remaining_seconds);
     if (p.last) bar->finish();

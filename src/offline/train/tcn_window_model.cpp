@@ -1,52 +1,72 @@
 #include "offline/train/tcn_window_model.hpp"
 
 namespace tpf::offline {
+namespace {
 
-void tcn_window_forward(const TcnParameters& p, const Eigen::Ref<const Eigen::MatrixXd>& inputs,
-                        TcnWindowWorkspace& ws) {
+/// [W_0 … W_{K−1}] of block `b` into `out` (C_out × K·C_in).
+template <typename S, typename Matrix>
+void stack_taps(const BasicTcnBlockParameters<S>& b, Matrix& out) {
+  const Eigen::Index in = b.taps[0].cols();
+  out.resize(b.taps[0].rows(), in * static_cast<Eigen::Index>(b.taps.size()));
+  for (std::size_t j = 0; j < b.taps.size(); ++j)
+    out.middleCols(j * in, in) = b.taps[j];
+}
+
+}  // namespace
+
+template <typename S>
+void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>& inputs,
+                        BasicTcnWindowWorkspace<S>& ws) {
   const TcnArchitecture& a = p.architecture;
   ws.activations.resize(a.levels + 1);
+  ws.stacked_inputs.resize(a.levels);
   ws.activations[0] = inputs;
   for (int l = 0; l < a.levels; ++l) {
-    const TcnBlockParameters& b = p.blocks[l];
-    const Eigen::MatrixXd& x = ws.activations[l];
+    const BasicTcnBlockParameters<S>& b = p.blocks[l];
+    const auto& x = ws.activations[l];
     const int d = a.dilation(l);
-    const Eigen::Index t_out = x.cols() - (a.kernel - 1) * d;
-    Eigen::MatrixXd& z = ws.activations[l + 1];
+    const Eigen::Index in = x.rows(), t_out = x.cols() - (a.kernel - 1) * d;
+    auto& stack = ws.stacked_inputs[l];
+    stack.resize(a.kernel * in, t_out);
+    for (int j = 0; j < a.kernel; ++j) {
+      stack.middleRows(j * in, in) = x.middleCols((a.kernel - 1 - j) * d, t_out);
+    }
+    auto& z = ws.activations[l + 1];
     if (b.projection.size() > 0) {
       z.noalias() = b.projection * x.rightCols(t_out);
     } else {
       z = x.rightCols(t_out);
     }
     z.colwise() += b.bias;
-    for (int j = 0; j < a.kernel; ++j) {
-      z.noalias() += b.taps[j] * x.middleCols((a.kernel - 1 - j) * d, t_out);
-    }
-    z = z.cwiseMax(0.0);
+    stack_taps(b, ws.stacked_weights);
+    z.noalias() += ws.stacked_weights * stack;
+    z = z.cwiseMax(S(0));
   }
-  const Eigen::MatrixXd& last = ws.activations[a.levels];
+  const auto& last = ws.activations[a.levels];
   ws.low.noalias() = p.low_weight * last;
   ws.low.colwise() += p.low_bias;
   ws.high.noalias() = p.high_weight * last;
   ws.high.colwise() += p.high_bias;
 }
 
-double tcn_window_loss(const TcnParameters& p, const Eigen::Ref<const Eigen::MatrixXd>& inputs,
-                       const Eigen::Ref<const Eigen::MatrixXd>& target_low,
-                       const Eigen::Ref<const Eigen::MatrixXd>& target_high, double weight_low,
-                       double weight_high, TcnWindowWorkspace& ws, TcnParameters* gradient) {
+template <typename S>
+double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>& inputs,
+                       const TcnWindowMatrix<S>& target_low, const TcnWindowMatrix<S>& target_high,
+                       double weight_low, double weight_high, BasicTcnWindowWorkspace<S>& ws,
+                       std::type_identity_t<BasicTcnParameters<S>>* gradient) {
   tcn_window_forward(p, inputs, ws);
   // Residuals become ∂L/∂low and ∂L/∂high in place.
   ws.low -= target_low;
   ws.high -= target_high;
-  const double loss = weight_low * ws.low.squaredNorm() + weight_high * ws.high.squaredNorm();
+  const double loss = weight_low * static_cast<double>(ws.low.squaredNorm()) +
+                      weight_high * static_cast<double>(ws.high.squaredNorm());
   if (gradient == nullptr) return loss;
-  ws.low *= 2.0 * weight_low;
-  ws.high *= 2.0 * weight_high;
+  ws.low *= static_cast<S>(2.0 * weight_low);
+  ws.high *= static_cast<S>(2.0 * weight_high);
 
   const TcnArchitecture& a = p.architecture;
-  TcnParameters& g = *gradient;
-  const Eigen::MatrixXd& last = ws.activations[a.levels];
+  BasicTcnParameters<S>& g = *gradient;
+  const auto& last = ws.activations[a.levels];
   g.low_weight.noalias() += ws.low * last.transpose();
   g.low_bias += ws.low.rowwise().sum();
   g.high_weight.noalias() += ws.high * last.transpose();
@@ -55,25 +75,28 @@ double tcn_window_loss(const TcnParameters& p, const Eigen::Ref<const Eigen::Mat
   ws.upstream.noalias() += p.high_weight.transpose() * ws.high;
 
   for (int l = a.levels - 1; l >= 0; --l) {
-    const TcnBlockParameters& b = p.blocks[l];
-    TcnBlockParameters& gb = g.blocks[l];
-    const Eigen::MatrixXd& x = ws.activations[l];
+    const BasicTcnBlockParameters<S>& b = p.blocks[l];
+    BasicTcnBlockParameters<S>& gb = g.blocks[l];
+    const auto& x = ws.activations[l];
     const int d = a.dilation(l);
     const Eigen::Index t_out = ws.upstream.cols();
     // ∂L/∂z = ∂L/∂y ⊙ [y > 0].
-    ws.upstream = (ws.activations[l + 1].array() > 0.0).select(ws.upstream, 0.0);
-    const Eigen::MatrixXd& dz = ws.upstream;
+    ws.upstream = (ws.activations[l + 1].array() > S(0)).select(ws.upstream, S(0));
+    const auto& dz = ws.upstream;
     gb.bias += dz.rowwise().sum();
-    for (int j = 0; j < a.kernel; ++j) {
-      gb.taps[j].noalias() += dz * x.middleCols((a.kernel - 1 - j) * d, t_out).transpose();
-    }
+    const Eigen::Index in = x.rows();
+    ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
+    for (int j = 0; j < a.kernel; ++j)
+      gb.taps[j] += ws.stacked_gradient.middleCols(j * in, in);
     if (b.projection.size() > 0) gb.projection.noalias() += dz * x.rightCols(t_out).transpose();
     if (l == 0) break;
 
+    stack_taps(b, ws.stacked_weights);
+    ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
     ws.downstream.setZero(x.rows(), x.cols());
     for (int j = 0; j < a.kernel; ++j) {
-      ws.downstream.middleCols((a.kernel - 1 - j) * d, t_out).noalias() +=
-          b.taps[j].transpose() * dz;
+      ws.downstream.middleCols((a.kernel - 1 - j) * d, t_out) +=
+          ws.stacked_gradient.middleRows(j * in, in);
     }
     if (b.projection.size() > 0) {
       ws.downstream.rightCols(t_out).noalias() += b.projection.transpose() * dz;
@@ -84,5 +107,18 @@ double tcn_window_loss(const TcnParameters& p, const Eigen::Ref<const Eigen::Mat
   }
   return loss;
 }
+
+template void tcn_window_forward(const BasicTcnParameters<double>&, const TcnWindowMatrix<double>&,
+                                 BasicTcnWindowWorkspace<double>&);
+template void tcn_window_forward(const BasicTcnParameters<float>&, const TcnWindowMatrix<float>&,
+                                 BasicTcnWindowWorkspace<float>&);
+template double tcn_window_loss(const BasicTcnParameters<double>&, const TcnWindowMatrix<double>&,
+                                const TcnWindowMatrix<double>&, const TcnWindowMatrix<double>&,
+                                double, double, BasicTcnWindowWorkspace<double>&,
+                                BasicTcnParameters<double>*);
+template double tcn_window_loss(const BasicTcnParameters<float>&, const TcnWindowMatrix<float>&,
+                                const TcnWindowMatrix<float>&, const TcnWindowMatrix<float>&,
+                                double, double, BasicTcnWindowWorkspace<float>&,
+                                BasicTcnParameters<float>*);
 
 }  // namespace tpf::offline

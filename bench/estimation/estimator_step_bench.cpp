@@ -1,0 +1,118 @@
+// The full estimator step for the 4-joint arm with its 11 pads: kinematics, nominal dynamics and
+// friction, skin, state machine, a 32-channel TCN and the contact wrench, on a simulated teaching
+// log (motion and contact). Reports the mean per step (Google Benchmark) and, from per-step
+// steady_clock timings, the median and p99.9 as counters.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "offline/log/log.hpp"
+#include "offline/sim/simulate.hpp"
+#include "tpf/estimation/estimator.hpp"
+#include "tpf/friction/friction_file.hpp"
+#include "tpf/model/load_robot.hpp"
+#include "tpf/nn/tcn.hpp"
+
+namespace {
+
+constexpr int N = 4, P = 11;
+using Tcn32 = tpf::Tcn<double, 4 * N, 32, 4, 4, N>;
+using BenchEstimator = tpf::Estimator<double, N, P, Tcn32>;
+using Sample = tpf::EstimatorSample<double, N, P>;
+
+std::string data(const std::string& name) {
+  return std::string(TPF_BENCH_DATA_DIR) + "/" + name;
+}
+
+/// 20 s of the teaching scenario (seed 1), as estimator samples.
+const std::vector<Sample>& samples() {
+  static const std::vector<Sample> rows = [] {
+    const auto log = tpf::offline::simulate_to_log(
+        tpf::offline::load_scenario(data("scenarios/teaching.json")), 1, 20.0);
+    std::vector<Sample> out(static_cast<std::size_t>(log.rows()));
+    for (Eigen::Index r = 0; r < log.rows(); ++r) {
+      Sample& s = out[static_cast<std::size_t>(r)];
+      s.t = log.col("t")[r];
+      for (int j = 0; j < N; ++j) {
+        s.q[j] = log.col(tpf::offline::indexed_name("q", j + 1))[r];
+        s.dq[j] = log.col(tpf::offline::indexed_name("dq", j + 1))[r];
+        s.effort[j] = log.col(tpf::offline::indexed_name("i", j + 1))[r];
+      }
+      for (int k = 0; k < P; ++k)
+        s.pressure[k] = log.col(tpf::offline::indexed_name("p", k + 1))[r];
+    }
+    return out;
+  }();
+  return rows;
+}
+
+/// The estimator with a seeded random TCN (weights ~ U(−0.05, 0.05)): the arithmetic of a trained
+/// one, without a weight file.
+std::unique_ptr<BenchEstimator> make_estimator() {
+  const auto model = tpf::load_robot<double, N>(data("arm4.robot.json"));
+  auto friction = tpf::load_stribeck_parameters<double, N>(data("arm4.friction.json"));
+  const auto scale = tpf::effort_scale<N>(model, "mA");
+  for (auto* v : {&friction.coulomb, &friction.static_friction, &friction.viscous,
+                  &friction.load_coulomb, &friction.load_viscous})
+    *v = v->cwiseProduct(scale);
+  Tcn32 tcn;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  auto fill = [&](auto& m) {
+    for (Eigen::Index i = 0; i < m.size(); ++i)
+      m.data()[i] = u(rng);
+  };
+  for (auto& w : tcn.weights().input_taps)
+    fill(w);
+  fill(tcn.weights().input_projection);
+  for (auto& block : tcn.weights().taps)
+    for (auto& w : block)
+      fill(w);
+  fill(tcn.weights().low_weight);
+  fill(tcn.weights().high_weight);
+  tpf::EstimatorParameters<double, N> p;
+  p.skin.force_gain = 1.0 / (1.5 * 1000.0 * 0.0025);
+  p.nominal_sigma = p.fused_sigma = tpf::JointVector<double, N>::Constant(100.0);
+  p.static_dead_band = tpf::JointVector<double, N>::Constant(20.0);
+  return std::make_unique<BenchEstimator>(tpf::nominal_from_model<N>(model, friction, scale),
+                                          tpf::load_pads(data("arm4.pads.json"), model), p, tcn);
+}
+
+void BM_EstimatorStep(benchmark::State& state) {
+  const auto& rows = samples();
+  auto est = make_estimator();
+  std::vector<double> ns;
+  ns.reserve(1 << 22);
+  std::size_t r = 0;
+  double t_offset = 0;
+  int wrenches = 0;
+  for (auto _ : state) {
+    Sample s = rows[r];
+    s.t += t_offset;
+    const auto start = std::chrono::steady_clock::now();
+    const auto& out = est->update(s);
+    const auto stop = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(out.wrench.force_world);
+    wrenches += out.wrench.pad >= 0;
+    if (ns.size() < ns.capacity())
+      ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count());
+    if (++r == rows.size()) {  // replay the log, time keeps advancing
+      r = 0;
+      t_offset += rows.back().t - rows.front().t + 0.0025;
+    }
+  }
+  std::sort(ns.begin(), ns.end());
+  auto quantile = [&](double q) { return ns[static_cast<std::size_t>(q * (ns.size() - 1))]; };
+  state.counters["median_ns"] = quantile(0.5);
+  state.counters["p99_ns"] = quantile(0.99);
+  state.counters["p99.9_ns"] = quantile(0.999);
+  state.counters["max_ns"] = ns.back();
+  state.counters["contact_share"] = static_cast<double>(wrenches) / static_cast<double>(ns.size());
+}
+BENCHMARK(BM_EstimatorStep)->Iterations(400000)->Unit(benchmark::kNanosecond);
+
+}  // namespace

@@ -1,0 +1,85 @@
+// The contact force at a pad from the external joint torques, with the pad's normal-force reading
+// as a prior: regularised least squares, with a validity flag and condition numbers.
+#pragma once
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+
+#include "tpf/common/types.hpp"
+
+namespace tpf {
+
+/// Settings of estimate_contact_force.
+template <typename S>
+struct ContactForceSettings {
+  S torque_noise_nm = S(0.05);  ///< σ_τ: std of the external-torque estimate [N·m]
+  S prior_relative = S(0.5);    ///< σ_Fn = prior_relative·F_pad + prior_floor_n: the pad is rough
+  S prior_floor_n = S(1);
+  /// Shear (x, y of the contact frame) is valid when √(λ_min/λ_max) of its information block
+  /// (J_xy J_xyᵀ against the largest eigenvalue of JJᵀ) is at least this.
+  S min_inverse_condition = S(0.02);
+  S shear_regularisation = S(1e-9);  ///< ridge on shear, relative to λ_max (keeps the solve finite)
+};
+
+/// A contact force estimate. Contact frame: z = the pad's outward normal (a push has f_z < 0).
+template <typename S>
+struct ContactForce {
+  Vector3<S> force_contact = Vector3<S>::Zero();  ///< [N], contact frame
+  Vector3<S> force_world = Vector3<S>::Zero();    ///< [N], world frame
+  Vector3<S> point_world = Vector3<S>::Zero();    ///< where it acts [m]
+  S condition = S(0);          ///< σ_max/σ_min of the contact Jacobian alone (+inf when rank < 3)
+  S inverse_condition = S(0);  ///< σ_min/σ_max of the contact Jacobian alone, in [0, 1]
+  S shear_inverse_condition = S(0);  ///< the same for the shear block, normal known from the pad
+  int pad = -1;                      ///< pad index, −1 when no pad is in contact
+  bool observable_by_arm = false;    ///< the Jacobian alone fixes all three components
+  bool valid = false;                ///< the estimate is meaningful (see estimate_contact_force)
+};
+
+/// Solves for the force f (contact frame) acting at the pad point from the external torque τ [N·m]
+/// (what the environment applies to the robot, τ = J_cᵀ f with J_c = Rᵀ·J_v the linear rows of the
+/// point Jacobian in the contact frame), with the pad reading F_pad ≥ 0 [N] as a prior on the
+/// normal component, f_z ≈ −F_pad:
+///   (J_c J_cᵀ/σ_τ² + Λ) f = J_c τ/σ_τ² + Λ f₀,  Λ = diag(ε, ε, 1/σ_Fn²),  f₀ = (0, 0, −F_pad),
+/// ε = shear_regularisation·λ_max/σ_τ². The Jacobian's own conditioning decides what the arm sees:
+/// `valid` when the shear block (normal fixed by the pad) has inverse condition ≥ the setting, so
+/// the prior fills in the normal only where the arm cannot observe it (proximal pads, rank < 3);
+/// when the shear is unobservable too, `valid` is false and the numbers say why. Allocation-free.
+template <typename S, int N>
+ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact,
+                                       const JointVector<S, N>& tau_ext, S pad_force,
+                                       const ContactForceSettings<S>& settings = {}) noexcept {
+  using std::max, std::sqrt;
+  ContactForce<S> out;
+  const Eigen::Matrix<S, 3, N> Jc = R_contact.transpose() * J_world.template topRows<3>();
+  const Matrix3<S> info = Jc * Jc.transpose();  // J_c J_cᵀ, symmetric 3×3
+
+  const Eigen::SelfAdjointEigenSolver<Matrix3<S>> eig(info, Eigen::EigenvaluesOnly);
+  const Vector3<S> lambda = eig.eigenvalues().cwiseMax(S(0));  // ascending
+  const S lambda_max = lambda[2];
+  if (!(lambda_max > S(0))) return out;  // the pad's link does not move with any joint
+  out.inverse_condition = sqrt(lambda[0] / lambda_max);
+  out.condition =
+      lambda[0] > S(0) ? sqrt(lambda_max / lambda[0]) : std::numeric_limits<S>::infinity();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<S, 2, 2>> shear(
+      info.template topLeftCorner<2, 2>(), Eigen::EigenvaluesOnly);
+  out.shear_inverse_condition = sqrt(max(shear.eigenvalues()[0], S(0)) / lambda_max);
+  out.observable_by_arm = out.inverse_condition >= settings.min_inverse_condition;
+
+  const S w = S(1) / (settings.torque_noise_nm * settings.torque_noise_nm);
+  const S sigma_n = settings.prior_relative * pad_force + settings.prior_floor_n;
+  Matrix3<S> A = w * info;
+  const S ridge = settings.shear_regularisation * w * lambda_max;
+  A(0, 0) += ridge;
+  A(1, 1) += ridge;
+  A(2, 2) += S(1) / (sigma_n * sigma_n);
+  Vector3<S> b = w * (Jc * tau_ext);
+  b[2] += -pad_force / (sigma_n * sigma_n);
+  out.force_contact = A.ldlt().solve(b);
+  out.force_world = R_contact * out.force_contact;
+  out.valid = out.shear_inverse_condition >= settings.min_inverse_condition &&
+              out.force_contact.allFinite();
+  return out;
+}
+
+}  // namespace tpf

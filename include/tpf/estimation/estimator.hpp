@@ -1,0 +1,213 @@
+// The run-time estimator: one update per control cycle fuses the nominal model, the skin, the
+// contact-aware state machine and the TCN into external joint torques and a contact force.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "tpf/estimation/acceleration_filter.hpp"
+#include "tpf/estimation/compensator.hpp"
+#include "tpf/estimation/contact_force.hpp"
+#include "tpf/estimation/dead_band.hpp"
+#include "tpf/estimation/estimator_parameters.hpp"
+#include "tpf/estimation/estimator_status.hpp"
+#include "tpf/estimation/estimator_types.hpp"
+#include "tpf/estimation/nominal_model.hpp"
+#include "tpf/estimation/static_friction_tracker.hpp"
+#include "tpf/kinematics/contact_frame.hpp"
+#include "tpf/kinematics/point_jacobian.hpp"
+#include "tpf/skin/skin.hpp"
+
+namespace tpf {
+
+/// External torque and contact force of an N-joint arm with P skin pads, per cycle:
+///  1. q̈: the sample's, or the filtered derivative of q̇ (AccelerationFilter);
+///  2. nominal model: τ_dyn, τ_fric = predict_effort(q, q̇, q̈) (also leaves the link poses in
+///     the workspace); τ_res = τ_meas − τ_dyn − τ_fric;
+///  3. skin: filtered pressure, hysteresis, contact flags and onset times (Skin);
+///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
+///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s);
+///  6. three estimates (TorqueEstimator), each with its dead band, and the combined one;
+///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal.
+/// `Compensator` is tpf::Tcn<S, 4N, H, L, K, N> or ZeroCompensator<S, N> (no compensation).
+/// update() allocates nothing, throws nothing and never blocks; what it could not do is in the
+/// output's status bits. The object is large with a TCN inside: keep it on the heap.
+template <typename S, int N, int P, typename Compensator = ZeroCompensator<S, N>>
+requires FrictionCompensator<Compensator, S, N>
+class Estimator {
+ public:
+  using Vector = JointVector<S, N>;
+  using Sample = EstimatorSample<S, N, P>;
+  using Output = EstimatorOutput<S, N>;
+
+  /// Start-up: takes its own copies of everything. Throws tpf::Error when the pad layout does not
+  /// have P pads or names a link outside 1..N.
+  Estimator(NominalModel<S, N> nominal, const std::vector<Pad>& pads,
+            const EstimatorParameters<S, N>& parameters, Compensator compensator = {})
+      : nominal_(std::move(nominal)),
+        data_(nominal_.model),
+        parameters_(parameters),
+        skin_(pads, parameters.skin, N),
+        tracker_(parameters.static_friction),
+        acceleration_(parameters.acceleration_cutoff_hz, parameters.acceleration_damping),
+        compensator_(std::move(compensator)) {}
+
+  /// Forgets the past: the next sample starts every filter, the state machine and the TCN.
+  void reset() noexcept {
+    started_ = false;
+    output_ = Output{};
+    tracker_.reset();
+  }
+
+  /// One cycle (see the class comment). Returns the outputs; on a skipped sample (non-finite or
+  /// stale) the previous outputs with this cycle's status bits.
+  const Output& update(const Sample& sample) noexcept {
+    std::uint32_t status = 0;
+    if (!finite(sample)) {
+      output_.status = kStatusNonFiniteInput;
+      return output_;
+    }
+    if (started_ && !(sample.t > output_.t)) {
+      output_.status = kStatusStaleTime;
+      return output_;
+    }
+    S h = parameters_.sample_period_s;
+    if (started_) {
+      h = sample.t - output_.t;
+      if (h > parameters_.max_gap_factor * parameters_.sample_period_s) status |= kStatusTimeGap;
+    } else {
+      start(sample);
+    }
+
+    // 1. Acceleration (the filter always runs, so it is warm when q̈ goes missing).
+    const Vector& filtered = acceleration_.update(sample.dq, h);
+    Vector ddq = filtered;
+    if (sample.has_ddq) {
+      if (sample.ddq.allFinite())
+        ddq = sample.ddq;
+      else
+        status |= kStatusAccelerationEstimated;
+    }
+    for (int j = 0; j < N; ++j) {
+      if (sample.q[j] < nominal_.model.lower[j] - parameters_.position_margin_rad ||
+          sample.q[j] > nominal_.model.upper[j] + parameters_.position_margin_rad)
+        status |= kStatusPositionOutOfRange;
+    }
+
+    // 2. Nominal model (predict_effort runs compute_gravity last: data_.oMi is at q).
+    Output& out = output_;
+    predict_effort(nominal_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
+                   out.effort_friction);
+    out.residual = sample.effort - out.effort_rigid - out.effort_friction;
+
+    // 3. Skin.
+    if (skin_.update(sample.t, h, sample.pressure) > 0) status |= kStatusPadDataInvalid;
+
+    // 4. State machine, holding the last combined estimate for joints that stop in contact.
+    tracker_.update(sample.t, sample.dq, out.residual, skin_.any_contact(),
+                    skin_.earliest_new_onset(), out.external.residual);
+    out.state = tracker_.state();
+    out.static_friction = tracker_.friction_estimate();
+
+    // 5. Compensator.
+    out.compensation =
+        compensator_.step(compensator_input<S, N>(sample.q, sample.dq, ddq, out.static_friction));
+
+    // 6. External torque, three ways and combined.
+    constexpr std::uint32_t all = N == 32 ? ~0u : (1u << N) - 1;
+    set_estimate(
+        TorqueEstimator::Proprioceptive,
+        dead_band(out.residual, Vector(parameters_.dead_band_factor * parameters_.nominal_sigma)),
+        all);
+    set_estimate(TorqueEstimator::StaticModelFree,
+                 dead_band(tracker_.static_external(), parameters_.static_dead_band),
+                 tracker_.valid_mask());
+    set_estimate(TorqueEstimator::Fused,
+                 dead_band(Vector(out.residual - out.compensation),
+                           Vector(parameters_.dead_band_factor * parameters_.fused_sigma)),
+                 all);
+    const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
+    const ExternalTorque<S, N>& fused = out.estimate(TorqueEstimator::Fused);
+    for (int j = 0; j < N; ++j) {
+      const bool use_static = fixed.valid & (1u << j);
+      out.external.residual[j] = use_static ? fixed.residual[j] : fused.residual[j];
+      out.external.torque[j] = use_static ? fixed.torque[j] : fused.torque[j];
+    }
+    out.external.valid = all;
+
+    // 7. Contact force at the most loaded pad.
+    out.wrench = ContactForce<S>{};
+    const int pad = skin_.most_loaded();
+    if (pad >= 0) {
+      const PadGeometry<S>& g = skin_.geometry(pad);
+      const Vector3<S> point = pad_point_in_world(data_, g);
+      point_jacobian(nominal_.model, data_, g.link, point, jacobian_);
+      out.wrench =
+          estimate_contact_force(jacobian_, contact_frame_in_world(data_, g.link, g.normal),
+                                 out.external.torque, skin_.normal_force(pad), parameters_.wrench);
+      out.wrench.pad = pad;
+      out.wrench.point_world = point;
+      if (!out.wrench.valid) status |= kStatusWrenchUnobservable;
+    }
+
+    out.ddq = ddq;
+    out.t = sample.t;
+    out.status = status;
+    return out;
+  }
+
+  const Output& output() const noexcept { return output_; }
+  const Skin<S, P>& skin() const noexcept { return skin_; }
+  const StaticFrictionTracker<S, N>& tracker() const noexcept { return tracker_; }
+  const NominalModel<S, N>& nominal() const noexcept { return nominal_; }
+  const EstimatorParameters<S, N>& parameters() const noexcept { return parameters_; }
+  /// Replaces the transition σ of the two model-based dead bands (after calibration).
+  void set_transition_sigma(const Vector& nominal_sigma, const Vector& fused_sigma) noexcept {
+    parameters_.nominal_sigma = nominal_sigma;
+    parameters_.fused_sigma = fused_sigma;
+  }
+  Compensator& compensator() noexcept { return compensator_; }
+
+ private:
+  static bool finite(const Sample& s) noexcept {
+    return std::isfinite(s.t) && s.q.allFinite() && s.dq.allFinite() && s.effort.allFinite();
+  }
+
+  void start(const Sample& sample) noexcept {
+    started_ = true;
+    acceleration_.reset(sample.dq);
+    Eigen::Matrix<S, P, 1> p = sample.pressure;
+    for (int k = 0; k < P; ++k)
+      if (!std::isfinite(p[k])) p[k] = S(0);
+    skin_.reset(sample.t, p);
+    tracker_.reset();
+    compensator_.reset(
+        compensator_input<S, N>(sample.q, sample.dq, Vector::Zero().eval(), Vector::Zero().eval()));
+  }
+
+  void set_estimate(TorqueEstimator which, const Vector& residual, std::uint32_t valid) noexcept {
+    ExternalTorque<S, N>& e = output_.estimates[static_cast<int>(which)];
+    for (int j = 0; j < N; ++j) {
+      const bool ok = valid & (1u << j);
+      e.residual[j] = ok ? residual[j] : S(0);
+      e.torque[j] = -e.residual[j] / nominal_.effort_per_newton_metre[j];
+    }
+    e.valid = valid;
+  }
+
+  NominalModel<S, N> nominal_;
+  Data<S, N> data_;
+  EstimatorParameters<S, N> parameters_;
+  Skin<S, P> skin_;
+  StaticFrictionTracker<S, N> tracker_;
+  AccelerationFilter<S, N> acceleration_;
+  Compensator compensator_;
+  Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
+  Output output_;
+  bool started_ = false;
+};
+
+}  // namespace tpf

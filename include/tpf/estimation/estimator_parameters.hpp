@@ -1,0 +1,45 @@
+// The run-time estimator's parameters (everything but the nominal model and the TCN weights).
+#pragma once
+
+#include "tpf/common/types.hpp"
+#include "tpf/estimation/contact_force.hpp"
+#include "tpf/estimation/static_friction_tracker.hpp"
+#include "tpf/skin/skin.hpp"
+
+namespace tpf {
+
+/// Parameters of Estimator. Effort-unit quantities are in the nominal model's unit (mA or N·m).
+template <typename S, int N>
+struct EstimatorParameters {
+  S sample_period_s = S(0.0025);  ///< nominal period (400 Hz)
+  S max_gap_factor = S(1.5);      ///< a step > factor·period is flagged as a gap
+  S position_margin_rad = S(0.05);
+  S acceleration_cutoff_hz = S(20);  ///< filtered derivative of q̇ when q̈ is not given
+  S acceleration_damping = S(0.8);
+
+  StaticFrictionSettings<S> static_friction;
+  SkinSettings<S> skin;
+  ContactForceSettings<S> wrench;
+
+  /// σ of the estimation error in the static-to-kinetic transition on contact-free data (effort
+  /// unit), from calibrate_transition_sigma: the proprioceptive (nominal) and fused (with TCN)
+  /// estimators' dead bands are dead_band_factor·σ.
+  JointVector<S, N> nominal_sigma = JointVector<S, N>::Zero();
+  JointVector<S, N> fused_sigma = JointVector<S, N>::Zero();
+  S dead_band_factor = S(1.5);
+  /// Half-width of the static model-free estimate's dead band (effort unit): a few times the
+  /// effort noise, e.g. 3·σ_noise·√(1 + 1/n_window) (see static_dead_band_from_noise).
+  JointVector<S, N> static_dead_band = JointVector<S, N>::Zero();
+};
+
+/// Static dead band from the effort noise σ (effort unit; e.g. 6 mA current noise with 1 mA steps
+/// → σ ≈ √(6² + 1/12)): Δτ_res = τ_res − mean of n samples has std σ·√(1 + 1/n), and the band is
+/// k times that (k = 3).
+template <typename S, int N>
+JointVector<S, N> static_dead_band_from_noise(const JointVector<S, N>& noise, int window_samples,
+                                              S k = S(3)) {
+  using std::sqrt;
+  return noise * (k * sqrt(S(1) + S(1) / S(window_samples > 0 ? window_samples : 1)));
+}
+
+}  // namespace tpf

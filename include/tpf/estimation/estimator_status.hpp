@@ -1,0 +1,29 @@
+// What the estimator could not do in a cycle: a bitfield, never an exception.
+#pragma once
+
+#include <cstdint>
+
+namespace tpf {
+
+/// Bits of EstimatorOutput::status. 0 = everything computed from fresh, finite data.
+enum EstimatorStatus : std::uint32_t {
+  kStatusOk = 0,
+  /// t, q, q̇ or the effort held NaN/inf: the sample was skipped, the previous good state and
+  /// outputs are kept; the next finite sample is processed normally.
+  kStatusNonFiniteInput = 1u << 0,
+  /// t did not advance (t ≤ previous t, or the first sample is not finite): sample skipped.
+  kStatusStaleTime = 1u << 1,
+  /// t − t_prev exceeded max_gap_factor × the sample period (dropped cycles): processed with the
+  /// real period, but filters and the TCN history saw a gap.
+  kStatusTimeGap = 1u << 2,
+  /// A joint position is outside [lower − margin, upper + margin] of the model.
+  kStatusPositionOutOfRange = 1u << 3,
+  /// A pad pressure was NaN/inf: that pad kept its previous state.
+  kStatusPadDataInvalid = 1u << 4,
+  /// A pad is in contact but the contact force is not observable (see ContactForce::valid).
+  kStatusWrenchUnobservable = 1u << 5,
+  /// The given q̈ was not finite: the filtered derivative of q̇ was used instead.
+  kStatusAccelerationEstimated = 1u << 6,
+};
+
+}  // namespace tpf

@@ -1,0 +1,64 @@
+// The estimator's per-cycle input (one sample) and output.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "tpf/common/types.hpp"
+#include "tpf/estimation/contact_force.hpp"
+#include "tpf/estimation/contact_state.hpp"
+
+namespace tpf {
+
+/// One sample of the robot, as a row of the log format (docs/log-format.md).
+template <typename S, int N, int P>
+struct EstimatorSample {
+  S t = S(0);                                            ///< [s], must increase
+  JointVector<S, N> q = JointVector<S, N>::Zero();       ///< [rad]
+  JointVector<S, N> dq = JointVector<S, N>::Zero();      ///< [rad/s]
+  JointVector<S, N> effort = JointVector<S, N>::Zero();  ///< mA or N·m (the nominal model's unit)
+  Eigen::Matrix<S, P, 1> pressure = Eigen::Matrix<S, P, 1>::Zero();  ///< pad gauge pressure [kPa]
+  JointVector<S, N> ddq = JointVector<S, N>::Zero();  ///< [rad/s²], used only when has_ddq
+  bool has_ddq = false;
+};
+
+/// The three external-torque estimators, comparable side by side.
+enum class TorqueEstimator : std::uint8_t {
+  Proprioceptive,   ///< τ_meas − τ_dyn − τ_fric(nominal), dead band k·σ_nominal
+  StaticModelFree,  ///< Δτ_res = τ_res − τ̂_fric,s on static joints, noise dead band
+  Fused,            ///< τ_meas − (τ_dyn + τ_fric + τ_TCN), dead band 1.5·σ_fused
+};
+inline constexpr int kTorqueEstimatorCount = 3;
+
+/// One external-torque estimate. Sign: τ_ext is what the environment applies to the robot, so
+/// residual = −effort_per_newton_metre·τ_ext (a push in +q lowers the effort).
+template <typename S, int N>
+struct ExternalTorque {
+  JointVector<S, N> residual = JointVector<S, N>::Zero();  ///< after the dead band, effort unit
+  JointVector<S, N> torque = JointVector<S, N>::Zero();    ///< τ_ext [N·m]
+  std::uint32_t valid = 0;                                 ///< bit j: joint j has an estimate
+};
+
+/// Everything one update computes. Efforts in the nominal model's unit (mA or N·m).
+template <typename S, int N>
+struct EstimatorOutput {
+  S t = S(0);
+  std::uint32_t status = 0;  ///< EstimatorStatus bits
+  ContactState state = ContactState::Dynamic;
+  JointVector<S, N> ddq = JointVector<S, N>::Zero();              ///< used q̈ [rad/s²]
+  JointVector<S, N> effort_rigid = JointVector<S, N>::Zero();     ///< τ_dyn
+  JointVector<S, N> effort_friction = JointVector<S, N>::Zero();  ///< τ_fric (nominal)
+  JointVector<S, N> residual = JointVector<S, N>::Zero();  ///< τ_res = τ_meas − τ_dyn − τ_fric
+  JointVector<S, N> static_friction = JointVector<S, N>::Zero();  ///< τ̂_fric,s (0 when moving)
+  JointVector<S, N> compensation = JointVector<S, N>::Zero();     ///< τ_TCN
+  std::array<ExternalTorque<S, N>, kTorqueEstimatorCount> estimates{};  ///< by TorqueEstimator
+  /// The estimate the wrench uses: StaticModelFree where valid, Fused elsewhere.
+  ExternalTorque<S, N> external;
+  ContactForce<S> wrench;  ///< at the most loaded pad in contact (pad = −1: none)
+
+  const ExternalTorque<S, N>& estimate(TorqueEstimator e) const noexcept {
+    return estimates[static_cast<int>(e)];
+  }
+};
+
+}  // namespace tpf

@@ -1,0 +1,184 @@
+// The nominal model of an arm as identified from a log: what `tpf identify` writes, `tpf diagnose`
+// extends and the run-time estimator loads.
+//
+// Effort unit: every effort below is in the unit of the log it was identified on (mA for a log
+// with i<j> columns, N·m for a log with tau<j>). The rigid-body base parameters are SI (kg, kg·m,
+// kg·m²) and predict N·m, converted with effort_per_newton_metre (1000/K_t for mA, 1 for N·m).
+// Sign convention: predicted effort is what the drive must produce, τ_meas = rigid + friction +
+// τ_res, with τ_res = −τ_ext + what the model lacks (external torque acts on the robot).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "tpf/common/types.hpp"
+#include "tpf/dynamics/base_parameters.hpp"
+#include "tpf/dynamics/regressor.hpp"
+#include "tpf/dynamics/rnea.hpp"
+#include "tpf/friction/stribeck.hpp"
+#include "tpf/model/data.hpp"
+#include "tpf/model/model.hpp"
+
+namespace tpf {
+
+/// One position-periodic ripple term of joint j (gear meshing, cogging):
+/// τ_j += a_sin·sin(n·θ) + a_cos·cos(n·θ), θ = q_j (output side) or G_j·q_j (motor side).
+template <typename S>
+struct RippleTerm {
+  int joint = 0;            ///< 0-based joint index
+  S cycles_per_rev = S(0);  ///< n, periods per revolution of θ
+  bool motor_side = false;  ///< θ = gear_ratio·q (motor angle) instead of q
+  S sin_amplitude = S(0);   ///< effort unit
+  S cos_amplitude = S(0);   ///< effort unit
+};
+
+/// Effects that `tpf diagnose` found and added to the declared model, all memoryless functions of
+/// (q, q̇, q̈) and optionally temperature, so that the run time can evaluate them. Zero = absent.
+/// (An unmodelled payload is folded into the base parameters; load-dependent friction into
+/// StribeckParameters::load_coulomb / load_viscous.)
+template <typename S, int N>
+struct AddedEffects {
+  static constexpr int kMaxRippleTerms = 16;
+  int ripple_count = 0;
+  std::array<RippleTerm<S>, kMaxRippleTerms> ripple{};
+  JointVector<S, N> spring_stiffness = JointVector<S, N>::Zero();  ///< k: τ_j += k_j·q_j + c_j
+  JointVector<S, N> spring_offset = JointVector<S, N>::Zero();     ///< c (effort unit)
+  JointMatrix<S, N> coupling_velocity = JointMatrix<S, N>::Zero();  ///< τ += C_v·q̇, zero diagonal
+  JointMatrix<S, N> coupling_acceleration = JointMatrix<S, N>::Zero();  ///< τ += C_a·q̈, zero diag.
+  /// Temperature-dependent viscous friction: τ_j += β_j·(T_j − T_ref)·q̇_j (needs temp<j>).
+  JointVector<S, N> thermal_viscous = JointVector<S, N>::Zero();
+  S reference_temperature = S(25);  ///< T_ref, °C
+  /// The effort lags the motion by this much [s]: compare effort(t) with the prediction at
+  /// t − effort_delay_s (a run-time estimator keeps the few samples this needs).
+  S effort_delay_s = S(0);
+};
+
+/// The identified model: the rigid body in base parameters, the friction, the unit conversion and
+/// the effects added by diagnosis.
+template <typename S, int N>
+struct NominalModel {
+  Model<S, N> model;  ///< kinematics, URDF inertias, drives (torque_constant) from the robot file
+  /// Identified rigid-body part (incl. armature): effort_rigid = Y(q,q̇,q̈).cols(base_columns)·
+  /// base_values, N·m, then times effort_per_newton_metre. Only the first base_count entries count.
+  int base_count = 0;
+  std::array<int, regressor_columns<N>> base_columns{};
+  Eigen::Matrix<S, regressor_columns<N>, 1> base_values =
+      Eigen::Matrix<S, regressor_columns<N>, 1>::Zero();
+  /// Stribeck + viscous + load dependence (α_c, α_v on |G_j(q)| of `model`, N·m), effort unit.
+  StribeckParameters<S, N> friction;
+  /// Effort unit per N·m: 1000/K_t for a log in mA, 1 for a log in N·m.
+  JointVector<S, N> effort_per_newton_metre = JointVector<S, N>::Ones();
+  std::string effort_unit = "N*m";  ///< "mA" (log with i<j>) or "N*m" (log with tau<j>)
+  AddedEffects<S, N> added;
+};
+
+/// Rigid-body effort of the base parameters, N·m: τ = Y(q,q̇,q̈).cols(base_columns)·base_values,
+/// with the regressor computed into `Y` (scratch). Allocation-free.
+template <typename S, int N>
+JointVector<S, N> rigid_body_torque(const NominalModel<S, N>& nominal, Data<S, N>& data,
+                                    Regressor<S, N>& Y, const NoDeduce<JointVector<S, N>>& q,
+                                    const NoDeduce<JointVector<S, N>>& dq,
+                                    const NoDeduce<JointVector<S, N>>& ddq) {
+  compute_regressor(nominal.model, data, q, dq, ddq, Y);
+  JointVector<S, N> tau = JointVector<S, N>::Zero();
+  for (int i = 0; i < nominal.base_count; ++i)
+    tau += Y.col(nominal.base_columns[i]) * nominal.base_values[i];
+  return tau;
+}
+
+/// Effort of the added memoryless effects (ripple, spring, coupling), effort unit:
+/// τ_j = Σ ripple_j(θ) + k_j q_j + c_j + Σ_k (C_v,jk q̇_k + C_a,jk q̈_k). Allocation-free.
+template <typename S, int N>
+JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
+                               const NoDeduce<JointVector<S, N>>& q,
+                               const NoDeduce<JointVector<S, N>>& dq,
+                               const NoDeduce<JointVector<S, N>>& ddq) {
+  using std::cos, std::sin;
+  const AddedEffects<S, N>& a = nominal.added;
+  JointVector<S, N> tau = a.spring_stiffness.cwiseProduct(q) + a.spring_offset +
+                          a.coupling_velocity * dq + a.coupling_acceleration * ddq;
+  for (int i = 0; i < a.ripple_count; ++i) {
+    const RippleTerm<S>& r = a.ripple[i];
+    const S theta = r.motor_side ? nominal.model.gear_ratio[r.joint] * q[r.joint] : q[r.joint];
+    tau[r.joint] += r.sin_amplitude * sin(r.cycles_per_rev * theta) +
+                    r.cos_amplitude * cos(r.cycles_per_rev * theta);
+  }
+  return tau;
+}
+
+/// Predicted effort in the log's effort unit, split in two:
+///   rigid    = diag(effort_per_newton_metre)·Y_b(q,q̇,q̈)·π_b + added(q,q̇,q̈)
+///              (rigid body incl. armature, plus ripple, spring and coupling when added),
+///   friction = [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇) + (b + α_v|G|)·q̇,
+///              G = G(q) of nominal.model [N·m], sgn(0) = 0: at rest the friction is not
+///              predicted (it is whatever the drive settled at; the estimator's FSM handles it).
+/// Allocation-free (the regressor lives on the stack), no exceptions.
+template <typename S, int N>
+void predict_effort(const NominalModel<S, N>& nominal, Data<S, N>& data,
+                    const NoDeduce<JointVector<S, N>>& q, const NoDeduce<JointVector<S, N>>& dq,
+                    const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
+                    JointVector<S, N>& friction) {
+  Regressor<S, N> Y;
+  rigid = nominal.effort_per_newton_metre.cwiseProduct(
+              rigid_body_torque(nominal, data, Y, q, dq, ddq)) +
+          added_effort(nominal, q, dq, ddq);
+  const JointVector<S, N> abs_gravity = compute_gravity(nominal.model, data, q).cwiseAbs();
+  friction = stribeck_friction(nominal.friction, dq, abs_gravity);
+}
+
+/// Temperature-dependent part of the friction, effort unit: τ_j = β_j·(T_j − T_ref)·q̇_j, T in °C
+/// (zero unless diagnosis added it). Add it to predict_effort's friction when temp<j> is logged.
+template <typename S, int N>
+JointVector<S, N> thermal_friction(const NominalModel<S, N>& nominal,
+                                   const NoDeduce<JointVector<S, N>>& dq,
+                                   const NoDeduce<JointVector<S, N>>& temperature) {
+  const AddedEffects<S, N>& a = nominal.added;
+  return a.thermal_viscous
+      .cwiseProduct(temperature - JointVector<S, N>::Constant(a.reference_temperature))
+      .cwiseProduct(dq);
+}
+
+/// Name of standard regressor column c (0-based) of an N-joint arm: per link k (1..N) "m<k>",
+/// "mx<k>", "my<k>", "mz<k>", "Ixx<k>", "Ixy<k>", "Ixz<k>", "Iyy<k>", "Iyz<k>", "Izz<k>"
+/// (first moments and inertia about the link origin), then "Ia<j>" (armature), "fc<j>"
+/// (Coulomb), "fv<j>" (viscous).
+std::string regressor_column_name(int joints, int column);
+
+/// A nominal model whose rigid body is the robot model itself (base parameters β·π of the model's
+/// inertias and armature) and whose friction is `friction`: the "true" model of the digital twin
+/// when given the twin's robot and friction, or the starting point before identification.
+/// Start-up code (allocates).
+template <int N>
+NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
+                                           const StribeckParameters<double, N>& friction,
+                                           const JointVector<double, N>& effort_per_newton_metre);
+
+/// Effort unit conversion for a log's effort column prefix: "i" (mA) → 1000/K_t, "tau" → 1.
+template <int N>
+JointVector<double, N> effort_scale(const Model<double, N>& model, const std::string& effort_unit);
+
+/// Loads a parameter file (JSON, "format": "tpf-params", "version": 1) written by `tpf identify`
+/// / `tpf diagnose`, with the robot file it was identified for. Start-up code: throws tpf::Error
+/// "file: field: reason" on a missing/unknown field, a wrong size, a joint count that differs
+/// from N, an unknown base parameter name or a non-finite or out-of-range value.
+template <int N>
+NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
+                                           const std::filesystem::path& robot_file);
+
+/// Writes a parameter file (atomically: temporary + rename). `fit_quality_json` (a JSON object's
+/// text, may be empty) is stored under "fit" for people and scripts; `source` (e.g. the log path)
+/// under "source". Throws tpf::Error on I/O failure or bad JSON text.
+template <int N>
+void save_nominal_model(const std::filesystem::path& params_file,
+                        const NominalModel<double, N>& nominal, const std::string& source = "",
+                        const std::string& fit_quality_json = "");
+
+/// The rigid-body base parameters (inertial + armature columns 0..11N−1 of the regressor) of a
+/// model's kinematics: find_base_parameters on regressors stacked at 200 seeded random states
+/// within the joint limits (or ±π). Deterministic. Start-up/offline code.
+template <int N>
+BaseParameters rigid_body_base_parameters(const Model<double, N>& model);
+
+}  // namespace tpf

@@ -1,0 +1,79 @@
+// Calibration of the dead bands: σ of the estimation error in the static-to-kinetic transition,
+// measured on contact-free data (start-up / offline code).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "tpf/common/error.hpp"
+#include "tpf/common/types.hpp"
+#include "tpf/estimation/estimator_status.hpp"
+
+namespace tpf {
+
+/// Per joint σ (effort unit) of the nominal residual τ_res and of the compensated residual
+/// τ_res − τ_TCN in the static-to-kinetic transition, and how many samples each rests on.
+template <typename S, int N>
+struct TransitionSigma {
+  JointVector<S, N> nominal = JointVector<S, N>::Zero();
+  JointVector<S, N> fused = JointVector<S, N>::Zero();
+  std::array<long, N> samples{};
+};
+
+/// Runs `estimator` (reset first) over `samples` of a contact-free log in time order. There the
+/// true external torque is zero, so every residual is estimation error. Joint j is in its
+/// static-to-kinetic transition from the first sample with |q̇_j| ≥ v_s (the estimator's static
+/// velocity) after a static sample, for `window_s` seconds (the original work's ≈70 ms) or until
+/// it is static again. Over those samples
+///   σ_nominal,j = √(mean τ_res,j²),   σ_fused,j = √(mean (τ_res,j − τ_TCN,j)²)
+/// (root mean square about zero: a bias is error too). Skipped samples (status bits non-finite /
+/// stale) are ignored. Store the result with estimator.set_transition_sigma(σ.nominal, σ.fused).
+/// Throws tpf::Error naming `source` when a joint has no transition in the data.
+template <typename EstimatorT, typename SampleRange>
+auto calibrate_transition_sigma(EstimatorT& estimator, const SampleRange& samples,
+                                double window_s = 0.07, const std::string& source = "samples") {
+  using Output = std::decay_t<decltype(estimator.output())>;
+  using S = std::decay_t<decltype(Output{}.t)>;
+  constexpr int N = decltype(Output{}.residual)::RowsAtCompileTime;
+  const S threshold = estimator.parameters().static_friction.static_velocity;
+
+  TransitionSigma<S, N> sigma;
+  JointVector<S, N> sum_nominal = JointVector<S, N>::Zero(), sum_fused = sum_nominal;
+  std::array<bool, N> was_static{};
+  std::array<S, N> start{};
+  std::array<bool, N> in_window{};
+  bool first = true;
+  estimator.reset();
+  for (const auto& sample : samples) {
+    const Output& out = estimator.update(sample);
+    if (out.status & (kStatusNonFiniteInput | kStatusStaleTime)) continue;
+    for (int j = 0; j < N; ++j) {
+      const bool is_static = std::abs(sample.dq[j]) < threshold;
+      if (!first && was_static[j] && !is_static) {
+        in_window[j] = true;
+        start[j] = out.t;
+      }
+      if (is_static || out.t - start[j] >= S(window_s)) in_window[j] = false;
+      if (in_window[j]) {
+        const S e = out.residual[j], f = out.residual[j] - out.compensation[j];
+        sum_nominal[j] += e * e;
+        sum_fused[j] += f * f;
+        ++sigma.samples[j];
+      }
+      was_static[j] = is_static;
+    }
+    first = false;
+  }
+  for (int j = 0; j < N; ++j) {
+    if (sigma.samples[j] == 0) {
+      throw Error::at(source, 0, "joint " + std::to_string(j + 1),
+                      "no static-to-kinetic transition to calibrate the dead band on");
+    }
+    sigma.nominal[j] = std::sqrt(sum_nominal[j] / S(sigma.samples[j]));
+    sigma.fused[j] = std::sqrt(sum_fused[j] / S(sigma.samples[j]));
+  }
+  return sigma;
+}
+
+}  // namespace tpf

@@ -1,0 +1,165 @@
+#include "tpf/common/json_object.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "tpf/common/error.hpp"
+
+namespace tpf::json {
+
+namespace {
+std::string format(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+Object::Object(const nlohmann::json& object, std::string file, std::string path)
+    : object_(object), file_(std::move(file)), path_(std::move(path)) {
+  if (!object_.is_object())
+    throw Error::at(file_, 0, path_.empty() ? "(top level)" : path_, "must be a JSON object");
+}
+
+std::string Object::key_path(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+void Object::fail(const std::string& key, const std::string& message) const {
+  throw Error::at(file_, 0, key_path(key), message);
+}
+
+const nlohmann::json& Object::get(const std::string& key) {
+  used_.insert(key);
+  return object_.at(key);
+}
+
+double Object::number(const std::string& key, double fallback, double lo, double hi) {
+  if (!object_.contains(key)) return fallback;
+  return number(key, lo, hi);
+}
+
+double Object::number(const std::string& key, double lo, double hi) {
+  if (!object_.contains(key)) fail(key, "missing");
+  const auto& v = get(key);
+  if (!v.is_number()) fail(key, "must be a number");
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || x < lo || x > hi)
+    fail(key, "must be in [" + format(lo) + ", " + format(hi) + "], got " + format(x));
+  return x;
+}
+
+std::vector<double> Object::numbers(const std::string& key, std::vector<double> fallback, double lo,
+                                    double hi, std::size_t size) {
+  if (!object_.contains(key)) return fallback;
+  const auto& v = get(key);
+  if (!v.is_array() || v.size() != size)
+    fail(key, "must be an array of " + std::to_string(size) + " numbers");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < size; ++i) {
+    const std::string item = key + "[" + std::to_string(i) + "]";
+    if (!v[i].is_number()) fail(item, "must be a number");
+    const double x = v[i].get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi)
+      fail(item, "must be in [" + format(lo) + ", " + format(hi) + "], got " + format(x));
+    out.push_back(x);
+  }
+  return out;
+}
+
+std::vector<double> Object::numbers(const std::string& key, double lo, double hi,
+                                    std::size_t size) {
+  if (!object_.contains(key)) fail(key, "missing");
+  return numbers(key, {}, lo, hi, size);
+}
+
+Eigen::Vector3d Object::vector3(const std::string& key) {
+  const std::vector<double> v = numbers(key, -std::numeric_limits<double>::infinity(),
+                                        std::numeric_limits<double>::infinity(), 3);
+  return {v[0], v[1], v[2]};
+}
+
+std::string Object::text(const std::string& key) {
+  if (!object_.contains(key)) fail(key, "missing");
+  return text(key, "");
+}
+
+Object Object::read_file(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path);
+  if (!in) throw Error::at(file, 0, "", "cannot open the file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is the offset of the error; turn it into a line number.
+    std::ifstream again(path);
+    long line = 1;
+    char c;
+    for (std::size_t i = 1; i < e.byte && again.get(c); ++i)
+      if (c == '\n') ++line;
+    throw Error::at(file, line, "", std::string("not valid JSON: ") + e.what());
+  }
+  return Object(j, file, "");
+}
+
+Object Object::read_document(const std::filesystem::path& path, std::string_view format,
+                             int max_version) {
+  Object top = read_file(path);
+  const std::string got = top.text("format");
+  if (got != format) top.fail("format", "is '" + got + "', expected '" + std::string(format) + "'");
+  const double version = top.number("version", 0, 1e9);
+  if (version > max_version)
+    top.fail("version", "is " + std::to_string(static_cast<long>(version)) +
+                            "; this tpf reads up to version " + std::to_string(max_version));
+  return top;
+}
+
+bool Object::boolean(const std::string& key, bool fallback) {
+  if (!object_.contains(key)) return fallback;
+  const auto& v = get(key);
+  if (!v.is_boolean()) fail(key, "must be true or false");
+  return v.get<bool>();
+}
+
+std::string Object::text(const std::string& key, std::string fallback) {
+  if (!object_.contains(key)) return fallback;
+  const auto& v = get(key);
+  if (!v.is_string()) fail(key, "must be a string");
+  return v.get<std::string>();
+}
+
+std::string Object::choice(const std::string& key, std::string fallback,
+                           const std::vector<std::string>& choices) {
+  const std::string v = text(key, std::move(fallback));
+  for (const auto& c : choices)
+    if (c == v) return v;
+  std::string list;
+  for (const auto& c : choices)
+    list += (list.empty() ? "" : ", ") + c;
+  fail(key, "must be one of " + list + ", got \"" + v + "\"");
+}
+
+Object Object::child(const std::string& key) {
+  if (!object_.contains(key)) return Object(nlohmann::json::object(), file_, key_path(key));
+  return Object(get(key), file_, key_path(key));
+}
+
+std::vector<Object> Object::children(const std::string& key) {
+  std::vector<Object> out;
+  if (!object_.contains(key)) return out;
+  const auto& v = get(key);
+  if (!v.is_array()) fail(key, "must be an array of objects");
+  for (std::size_t i = 0; i < v.size(); ++i)
+    out.emplace_back(v[i], file_, key_path(key) + "[" + std::to_string(i) + "]");
+  return out;
+}
+
+void Object::finish() const {
+  for (const auto& [key, value] : object_.items())
+    if (!used_.count(key)) fail(key, "unknown key");
+}
+
+}  // namespace tpf::json

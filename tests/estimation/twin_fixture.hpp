@@ -1,0 +1,95 @@
+// Short, seeded digital-twin logs turned into estimator samples, and the twin's nominal model.
+// Everything here is simulated.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "offline/log/log.hpp"
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/simulate.hpp"
+#include "support/arm_fixture.hpp"
+#include "tpf/estimation/estimator.hpp"
+#include "tpf/friction/friction_file.hpp"
+
+namespace tpf::test {
+
+inline constexpr int kPads = 11;
+using ArmSample = EstimatorSample<double, kJoints, kPads>;
+using ArmEstimator = Estimator<double, kJoints, kPads>;
+/// Current noise of the twin's drives (sensors.current_noise_ma) with 1 mA rounding.
+inline constexpr double kCurrentNoiseMa = 6.0;
+
+/// The simulated log of data/scenarios/<scenario>.json, cached per (scenario, seed, duration).
+inline const offline::Log& twin_log(const std::string& scenario, unsigned seed, double duration) {
+  static std::map<std::tuple<std::string, unsigned, double>, offline::Log> cache;
+  const auto key = std::make_tuple(scenario, seed, duration);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    const offline::Scenario s =
+        offline::load_scenario(data_path("scenarios/" + scenario + ".json"));
+    it = cache.emplace(key, offline::simulate_to_log(s, seed, duration)).first;
+  }
+  return it->second;
+}
+
+/// Rows of a log as estimator samples (effort = i<j> in mA, no q̈: the estimator derives it).
+inline std::vector<ArmSample> samples_from_log(const offline::Log& log) {
+  std::vector<ArmSample> samples(static_cast<std::size_t>(log.rows()));
+  const int t = log.column("t");
+  std::array<int, kJoints> q{}, dq{}, i{};
+  for (int j = 0; j < kJoints; ++j) {
+    q[j] = log.column(offline::indexed_name("q", j + 1));
+    dq[j] = log.column(offline::indexed_name("dq", j + 1));
+    i[j] = log.column(offline::indexed_name("i", j + 1));
+  }
+  std::array<int, kPads> p{};
+  for (int k = 0; k < kPads; ++k)
+    p[k] = log.column(offline::indexed_name("p", k + 1));
+  for (Eigen::Index r = 0; r < log.rows(); ++r) {
+    ArmSample& s = samples[static_cast<std::size_t>(r)];
+    s.t = log.values(r, t);
+    for (int j = 0; j < kJoints; ++j) {
+      s.q[j] = log.values(r, q[j]);
+      s.dq[j] = log.values(r, dq[j]);
+      s.effort[j] = log.values(r, i[j]);
+    }
+    for (int k = 0; k < kPads; ++k)
+      s.pressure[k] = log.values(r, p[k]);
+  }
+  return samples;
+}
+
+/// The twin's nominal model in mA: the true rigid body and the memoryless Stribeck curve of
+/// data/arm4.friction.json converted to mA (the twin adds LuGre memory on top).
+inline NominalModel<double, kJoints> twin_nominal() {
+  auto f = load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json"));  // N·m
+  const Vec scale = effort_scale<kJoints>(arm(), "mA");
+  for (Vec* v : {&f.coulomb, &f.static_friction, &f.viscous, &f.load_coulomb, &f.load_viscous})
+    *v = v->cwiseProduct(scale);
+  return nominal_from_model<kJoints>(arm(), f, scale);
+}
+
+inline std::vector<Pad> twin_pads() {
+  return load_pads(data_path("arm4.pads.json"), arm());
+}
+
+/// Parameters for the twin: pad gain for the twin's 1.5 kPa/N on a 25 cm² pad, static dead band
+/// from the current noise.
+inline EstimatorParameters<double, kJoints> twin_parameters() {
+  EstimatorParameters<double, kJoints> p;
+  p.skin.force_gain = 1.0 / (1.5 * 1000.0 * 0.0025);
+  const double noise = std::sqrt(kCurrentNoiseMa * kCurrentNoiseMa + 1.0 / 12.0);
+  p.static_dead_band = static_dead_band_from_noise<double, kJoints>(Vec::Constant(noise), 5);
+  return p;
+}
+
+/// Per joint mA per N·m of the twin (1000/K_t).
+inline Vec effort_per_newton_metre() {
+  return effort_scale<kJoints>(arm(), "mA");
+}
+
+}  // namespace tpf::test

@@ -1,0 +1,164 @@
+// The core nominal model: prediction identities, parameter file round trip and errors.
+#include "tpf/estimation/nominal_model.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/allocation_counter.hpp"
+#include "support/arm_fixture.hpp"
+#include "tpf/friction/friction_file.hpp"
+
+namespace tpf::test {
+namespace {
+
+using Nominal = NominalModel<double, kJoints>;
+
+std::filesystem::path temp_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("tpf_nominal_" + std::to_string(::getpid()) + "_" + name);
+}
+
+Nominal twin_nominal() {
+  const auto friction = load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json"));
+  return nominal_from_model<kJoints>(arm(), friction, effort_scale<kJoints>(arm(), "mA"));
+}
+
+TEST(NominalModel, RigidPartOfTheTrueModelEqualsRneaInEffortUnits) {
+  const Nominal nominal = twin_nominal();
+  EXPECT_LT(nominal.base_count, 11 * kJoints);
+  EXPECT_GT(nominal.base_count, 10);
+  ArmData data, reference;
+  RandomStates states(3);
+  for (int s = 0; s < 20; ++s) {
+    const Vec q = states.vector(2.0), dq = states.vector(1.0), ddq = states.vector(3.0);
+    Vec rigid, friction;
+    predict_effort(nominal, data, q, dq, ddq, rigid, friction);
+    const Vec tau = rnea(arm(), reference, q, dq, ddq);
+    const Vec expected_ma = tau.cwiseProduct(arm().torque_constant.cwiseInverse()) * 1000.0;
+    EXPECT_LT((rigid - expected_ma).norm(), 1e-7 * expected_ma.norm()) << "state " << s;
+    const Vec g = compute_gravity(arm(), reference, q).cwiseAbs();
+    EXPECT_LT((friction - stribeck_friction(nominal.friction, dq, g)).norm(), 1e-12);
+  }
+}
+
+TEST(NominalModel, AddedEffectsEnterTheRigidPart) {
+  Nominal nominal = twin_nominal();
+  nominal.added.spring_stiffness[1] = 40.0;
+  nominal.added.spring_offset[1] = -5.0;
+  nominal.added.ripple_count = 1;
+  nominal.added.ripple[0] = {2, 12.0, false, 30.0, -10.0};
+  nominal.added.coupling_velocity(0, 1) = 7.0;
+  ArmData data;
+  const Vec q(0.1, 0.2, 0.3, 0.4), dq(0.5, -0.5, 0.0, 0.2), ddq = Vec::Zero();
+  Vec rigid, friction, rigid0, friction0;
+  predict_effort(nominal, data, q, dq, ddq, rigid, friction);
+  predict_effort(twin_nominal(), data, q, dq, ddq, rigid0, friction0);
+  const Vec d = rigid - rigid0;
+  EXPECT_NEAR(d[0], 7.0 * -0.5, 1e-9);
+  EXPECT_NEAR(d[1], 40.0 * 0.2 - 5.0, 1e-9);
+  EXPECT_NEAR(d[2], 30.0 * std::sin(12.0 * 0.3) - 10.0 * std::cos(12.0 * 0.3), 1e-9);
+  EXPECT_NEAR(d[3], 0.0, 1e-12);
+  EXPECT_EQ(friction, friction0);
+  nominal.added.thermal_viscous[3] = 0.5;
+  nominal.added.reference_temperature = 30.0;
+  EXPECT_NEAR(thermal_friction(nominal, dq, Vec::Constant(40.0))[3], 0.5 * 10.0 * 0.2, 1e-12);
+}
+
+TEST(NominalModel, PredictionIsAllocationFree) {
+  const Nominal nominal = twin_nominal();
+  ArmData data;
+  Vec rigid, friction;
+  const Vec q = Vec::Constant(0.3), dq = Vec::Constant(0.1), ddq = Vec::Constant(-0.2);
+  AllocationCounter counter;
+  for (int i = 0; i < 10; ++i)
+    predict_effort(nominal, data, q, dq, ddq, rigid, friction);
+  EXPECT_EQ(counter.count(), 0u);
+}
+
+TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
+  Nominal nominal = twin_nominal();
+  nominal.effort_unit = "mA";
+  nominal.friction.load_coulomb[2] = 3.0;
+  nominal.added.spring_stiffness[1] = 40.0;
+  nominal.added.ripple_count = 1;
+  nominal.added.ripple[0] = {3, 50.0, true, 1.0, 2.0};
+  nominal.added.coupling_acceleration(2, 0) = 0.25;
+  nominal.added.effort_delay_s = 0.005;
+  const auto path = temp_path("roundtrip.json");
+  save_nominal_model<kJoints>(path, nominal, "test", R"({"rmse": [1, 2, 3, 4]})");
+  const Nominal loaded = load_nominal_model<kJoints>(path, data_path("arm4.robot.json"));
+  std::filesystem::remove(path);
+  EXPECT_EQ(loaded.effort_unit, "mA");
+  EXPECT_EQ(loaded.base_count, nominal.base_count);
+  EXPECT_EQ(loaded.added.ripple_count, 1);
+  EXPECT_TRUE(loaded.added.ripple[0].motor_side);
+  EXPECT_DOUBLE_EQ(loaded.added.effort_delay_s, 0.005);
+  ArmData data;
+  RandomStates states(5);
+  for (int s = 0; s < 10; ++s) {
+    const Vec q = states.vector(2.0), dq = states.vector(1.0), ddq = states.vector(3.0);
+    Vec r1, f1, r2, f2;
+    predict_effort(nominal, data, q, dq, ddq, r1, f1);
+    predict_effort(loaded, data, q, dq, ddq, r2, f2);
+    EXPECT_LT((r1 - r2).norm(), 1e-9 * (1.0 + r1.norm()));
+    EXPECT_LT((f1 - f2).norm(), 1e-12 * (1.0 + f1.norm()));
+  }
+}
+
+// Writes `text` to a file, loads it and returns the error message ("" when it loads).
+std::string load_error(const std::string& text) {
+  const auto path = temp_path("bad.json");
+  std::ofstream(path) << text;
+  std::string message;
+  try {
+    load_nominal_model<kJoints>(path, data_path("arm4.robot.json"));
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  std::filesystem::remove(path);
+  return message;
+}
+
+TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
+  Nominal nominal = twin_nominal();
+  nominal.effort_unit = "mA";
+  const auto path = temp_path("good.json");
+  save_nominal_model<kJoints>(path, nominal);
+  std::ifstream in(path);
+  const nlohmann::json good = nlohmann::json::parse(in);
+  std::filesystem::remove(path);
+
+  auto with = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = good;
+    edit(j);
+    return load_error(j.dump());
+  };
+  EXPECT_EQ(with([](nlohmann::json&) {}), "");
+  EXPECT_NE(with([](nlohmann::json& j) { j["joints"] = 3; }).find("joints: the file is for 3"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["friction"].erase("viscous");
+            }).find("friction.viscous: missing"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["friction"]["coulomb"][1] = -1.0;
+            }).find("friction.coulomb[1]: must be >="),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["rigid_body"][0]["name"] = "Qxx9";
+            }).find("rigid_body[0].name: unknown rigid-body parameter 'Qxx9'"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) { j["format"] = "tpf-robot"; }).find("format"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) { j["colour"] = 1; }).find("colour: unknown key"),
+            std::string::npos);
+  EXPECT_NE(load_error("{\"format\": \"tpf-params\",\n oops").find("bad.json:2"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace tpf::test
