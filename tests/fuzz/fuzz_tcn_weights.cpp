@@ -1,6 +1,8 @@
 // Fuzz target: any bytes as a TCN weight file → read_tcn_weight_file → load into a small compiled
-// network (2 inputs, 4 channels, 2 levels, kernel 2, 1 output) → one step. Contract: finite folded
-// weights and a finite output for a finite input, or a one-line tpf::Error naming the file.
+// network (2 inputs, 4 channels, 2 levels, kernel 2, 1 output). Contract: finite folded weights
+// (the normalisation 1/σ included), or a one-line tpf::Error naming the file.
+#include <memory>
+
 #include "fuzz_support.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
 

@@ -33,10 +33,10 @@ TEST(DeviceFuzzRegressions, DecodePacketRefusesLengthAboveTheProtocolMaximum) {
     EXPECT_FALSE(decode_packet(raw, true, packet)) << length;
     EXPECT_FALSE(decode_packet(raw, false, packet)) << length;
   }
-  // The largest legal packet still decodes: LEN 1024 → 1021 parameters after INST and ERR.
+  // The largest legal status packet still decodes: LEN 1024 = INST + ERR + 1020 parameters + CRC.
   const auto largest = raw_packet(kMaxLength);
   ASSERT_TRUE(decode_packet(largest, false, packet));
-  EXPECT_EQ(packet.param_count, kMaxLength - 3);
+  EXPECT_EQ(packet.param_count, kMaxLength - 4);
 }
 
 // The receiver never hands such a packet on: it drops the header and resynchronises on the

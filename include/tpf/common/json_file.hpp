@@ -13,6 +13,12 @@ namespace tpf::json {
 
 /// Parses a JSON file; tpf::Error names the file, line and column of a syntax error.
 nlohmann::json read_file(const std::filesystem::path& path);
+/// Throws the tpf::Error for a file nlohmann::json could not parse: "file:line: not valid JSON:
+/// <what>". `byte` is parse_error::byte (1-based offset of the error), or 0 for other parse
+/// exceptions (e.g. out_of_range 406, a number like 1e999 too large for a double), whose line is
+/// that of the token quoted in `what`.
+[[noreturn]] void fail_unparsable(const std::filesystem::path& path, std::size_t byte,
+                                  std::string_view what);
 
 /// Checks `"format": <format>` and `"version": <= max_version`.
 void check_format(const nlohmann::json& j, const std::string& file, std::string_view format,

@@ -1,7 +1,9 @@
 #include "tpf/common/json_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "tpf/common/error.hpp"
@@ -15,14 +17,29 @@ nlohmann::json read_file(const std::filesystem::path& path) {
   try {
     return nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
-    // e.byte is the offset of the error; turn it into a line number.
-    std::ifstream again(path);
-    long line = 1;
-    char c;
-    for (std::size_t i = 1; i < e.byte && again.get(c); ++i)
-      if (c == '\n') ++line;
-    throw Error::at(file, line, "", std::string("not valid JSON: ") + e.what());
+    fail_unparsable(path, e.byte, e.what());
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    fail_unparsable(path, 0, e.what());
   }
+}
+
+void fail_unparsable(const std::filesystem::path& path, std::size_t byte, std::string_view what) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (byte == 0) {  // no offset: find the token the message quotes, e.g. "parsing '1e999'"
+    const std::size_t open = what.find('\'');
+    const std::size_t close = open == std::string_view::npos ? open : what.find('\'', open + 1);
+    if (close != std::string_view::npos) {
+      const std::size_t at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) byte = at + 1;
+    }
+  }
+  const long line = byte == 0 ? 0
+                              : 1 + std::count(text.begin(),
+                                               text.begin() + static_cast<std::ptrdiff_t>(
+                                                                  std::min(byte - 1, text.size())),
+                                               '\n');
+  throw Error::at(path.string(), line, "", std::string("not valid JSON: ").append(what));
 }
 
 void check_format(const nlohmann::json& j, const std::string& file, std::string_view format,
@@ -34,8 +51,8 @@ void check_format(const nlohmann::json& j, const std::string& file, std::string_
   const double version = number(j, file, "", "version");
   if (version > max_version)
     throw Error::at(file, 0, "version",
-                    "is " + std::to_string(static_cast<int>(version)) +
-                        "; this tpf reads up to version " + std::to_string(max_version));
+                    "is " + j.at("version").dump() + "; this tpf reads up to version " +
+                        std::to_string(max_version));
 }
 
 const nlohmann::json& member(const nlohmann::json& j, const std::string& file,

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "tpf/common/error.hpp"
+#include "tpf/common/json_file.hpp"
 
 namespace tpf::json {
 
@@ -94,13 +95,9 @@ Object Object::read_file(const std::filesystem::path& path) {
   try {
     j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
-    // e.byte is the offset of the error; turn it into a line number.
-    std::ifstream again(path);
-    long line = 1;
-    char c;
-    for (std::size_t i = 1; i < e.byte && again.get(c); ++i)
-      if (c == '\n') ++line;
-    throw Error::at(file, line, "", std::string("not valid JSON: ") + e.what());
+    tpf::json::fail_unparsable(path, e.byte, e.what());
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    tpf::json::fail_unparsable(path, 0, e.what());
   }
   return Object(j, file, "");
 }
