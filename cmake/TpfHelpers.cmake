@@ -6,6 +6,14 @@ if(TPF_SANITIZE)
                                                 -fno-sanitize-recover=all)
   target_link_options(tpf_warnings INTERFACE -fsanitize=${TPF_SANITIZE})
 endif()
+# Fuzzing (tests/fuzz): coverage instrumentation for libFuzzer on every project target.
+option(TPF_FUZZ "Build tests/fuzz as libFuzzer targets (needs clang)" OFF)
+if(TPF_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "TPF_FUZZ needs clang (libFuzzer); use the 'sanitize' preset")
+  endif()
+  target_compile_options(tpf_warnings INTERFACE -fsanitize=fuzzer-no-link)
+endif()
 
 # Adds every immediate subfolder of the current source folder that has a CMakeLists.txt.
 # Each concept (kinematics, nn, sim, ...) owns its folder; nothing central needs editing to add one.

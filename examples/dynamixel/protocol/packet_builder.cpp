@@ -55,7 +55,7 @@ std::size_t build_status(std::uint8_t id, StatusError error, std::span<const std
 bool decode_packet(std::span<const std::uint8_t> raw, bool unstuff, Packet& out) noexcept {
   if (raw.size() < kHeaderBytes + 3) return false;
   const std::size_t length = raw[kOffsetLength] | (std::size_t{raw[kOffsetLength + 1]} << 8);
-  if (raw.size() != length + kHeaderBytes || length < 3) return false;
+  if (raw.size() != length + kHeaderBytes || length < 3 || length > kMaxLength) return false;
   std::array<std::uint8_t, kMaxLength> body;
   const auto stuffed = raw.subspan(kOffsetInstruction, length - 2);
   const std::size_t n =

@@ -16,6 +16,7 @@
 #include "tpf/estimation/estimator_status.hpp"
 #include "tpf/estimation/estimator_types.hpp"
 #include "tpf/estimation/nominal_model.hpp"
+#include "tpf/estimation/repeated_reading_detector.hpp"
 #include "tpf/estimation/static_friction_tracker.hpp"
 #include "tpf/kinematics/contact_frame.hpp"
 #include "tpf/kinematics/point_jacobian.hpp"
@@ -53,6 +54,8 @@ class Estimator {
         skin_(pads, parameters.skin, N),
         tracker_(parameters.static_friction),
         acceleration_(parameters.acceleration_cutoff_hz, parameters.acceleration_damping),
+        frozen_joints_(parameters.frozen_limit_samples),
+        stuck_pads_(parameters.frozen_limit_samples),
         compensator_(std::move(compensator)) {}
 
   /// Forgets the past: the next sample starts every filter, the state machine and the TCN.
@@ -78,6 +81,8 @@ class Estimator {
     if (started_) {
       h = sample.t - output_.t;
       if (h > parameters_.max_gap_factor * parameters_.sample_period_s) status |= kStatusTimeGap;
+      if (frozen_joints_.update(joint_reading(sample))) status |= kStatusFrozenInput;
+      if (stuck_pads_.update(sample.pressure)) status |= kStatusPadStuck;
     } else {
       start(sample);
     }
@@ -176,8 +181,17 @@ class Estimator {
     return std::isfinite(s.t) && s.q.allFinite() && s.dq.allFinite() && s.effort.allFinite();
   }
 
+  /// A joint's reading as one row: [q, q̇, effort].
+  static Eigen::Matrix<S, N, 3> joint_reading(const Sample& s) noexcept {
+    Eigen::Matrix<S, N, 3> r;
+    r << s.q, s.dq, s.effort;
+    return r;
+  }
+
   void start(const Sample& sample) noexcept {
     started_ = true;
+    frozen_joints_.reset(joint_reading(sample));
+    stuck_pads_.reset(sample.pressure);
     acceleration_.reset(sample.dq);
     Eigen::Matrix<S, P, 1> p = sample.pressure;
     for (int k = 0; k < P; ++k)
@@ -204,6 +218,8 @@ class Estimator {
   Skin<S, P> skin_;
   StaticFrictionTracker<S, N> tracker_;
   AccelerationFilter<S, N> acceleration_;
+  RepeatedReadingDetector<S, N, 3> frozen_joints_;
+  RepeatedReadingDetector<S, P> stuck_pads_;
   Compensator compensator_;
   Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
   Output output_;

@@ -16,6 +16,9 @@ struct EstimatorParameters {
   S position_margin_rad = S(0.05);
   S acceleration_cutoff_hz = S(20);  ///< filtered derivative of q̇ when q̈ is not given
   S acceleration_damping = S(0.8);
+  /// A reading repeated exactly for more samples than this is flagged frozen (joints) or stuck
+  /// (pads); 200 = 0.5 s at 400 Hz. 0 disables (e.g. for noise-free simulated data).
+  int frozen_limit_samples = 200;
 
   StaticFrictionSettings<S> static_friction;
   SkinSettings<S> skin;

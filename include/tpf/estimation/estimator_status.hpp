@@ -24,6 +24,12 @@ enum EstimatorStatus : std::uint32_t {
   kStatusWrenchUnobservable = 1u << 5,
   /// The given q̈ was not finite: the filtered derivative of q̇ was used instead.
   kStatusAccelerationEstimated = 1u << 6,
+  /// A joint's q, q̇ and effort have all repeated bit for bit for more than frozen_limit_samples
+  /// samples while t advanced: a frozen sensor or a stalled bus. Processed as given; distrust it.
+  kStatusFrozenInput = 1u << 7,
+  /// A pad's pressure has repeated bit for bit for more than frozen_limit_samples samples (stuck
+  /// or saturated): its contact flag may be stale. Clears as soon as the reading changes.
+  kStatusPadStuck = 1u << 8,
 };
 
 }  // namespace tpf

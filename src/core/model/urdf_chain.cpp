@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
+#include <vector>
 
 #include "tpf/common/error.hpp"
 #include "tpf/model/robot_description.hpp"
@@ -92,6 +94,37 @@ void fold_fixed_subtree(const urdf::Link& link, const Transform<double>& pose,
   }
 }
 
+/// urdfdom links own their children (shared_ptr) and does not detect loops (ros/urdfdom#154): a
+/// URDF with a loop leaves a reference cycle. Cutting every child list on exit frees any model.
+struct CutChildLinksOnExit {
+  const urdf::ModelInterface& model;
+  ~CutChildLinksOnExit() {
+    for (const auto& [name, link] : model.links_)
+      link->child_links.clear();
+  }
+};
+
+/// Refuses a link reached twice from the root, or never: a loop (or two paths to one link) is not
+/// a tree, and walking it would never end.
+void require_tree(const urdf::ModelInterface& model, const std::string& file) {
+  std::set<const urdf::Link*> seen;
+  std::vector<const urdf::Link*> open = {model.getRoot().get()};
+  while (!open.empty()) {
+    const urdf::Link* link = open.back();
+    open.pop_back();
+    if (!seen.insert(link).second)
+      throw Error::at(file, 0, "link '" + link->name + "'",
+                      "is reached twice from the root (the URDF has a loop); tpf needs a tree");
+    for (const auto& child : link->child_links)
+      open.push_back(child.get());
+  }
+  for (const auto& [name, link] : model.links_)
+    if (!seen.contains(link.get()))
+      throw Error::at(file, 0, "link '" + name + "'",
+                      "is not connected to the root link '" + model.getRoot()->name +
+                          "' (the URDF has a loop); tpf needs a tree");
+}
+
 }  // namespace
 
 ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
@@ -110,6 +143,9 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
         file, 0, "",
         "not a valid URDF" + (handler.messages.empty() ? "" : " (" + handler.messages + ")"));
   }
+
+  const CutChildLinksOnExit cut{*urdf};
+  require_tree(*urdf, file);
 
   ChainDescription chain;
   chain.source = file;

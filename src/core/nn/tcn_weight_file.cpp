@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "tpf/common/error.hpp"
+#include "tpf/common/json_object.hpp"
 
 namespace tpf {
 namespace {
@@ -145,7 +146,9 @@ TcnWeightFile read_tcn_weight_file(const std::string& path) {
   try {
     json = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
-    fail(path, "", std::string("not valid JSON: ") + e.what());
+    tpf::json::fail_unparsable(path, e.byte, e.what());
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    tpf::json::fail_unparsable(path, 0, e.what());
   }
 
   const nlohmann::json& format = member(json, "format", path, "format");

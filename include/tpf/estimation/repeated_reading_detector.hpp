@@ -1,0 +1,51 @@
+// Frozen-sensor detection: a live reading carries noise, so it never repeats bit for bit for long.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+
+namespace tpf {
+
+/// Flags channels whose reading has repeated exactly for more than `limit` consecutive samples.
+/// A channel is a row of C components (e.g. a joint's q, q̇ and effort, or a pad's pressure); it
+/// repeats when every component equals the previous sample's. A live PH54 current (a few mA of
+/// noise on 1 mA steps) or pad pressure (0.03 kPa on 0.01 kPa ADC steps) never repeats for
+/// hundreds of samples; a stalled bus, a stuck driver buffer or a blocked pad does. NaN never
+/// equals anything, so a missing value ends a run. Per cycle: no allocation, no exception.
+template <typename S, int M, int C = 1>
+class RepeatedReadingDetector {
+  static_assert(M >= 0 && M <= 32, "the result is a 32-bit channel mask");
+
+ public:
+  using Reading = Eigen::Matrix<S, M, C>;
+
+  /// `limit` ≤ 0 disables the detection.
+  explicit RepeatedReadingDetector(int limit = 0) noexcept : limit_(limit) {}
+
+  /// Starts over from `reading` (no run).
+  void reset(const Reading& reading) noexcept {
+    last_ = reading;
+    runs_.fill(0);
+  }
+
+  /// Feeds one sample; returns the mask of channels frozen now (bit k: channel k repeated for more
+  /// than `limit` samples in a row).
+  std::uint32_t update(const Reading& reading) noexcept {
+    std::uint32_t frozen = 0;
+    for (int k = 0; k < M; ++k) {
+      const bool same = (reading.row(k).array() == last_.row(k).array()).all();
+      runs_[k] = same ? runs_[k] + 1 : 0;
+      if (limit_ > 0 && runs_[k] > limit_) frozen |= 1u << k;
+    }
+    last_ = reading;
+    return frozen;
+  }
+
+ private:
+  int limit_;
+  Reading last_ = Reading::Zero();
+  std::array<int, M> runs_{};
+};
+
+}  // namespace tpf

@@ -1,0 +1,148 @@
+// The `tpf` binary under bad files: a one-line error naming the file and the place, a non-zero
+// exit, and no output file (nor temporary) left behind — also when a write fails mid-run.
+#include <gtest/gtest.h>
+
+#include <csignal>
+
+#include "cli_runner.hpp"
+
+namespace tpf::test {
+namespace {
+
+const std::string kData = TPF_TEST_DATA_DIR;
+
+/// A scenario of `seconds` on the shipped arm with the given extra JSON members.
+std::string scenario_json(double seconds, const std::string& extra = "") {
+  return "{\"kind\": \"excitation\", \"duration_s\": " + std::to_string(seconds) + extra + "}";
+}
+
+/// Expects a refused run: exit 1, one line "tpf: error: <file>...<place>...", nothing written.
+void expect_refused(const CliSandbox& box, const CliResult& r, const std::string& file,
+                    const std::string& place) {
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("tpf: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << "does not name " << file << ": " << r.err;
+  EXPECT_NE(r.err.find(place), std::string::npos) << "does not name " << place << ": " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(box / "out.csv"));
+  for (const std::string& name : box.files())
+    EXPECT_EQ(name.find(".tmp."), std::string::npos) << "temporary left behind: " << name;
+}
+
+TEST(CliBadFiles, EmptyScenario) {
+  CliSandbox box("empty_scenario");
+  box.write("s.json", "");
+  expect_refused(box, box.tpf("simulate --quiet --scenario s.json --out out.csv"), "s.json:1",
+                 "not valid JSON");
+}
+
+TEST(CliBadFiles, ScenarioTruncatedMidLineNamesLineAndColumn) {
+  CliSandbox box("truncated_scenario");
+  box.write("s.json", "{\n  \"kind\": \"excitation\",\n  \"duration_s\": 1");
+  expect_refused(box, box.tpf("simulate --quiet --scenario s.json --out out.csv"), "s.json",
+                 "line 3");
+}
+
+TEST(CliBadFiles, ScenarioWithWrongKindUnknownKeyOrHugeValueNamesTheKey) {
+  CliSandbox box("bad_scenario");
+  box.write("kind.json", "{\"kind\": \"exitation\"}");
+  expect_refused(box, box.tpf("simulate --quiet --scenario kind.json --out out.csv"), "kind.json",
+                 "kind");
+  box.write("key.json", scenario_json(1, ", \"sensors\": {\"current_noize_ma\": 1}"));
+  expect_refused(box, box.tpf("simulate --quiet --scenario key.json --out out.csv"), "key.json",
+                 "sensors.current_noize_ma");
+  box.write("huge.json", scenario_json(1e300));
+  expect_refused(box, box.tpf("simulate --quiet --scenario huge.json --out out.csv"), "huge.json",
+                 "duration_s");
+  // 1e999 overflows a double while parsing: was "tpf: unexpected error: [json.exception.
+  // out_of_range.406] number overflow parsing '1e999'" with exit 2 and no file name.
+  box.write("nan.json", "{\"kind\": \"excitation\",\n \"initial_q\": [0, 1e999, 0, 0]}");
+  expect_refused(box, box.tpf("simulate --quiet --scenario nan.json --out out.csv"), "nan.json:2",
+                 "1e999");
+}
+
+/// A robot file beside copies of the arm's pads, pointing at `urdf` (written beside it).
+void write_robot(const CliSandbox& box, const std::string& urdf) {
+  std::string robot = CliSandbox::slurp(kData + "/arm4.robot.json");
+  robot.replace(robot.find("\"arm4.urdf\""), 11, "\"bad.urdf\"");
+  box.write("robot.json", robot);
+  box.write("bad.urdf", urdf);
+  std::filesystem::copy_file(kData + "/arm4.pads.json", box / "arm4.pads.json");
+}
+
+/// The arm's URDF with `from` replaced by `to`.
+std::string arm_urdf_with(const std::string& from, const std::string& to) {
+  std::string urdf = CliSandbox::slurp(kData + "/arm4.urdf");
+  const auto at = urdf.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return urdf.replace(at, from.size(), to);
+}
+
+TEST(CliBadFiles, PrismaticJointInTheRobotsUrdfStopsTheSimulationBeforeAnyOutput) {
+  CliSandbox box("prismatic");
+  write_robot(box, arm_urdf_with("name=\"joint3\" type=\"revolute\"",
+                                 "name=\"joint3\" type=\"prismatic\""));
+  box.write("s.json", scenario_json(1, ", \"robot\": \"robot.json\""));
+  expect_refused(box, box.tpf("simulate --quiet --scenario s.json --out out.csv"), "bad.urdf",
+                 "joint 'joint3'");
+  expect_refused(box, box.tpf("info --robot robot.json"), "bad.urdf", "joint 'joint3'");
+}
+
+TEST(CliBadFiles, UrdfWithALoopIsRefusedNamingTheFile) {
+  CliSandbox box("loop");
+  // joint5 closes the chain: link5 → link1 gives link1 a second parent (a loop, not a tree).
+  write_robot(box, arm_urdf_with("</robot>", R"(<joint name="joint5" type="revolute">
+    <parent link="link5"/><child link="link1"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>)"));
+  expect_refused(box, box.tpf("info --robot robot.json"), "bad.urdf", "URDF");
+}
+
+TEST(CliBadFiles, MissingOutputFolderIsNamed) {
+  CliSandbox box("no_folder");
+  box.write("s.json", scenario_json(0.05));
+  const CliResult r = box.tpf("simulate --quiet --scenario s.json --out missing/out.csv");
+  expect_refused(box, r, "missing/out.csv", "cannot create");
+}
+
+TEST(CliBadFiles, WriteFailingMidRunLeavesTheOldOutputAndNoTemporary) {
+  CliSandbox box("disk_full");
+  box.write("s.json", scenario_json(20.0));
+  box.write("out.csv", "previous contents\n");
+  // 64 KiB file-size limit, SIGXFSZ ignored: the log write fails with EFBIG part-way through.
+  const CliResult r =
+      box.tpf("simulate --quiet --scenario s.json --out out.csv", "ulimit -f 64; trap '' XFSZ;");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("out.csv"), std::string::npos) << r.err;
+  EXPECT_EQ(CliSandbox::slurp(box / "out.csv"), "previous contents\n");
+  EXPECT_EQ(box.files(), (std::vector<std::string>{"out.csv", "s.json"}));
+}
+
+TEST(CliBadFiles, KilledRunNeverLeavesAHalfWrittenOutput) {
+  CliSandbox box("killed");
+  box.write("s.json", scenario_json(600.0));
+  // SIGTERM once the log is being written (its temporary exists), at most 60 s later. (A
+  // non-interactive shell starts background jobs with SIGINT ignored, so Ctrl-C is not testable
+  // this way; TERM ends the process the same way, without unwinding.)
+  const CliResult r = box.sh(
+      "\"$TPF\" simulate --quiet --scenario s.json --out out.csv & pid=$!; n=0; "
+      "while [ $n -lt 600 ] && ! ls -A | grep -q '^.out.csv.tmp.'; do sleep 0.1; n=$((n+1)); done; "
+      "kill -TERM $pid; wait $pid");
+  EXPECT_EQ(r.exit_code, 128 + SIGTERM) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(box / "out.csv"));
+  // What a killed process cannot remove is its hidden temporary, never the target (documented).
+  for (const std::string& name : box.files())
+    EXPECT_TRUE(name == "s.json" || name.rfind(".out.csv.tmp.", 0) == 0) << name;
+}
+
+TEST(CliBadFiles, UnknownCommandAndMissingFileExitNonZero) {
+  CliSandbox box("usage");
+  EXPECT_NE(box.tpf("no-such-command").exit_code, 0);
+  const CliResult r = box.tpf("simulate --scenario absent.json --out out.csv");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("absent.json"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(box / "out.csv"));
+}
+
+}  // namespace
+}  // namespace tpf::test

@@ -1,0 +1,54 @@
+// Robot files the fuzzers (tests/fuzz) hung or leaked on: each is a fixed regression test here,
+// and stays in the fuzz seed corpus (tests/fuzz/corpus/fuzz_urdf/).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tpf/common/error.hpp"
+#include "tpf/model/robot_description.hpp"
+
+namespace tpf {
+namespace {
+
+const std::filesystem::path kCorpus = TPF_RELIABILITY_CORPUS_DIR;
+
+std::string message_of(const std::filesystem::path& urdf) {
+  try {
+    load_urdf_chain(urdf);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// hang-loop.urdf: the arm with joint4 leading back to link2 (link2 → link3 → link4 → link2).
+// load_urdf_chain walked the loop forever, growing the chain until memory ran out.
+TEST(ModelFuzzRegressions, UrdfWithALoopIsRefusedNamingTheFileAndTheLink) {
+  const auto file = kCorpus / "fuzz_urdf" / "hang-loop.urdf";
+  const std::string msg = message_of(file);
+  EXPECT_EQ(msg.rfind(file.string(), 0), 0u) << msg;
+  EXPECT_NE(msg.find("link 'link2'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("loop"), std::string::npos) << msg;
+}
+
+// leak-self-loop.urdf: joint1 has link2 as parent and child. urdfdom kept the self-reference
+// alive after the model was dropped (LeakSanitizer), and the loader returned an empty chain.
+// Under ASan this test fails at exit if the cycle is not cut.
+TEST(ModelFuzzRegressions, UrdfWithASelfLoopIsRefusedAndFreed) {
+  const auto file = kCorpus / "fuzz_urdf" / "leak-self-loop.urdf";
+  const std::string msg = message_of(file);
+  EXPECT_EQ(msg.rfind(file.string(), 0), 0u) << msg;
+  EXPECT_NE(msg.find("link 'link2'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not connected to the root link 'link1'"), std::string::npos) << msg;
+}
+
+// The shipped arm still loads: the loop check accepts a tree.
+TEST(ModelFuzzRegressions, TheArmIsATree) {
+  EXPECT_EQ(load_urdf_chain(std::filesystem::path(TPF_TEST_DATA_DIR) / "arm4.urdf").joints.size(),
+            4u);
+}
+
+}  // namespace
+}  // namespace tpf
