@@ -118,7 +118,9 @@ TEST(EstimatorBadSamples, TimeGoingBackwardsIsFlaggedAndSkipped) {
         return true;
       },
       [](std::size_t r, const ArmEstimator::Output& o) {
-        if (r == kBad) EXPECT_EQ(o.status, kStatusStaleTime);
+        if (r == kBad) {
+          EXPECT_EQ(o.status, kStatusStaleTime);
+        }
       });
   expect_same(est->output(), reference);
 }
@@ -137,10 +139,15 @@ TEST(EstimatorBadSamples, BadPadPressureAndAccelerationAreFlaggedAndReplaced) {
           return true;
         },
         [&](std::size_t r, const ArmEstimator::Output& o) {
-          if (r == kBad) EXPECT_TRUE(o.status & kStatusPadDataInvalid);
-          if (r == kBad + 1) EXPECT_TRUE(o.status & kStatusAccelerationEstimated);
-          if (r > kBad + 1)
+          if (r == kBad) {
+            EXPECT_TRUE(o.status & kStatusPadDataInvalid);
+          }
+          if (r == kBad + 1) {
+            EXPECT_TRUE(o.status & kStatusAccelerationEstimated);
+          }
+          if (r > kBad + 1) {
             EXPECT_FALSE(o.status & (kStatusPadDataInvalid | kStatusAccelerationEstimated));
+          }
           ASSERT_TRUE(finite(o)) << "row " << r;
         });
     EXPECT_NEAR((est->output().external.torque - reference.external.torque).norm(), 0.0, 1e-6);
@@ -159,10 +166,11 @@ TEST(EstimatorBadSamples, LongGapIsFlaggedOnceAndFiltersStayFinite) {
   run(
       *est, [&](std::size_t r, ArmSample&) { return r < kBad || r >= first_after; },
       [&](std::size_t r, const ArmEstimator::Output& o) {
-        if (r >= first_after)
+        if (r >= first_after) {
           EXPECT_EQ(static_cast<bool>(o.status & kStatusTimeGap),
                     r == first_after || natural_gap(r))
               << "row " << r;
+        }
         ASSERT_TRUE(finite(o)) << "row " << r;
       });
 }
@@ -223,7 +231,9 @@ TEST(EstimatorBadSamples, PadStuckHighIsFlaggedAndContactRecovers) {
       [&](std::size_t r, const ArmEstimator::Output& o) {
         const bool stuck = r > kBad + static_cast<std::size_t>(limit) && r < end;
         EXPECT_EQ(static_cast<bool>(o.status & kStatusPadStuck), stuck) << "row " << r;
-        if (r > end + 400) EXPECT_EQ(est->skin().in_contact(5), clean->skin().in_contact(5)) << r;
+        if (r > end + 400) {
+          EXPECT_EQ(est->skin().in_contact(5), clean->skin().in_contact(5)) << r;
+        }
         ASSERT_TRUE(finite(o)) << "row " << r;
       });
 }

@@ -60,5 +60,29 @@ TEST(JsonFuzzRegressions, HugeVersionIsQuotedNotCast) {
   std::filesystem::remove(path);
 }
 
+// 300 000 nested '[': parsing succeeded, then copying the value (Object) recursed once per level
+// and overflowed the stack (ASan stack-overflow). Nesting is now refused past 64 levels, naming
+// the line where it happens, in every loader.
+TEST(JsonFuzzRegressions, DeepNestingIsRefusedNamingTheLine) {
+  const auto path = write(
+      "deep.json", "{\"format\":\n" + std::string(300000, '[') + std::string(300000, ']') + "}");
+  const std::string file = path.string();
+  for (const std::string& msg : {message_of([&] { json::read_file(path); }),
+                                 message_of([&] { json::Object::read_file(path); }),
+                                 message_of([&] { read_tcn_weight_file(file); })})
+    EXPECT_EQ(msg, file + ":2: nested deeper than 64 levels");
+  std::filesystem::remove(path);
+}
+
+// A tensor shape of four 10⁶ dimensions overflowed the signed product of the shape (UBSan
+// signed-integer-overflow); it is a value-count mismatch like any other.
+TEST(JsonFuzzRegressions, HugeTensorShapeIsAValueCountMismatch) {
+  const std::string msg = message_of([] {
+    read_tcn_weight_file(std::string(TPF_RELIABILITY_CORPUS_DIR) +
+                         "/fuzz_tcn_weights/crash-shape-product-overflow.json");
+  });
+  EXPECT_NE(msg.find("tensors.blocks.0.conv.weight.values"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace tpf

@@ -11,7 +11,8 @@
 
 namespace tpf::json {
 
-/// Parses a JSON file; tpf::Error names the file, line and column of a syntax error.
+/// Parses a JSON file; tpf::Error names the file, line and column of a syntax error. Nesting
+/// deeper than 64 levels is refused (every tpf file needs fewer than 5).
 nlohmann::json read_file(const std::filesystem::path& path);
 /// Throws the tpf::Error for a file nlohmann::json could not parse: "file:line: not valid JSON:
 /// <what>". `byte` is parse_error::byte (1-based offset of the error), or 0 for other parse

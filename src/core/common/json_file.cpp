@@ -9,13 +9,47 @@
 #include "tpf/common/error.hpp"
 
 namespace tpf::json {
+namespace {
+
+constexpr int kMaxDepth = 64;
+
+/// "file:line: nested deeper than 64 levels", the line where the 65th level opens.
+[[noreturn]] void fail_too_deep(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  long line = 1;
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (char c; in.get(c) && depth <= kMaxDepth;) {
+    if (c == '\n') ++line;
+    if (in_string) {
+      escaped = !escaped && c == '\\';
+      if (c == '"' && !escaped) in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  throw Error::at(path.string(), line, "",
+                  "nested deeper than " + std::to_string(kMaxDepth) + " levels");
+}
+
+}  // namespace
 
 nlohmann::json read_file(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::ifstream in(path);
   if (!in) throw Error::at(file, 0, "", "cannot open the file");
+  // Nesting is bounded: copying, printing or comparing a json value recurses once per level, so
+  // a file of 100 000 '[' would overflow the stack long after parsing succeeded.
+  const auto bounded_depth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxDepth) fail_too_deep(path);
+    return true;
+  };
   try {
-    return nlohmann::json::parse(in);
+    return nlohmann::json::parse(in, bounded_depth);
   } catch (const nlohmann::json::parse_error& e) {
     fail_unparsable(path, e.byte, e.what());
   } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double

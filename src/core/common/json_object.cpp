@@ -88,18 +88,7 @@ std::string Object::text(const std::string& key) {
 }
 
 Object Object::read_file(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw Error::at(file, 0, "", "cannot open the file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    tpf::json::fail_unparsable(path, e.byte, e.what());
-  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
-    tpf::json::fail_unparsable(path, 0, e.what());
-  }
-  return Object(j, file, "");
+  return Object(json::read_file(path), path.string(), "");
 }
 
 Object Object::read_document(const std::filesystem::path& path, std::string_view format,

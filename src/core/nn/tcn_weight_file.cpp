@@ -76,8 +76,11 @@ TcnTensor read_tensor(const nlohmann::json& json, const std::string& path,
   }
   tensor.values =
       finite_numbers(member(json, "values", path, field + ".values"), path, field + ".values");
-  const long long expected =
-      std::accumulate(tensor.shape.begin(), tensor.shape.end(), 1LL, std::multiplies<long long>());
+  // Dimensions are ≤ 10⁶ < 2²⁰: capping the running product at 2⁴⁰ keeps it exact up to any real
+  // value count and free of signed overflow for any number of dimensions.
+  long long expected = 1;
+  for (const int d : tensor.shape)
+    expected = std::min(expected * d, 1LL << 40);
   if (static_cast<long long>(tensor.values.size()) != expected) {
     fail(path, field + ".values",
          std::to_string(tensor.values.size()) + " values for shape " + shape_text(tensor.shape) +
@@ -142,14 +145,7 @@ void TcnWeightFile::require_architecture(int in, int hid, int lev, int ker, int 
 TcnWeightFile read_tcn_weight_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) fail(path, "", "cannot open the TCN weight file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    tpf::json::fail_unparsable(path, e.byte, e.what());
-  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
-    tpf::json::fail_unparsable(path, 0, e.what());
-  }
+  const nlohmann::json json = tpf::json::read_file(path);
 
   const nlohmann::json& format = member(json, "format", path, "format");
   if (format != kFormat) fail(path, "format", "expected \"tpf-tcn-weights\", got " + format.dump());
