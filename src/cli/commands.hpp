@@ -8,6 +8,10 @@ namespace tpf::cli {
 void register_info_command(CLI::App& app);
 void register_demo_command(CLI::App& app);
 void register_simulate_command(CLI::App& app);
+void register_identify_command(CLI::App& app);
+void register_diagnose_command(CLI::App& app);
+void register_train_command(CLI::App& app);
+void register_evaluate_command(CLI::App& app);
 
 /// Prints a robot file's model, drives, pads and a few computed quantities (used by info and demo).
 void print_robot_summary(const std::string& robot_file);

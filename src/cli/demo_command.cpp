@@ -1,24 +1,44 @@
-// `tpf demo`: the main job. It grows into the whole loop on the digital twin
-// (simulate → identify → diagnose → train → evaluate → report); today it loads the arm and prints
-// it.
+// `tpf demo`: the main job — the whole loop on the digital twin (simulate → nominal model →
+// train → evaluate → report), with one progress line per stage.
+#include <cstdio>
 #include <filesystem>
-#include <iostream>
+#include <memory>
 
 #include "commands.hpp"
-#include "offline/common/data_files.hpp"
+#include "offline/evaluate/evaluation_report.hpp"
+#include "offline/pipeline/demo_pipeline.hpp"
 
 namespace tpf::cli {
 
 void register_demo_command(CLI::App& app) {
+  auto o = std::make_shared<offline::DemoOptions>();
+  auto out = std::make_shared<std::string>("tpf-demo");
   auto* cmd = app.add_subcommand(
       "demo", "Run the whole loop on the digital twin and write a report (the README's main job)");
-  auto out = std::make_shared<std::string>("tpf-demo");
-  cmd->add_option("--out", *out, "output folder for logs, parameters and the report")
+  cmd->add_option("--out", *out, "output folder for parameters, weights and the report")
       ->capture_default_str();
-  cmd->callback([out] {
-    std::filesystem::create_directories(*out);
-    std::cout << "tpf demo (output in " << *out << ")\n\n";
-    print_robot_summary(offline::data_file("arm4.robot.json").string());
+  cmd->add_option("--train-seconds", o->training_budget_s, "training budget [s]")
+      ->capture_default_str();
+  cmd->add_option("--train-duration", o->training_s, "simulated training log [s]")
+      ->capture_default_str();
+  cmd->add_option("--test-duration", o->test_s, "simulated held-out excitation log [s]")
+      ->capture_default_str();
+  cmd->add_option("--split-cutoff", o->split_cutoff_hz,
+                  "cut-off of the zero-phase low/high split of the TCN target [Hz]")
+      ->capture_default_str();
+  cmd->add_flag("!--all-joints", o->per_joint,
+                "one network for all joints instead of one per joint (the default)");
+  cmd->callback([o, out] {
+    o->out = *out;
+    std::printf("tpf demo: the whole loop on the digital twin (SIMULATED), output in %s\n",
+                out->c_str());
+    const auto result = offline::run_demo(*o, [](const std::string& line) {
+      std::printf("%s\n", line.c_str());
+      std::fflush(stdout);
+    });
+    std::printf("\n%s", offline::evaluation_headline(result.evaluation).c_str());
+    std::printf("\ntpf demo: done in %.0f s; report: %s\n", result.seconds,
+                std::filesystem::absolute(result.index).string().c_str());
   });
 }
 

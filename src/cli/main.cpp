@@ -15,6 +15,10 @@ int main(int argc, char** argv) {
   tpf::cli::register_info_command(app);
   tpf::cli::register_demo_command(app);
   tpf::cli::register_simulate_command(app);
+  tpf::cli::register_identify_command(app);
+  tpf::cli::register_diagnose_command(app);
+  tpf::cli::register_train_command(app);
+  tpf::cli::register_evaluate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -87,7 +87,7 @@ TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   nominal.added.ripple_count = 1;
   nominal.added.ripple[0] = {3, 50.0, true, 1.0, 2.0};
   nominal.added.coupling_acceleration(2, 0) = 0.25;
-  nominal.added.effort_delay_s = 0.005;
+  nominal.added.effort_lead_s = 0.005;
   const auto path = temp_path("roundtrip.json");
   save_nominal_model<kJoints>(path, nominal, "test", R"({"rmse": [1, 2, 3, 4]})");
   const Nominal loaded = load_nominal_model<kJoints>(path, data_path("arm4.robot.json"));
@@ -96,7 +96,7 @@ TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   EXPECT_EQ(loaded.base_count, nominal.base_count);
   EXPECT_EQ(loaded.added.ripple_count, 1);
   EXPECT_TRUE(loaded.added.ripple[0].motor_side);
-  EXPECT_DOUBLE_EQ(loaded.added.effort_delay_s, 0.005);
+  EXPECT_DOUBLE_EQ(loaded.added.effort_lead_s, 0.005);
   ArmData data;
   RandomStates states(5);
   for (int s = 0; s < 10; ++s) {

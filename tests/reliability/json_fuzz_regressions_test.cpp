@@ -6,8 +6,8 @@
 #include <fstream>
 
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_file.hpp"
 #include "tpf/common/json_object.hpp"
+#include "tpf/common/json_parse.hpp"
 #include "tpf/friction/friction_file.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
 
@@ -40,23 +40,13 @@ TEST(JsonFuzzRegressions, NumberBeyondTheDoubleRangeNamesFileAndLine) {
                           "{\n  \"format\": \"tpf-friction\",\n  \"coulomb\": "
                           "[1, 1e999, 1, 1]\n}\n");
   const std::string file = path.string();
-  for (const std::string& msg : {message_of([&] { json::read_file(path); }),
+  for (const std::string& msg : {message_of([&] { json::parse_file(path); }),
                                  message_of([&] { json::Object::read_file(path); }),
                                  message_of([&] { load_stribeck_parameters<double, 4>(file); }),
                                  message_of([&] { read_tcn_weight_file(file); })}) {
     EXPECT_EQ(msg.rfind(file + ":3: not valid JSON: ", 0), 0u) << msg;
     EXPECT_NE(msg.find("1e999"), std::string::npos) << msg;
   }
-  std::filesystem::remove(path);
-}
-
-// A huge "version" was cast to int for the message (undefined behaviour, UBSan
-// float-cast-overflow). It is now quoted as written.
-TEST(JsonFuzzRegressions, HugeVersionIsQuotedNotCast) {
-  const auto path = write("version.json", R"({"format": "tpf-pads", "version": 1e300})");
-  const std::string msg =
-      message_of([&] { json::check_format(json::read_file(path), path.string(), "tpf-pads", 1); });
-  EXPECT_NE(msg.find("version: is 1e+300"), std::string::npos) << msg;
   std::filesystem::remove(path);
 }
 
@@ -67,7 +57,7 @@ TEST(JsonFuzzRegressions, DeepNestingIsRefusedNamingTheLine) {
   const auto path = write(
       "deep.json", "{\"format\":\n" + std::string(300000, '[') + std::string(300000, ']') + "}");
   const std::string file = path.string();
-  for (const std::string& msg : {message_of([&] { json::read_file(path); }),
+  for (const std::string& msg : {message_of([&] { json::parse_file(path); }),
                                  message_of([&] { json::Object::read_file(path); }),
                                  message_of([&] { read_tcn_weight_file(file); })})
     EXPECT_EQ(msg, file + ":2: nested deeper than 64 levels");

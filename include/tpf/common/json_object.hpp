@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -37,6 +38,33 @@ class Object {
   std::vector<double> numbers(const std::string& key, double lo, double hi, std::size_t size);
   /// A required [x, y, z] of finite numbers.
   Eigen::Vector3d vector3(const std::string& key);
+  /// Lower bound of joint_vector entries; the message says "must be >= 0 (non-negative)" etc.
+  enum class Bound { kAny, kNonNegative, kPositive };
+  /// An array of exactly N numbers into `out` (unchanged when absent and not required).
+  template <int N>
+  void joint_vector(const std::string& key, Eigen::Matrix<double, N, 1>& out, bool required,
+                    Bound bound = Bound::kAny) {
+    if (!required && !has(key)) return;
+    const std::vector<double> v = numbers(key, -kInfinity, kInfinity, N);
+    for (int i = 0; i < N; ++i) {
+      check_bound(key + "[" + std::to_string(i) + "]", v[i], bound);
+      out[i] = v[i];
+    }
+  }
+  /// An array of N rows of N numbers into `out` (unchanged when absent).
+  template <int N>
+  void joint_matrix(const std::string& key, Eigen::Matrix<double, N, N>& out) {
+    if (!has(key)) return;
+    const std::vector<std::vector<double>> rows = number_rows(key, N, N);
+    for (int r = 0; r < N; ++r)
+      for (int c = 0; c < N; ++c)
+        out(r, c) = rows[r][c];
+  }
+  /// A required array of `rows` arrays of `cols` finite numbers.
+  std::vector<std::vector<double>> number_rows(const std::string& key, std::size_t rows,
+                                               std::size_t cols);
+  /// A required whole number in [lo, hi].
+  int integer(const std::string& key, int lo, int hi);
   bool boolean(const std::string& key, bool fallback);
   /// A required string.
   std::string text(const std::string& key);
@@ -56,7 +84,10 @@ class Object {
 
   const std::string& file() const { return file_; }
 
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
  private:
+  void check_bound(const std::string& item, double value, Bound bound) const;
   std::string key_path(const std::string& key) const;
   const nlohmann::json& get(const std::string& key);
 

@@ -50,9 +50,10 @@ struct AddedEffects {
   /// Temperature-dependent viscous friction: τ_j += β_j·(T_j − T_ref)·q̇_j (needs temp<j>).
   JointVector<S, N> thermal_viscous = JointVector<S, N>::Zero();
   S reference_temperature = S(25);  ///< T_ref, °C
-  /// The effort lags the motion by this much [s]: compare effort(t) with the prediction at
-  /// t − effort_delay_s (a run-time estimator keeps the few samples this needs).
-  S effort_delay_s = S(0);
+  /// The effort leads the motion by this much [s] (the drive's torque lags its reported current):
+  /// effort(t) ≈ prediction(t + effort_lead_s) ≈ prediction(t) + effort_lead_s·d(prediction)/dt.
+  /// Negative when the effort lags. A run-time estimator keeps the few samples this needs.
+  S effort_lead_s = S(0);
 };
 
 /// The identified model: the rigid body in base parameters, the friction, the unit conversion and

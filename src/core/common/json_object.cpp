@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_file.hpp"
+#include "tpf/common/json_parse.hpp"
 
 namespace tpf::json {
 
@@ -82,13 +82,47 @@ Eigen::Vector3d Object::vector3(const std::string& key) {
   return {v[0], v[1], v[2]};
 }
 
+void Object::check_bound(const std::string& item, double value, Bound bound) const {
+  if (bound == Bound::kPositive && !(value > 0.0))
+    fail(item, "must be > 0 (positive), got " + format(value));
+  if (bound == Bound::kNonNegative && !(value >= 0.0))
+    fail(item, "must be >= 0 (non-negative), got " + format(value));
+}
+
+std::vector<std::vector<double>> Object::number_rows(const std::string& key, std::size_t rows,
+                                                     std::size_t cols) {
+  if (!object_.contains(key)) fail(key, "missing");
+  const auto& v = get(key);
+  if (!v.is_array() || v.size() != rows)
+    fail(key, "must be an array of " + std::to_string(rows) + " rows");
+  std::vector<std::vector<double>> out(rows);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const std::string row = key + "[" + std::to_string(r) + "]";
+    if (!v[r].is_array() || v[r].size() != cols)
+      fail(row, "must be an array of " + std::to_string(cols) + " numbers");
+    for (std::size_t c = 0; c < cols; ++c) {
+      const std::string item = row + "[" + std::to_string(c) + "]";
+      if (!v[r][c].is_number() || !std::isfinite(v[r][c].get<double>()))
+        fail(item, "must be a finite number");
+      out[r].push_back(v[r][c].get<double>());
+    }
+  }
+  return out;
+}
+
+int Object::integer(const std::string& key, int lo, int hi) {
+  const double x = number(key, lo, hi);
+  if (x != std::floor(x)) fail(key, "must be a whole number, got " + format(x));
+  return static_cast<int>(x);
+}
+
 std::string Object::text(const std::string& key) {
   if (!object_.contains(key)) fail(key, "missing");
   return text(key, "");
 }
 
 Object Object::read_file(const std::filesystem::path& path) {
-  return Object(json::read_file(path), path.string(), "");
+  return Object(json::parse_file(path), path.string(), "");
 }
 
 Object Object::read_document(const std::filesystem::path& path, std::string_view format,

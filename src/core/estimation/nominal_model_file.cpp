@@ -10,7 +10,7 @@
 #include <system_error>
 
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_file.hpp"
+#include "tpf/common/json_object.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -35,50 +35,6 @@ Json matrix_to_json(const JointMatrix<double, N>& m) {
   for (int r = 0; r < N; ++r)
     a.push_back(array_json(m.row(r).transpose().eval()));
   return a;
-}
-
-// Reads an array of N finite numbers; `min` is the smallest allowed value (−inf for none) and
-// `strict` makes it exclusive.
-template <int N>
-void read_vector(const Json& parent, const std::string& file, const std::string& where,
-                 const std::string& key, JointVector<double, N>& out, bool required,
-                 double min = -INFINITY, bool strict = false) {
-  if (!parent.contains(key)) {
-    if (required) throw Error::at(file, 0, where + "." + key, "missing");
-    return;
-  }
-  const Json& a = parent.at(key);
-  const std::string field = where.empty() ? key : where + "." + key;
-  if (!a.is_array() || a.size() != static_cast<std::size_t>(N))
-    throw Error::at(file, 0, field, "must be an array of " + std::to_string(N) + " numbers");
-  for (int i = 0; i < N; ++i) {
-    const std::string item = field + "[" + std::to_string(i) + "]";
-    if (!a[i].is_number()) throw Error::at(file, 0, item, "must be a number");
-    const double v = a[i].get<double>();
-    if (!std::isfinite(v)) throw Error::at(file, 0, item, "must be finite");
-    if (v < min || (strict && v == min))
-      throw Error::at(file, 0, item,
-                      "must be " + std::string(strict ? "> " : ">= ") + std::to_string(min) +
-                          ", got " + std::to_string(v));
-    out[i] = v;
-  }
-}
-
-template <int N>
-void read_matrix(const Json& parent, const std::string& file, const std::string& where,
-                 const std::string& key, JointMatrix<double, N>& out) {
-  if (!parent.contains(key)) return;
-  const Json& a = parent.at(key);
-  const std::string field = where + "." + key;
-  if (!a.is_array() || a.size() != static_cast<std::size_t>(N))
-    throw Error::at(file, 0, field, "must be an array of " + std::to_string(N) + " rows");
-  Json rows = Json::object();
-  for (int r = 0; r < N; ++r) {
-    rows["row"] = a[r];
-    JointVector<double, N> v;
-    read_vector<N>(rows, file, field + "[" + std::to_string(r) + "]", "row", v, true);
-    out.row(r) = v.transpose();
-  }
 }
 
 template <int N>
@@ -155,109 +111,80 @@ JointVector<double, N> effort_scale(const Model<double, N>& model, const std::st
 template <int N>
 NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
                                            const std::filesystem::path& robot_file) {
-  const std::string file = params_file.string();
-  const Json j = json::read_file(params_file);
-  json::check_format(j, file, kFormat, kVersion);
-  json::only_keys(j, file, "",
-                  {"format", "version", "robot", "joints", "source", "effort_unit",
-                   "effort_per_newton_metre", "rigid_body", "friction", "added_effects", "fit"});
-  const double joints = json::number(j, file, "", "joints");
+  using Bound = json::Object::Bound;
+  json::Object top = json::Object::read_document(params_file, kFormat, kVersion);
+  const int joints = top.integer("joints", 1, 64);
   if (joints != N)
-    throw Error::at(file, 0, "joints",
-                    "the file is for " + std::to_string(static_cast<int>(joints)) +
-                        " joints, this program is built for " + std::to_string(N));
+    top.fail("joints", "the file is for " + std::to_string(joints) +
+                           " joints, this program is built for " + std::to_string(N));
+  top.text("robot", "");
+  top.text("source", "");
 
   NominalModel<double, N> nominal;
   nominal.model = load_robot<double, N>(robot_file);
-  nominal.effort_unit = json::string(j, file, "", "effort_unit");
-  if (nominal.effort_unit != "mA" && nominal.effort_unit != "N*m")
-    throw Error::at(file, 0, "effort_unit", "must be \"mA\" or \"N*m\"");
-  read_vector<N>(j, file, "", "effort_per_newton_metre", nominal.effort_per_newton_metre, true, 0.0,
-                 true);
+  nominal.effort_unit = top.choice("effort_unit", "", {"mA", "N*m"});
+  top.joint_vector<N>("effort_per_newton_metre", nominal.effort_per_newton_metre, true,
+                      Bound::kPositive);
 
-  const Json& rigid = json::member(j, file, "", "rigid_body");
-  if (!rigid.is_array() || rigid.size() > static_cast<std::size_t>(11 * N))
-    throw Error::at(file, 0, "rigid_body",
-                    "must be an array of at most " + std::to_string(11 * N) + " parameters");
+  std::vector<json::Object> rigid = top.children("rigid_body");
+  if (!top.has("rigid_body")) top.fail("rigid_body", "missing");
+  if (rigid.size() > static_cast<std::size_t>(11 * N))
+    top.fail("rigid_body", "must be an array of at most " + std::to_string(11 * N) + " parameters");
   for (std::size_t i = 0; i < rigid.size(); ++i) {
-    const std::string where = "rigid_body[" + std::to_string(i) + "]";
-    json::only_keys(rigid[i], file, where, {"name", "value", "combination"});
-    const std::string name = json::string(rigid[i], file, where, "name");
+    json::Object& r = rigid[i];
+    const std::string name = r.text("name");
     const int column = column_by_name<N>(name);
-    if (column < 0)
-      throw Error::at(file, 0, where + ".name", "unknown rigid-body parameter '" + name + "'");
+    if (column < 0) r.fail("name", "unknown rigid-body parameter '" + name + "'");
     for (std::size_t k = 0; k < i; ++k)
-      if (nominal.base_columns[k] == column)
-        throw Error::at(file, 0, where + ".name", "'" + name + "' appears twice");
+      if (nominal.base_columns[k] == column) r.fail("name", "'" + name + "' appears twice");
     nominal.base_columns[i] = column;
-    nominal.base_values[i] = json::number(rigid[i], file, where, "value");
+    nominal.base_values[i] = r.number("value", -json::Object::kInfinity, json::Object::kInfinity);
+    r.text("combination", "");
+    r.finish();
   }
   nominal.base_count = static_cast<int>(rigid.size());
 
-  const Json& f = json::member(j, file, "", "friction");
-  json::only_keys(f, file, "friction",
-                  {"coulomb", "static", "stribeck_velocity", "stribeck_exponent", "viscous",
-                   "load_coulomb", "load_viscous"});
+  if (!top.has("friction")) top.fail("friction", "missing");
+  json::Object f = top.child("friction");
   StribeckParameters<double, N>& p = nominal.friction;
-  read_vector<N>(f, file, "friction", "coulomb", p.coulomb, true, 0.0);
-  read_vector<N>(f, file, "friction", "static", p.static_friction, true, 0.0);
-  read_vector<N>(f, file, "friction", "stribeck_velocity", p.stribeck_velocity, true, 0.0, true);
-  read_vector<N>(f, file, "friction", "stribeck_exponent", p.stribeck_exponent, true, 0.0, true);
-  read_vector<N>(f, file, "friction", "viscous", p.viscous, true);
-  read_vector<N>(f, file, "friction", "load_coulomb", p.load_coulomb, false);
-  read_vector<N>(f, file, "friction", "load_viscous", p.load_viscous, false);
+  f.joint_vector<N>("coulomb", p.coulomb, true, Bound::kNonNegative);
+  f.joint_vector<N>("static", p.static_friction, true, Bound::kNonNegative);
+  f.joint_vector<N>("stribeck_velocity", p.stribeck_velocity, true, Bound::kPositive);
+  f.joint_vector<N>("stribeck_exponent", p.stribeck_exponent, true, Bound::kPositive);
+  f.joint_vector<N>("viscous", p.viscous, true);
+  f.joint_vector<N>("load_coulomb", p.load_coulomb, false);
+  f.joint_vector<N>("load_viscous", p.load_viscous, false);
+  f.finish();
 
-  if (j.contains("added_effects")) {
-    const Json& a = j.at("added_effects");
-    const std::string w = "added_effects";
-    json::only_keys(
-        a, file, w,
-        {"ripple", "spring_stiffness", "spring_offset", "coupling_velocity",
-         "coupling_acceleration", "thermal_viscous", "reference_temperature", "effort_delay_s"});
-    AddedEffects<double, N>& e = nominal.added;
-    read_vector<N>(a, file, w, "spring_stiffness", e.spring_stiffness, false);
-    read_vector<N>(a, file, w, "spring_offset", e.spring_offset, false);
-    read_matrix<N>(a, file, w, "coupling_velocity", e.coupling_velocity);
-    read_matrix<N>(a, file, w, "coupling_acceleration", e.coupling_acceleration);
-    read_vector<N>(a, file, w, "thermal_viscous", e.thermal_viscous, false);
-    if (a.contains("reference_temperature"))
-      e.reference_temperature = json::number(a, file, w, "reference_temperature");
-    if (a.contains("effort_delay_s")) {
-      e.effort_delay_s = json::number(a, file, w, "effort_delay_s");
-      if (e.effort_delay_s < 0.0 || e.effort_delay_s > 1.0)
-        throw Error::at(file, 0, w + ".effort_delay_s", "must be in [0, 1] s");
-    }
-    if (a.contains("ripple")) {
-      const Json& r = a.at("ripple");
-      if (!r.is_array() || r.size() > AddedEffects<double, N>::kMaxRippleTerms)
-        throw Error::at(file, 0, w + ".ripple",
-                        "must be an array of at most " +
-                            std::to_string(AddedEffects<double, N>::kMaxRippleTerms) + " terms");
-      for (std::size_t i = 0; i < r.size(); ++i) {
-        const std::string where = w + ".ripple[" + std::to_string(i) + "]";
-        json::only_keys(r[i], file, where, {"joint", "cycles_per_rev", "motor_side", "sin", "cos"});
-        RippleTerm<double>& t = e.ripple[i];
-        const double joint = json::number(r[i], file, where, "joint");
-        if (joint < 1 || joint > N || joint != std::floor(joint))
-          throw Error::at(file, 0, where + ".joint",
-                          "must be a joint number 1.." + std::to_string(N));
-        t.joint = static_cast<int>(joint) - 1;
-        t.cycles_per_rev = json::number(r[i], file, where, "cycles_per_rev");
-        if (t.cycles_per_rev <= 0)
-          throw Error::at(file, 0, where + ".cycles_per_rev", "must be positive");
-        if (r[i].contains("motor_side")) {
-          if (!r[i].at("motor_side").is_boolean())
-            throw Error::at(file, 0, where + ".motor_side", "must be true or false");
-          t.motor_side = r[i].at("motor_side").get<bool>();
-        }
-        t.sin_amplitude = json::number(r[i], file, where, "sin");
-        t.cos_amplitude = json::number(r[i], file, where, "cos");
-      }
-      e.ripple_count = static_cast<int>(r.size());
-    }
+  json::Object a = top.child("added_effects");
+  AddedEffects<double, N>& e = nominal.added;
+  a.joint_vector<N>("spring_stiffness", e.spring_stiffness, false);
+  a.joint_vector<N>("spring_offset", e.spring_offset, false);
+  a.joint_matrix<N>("coupling_velocity", e.coupling_velocity);
+  a.joint_matrix<N>("coupling_acceleration", e.coupling_acceleration);
+  a.joint_vector<N>("thermal_viscous", e.thermal_viscous, false);
+  e.reference_temperature =
+      a.number("reference_temperature", e.reference_temperature, -273.15, 1e4);
+  e.effort_lead_s = a.number("effort_lead_s", e.effort_lead_s, -1.0, 1.0);
+  std::vector<json::Object> ripple = a.children("ripple");
+  if (ripple.size() > AddedEffects<double, N>::kMaxRippleTerms)
+    a.fail("ripple", "must be an array of at most " +
+                         std::to_string(AddedEffects<double, N>::kMaxRippleTerms) + " terms");
+  for (std::size_t i = 0; i < ripple.size(); ++i) {
+    json::Object& r = ripple[i];
+    RippleTerm<double>& t = e.ripple[i];
+    t.joint = r.integer("joint", 1, N) - 1;
+    t.cycles_per_rev = r.number("cycles_per_rev", 1e-9, json::Object::kInfinity);
+    t.motor_side = r.boolean("motor_side", t.motor_side);
+    t.sin_amplitude = r.number("sin", -json::Object::kInfinity, json::Object::kInfinity);
+    t.cos_amplitude = r.number("cos", -json::Object::kInfinity, json::Object::kInfinity);
+    r.finish();
   }
-  if (j.contains("fit") && !j.at("fit").is_object())
-    throw Error::at(file, 0, "fit", "must be an object");
+  e.ripple_count = static_cast<int>(ripple.size());
+  a.finish();
+
+  if (top.has("fit")) top.child("fit");  // free-form fit quality, for people
+  top.finish();
   return nominal;
 }
 
@@ -316,7 +243,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
                         {"coupling_acceleration", matrix_to_json<N>(e.coupling_acceleration)},
                         {"thermal_viscous", array_json(e.thermal_viscous)},
                         {"reference_temperature", e.reference_temperature},
-                        {"effort_delay_s", e.effort_delay_s}};
+                        {"effort_lead_s", e.effort_lead_s}};
   if (!fit_quality_json.empty()) {
     try {
       j["fit"] = Json::parse(fit_quality_json);

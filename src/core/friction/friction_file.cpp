@@ -2,15 +2,12 @@
 #include "tpf/friction/friction_file.hpp"
 
 #include <cmath>
-#include <limits>
 
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_object.hpp"
 
 namespace tpf {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Opens a friction file; effort_unit and description are read here, the arrays by the callers.
 json::Object open_friction_file(const std::string& path) {
@@ -20,22 +17,15 @@ json::Object open_friction_file(const std::string& path) {
   return o;
 }
 
-enum class Bound { kNonNegative, kPositive };
+using Bound = json::Object::Bound;
 
 // Fills `out` from the array `key`; a missing optional key leaves the default in place.
 template <typename S, int N>
 void read_vector(json::Object& o, const std::string& key, Bound bound, bool required,
                  JointVector<S, N>& out) {
-  if (!required && !o.has(key)) return;
-  const std::vector<double> v = o.numbers(key, -kInf, kInf, N);
-  for (int i = 0; i < N; ++i) {
-    if (bound == Bound::kPositive ? !(v[i] > 0.0) : !(v[i] >= 0.0)) {
-      o.fail(key + "[" + std::to_string(i) + "]",
-             std::string("must be ") + (bound == Bound::kPositive ? "positive" : "non-negative") +
-                 ", got " + std::to_string(v[i]));
-    }
-    out[i] = static_cast<S>(v[i]);
-  }
+  JointVector<double, N> v = out.template cast<double>();
+  o.joint_vector<N>(key, v, required, bound);
+  out = v.template cast<S>();
 }
 
 template <typename S, int N>

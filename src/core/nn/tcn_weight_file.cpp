@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_file.hpp"
+#include "tpf/common/json_parse.hpp"
 
 namespace tpf {
 namespace {
@@ -145,7 +145,7 @@ void TcnWeightFile::require_architecture(int in, int hid, int lev, int ker, int 
 TcnWeightFile read_tcn_weight_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) fail(path, "", "cannot open the TCN weight file");
-  const nlohmann::json json = tpf::json::read_file(path);
+  const nlohmann::json json = tpf::json::parse_file(path);
 
   const nlohmann::json& format = member(json, "format", path, "format");
   if (format != kFormat) fail(path, "format", "expected \"tpf-tcn-weights\", got " + format.dump());

@@ -83,6 +83,14 @@ void HtmlReport::list(const std::vector<std::string>& items) {
   body_ += "</ul>\n";
 }
 
+void HtmlReport::links(const std::vector<Link>& links) {
+  body_ += "<ul>\n";
+  for (const auto& link : links)
+    body_ += "<li><a href=\"" + html_escape(link.href) + "\">" + html_escape(link.text) + "</a> " +
+             html_escape(link.description) + "</li>\n";
+  body_ += "</ul>\n";
+}
+
 void HtmlReport::table(const Table& table) {
   body_ += "<table>\n";
   if (!table.caption.empty()) body_ += "<caption>" + html_escape(table.caption) + "</caption>\n";

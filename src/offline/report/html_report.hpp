@@ -17,6 +17,13 @@ struct Table {
   int percent_column = -1;  ///< index of the percent-change column, −1 for none
 };
 
+/// A link to another page of a report (relative href), with a line of description.
+struct Link {
+  std::string href;
+  std::string text;
+  std::string description;
+};
+
 /// Builder of one report page. Text is escaped; SVG from the plot functions is inserted as is.
 class HtmlReport {
  public:
@@ -30,6 +37,8 @@ class HtmlReport {
   void paragraph(const std::string& text);
   /// A bulleted list of text items.
   void list(const std::vector<std::string>& items);
+  /// A bulleted list of links (e.g. an index page linking the pages of a report).
+  void links(const std::vector<Link>& links);
   void table(const Table& table);
   /// An SVG plot (from line_plot, scatter_plot, bar_chart, histogram) with an optional caption.
   void figure(const std::string& svg, const std::string& caption = "");

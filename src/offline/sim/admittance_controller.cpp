@@ -38,6 +38,14 @@ void AdmittanceController::update(const TwinArm& nominal, const TwinVector& q, c
       tau[j] = std::abs(e) > config_.dead_band_nm ? e - std::copysign(config_.dead_band_nm, e) : 0;
     }
   }
+  integrate(tau, dt);
+}
+
+void AdmittanceController::follow(const TwinVector& tau_ext, double max_pad_kpa, double dt) {
+  integrate(max_pad_kpa > kContactThresholdKpa ? tau_ext : TwinVector(TwinVector::Zero()), dt);
+}
+
+void AdmittanceController::integrate(const TwinVector& tau, double dt) {
   const TwinVector ddq = (tau - config_.admittance_damping * dq_ref_) / config_.admittance_inertia;
   dq_ref_ = (dq_ref_ + dt * ddq).cwiseMax(-kMaxSpeed).cwiseMin(kMaxSpeed);
   q_ref_ += dt * dq_ref_;

@@ -22,10 +22,17 @@ class AdmittanceController {
   void update(const TwinArm& nominal, const TwinVector& q, const TwinVector& dq,
               const TwinVector& current_ma, double max_pad_kpa, double dt);
 
+  /// One host cycle following an external estimate τ̂_ext [N·m] (already dead-banded by its
+  /// estimator) instead of the built-in one; the arm still moves only while a pad is pressed.
+  void follow(const TwinVector& tau_ext, double max_pad_kpa, double dt);
+
   const TwinVector& q_ref() const { return q_ref_; }
   const TwinVector& dq_ref() const { return dq_ref_; }
 
  private:
+  /// M_a·q̈_a + D_a·q̇_a = τ, q_ref += q̇_a·Δt inside the joint range.
+  void integrate(const TwinVector& tau, double dt);
+
   TeachingConfig config_;
   StribeckParameters<double, kTwinJoints> friction_;
   TwinVector lower_, upper_;

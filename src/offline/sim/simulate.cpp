@@ -111,7 +111,8 @@ LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double du
 }
 
 SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double duration_s,
-                           const RowSink& sink, const ProgressSink& progress) {
+                           const RowSink& sink, const ProgressSink& progress,
+                           const ExternalTorqueSource& external_torque) {
   const double duration = duration_s > 0 ? duration_s : scenario.duration_s;
   const double h = 1.0 / scenario.inner_rate_hz;
   const long ratio = std::lround(scenario.inner_rate_hz / scenario.log_rate_hz);
@@ -253,7 +254,10 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
           row[c++] = force[a];
         sink(row);
         ++summary.rows;
-        if (admittance) {
+        if (admittance && external_torque) {
+          admittance->follow(external_torque(row), max_pad, t - last_host_update);
+          last_host_update = t;
+        } else if (admittance) {
           admittance->update(nominal, q_meas, dq_meas, i_meas, max_pad, t - last_host_update);
           last_host_update = t;
         }
@@ -320,16 +324,18 @@ SimulationSummary simulate_to_file(const Scenario& scenario, std::uint64_t seed,
   return summary;
 }
 
-Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duration_s) {
+Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duration_s,
+                    const ExternalTorqueSource& external_torque) {
   const double duration = duration_s > 0 ? duration_s : scenario.duration_s;
   Log log;
   log.source = "simulated";
   log.columns = simulation_columns(TwinArm(scenario).pad_count());
   log.meta = simulation_metadata(scenario, seed, duration);
   std::vector<double> values;
-  const auto summary = simulate(scenario, seed, duration, [&](std::span<const double> row) {
-    values.insert(values.end(), row.begin(), row.end());
-  });
+  const auto summary = simulate(
+      scenario, seed, duration,
+      [&](std::span<const double> row) { values.insert(values.end(), row.begin(), row.end()); },
+      {}, external_torque);
   const auto cols = static_cast<Eigen::Index>(log.columns.size());
   log.values =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(

@@ -20,6 +20,10 @@ namespace tpf::offline {
 using RowSink = std::function<void(std::span<const double>)>;
 /// Receives the simulated fraction in [0, 1], about once per simulated second.
 using ProgressSink = std::function<void(double)>;
+/// Closes the teaching loop through an external estimator: called with each host row (as the
+/// RowSink gets it) and returns the estimated external torque τ̂_ext [N·m] that the admittance
+/// controller then follows in place of its built-in nominal estimate.
+using ExternalTorqueSource = std::function<TwinVector(std::span<const double>)>;
 
 struct SimulationSummary {
   std::size_t rows = 0;          ///< rows emitted
@@ -38,8 +42,10 @@ LogMetadata simulation_metadata(const Scenario& scenario, std::uint64_t seed, do
 /// Runs `scenario` for `duration_s` (the scenario's duration when ≤ 0) with `seed`.
 /// Sign convention of the ground truth: gt_tau_ext = Jᵀ·F with F the force the environment (the
 /// hand) applies to the robot, so at rest K_t·i ≈ G(q) + friction − gt_tau_ext.
+/// With `external_torque` set, a teaching scenario's admittance controller follows its estimate.
 SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double duration_s,
-                           const RowSink& sink, const ProgressSink& progress = {});
+                           const RowSink& sink, const ProgressSink& progress = {},
+                           const ExternalTorqueSource& external_torque = {});
 
 /// simulate() into a log file written with LogWriter (atomic: nothing is left on failure).
 SimulationSummary simulate_to_file(const Scenario& scenario, std::uint64_t seed, double duration_s,
@@ -47,6 +53,7 @@ SimulationSummary simulate_to_file(const Scenario& scenario, std::uint64_t seed,
                                    const ProgressSink& progress = {});
 
 /// simulate() into memory (tests, small runs).
-Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duration_s);
+Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duration_s,
+                    const ExternalTorqueSource& external_torque = {});
 
 }  // namespace tpf::offline

@@ -10,8 +10,8 @@
 #include <random>
 #include <thread>
 
+#include "offline/signal/butterworth.hpp"
 #include "offline/train/progress_bar.hpp"
-#include "offline/train/zero_phase_lowpass.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
@@ -123,9 +123,11 @@ TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options
             .matrix()
             .transpose();
     seg.low.resize(a.outputs, length);
+    const Butterworth2 split =
+        Butterworth2::low_pass(options_.split_cutoff_hz, options_.sample_rate_hz);
     for (int o = 0; o < a.outputs; ++o) {
-      seg.low.row(o) = zero_phase_lowpass(r.sequence->residual.col(o).segment(r.begin, length),
-                                          options_.split_cutoff_hz, options_.sample_rate_hz)
+      seg.low.row(o) = filtfilt(split, r.sequence->residual.col(o).segment(r.begin, length),
+                                options_.sample_rate_hz / options_.split_cutoff_hz)
                            .transpose();
     }
     seg.high = r.sequence->residual.middleRows(r.begin, length).transpose() - seg.low;

@@ -31,8 +31,8 @@ struct TcnDataset {
 struct TcnTrainOptions {
   TcnArchitecture architecture;
   double sample_rate_hz = 400.0;
-  /// Cut-off of the zero-phase split of the residual r: low = zero_phase_lowpass(r) (2nd-order
-  /// Butterworth, forward–backward), high = r − low.
+  /// Cut-off of the zero-phase split of the residual r: low = filtfilt of r with a 2nd-order
+  /// Butterworth (offline/signal/butterworth.hpp, forward–backward), high = r − low.
   double split_cutoff_hz = 2.0;
   /// loss = weight_low·MSE(low − target_low) + weight_high·MSE(high − target_high).
   double weight_low = 1.0;

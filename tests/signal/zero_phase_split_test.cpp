@@ -1,16 +1,20 @@
-// Zero-phase Butterworth split: DC gain 1, |H|² = 1/(1 + (tan(πf/f_s)/tan(πf_c/f_s))⁴), no phase
-// shift.
-#include "offline/train/zero_phase_lowpass.hpp"
-
+// The zero-phase Butterworth that splits the TCN target into low and high parts (the trainer
+// calls filtfilt(Butterworth2::low_pass(f_c, f_s), x, f_s/f_c)): DC gain 1,
+// |H|² = 1/(1 + (tan(πf/f_s)/tan(πf_c/f_s))⁴), no phase shift.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "offline/signal/butterworth.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
+
+Eigen::VectorXd zero_phase_lowpass(const Eigen::VectorXd& x, double fc, double fs) {
+  return filtfilt(Butterworth2::low_pass(fc, fs), x, fs / fc);
+}
 
 Eigen::VectorXd cosine(double f, double fs, Eigen::Index n) {
   Eigen::VectorXd x(n);

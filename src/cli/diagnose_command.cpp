@@ -1,0 +1,89 @@
+// `tpf diagnose`: fit the declared model, trace the residual to missing effects, add them, refit,
+// and report before and after on held-out data.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "joint_dispatch.hpp"
+#include "offline/diagnose/diagnosis_report.hpp"
+#include "offline/log/read_log.hpp"
+#include "tpf/common/error.hpp"
+#include "tpf/model/load_robot.hpp"
+
+namespace {
+
+struct DiagnoseArgs {
+  std::string log, robot, report, json, params;
+  double static_velocity = 1e-4, min_improvement = 0.10;
+  bool quiet = false;
+};
+
+template <int N>
+void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
+  using namespace tpf::offline;
+  DiagnoseOptions options;
+  options.samples.regimes.static_velocity = a.static_velocity;
+  options.min_improvement = a.min_improvement;
+  if (!a.quiet)
+    options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  const auto d = diagnose<N>(log, tpf::load_robot<double, N>(a.robot), options);
+  if (d.samples.simulated) std::printf("SIMULATED log (digital twin)\n");
+  for (const auto& f : d.findings)
+    std::printf("%s\n", f.c_str());
+  for (const auto& n : d.notes)
+    std::printf("note: %s\n", n.c_str());
+  const char* names[4] = {"static", "static-to-kinetic", "moving", "all"};
+  std::printf("held-out RMSE [%s] before -> after\n", d.samples.effort_unit.c_str());
+  for (int j = 0; j < N; ++j)
+    for (int r = 0; r < 4; ++r)
+      std::printf("  joint %d %-18s %10.3f -> %10.3f  (%+.1f %%)\n", j + 1, names[r],
+                  d.before[j][r].rmse(), d.after[j][r].rmse(),
+                  percent_change(d.before[j][r].rmse(), d.after[j][r].rmse()));
+  if (!a.report.empty()) {
+    write_diagnosis_report(d, a.report);
+    std::printf("wrote %s\n", a.report.c_str());
+  }
+  if (!a.json.empty()) {
+    std::ofstream out(a.json);
+    if (!(out << diagnosis_json(d) << "\n")) throw tpf::Error::at(a.json, 0, "", "cannot write");
+    std::printf("wrote %s\n", a.json.c_str());
+  }
+  if (!a.params.empty()) {
+    tpf::save_nominal_model<N>(a.params, d.nominal, a.log, "");
+    std::printf("wrote %s\n", a.params.c_str());
+  }
+}
+
+}  // namespace
+
+namespace tpf::cli {
+
+/// Adds `tpf diagnose` to the app.
+void register_diagnose_command(CLI::App& app) {
+  auto a = std::make_shared<DiagnoseArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "diagnose",
+      "Fit the declared model, find which candidate physical effect (load-dependent friction, "
+      "ripple, payload, temperature, spring, delay, coupling) explains the residual on held-out "
+      "data, add it, refit and report before/after");
+  cmd->add_option("--log", a->log, "Log (tpf CSV)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--robot", a->robot, "Robot file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--report", a->report, "HTML report to write");
+  cmd->add_option("--json", a->json, "The same numbers as JSON");
+  cmd->add_option("--params", a->params, "Parameter file of the extended model (tpf-params)");
+  cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
+      ->capture_default_str();
+  cmd->add_option("--min-improvement", a->min_improvement,
+                  "Share of the held-out residual sum of squares an effect must remove")
+      ->capture_default_str();
+  cmd->add_flag("--quiet", a->quiet, "No progress lines");
+  cmd->callback([a] {
+    const offline::Log log = offline::read_log(a->log);
+    with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
+  });
+}
+
+}  // namespace tpf::cli

@@ -1,0 +1,133 @@
+// `tpf evaluate`: tactile-only, proprioceptive-only and fusion side by side on held-out logs.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "offline/common/data_files.hpp"
+#include "offline/evaluate/evaluation.hpp"
+#include "offline/evaluate/evaluation_report.hpp"
+#include "offline/log/atomic_file.hpp"
+#include "offline/log/read_log.hpp"
+#include "offline/sim/scenario.hpp"
+
+namespace {
+
+struct EvaluateCommandOptions {
+  std::string params, weights, robot, pads, calibration, contacts, teaching, out;
+  std::vector<std::string> excitation;
+  std::string teaching_scenario;
+  std::uint64_t teaching_seed = 5;
+  double teaching_duration = 60.0;
+  bool quiet = false;
+};
+
+bool is_simulated(const tpf::offline::Log& log) {
+  const auto source = log.meta.get("source");
+  return source && source->find("simulated") != std::string::npos;
+}
+
+void run_evaluate(const EvaluateCommandOptions& o) {
+  using namespace tpf::offline;
+  const auto say = [&](const std::string& line) {
+    if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+  };
+  ArmEstimatorSetup setup;
+  setup.nominal = tpf::load_nominal_model<kArmJoints>(o.params, o.robot);
+  setup.pads = tpf::load_pads(o.pads, setup.nominal.model);
+  if (!o.weights.empty()) setup.weight_files = compensator_files(o.weights, setup.layout);
+
+  say("evaluate: reading logs");
+  const Log calibration = read_log(o.calibration);
+  std::vector<Log> excitation;
+  for (const std::string& p : o.excitation)
+    excitation.push_back(read_log(p));
+  const Log contacts = o.contacts.empty() ? Log{} : read_log(o.contacts);
+  const Log teaching = o.teaching.empty() ? Log{} : read_log(o.teaching);
+  setup.parameters = arm_estimator_parameters(estimate_sensor_noise(calibration));
+
+  EvaluationLogs logs;
+  logs.calibration = &calibration;
+  bool simulated = is_simulated(calibration);
+  for (const Log& l : excitation) {
+    logs.excitation.push_back(&l);
+    simulated = simulated || is_simulated(l);
+  }
+  if (!o.contacts.empty()) logs.contacts = &contacts;
+  if (!o.teaching.empty()) logs.teaching = &teaching;
+  Scenario scenario;
+  if (!o.teaching_scenario.empty()) {
+    scenario = load_scenario(o.teaching_scenario);
+    logs.teaching_scenario = &scenario;
+    logs.teaching_seed = o.teaching_seed;
+    logs.teaching_duration_s = o.teaching_duration;
+  }
+  const Evaluation ev = evaluate(setup, logs, say);
+
+  std::filesystem::create_directories(o.out);
+  std::vector<std::string> notes{"nominal model: " + o.params,
+                                 "compensator: " + (o.weights.empty() ? "none" : o.weights),
+                                 "calibration log (dead bands): " + o.calibration};
+  for (const std::string& p : o.excitation)
+    notes.push_back("held-out excitation log: " + p);
+  if (!o.contacts.empty()) notes.push_back("static-contacts log: " + o.contacts);
+  if (!o.teaching.empty()) notes.push_back("teaching log: " + o.teaching);
+  const auto html = std::filesystem::path(o.out) / "evaluate.html";
+  evaluation_report(ev, simulated, notes).write(html);
+  AtomicFile json(std::filesystem::path(o.out) / "evaluation.json");
+  json.write(evaluation_json(ev));
+  json.commit();
+  std::printf("%s", evaluation_headline(ev).c_str());
+  std::printf("evaluate: report %s\n", html.string().c_str());
+}
+
+}  // namespace
+
+namespace tpf::cli {
+
+void register_evaluate_command(CLI::App& app) {
+  auto o = std::make_shared<EvaluateCommandOptions>();
+  o->robot = offline::data_file("arm4.robot.json").string();
+  o->pads = offline::data_file("arm4.pads.json").string();
+  CLI::App* cmd = app.add_subcommand(
+      "evaluate",
+      "Compare tactile-only, proprioceptive-only and fusion on held-out logs: Table I (residual "
+      "per regime, nominal vs TCN), dead bands, detection latency, force error, teaching");
+  cmd->add_option("--params", o->params, "Nominal model (tpf-params file)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--weights", o->weights,
+                  "Compensator weights (all joints, or <stem>.joint<j>.json per joint)");
+  cmd->add_option("--robot", o->robot, "Robot file")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--pads", o->pads, "Pad layout file")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--calibration", o->calibration,
+                  "Contact-free log for the dead-band σ (not a test log, not the training log)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--excitation", o->excitation, "Held-out contact-free excitation log(s)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--contacts", o->contacts, "Static-contacts log (detection, force error)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--teaching", o->teaching, "Teaching log")->check(CLI::ExistingFile);
+  cmd->add_option("--teaching-scenario", o->teaching_scenario,
+                  "Teaching scenario to simulate in closed loop through the estimators")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--teaching-seed", o->teaching_seed, "Seed of the closed-loop runs")
+      ->capture_default_str();
+  cmd->add_option("--teaching-duration", o->teaching_duration, "Closed-loop run length [s]")
+      ->capture_default_str();
+  cmd->add_option("--out", o->out, "Output folder (evaluate.html, evaluation.json)")->required();
+  cmd->add_flag("--quiet", o->quiet, "No progress lines");
+  cmd->callback([o] { run_evaluate(*o); });
+}
+
+}  // namespace tpf::cli

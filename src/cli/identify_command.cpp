@@ -1,0 +1,92 @@
+// `tpf identify`: identify the arm's nominal model from a log and write a parameter file.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "commands.hpp"
+#include "joint_dispatch.hpp"
+#include "offline/identify/identify.hpp"
+#include "offline/log/read_log.hpp"
+#include "tpf/common/error.hpp"
+#include "tpf/model/load_robot.hpp"
+
+namespace {
+
+struct IdentifyArgs {
+  std::string log, robot, out;
+  double static_velocity = 1e-4;
+  bool no_load_friction = false, quiet = false;
+};
+
+template <int N>
+void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
+  using namespace tpf::offline;
+  const auto start = std::chrono::steady_clock::now();
+  IdentifyOptions options;
+  options.samples.regimes.static_velocity = a.static_velocity;
+  options.fit_load_friction = !a.no_load_friction;
+  if (!a.quiet)
+    options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  const auto model = tpf::load_robot<double, N>(a.robot);
+  const auto id = identify<N>(log, model, options);
+  const auto& s = id.samples;
+  std::printf("%s%s: %ld samples (%zu skipped for a missing value), effort in %s\n",
+              s.simulated ? "SIMULATED log " : "log ", a.log.c_str(), static_cast<long>(s.size()),
+              s.invalid_count, s.effort_unit.c_str());
+  std::printf("held-out residual RMSE [%s]     static  static-to-kinetic   moving      all\n",
+              s.effort_unit.c_str());
+  nlohmann::json fit;
+  for (int j = 0; j < N; ++j) {
+    const auto& h = id.heldout[j];
+    std::printf("  joint %d  %28.3f %18.3f %8.3f %8.3f\n", j + 1, h[Regime::Static].rmse,
+                h[Regime::StaticToKinetic].rmse, h[Regime::Moving].rmse, h.valid.rmse);
+    fit["heldout_rmse"].push_back({{"static", h[Regime::Static].rmse},
+                                   {"static-to-kinetic", h[Regime::StaticToKinetic].rmse},
+                                   {"moving", h[Regime::Moving].rmse},
+                                   {"all", h.valid.rmse}});
+  }
+  std::printf("consistency: %s (min eigenvalue of M(q) %.4g kg·m²)\n",
+              id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
+  for (const auto& p : id.consistency.problems)
+    std::printf("  problem: %s\n", p.c_str());
+  fit["consistent"] = id.consistency.consistent();
+  fit["problems"] = id.consistency.problems;
+  fit["simulated"] = s.simulated;
+  tpf::save_nominal_model<N>(a.out, id.nominal, a.log, fit.dump());
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("wrote %s (%.1f s)\n", a.out.c_str(), wall);
+}
+
+}  // namespace
+
+namespace tpf::cli {
+
+/// Adds `tpf identify` to the app.
+void register_identify_command(CLI::App& app) {
+  auto a = std::make_shared<IdentifyArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "identify",
+      "Identify rigid-body base parameters (with armature) and Stribeck + load-dependent friction "
+      "from a log by weighted least squares and Ceres; validate on held-out blocks");
+  cmd->add_option("--log", a->log, "Log (tpf CSV; i<j> in mA or tau<j> in N·m)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--robot", a->robot, "Robot file, e.g. data/arm4.robot.json")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", a->out, "Parameter file to write (tpf-params JSON)")->required();
+  cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
+      ->capture_default_str();
+  cmd->add_flag("--no-load-friction", a->no_load_friction, "Keep α_c = α_v = 0");
+  cmd->add_flag("--quiet", a->quiet, "No progress lines");
+  cmd->callback([a] {
+    const offline::Log log = offline::read_log(a->log);
+    with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
+  });
+}
+
+}  // namespace tpf::cli

@@ -1,0 +1,114 @@
+// `tpf train`: the friction compensator (TCN) from contact-free excitation logs and a nominal
+// model, with the run-time estimator's own features.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "offline/common/data_files.hpp"
+#include "offline/log/read_log.hpp"
+#include "offline/training/arm_estimator.hpp"
+#include "offline/training/estimator_samples.hpp"
+#include "offline/training/train_compensator.hpp"
+
+namespace {
+
+struct TrainCommandOptions {
+  std::vector<std::string> logs;
+  std::string params;
+  std::string robot;
+  std::string pads;
+  std::string out;
+  std::string checkpoint;
+  bool per_joint = false;
+  bool quiet = false;
+  int onset_copies = 1;
+  tpf::offline::TcnTrainOptions tcn;
+};
+
+void run_train(TrainCommandOptions o) {
+  using namespace tpf::offline;
+  ArmEstimatorSetup setup;
+  setup.nominal = tpf::load_nominal_model<kArmJoints>(o.params, o.robot);
+  setup.pads = tpf::load_pads(o.pads, setup.nominal.model);
+  std::vector<EstimatorTrace> traces;
+  for (const std::string& path : o.logs) {
+    if (!o.quiet) std::fprintf(stderr, "train: reading %s\n", path.c_str());
+    const Log log = read_log(path);
+    setup.parameters = arm_estimator_parameters(estimate_sensor_noise(log));
+    traces.push_back(trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log)));
+  }
+  CompensatorTrainingOptions options;
+  options.tcn = o.tcn;
+  options.tcn.checkpoint_path = o.checkpoint;
+  options.per_joint = o.per_joint;
+  options.onset_copies = o.onset_copies;
+  const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
+  const CompensatorTraining result = train_compensator(
+      traces, scale, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
+  for (const std::string& p : write_compensator(result, o.out))
+    std::printf("train: wrote %s\n", p.c_str());
+  for (std::size_t k = 0; k < result.results.size(); ++k) {
+    const TcnTrainResult& r = result.results[k];
+    std::printf("train: network %zu: best epoch %d of %zu, held-out loss %.4g (N*m^2)%s\n", k + 1,
+                r.best_epoch, r.history.size(), r.best_validation_loss,
+                r.stopped_early ? ", stopped early" : "");
+  }
+  std::printf("train: %zu training / %zu held-out windows, %.1f s\n", result.training_windows,
+              result.validation_windows, result.seconds);
+}
+
+}  // namespace
+
+namespace tpf::cli {
+
+void register_train_command(CLI::App& app) {
+  auto o = std::make_shared<TrainCommandOptions>();
+  o->robot = offline::data_file("arm4.robot.json").string();
+  o->pads = offline::data_file("arm4.pads.json").string();
+  o->tcn.max_seconds = 270.0;
+  CLI::App* cmd = app.add_subcommand(
+      "train",
+      "Train the friction compensator (TCN) on contact-free excitation logs: target = effort − "
+      "the nominal model's prediction, inputs = what the run-time estimator feeds it");
+  cmd->add_option("--log", o->logs, "Contact-free excitation log(s)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--params", o->params, "Nominal model (tpf-params file from identify/diagnose)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--robot", o->robot, "Robot file")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--pads", o->pads, "Pad layout file")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", o->out,
+                  "Weight file to write (per joint: <stem>.joint<j>.json beside it)")
+      ->required();
+  cmd->add_flag("--per-joint", o->per_joint, "One network per joint instead of one for all");
+  cmd->add_option("--seed", o->tcn.seed, "Seed (initialisation, held-out choice, batches)")
+      ->capture_default_str();
+  cmd->add_option("--max-seconds", o->tcn.max_seconds, "Wall-clock budget (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--max-epochs", o->tcn.max_epochs)->capture_default_str();
+  cmd->add_option("--patience", o->tcn.patience, "Early stopping: epochs without improvement")
+      ->capture_default_str();
+  cmd->add_option("--split-cutoff", o->tcn.split_cutoff_hz,
+                  "Cut-off of the zero-phase low/high split of the target [Hz]")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->tcn.threads, "Worker threads (results do not depend on it)")
+      ->capture_default_str();
+  cmd->add_option("--checkpoint", o->checkpoint,
+                  "Write the best model so far here at each improvement (outputs in N*m)");
+  cmd->add_option("--onset-copies", o->onset_copies,
+                  "Extra copies of one window per motion onset (weighs break-away; 0: none)")
+      ->capture_default_str();
+  cmd->add_flag("--quiet", o->quiet, "No progress bar");
+  cmd->callback([o] { run_train(*o); });
+}
+
+}  // namespace tpf::cli

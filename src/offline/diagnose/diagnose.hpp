@@ -1,0 +1,58 @@
+// `tpf diagnose`: fit the declared model, trace the residual to the physical effects it lacks,
+// add them, refit, and compare on held-out data.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "offline/identify/effect_design.hpp"
+#include "offline/identify/identify.hpp"
+
+namespace tpf::offline {
+
+struct DiagnoseOptions {
+  SampleOptions samples;
+  /// A candidate is selected only when it lowers the held-out residual sum of squares of the
+  /// joints it acts on by at least this fraction (and the held-out BIC,
+  /// n·ln(SSE_new/SSE_old) + k·ln n, decreases).
+  double min_improvement = 0.10;
+  int max_effects = 6;
+  ProgressLine progress;
+};
+
+/// Held-out residual per joint: static, static-to-kinetic, moving, all.
+using RegimeTable = std::vector<std::array<ResidualSums, 4>>;
+
+/// What one candidate did when tried.
+struct CandidateTrial {
+  std::string key, title;
+  int joint = -1;
+  int round = 0;             ///< selection round (1 = tried on the declared model)
+  double improvement = 0.0;  ///< fraction of held-out SSE removed on the joints it acts on
+  double bic_change = 0.0;   ///< held-out BIC change (negative favours the candidate)
+  bool selected = false;
+};
+
+template <int N>
+struct Diagnosis {
+  JointSamples samples;
+  std::vector<FeatureGroup> groups;  ///< the whole library (declared + candidates)
+  std::vector<int> selected;         ///< indices into groups, in selection order
+  std::vector<CandidateTrial> trials;
+  RegimeTable before, after;    ///< held-out
+  Eigen::VectorXd noise_floor;  ///< per joint: effort noise at rest (std of Δeffort/√2)
+  Eigen::MatrixXd residual_before, residual_after;  ///< per sample and joint
+  std::vector<Eigen::MatrixXd> effect_terms;        ///< per selected group: its fitted effort term
+  std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
+  std::vector<std::string> notes;     ///< skipped candidates and why
+  NominalModel<double, N> nominal;    ///< the declared model plus the selected effects
+};
+
+/// Runs the diagnosis of `log` for the arm of `model` (robot file). Never hands ground truth
+/// (gt_* columns) to the fit.
+template <int N>
+Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
+                      const DiagnoseOptions& options = {});
+
+}  // namespace tpf::offline

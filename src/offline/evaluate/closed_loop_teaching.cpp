@@ -1,0 +1,142 @@
+#include "offline/evaluate/closed_loop_teaching.hpp"
+
+#include <cmath>
+
+#include "offline/evaluate/contact_detection.hpp"
+#include "offline/sim/simulate.hpp"
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+namespace {
+
+using Vec = JointVector<double, kArmJoints>;
+
+/// Column indices of a simulated log row for the estimator sample.
+struct RowLayout {
+  int t = 0;
+  std::array<int, kArmJoints> q{}, dq{}, i{};
+  std::array<int, kArmPads> p{};
+  explicit RowLayout(const std::vector<std::string>& columns) {
+    const auto at = [&](const std::string& name) {
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (columns[c] == name) return static_cast<int>(c);
+      throw Error::at("simulated row", 0, name, "column missing");
+    };
+    t = at("t");
+    for (int j = 0; j < kArmJoints; ++j) {
+      q[j] = at(indexed_name("q", j + 1));
+      dq[j] = at(indexed_name("dq", j + 1));
+      i[j] = at(indexed_name("i", j + 1));
+    }
+    for (int k = 0; k < kArmPads; ++k)
+      p[k] = at(indexed_name("p", k + 1));
+  }
+  ArmSample sample(std::span<const double> row) const {
+    ArmSample s;
+    s.t = row[t];
+    for (int j = 0; j < kArmJoints; ++j) {
+      s.q[j] = row[q[j]];
+      s.dq[j] = row[dq[j]];
+      s.effort[j] = row[i[j]];
+    }
+    for (int k = 0; k < kArmPads; ++k)
+      s.pressure[k] = row[p[k]];
+    return s;
+  }
+};
+
+}  // namespace
+
+Eigen::MatrixXd ideal_admittance_velocity(const Eigen::VectorXd& t, const Eigen::MatrixXd& tau,
+                                          const Eigen::VectorXd& contact,
+                                          const TeachingConfig& config) {
+  Eigen::MatrixXd v = Eigen::MatrixXd::Zero(t.size(), tau.cols());
+  for (Eigen::Index k = 1; k < t.size(); ++k) {
+    const double dt = t[k] - t[k - 1];
+    const bool on = contact[k - 1] != 0.0;
+    for (Eigen::Index j = 0; j < tau.cols(); ++j) {
+      const double input = on ? tau(k - 1, j) : 0.0;
+      v(k, j) = v(k - 1, j) +
+                dt * (input - config.admittance_damping * v(k - 1, j)) / config.admittance_inertia;
+    }
+  }
+  return v;
+}
+
+void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& estimate,
+                         TeachingLoop& loop) {
+  const Log& log = loop.log;
+  const Eigen::VectorXd t = log.col("t"), contact = log.col("gt_contact");
+  Eigen::MatrixXd truth(log.rows(), kArmJoints), dq(log.rows(), kArmJoints);
+  for (int j = 0; j < kArmJoints; ++j) {
+    truth.col(j) = log.col(indexed_name("gt_tau_ext", j + 1));
+    dq.col(j) = log.col(indexed_name("dq", j + 1));
+  }
+  Vec sum = Vec::Zero();
+  long rows = 0;
+  for (Eigen::Index k = 0; k < log.rows(); ++k) {
+    if (contact[k] == 0.0 || !estimate.row(k).allFinite()) continue;
+    sum += (estimate.row(k) - truth.row(k)).transpose().cwiseAbs2();
+    ++rows;
+  }
+  loop.torque_rmse = (sum / double(std::max(rows, 1L))).cwiseSqrt();
+
+  const Eigen::MatrixXd ideal = ideal_admittance_velocity(t, truth, contact, config);
+  Eigen::MatrixXd force(log.rows(), 3);
+  force << log.col("gt_fx"), log.col("gt_fy"), log.col("gt_fz");
+  double over = 0, under = 0;
+  for (const ContactEvent& e : contact_events(contact, force)) {
+    for (int j = 0; j < kArmJoints; ++j) {
+      double peak_ideal = 0, peak = 0;
+      for (Eigen::Index k = e.first; k <= e.last && t[k] - t[e.first] <= 0.5; ++k) {
+        peak_ideal = std::max(peak_ideal, std::abs(ideal(k, j)));
+        peak = std::max(peak, std::abs(dq(k, j)));
+      }
+      if (peak_ideal < 0.05) continue;
+      ++loop.onsets;
+      const double change = 100.0 * (peak - peak_ideal) / peak_ideal;
+      if (change >= 0) {
+        over += change;
+        ++loop.overshoots;
+      } else {
+        under -= change;
+        ++loop.undershoots;
+      }
+    }
+  }
+  loop.mean_overshoot_percent = loop.overshoots ? over / loop.overshoots : 0.0;
+  loop.mean_undershoot_percent = loop.undershoots ? under / loop.undershoots : 0.0;
+}
+
+std::array<TeachingLoop, 2> closed_loop_teaching(const ArmEstimatorSetup& setup,
+                                                 const Scenario& scenario, std::uint64_t seed,
+                                                 double duration_s) {
+  if (scenario.kind != Scenario::Kind::kTeaching)
+    throw Error::at(scenario.file, 0, "kind", "closed-loop teaching needs a teaching scenario");
+  std::array<TeachingLoop, 2> loops;
+  loops[0].name = "nominal, no compensator (proprioceptive)";
+  loops[1].name = "fusion with the compensator";
+  const RowLayout layout(simulation_columns(kArmPads));
+  for (int mode = 0; mode < 2; ++mode) {
+    const ArmEstimatorStep step = make_arm_estimator_step(setup);
+    std::vector<Vec> estimates;
+    const auto source = [&](std::span<const double> row) -> TwinVector {
+      const auto& out = step(layout.sample(row));
+      const Vec tau =
+          mode == 0 ? out.estimate(TorqueEstimator::Proprioceptive).torque : out.external.torque;
+      estimates.push_back(tau);
+      return tau;
+    };
+    TeachingLoop& loop = loops[static_cast<std::size_t>(mode)];
+    loop.log = simulate_to_log(scenario, seed, duration_s, source);
+    loop.log.source =
+        "closed-loop teaching, " + loop.name + " (simulated, seed " + std::to_string(seed) + ")";
+    Eigen::MatrixXd estimate(loop.log.rows(), kArmJoints);
+    for (Eigen::Index k = 0; k < estimate.rows(); ++k)
+      estimate.row(k) = estimates[static_cast<std::size_t>(k)].transpose();
+    score_teaching_loop(scenario.teaching, estimate, loop);
+  }
+  return loops;
+}
+
+}  // namespace tpf::offline

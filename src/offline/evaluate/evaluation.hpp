@@ -1,0 +1,83 @@
+// `tpf evaluate`: the three estimators (tactile-only, proprioceptive-only, fusion) side by side on
+// held-out logs against ground truth.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "offline/evaluate/closed_loop_teaching.hpp"
+#include "offline/evaluate/contact_detection.hpp"
+#include "offline/evaluate/force_error.hpp"
+#include "offline/evaluate/residual_table.hpp"
+#include "offline/log/log.hpp"
+#include "offline/training/arm_estimator.hpp"
+#include "tpf/estimation/transition_sigma.hpp"
+
+namespace tpf::offline {
+
+/// The estimators compared.
+enum class Modality { Tactile, Proprioceptive, Fusion };
+inline constexpr int kModalityCount = 3;
+/// "tactile-only", "proprioceptive-only", "fusion".
+const char* modality_name(Modality m);
+
+/// The logs: a contact-free calibration log for the dead bands (never a test log), held-out
+/// contact-free excitation logs (Table I), and optionally a static-contacts log (detection,
+/// force error) and a teaching log (external torque while a hand guides the arm).
+struct EvaluationLogs {
+  const Log* calibration = nullptr;
+  std::vector<const Log*> excitation;
+  const Log* contacts = nullptr;
+  const Log* teaching = nullptr;
+  /// Closed-loop teaching: the scenario is simulated again with the estimator in the loop.
+  const Scenario* teaching_scenario = nullptr;
+  std::uint64_t teaching_seed = 0;
+  double teaching_duration_s = 0.0;
+};
+
+/// Per joint dead bands (effort unit) and the pad's on level.
+struct DeadBands {
+  JointVector<double, kArmJoints> proprioceptive;  ///< 1.5·σ_nominal
+  JointVector<double, kArmJoints> fusion_moving;   ///< 1.5·σ_fused
+  JointVector<double, kArmJoints> fusion_static;   ///< the model-free static band
+  double tactile_n = 0.0;  ///< pad on level as a force on the reference pad [N]
+};
+
+/// External-torque error while a hand guides the arm (teaching log, rows with gt_contact),
+/// per joint RMSE of τ̂_ext − gt_tau_ext [N·m], over all contact rows and over the first 0.3 s
+/// after a joint starts moving (motion onset).
+struct TeachingErrors {
+  std::size_t contact_rows = 0, onset_rows = 0;
+  std::array<JointVector<double, kArmJoints>, kModalityCount> rmse{};
+  std::array<JointVector<double, kArmJoints>, kModalityCount> onset_rmse{};
+};
+
+struct Evaluation {
+  TransitionSigma<double, kArmJoints> sigma;
+  DeadBands dead_bands;
+  std::vector<ResidualRow> table;  ///< Table I on the held-out excitation logs
+  Eigen::Index excitation_rows = 0;
+  bool has_contacts = false, has_teaching = false;
+  std::array<DetectionStats, kModalityCount> detection{};
+  std::array<ForceErrorStats, kModalityCount> force{};
+  TeachingErrors teaching;
+  bool has_closed_loop = false;
+  std::array<TeachingLoop, 2> closed_loop;  ///< without / with the compensator
+  /// Traces kept for the plots (first excitation log, contacts, teaching).
+  EstimatorTrace excitation_trace, contacts_trace, teaching_trace;
+  /// Teaching log: τ̂_ext of each modality and gt_tau_ext [N·m], T × N.
+  std::array<Eigen::MatrixXd, kModalityCount> teaching_torque;
+  Eigen::MatrixXd teaching_truth;
+};
+
+/// Runs the estimator of `setup` (its σ calibrated here on logs.calibration) over every log and
+/// computes all metrics. `progress` receives one line per stage. Throws tpf::Error on bad logs.
+Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
+                    const std::function<void(const std::string&)>& progress = {});
+
+/// The evaluation as JSON text (every number of the report).
+std::string evaluation_json(const Evaluation& evaluation);
+
+}  // namespace tpf::offline

@@ -1,0 +1,78 @@
+#include "offline/identify/gram_fit.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tpf::offline {
+
+DesignGrams::DesignGrams(int joint_count, int feature_count)
+    : joints(joint_count), features(feature_count) {
+  blocks.assign(static_cast<std::size_t>(joints) * kRegimes * 2,
+                Eigen::MatrixXd::Zero(features + 2, features + 2));
+}
+
+DesignGrams& DesignGrams::operator+=(const DesignGrams& other) {
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    blocks[i] += other.blocks[i];
+  return *this;
+}
+
+Eigen::VectorXd fit_columns(const DesignGrams& grams, const std::vector<int>& columns,
+                            const FitSelection& selection) {
+  const int p = grams.features;
+  const int m = static_cast<int>(columns.size());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, m);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
+  for (int j = 0; j < grams.joints; ++j) {
+    const double w = selection.joint_weights.size() ? selection.joint_weights[j] : 1.0;
+    for (int r = 0; r < DesignGrams::kRegimes; ++r) {
+      if (!selection.regimes[r]) continue;
+      const Eigen::MatrixXd& g = grams.at(j, r, 0);
+      for (int a = 0; a < m; ++a) {
+        b[a] += w * g(columns[a], p);
+        for (int c = 0; c < m; ++c)
+          A(a, c) += w * g(columns[a], columns[c]);
+      }
+    }
+  }
+  // Equilibrate: a column that never appears (zero diagonal) stays zero.
+  Eigen::VectorXd d(m);
+  for (int a = 0; a < m; ++a)
+    d[a] = A(a, a) > 0 ? 1.0 / std::sqrt(A(a, a)) : 0.0;
+  const Eigen::MatrixXd As = d.asDiagonal() * A * d.asDiagonal();
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(As);
+  cod.setThreshold(1e-11);
+  const Eigen::VectorXd xs = cod.solve(Eigen::VectorXd(d.asDiagonal() * b));
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(p);
+  for (int a = 0; a < m; ++a)
+    theta[columns[a]] = d[a] * xs[a];
+  return theta;
+}
+
+ResidualSums residual_sums(const DesignGrams& grams, const Eigen::VectorXd& theta, int joint,
+                           int regime, int split) {
+  const int p = grams.features;
+  const Eigen::MatrixXd& g = grams.at(joint, regime, split);
+  ResidualSums s;
+  s.count = g(p + 1, p + 1);
+  const auto G = g.topLeftCorner(p, p);
+  s.sum_squares = std::max(0.0, theta.dot(G * theta) - 2.0 * theta.dot(g.col(p).head(p)) + g(p, p));
+  s.sum = g(p, p + 1) - theta.dot(g.col(p + 1).head(p));
+  return s;
+}
+
+double ResidualSums::rmse() const {
+  return count > 0 ? std::sqrt(sum_squares / count) : std::numeric_limits<double>::quiet_NaN();
+}
+double ResidualSums::mean() const {
+  return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+}
+double ResidualSums::std() const {
+  if (count <= 0) return std::numeric_limits<double>::quiet_NaN();
+  const double m = mean();
+  return std::sqrt(std::max(0.0, sum_squares / count - m * m));
+}
+
+}  // namespace tpf::offline

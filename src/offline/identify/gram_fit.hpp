@@ -1,0 +1,62 @@
+// Least squares from accumulated Gram matrices: one pass over an hour-long log, then any subset
+// of columns can be fitted on the training blocks and scored on the held-out blocks for free.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "offline/regimes/regime.hpp"
+
+namespace tpf::offline {
+
+/// Augmented Gram matrices Σ z zᵀ of z = [φ (P features); y; 1] per joint row, regime (static,
+/// static-to-kinetic, moving) and split (training, held-out). From one block one gets Σφφᵀ, Σφy,
+/// Σy², Σφ, Σy and the count, so that for any θ the residual r = y − φᵀθ has
+///   Σr² = θᵀ(Σφφᵀ)θ − 2θᵀΣφy + Σy²,  Σr = Σy − θᵀΣφ.
+struct DesignGrams {
+  static constexpr int kRegimes = 3;  ///< Regime::Static, StaticToKinetic, Moving
+  int joints = 0;
+  int features = 0;                     ///< P
+  std::vector<Eigen::MatrixXd> blocks;  ///< (P+2)², index (joint·3 + regime)·2 + split
+
+  DesignGrams() = default;
+  DesignGrams(int joints, int features);
+  Eigen::MatrixXd& at(int joint, int regime, int split) {
+    return blocks[(joint * kRegimes + regime) * 2 + split];
+  }
+  const Eigen::MatrixXd& at(int joint, int regime, int split) const {
+    return blocks[(joint * kRegimes + regime) * 2 + split];
+  }
+  DesignGrams& operator+=(const DesignGrams& other);
+};
+
+/// Which rows a fit uses and how joints are weighted.
+struct FitSelection {
+  std::array<bool, DesignGrams::kRegimes> regimes{true, true, true};
+  Eigen::VectorXd joint_weights;  ///< w_j (1/σ_j²); empty = all 1
+};
+
+/// θ over `columns` (others zero) minimising Σ_j w_j Σ_(training rows of j) r² with column
+/// equilibration and a complete orthogonal decomposition (rank-deficient sets give the
+/// minimum-norm solution). Returns a P-vector.
+Eigen::VectorXd fit_columns(const DesignGrams& grams, const std::vector<int>& columns,
+                            const FitSelection& selection);
+
+/// Residual sums of θ on one joint, regime and split.
+struct ResidualSums {
+  double count = 0, sum = 0, sum_squares = 0;
+  ResidualSums& operator+=(const ResidualSums& o) {
+    count += o.count;
+    sum += o.sum;
+    sum_squares += o.sum_squares;
+    return *this;
+  }
+  double rmse() const;
+  double mean() const;
+  double std() const;
+};
+ResidualSums residual_sums(const DesignGrams& grams, const Eigen::VectorXd& theta, int joint,
+                           int regime, int split);
+
+}  // namespace tpf::offline

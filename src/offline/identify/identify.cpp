@@ -1,0 +1,237 @@
+#include "offline/identify/identify.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <random>
+#include <thread>
+
+#include "offline/identify/effect_design.hpp"
+#include "offline/identify/gram_fit.hpp"
+#include "offline/identify/stribeck_fit.hpp"
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+
+std::vector<RegimeStats> split_regime_stats(const JointSamples& s, const Eigen::MatrixXd& residual,
+                                            bool heldout) {
+  std::vector<RegimeStats> stats;
+  for (int j = 0; j < s.joints(); ++j) {
+    Eigen::VectorXd r = residual.col(j);
+    for (Eigen::Index k = 0; k < r.size(); ++k)
+      if (static_cast<bool>(s.heldout[k]) != heldout)
+        r[k] = std::numeric_limits<double>::quiet_NaN();
+    stats.push_back(regime_stats(r, s.regimes[j]));
+  }
+  return stats;
+}
+
+template <int N>
+Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
+  const Eigen::Index n = s.size();
+  Eigen::MatrixXd residual(n, N);
+  const bool thermal = s.temperature.cols() == N && nominal.added.thermal_viscous.any();
+  auto work = [&](Eigen::Index begin, Eigen::Index end) {
+    Data<double, N> data;
+    JointVector<double, N> rigid, friction;
+    for (Eigen::Index k = begin; k < end; ++k) {
+      if (!s.valid[k]) {
+        residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
+      const JointVector<double, N> q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
+      predict_effort(nominal, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
+      if (thermal) friction += thermal_friction(nominal, dq, s.temperature.row(k).transpose());
+      residual.row(k) = s.effort.row(k) - (rigid + friction).transpose();
+    }
+  };
+  std::thread helper([&] { work(n / 2, n); });
+  work(0, n / 2);
+  helper.join();
+  return residual;
+}
+
+template <int N>
+ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
+  ConsistencyCheck check;
+  std::mt19937_64 rng(7);
+  auto uniform = [&rng](double lo, double hi) {
+    return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
+  };
+  Data<double, N> data;
+  Regressor<double, N> Y;
+  double min_eigen = std::numeric_limits<double>::infinity();
+  for (int s = 0; s < 200; ++s) {
+    JointVector<double, N> q;
+    for (int j = 0; j < N; ++j) {
+      const bool limited = nominal.model.upper[j] > nominal.model.lower[j];
+      q[j] = limited ? uniform(nominal.model.lower[j], nominal.model.upper[j]) : uniform(-3, 3);
+    }
+    const JointVector<double, N> zero = JointVector<double, N>::Zero();
+    const JointVector<double, N> g = rigid_body_torque(nominal, data, Y, q, zero, zero);
+    JointMatrix<double, N> M;
+    for (int i = 0; i < N; ++i)
+      M.col(i) = rigid_body_torque(nominal, data, Y, q, zero, JointVector<double, N>::Unit(i)) - g;
+    const JointMatrix<double, N> sym = 0.5 * (M + M.transpose());
+    min_eigen = std::min(min_eigen, Eigen::SelfAdjointEigenSolver<JointMatrix<double, N>>(
+                                        sym, Eigen::EigenvaluesOnly)
+                                        .eigenvalues()
+                                        .minCoeff());
+  }
+  check.min_mass_eigenvalue = min_eigen;
+  check.checks.push_back("mass matrix M(q) (rigid body + armature) positive definite at 200 poses");
+  if (!(min_eigen > 0))
+    check.problems.push_back("M(q) is not positive definite (smallest eigenvalue " +
+                             std::to_string(min_eigen) + " kg·m²)");
+  check.checks.push_back("friction: τ_c, τ_s, b, α ≥ 0, q̇_s > 0");
+  const StribeckParameters<double, N>& f = nominal.friction;
+  for (int j = 0; j < N; ++j) {
+    const std::string joint = "joint " + std::to_string(j + 1);
+    if (!(f.coulomb[j] >= 0) || !(f.static_friction[j] >= 0) || !(f.viscous[j] >= 0))
+      check.problems.push_back(joint + ": negative Coulomb, static or viscous friction");
+    if (!(f.load_coulomb[j] >= 0) || !(f.load_viscous[j] >= 0))
+      check.problems.push_back(joint + ": negative load-dependent friction");
+    if (!(f.stribeck_velocity[j] > 0)) check.problems.push_back(joint + ": q̇_s ≤ 0");
+  }
+  return check;
+}
+
+template <int N>
+StribeckParameters<double, N> fit_friction_curves(const Model<double, N>& model,
+                                                  const JointSamples& s,
+                                                  const Eigen::MatrixXd& rigid_prediction,
+                                                  const StribeckParameters<double, N>& linear,
+                                                  bool fit_load, int samples_per_joint,
+                                                  const Eigen::VectorXd& robust_scale) {
+  StribeckParameters<double, N> out = linear;
+  Data<double, N> data;
+  for (int j = 0; j < N; ++j) {
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index k = 0; k < s.size(); ++k)
+      if (s.valid[k] && !s.heldout[k] && s.regimes[j][k] != Regime::Static &&
+          s.regimes[j][k] != Regime::Invalid)
+        rows.push_back(k);
+    if (rows.size() < 50) continue;  // too little motion: keep the linear values
+    const std::size_t stride =
+        std::max<std::size_t>(1, rows.size() / static_cast<std::size_t>(samples_per_joint));
+    const Eigen::Index m = static_cast<Eigen::Index>((rows.size() + stride - 1) / stride);
+    Eigen::VectorXd dq(m), abs_g(m), target(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const Eigen::Index k = rows[static_cast<std::size_t>(i) * stride];
+      dq[i] = s.dq(k, j);
+      abs_g[i] = std::abs(compute_gravity(model, data, s.q.row(k).transpose())[j]);
+      target[i] = s.effort(k, j) - rigid_prediction(k, j);
+    }
+    JointStribeck start;
+    start.coulomb = linear.coulomb[j];
+    start.viscous = linear.viscous[j];
+    start.load_coulomb = linear.load_coulomb[j];
+    start.load_viscous = linear.load_viscous[j];
+    const JointStribeck fit = fit_stribeck(dq, abs_g, target, start, fit_load, robust_scale[j]);
+    out.coulomb[j] = fit.coulomb;
+    out.static_friction[j] = fit.static_friction;
+    out.stribeck_velocity[j] = fit.stribeck_velocity;
+    out.stribeck_exponent[j] = fit.stribeck_exponent;
+    out.viscous[j] = fit.viscous;
+    out.load_coulomb[j] = fit.load_coulomb;
+    out.load_viscous[j] = fit.load_viscous;
+  }
+  return out;
+}
+
+template <int N>
+Identification<N> identify(const Log& log, const Model<double, N>& model,
+                           const IdentifyOptions& options) {
+  auto say = [&](const std::string& line) {
+    if (options.progress) options.progress(line);
+  };
+  Identification<N> out;
+  out.samples = extract_joint_samples(log, options.samples);
+  const JointSamples& s = out.samples;
+  if (s.joints() != N)
+    throw Error::at(log.source, 0, "",
+                    "the log has " + std::to_string(s.joints()) + " joints, the robot file " +
+                        std::to_string(N));
+  const JointVector<double, N> scale = effort_scale<N>(model, s.effort_unit);
+  const BaseParameters base = rigid_body_base_parameters(model);
+
+  say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
+  const EffectDesign<N> design(model, base, scale, s, {}, options.samples.regimes.static_velocity);
+  const DesignGrams grams = design.accumulate(s);
+  FitSelection selection;
+  selection.regimes = {false, true, true};  // moving samples only
+  std::vector<int> columns;
+  for (const FeatureGroup& g : design.groups())
+    if (g.key == "rigid")
+      columns.insert(columns.end(), g.columns.begin(), g.columns.end());
+    else if (g.key == "friction")
+      columns.insert(columns.end(), g.columns.begin(), g.columns.begin() + 2);
+  Eigen::VectorXd theta = fit_columns(grams, columns, selection);
+  out.joint_weights.resize(N);
+  Eigen::VectorXd sigma(N);
+  for (int j = 0; j < N; ++j) {
+    ResidualSums sums;
+    for (int r = 1; r < DesignGrams::kRegimes; ++r)
+      sums += residual_sums(grams, theta, j, r, 0);
+    sigma[j] = std::max(sums.std(), 1e-9);
+    out.joint_weights[j] = 1.0 / (sigma[j] * sigma[j]);
+  }
+  selection.joint_weights = out.joint_weights;
+  theta = fit_columns(grams, columns, selection);
+
+  NominalModel<double, N>& nominal = out.nominal;
+  nominal.model = model;
+  nominal.effort_unit = s.effort_unit;
+  nominal.effort_per_newton_metre = scale;
+  nominal.base_count = base.size();
+  Eigen::VectorXd rigid_theta = Eigen::VectorXd::Zero(design.features());
+  StribeckParameters<double, N> linear;
+  for (const FeatureGroup& g : design.groups()) {
+    if (g.key == "rigid") {
+      for (int i = 0; i < base.size(); ++i) {
+        nominal.base_columns[i] = base.independent[i];
+        nominal.base_values[i] = theta[g.columns[i]];
+        rigid_theta[g.columns[i]] = theta[g.columns[i]];
+      }
+    } else if (g.key == "friction") {
+      linear.coulomb[g.joint] = theta[g.columns[0]];
+      linear.static_friction[g.joint] = theta[g.columns[0]];
+      linear.viscous[g.joint] = theta[g.columns[1]];
+    }
+  }
+
+  say("identify: pass 2/3: friction curves (Ceres)");
+  const Eigen::MatrixXd rigid = design.predict(s, rigid_theta);
+  nominal.friction = fit_friction_curves<N>(model, s, rigid, linear, options.fit_load_friction,
+                                            options.friction_samples_per_joint, sigma);
+
+  say("identify: pass 3/3: validation on held-out blocks");
+  out.residual = nominal_residual(nominal, s);
+  out.heldout = split_regime_stats(s, out.residual, true);
+  out.training = split_regime_stats(s, out.residual, false);
+  out.consistency = check_consistency(nominal);
+  for (int j = 0; j < N; ++j)
+    if (linear.coulomb[j] < 0 || linear.viscous[j] < 0)
+      out.consistency.problems.push_back(
+          "joint " + std::to_string(j + 1) +
+          ": the linear fit gave negative Coulomb or viscous friction (too little motion?)");
+  return out;
+}
+
+#define TPF_INSTANTIATE_IDENTIFY(N)                                               \
+  template Identification<N> identify<N>(const Log&, const Model<double, N>&,     \
+                                         const IdentifyOptions&);                 \
+  template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&); \
+  template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,    \
+                                               const JointSamples&);              \
+  template StribeckParameters<double, N> fit_friction_curves<N>(                  \
+      const Model<double, N>&, const JointSamples&, const Eigen::MatrixXd&,       \
+      const StribeckParameters<double, N>&, bool, int, const Eigen::VectorXd&);
+TPF_INSTANTIATE_IDENTIFY(1)
+TPF_INSTANTIATE_IDENTIFY(2)
+TPF_INSTANTIATE_IDENTIFY(3)
+TPF_INSTANTIATE_IDENTIFY(4)
+TPF_INSTANTIATE_IDENTIFY(5)
+TPF_INSTANTIATE_IDENTIFY(6)
+#undef TPF_INSTANTIATE_IDENTIFY
+
+}  // namespace tpf::offline

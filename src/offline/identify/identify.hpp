@@ -1,0 +1,81 @@
+// `tpf identify`: the declared model of an arm (rigid-body base parameters with armature,
+// Stribeck + viscous friction with load dependence) from a log, with held-out validation.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "offline/identify/joint_samples.hpp"
+#include "offline/log/log.hpp"
+#include "offline/regimes/regime_stats.hpp"
+#include "tpf/estimation/nominal_model.hpp"
+
+namespace tpf::offline {
+
+/// Receives one line of progress ("identify: pass 1/3 …").
+using ProgressLine = std::function<void(const std::string&)>;
+
+struct IdentifyOptions {
+  SampleOptions samples;
+  bool fit_load_friction = true;           ///< α_c, α_v free in the nonlinear friction fit
+  int friction_samples_per_joint = 20000;  ///< subsample of moving training samples for Ceres
+  ProgressLine progress;
+};
+
+/// Physical consistency of an identified model.
+struct ConsistencyCheck {
+  double min_mass_eigenvalue = 0;  ///< smallest eigenvalue of M(q) over 200 seeded poses, kg·m²
+  std::vector<std::string> problems;  ///< empty = consistent
+  std::vector<std::string> checks;    ///< what was checked, for the report
+  bool consistent() const { return problems.empty(); }
+};
+
+/// The identified model and its quality.
+template <int N>
+struct Identification {
+  NominalModel<double, N> nominal;
+  JointSamples samples;
+  Eigen::MatrixXd residual;           ///< effort − prediction, per sample and joint (NaN invalid)
+  std::vector<RegimeStats> heldout;   ///< per joint, residual on held-out blocks per regime
+  std::vector<RegimeStats> training;  ///< per joint, on the training blocks
+  Eigen::VectorXd joint_weights;      ///< 1/σ_j² of the weighted least squares
+  ConsistencyCheck consistency;
+};
+
+/// Identifies the model of the N-joint arm described by `model` (the robot file) from `log`:
+/// 1. weighted linear least squares of Y_b·π_b (SI base parameters, incl. armature) + τ_c·sgn(q̇)
+///    + b·q̇ on the moving training samples (|q̇| ≥ threshold), weights per joint 1/σ_j² from
+///    the residual std of an unweighted first fit (iterated once);
+/// 2. per joint, Stribeck + load-dependent friction by Ceres on the friction target
+///    effort − rigid prediction (moving training samples, subsampled);
+/// 3. held-out residual per regime (interleaved blocks not used in 1–2) and a consistency check.
+template <int N>
+Identification<N> identify(const Log& log, const Model<double, N>& model,
+                           const IdentifyOptions& options = {});
+
+/// M(q) ≻ 0 at 200 seeded poses (rigid body + armature from the base parameters), friction
+/// coefficients non-negative, q̇_s > 0.
+template <int N>
+ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal);
+
+/// effort − (rigid + friction + thermal) of `nominal` on every sample (NaN where invalid).
+template <int N>
+Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal,
+                                 const JointSamples& samples);
+
+/// Per-joint regime statistics of `residual` over the held-out (or training) samples only.
+std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
+                                            const Eigen::MatrixXd& residual, bool heldout);
+
+/// Fits the Stribeck + load curve of every joint (Ceres) on the friction target
+/// effort − rigid_prediction of the moving training samples; `linear` gives the start values.
+template <int N>
+StribeckParameters<double, N> fit_friction_curves(const Model<double, N>& model,
+                                                  const JointSamples& samples,
+                                                  const Eigen::MatrixXd& rigid_prediction,
+                                                  const StribeckParameters<double, N>& linear,
+                                                  bool fit_load, int samples_per_joint,
+                                                  const Eigen::VectorXd& robust_scale);
+
+}  // namespace tpf::offline

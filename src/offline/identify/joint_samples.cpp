@@ -1,0 +1,85 @@
+#include "offline/identify/joint_samples.hpp"
+
+#include <cmath>
+
+#include "offline/signal/acceleration.hpp"
+#include "offline/signal/segments.hpp"
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+
+JointSamples extract_joint_samples(const Log& log, const SampleOptions& options) {
+  JointSamples s;
+  s.source = log.source;
+  const int n_joints = log.joint_count();
+  if (n_joints < 1) throw Error::at(log.source, 0, "q1", "the log has no joint columns");
+  const std::string prefix = log.effort_prefix();
+  s.effort_unit = prefix == "i" ? "mA" : "N*m";
+  s.simulated = log.meta.get("source").value_or("").find("simulated") != std::string::npos;
+  const Eigen::Index n = log.rows();
+  s.t = log.col("t");
+  s.q.resize(n, n_joints);
+  s.dq.resize(n, n_joints);
+  s.ddq.resize(n, n_joints);
+  s.effort.resize(n, n_joints);
+  bool has_temperature = true;
+  for (int j = 1; j <= n_joints; ++j)
+    has_temperature = has_temperature && log.has(indexed_name("temp", j));
+  if (has_temperature) s.temperature.resize(n, n_joints);
+  for (int j = 1; j <= n_joints; ++j) {
+    s.q.col(j - 1) = log.col(indexed_name("q", j));
+    s.dq.col(j - 1) = log.col(indexed_name("dq", j));
+    s.effort.col(j - 1) = log.col(indexed_name(prefix, j));
+    const std::string acc = indexed_name("ddq", j);
+    s.ddq.col(j - 1) =
+        log.has(acc) ? Eigen::VectorXd(log.col(acc))
+                     : derive_acceleration(s.t, s.dq.col(j - 1), options.acceleration_cutoff_hz);
+    if (has_temperature) s.temperature.col(j - 1) = log.col(indexed_name("temp", j));
+  }
+
+  s.valid.assign(n, 1);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    bool ok = std::isfinite(s.t[k]) && s.q.row(k).allFinite() && s.dq.row(k).allFinite() &&
+              s.ddq.row(k).allFinite() && s.effort.row(k).allFinite();
+    if (has_temperature) ok = ok && s.temperature.row(k).allFinite();
+    s.valid[k] = ok;
+    s.invalid_count += !ok;
+  }
+  if (n - static_cast<Eigen::Index>(s.invalid_count) < 100)
+    throw Error::at(log.source, 0, "",
+                    "fewer than 100 complete samples (" +
+                        std::to_string(n - static_cast<Eigen::Index>(s.invalid_count)) +
+                        "): nothing to identify from");
+
+  s.regimes.resize(n_joints);
+  for (int j = 0; j < n_joints; ++j)
+    s.regimes[j] = label_regimes(s.t, s.dq.col(j), options.regimes);
+
+  // Held-out split by interleaved time blocks.
+  s.heldout.assign(n, 0);
+  const double t0 = s.t[0];
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const long block = static_cast<long>(std::floor((s.t[k] - t0) / options.block_s));
+    s.heldout[k] = (block % options.heldout_every) == options.heldout_every - 1;
+  }
+
+  // Sign of the last motion, reset at gaps and NaNs (a new segment starts unknown).
+  s.held_sign = Eigen::MatrixXd::Zero(n, n_joints);
+  for (const Segment& seg : contiguous_segments(s.t, {}, options.regimes.gap_factor)) {
+    for (int j = 0; j < n_joints; ++j) {
+      double sign = 0.0;
+      for (Eigen::Index k = seg.begin; k < seg.end; ++k) {
+        const double v = s.dq(k, j);
+        if (!std::isfinite(v)) {
+          sign = 0.0;
+        } else if (std::abs(v) >= options.regimes.static_velocity) {
+          sign = v > 0 ? 1.0 : -1.0;
+        }
+        s.held_sign(k, j) = sign;
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace tpf::offline

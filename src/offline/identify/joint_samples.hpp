@@ -1,0 +1,46 @@
+// The samples of a log that identification and diagnosis use: joint state, effort, regimes and
+// the held-out split, with missing values flagged (never invented).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "offline/log/log.hpp"
+#include "offline/regimes/regime.hpp"
+
+namespace tpf::offline {
+
+struct SampleOptions {
+  RegimeOptions regimes;                 ///< static threshold etc. (label_regimes)
+  double acceleration_cutoff_hz = 15.0;  ///< derive_acceleration when the log has no ddq<j>
+  double block_s = 5.0;                  ///< held-out split: interleaved blocks of this length …
+  int heldout_every = 4;                 ///< … every heldout_every-th block is held out (25 %)
+};
+
+/// Samples × joints matrices of one log (column j = joint j+1). Effort in the log's unit.
+struct JointSamples {
+  std::string source;       ///< log path, for messages
+  std::string effort_unit;  ///< "mA" (i<j>) or "N*m" (tau<j>)
+  bool simulated = false;   ///< metadata 'source' says simulated
+  Eigen::VectorXd t;
+  Eigen::MatrixXd q, dq, ddq, effort;
+  Eigen::MatrixXd temperature;               ///< temp<j> in °C; 0 columns when the log has none
+  std::vector<std::vector<Regime>> regimes;  ///< [joint][sample], from label_regimes
+  std::vector<char> valid;                   ///< every joint's q, dq, ddq, effort (and temp) finite
+  std::vector<char> heldout;                 ///< the sample belongs to a held-out block
+  /// Sign of the last motion of each joint (|q̇| ≥ threshold): +1, −1, 0 before any motion or
+  /// after a gap. Held through rests: a stopped geared joint keeps the friction it stopped with.
+  Eigen::MatrixXd held_sign;
+  std::size_t invalid_count = 0;  ///< samples skipped for a NaN
+
+  int joints() const { return static_cast<int>(q.cols()); }
+  Eigen::Index size() const { return t.size(); }
+};
+
+/// Extracts the joint samples of `log`: q<j>, dq<j>, ddq<j> (or derive_acceleration of dq<j>),
+/// the effort i<j> or tau<j>, temp<j> when every joint has one. Throws tpf::Error naming the log
+/// when required columns are missing or there are fewer than 100 valid samples.
+JointSamples extract_joint_samples(const Log& log, const SampleOptions& options = {});
+
+}  // namespace tpf::offline

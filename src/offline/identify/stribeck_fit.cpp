@@ -1,0 +1,62 @@
+#include "offline/identify/stribeck_fit.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tpf::offline {
+namespace {
+
+// Parameters x = [τ_c, τ_s, q̇_s, δ, b, α_c, α_v].
+struct StribeckResidual {
+  double dq, abs_gravity, target;
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    using std::abs, std::exp, std::pow;
+    const T ratio = T(abs(dq)) / x[2];
+    const T level = x[0] + x[5] * abs_gravity + (x[1] - x[0]) * exp(-pow(ratio, x[3]));
+    const double sign = dq > 0 ? 1.0 : -1.0;
+    residual[0] = level * sign + (x[4] + x[6] * abs_gravity) * dq - target;
+    return true;
+  }
+};
+
+}  // namespace
+
+JointStribeck fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
+                           const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load,
+                           double robust_scale) {
+  double x[7] = {std::max(start.coulomb, 0.0),
+                 std::max(start.coulomb, 0.0) * 1.3,
+                 std::clamp(start.stribeck_velocity, 2e-3, 1.0),
+                 std::clamp(start.stribeck_exponent, 0.5, 3.0),
+                 std::max(start.viscous, 0.0),
+                 fit_load ? std::max(start.load_coulomb, 0.0) : 0.0,
+                 fit_load ? std::max(start.load_viscous, 0.0) : 0.0};
+  ceres::Problem problem;
+  for (Eigen::Index k = 0; k < dq.size(); ++k) {
+    auto* cost = new ceres::AutoDiffCostFunction<StribeckResidual, 1, 7>(
+        new StribeckResidual{dq[k], abs_gravity[k], target[k]});
+    problem.AddResidualBlock(cost, new ceres::CauchyLoss(std::max(robust_scale, 1e-9)), x);
+  }
+  const double lower[7] = {0, 0, 1e-3, 0.3, 0, 0, 0};
+  const double upper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
+  for (int i = 0; i < 7; ++i) {
+    problem.SetParameterLowerBound(x, i, lower[i]);
+    problem.SetParameterUpperBound(x, i, upper[i]);
+  }
+  if (!fit_load) {
+    problem.SetManifold(x, new ceres::SubsetManifold(7, {5, 6}));
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 50;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return {x[0], x[1], x[2], x[3], x[4], x[5], x[6]};
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,19 @@
+// The declared nominal model of the arm, straight from its files (no identification).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "offline/training/arm_estimator.hpp"
+
+namespace tpf::offline {
+
+/// The model the robot files declare: rigid body and armature of the robot file (as base
+/// parameters) and the memoryless Stribeck + load friction of the friction file, in the effort
+/// unit `effort_prefix` ("i": mA via 1000/K_t, "tau": N·m). It is the starting point of
+/// identification, and what the pipeline uses when no identified tpf-params file is given.
+ArmNominal declared_nominal_model(const std::filesystem::path& robot_file,
+                                  const std::filesystem::path& friction_file,
+                                  const std::string& effort_prefix = "i");
+
+}  // namespace tpf::offline

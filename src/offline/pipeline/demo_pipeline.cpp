@@ -1,0 +1,215 @@
+#include "offline/pipeline/demo_pipeline.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "offline/common/data_files.hpp"
+#include "offline/diagnose/diagnose.hpp"
+#include "offline/evaluate/evaluation_report.hpp"
+#include "offline/identify/identify.hpp"
+#include "offline/log/atomic_file.hpp"
+#include "offline/diagnose/diagnosis_report.hpp"
+#include "offline/report/html_report.hpp"
+#include "offline/report/text_format.hpp"
+#include "offline/sim/simulate.hpp"
+#include "offline/training/estimator_samples.hpp"
+#include "tpf/model/load_robot.hpp"
+
+namespace tpf::offline {
+namespace {
+
+struct SimulationJob {
+  std::string label;
+  std::string scenario;
+  std::uint64_t seed;
+  double duration_s;
+  Log log;
+};
+
+/// Runs the jobs on `threads` threads (each simulation is deterministic in its seed).
+void simulate_all(std::vector<SimulationJob>& jobs, int threads,
+                  const std::function<void(const std::string&)>& say) {
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  std::exception_ptr failure;
+  const auto work = [&] {
+    for (std::size_t k = next++; k < jobs.size(); k = next++) {
+      SimulationJob& job = jobs[k];
+      try {
+        const Scenario scenario = load_scenario(data_file(job.scenario).string());
+        job.log = simulate_to_log(scenario, job.seed, job.duration_s);
+        job.log.source = job.label + " (simulated, " + job.scenario + ", seed " +
+                         std::to_string(job.seed) + ", " + format_number(job.duration_s) + " s)";
+        const std::lock_guard lock(mutex);
+        say("simulate: " + job.log.source + " done");
+      } catch (...) {
+        const std::lock_guard lock(mutex);
+        failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i)
+    pool.emplace_back(work);
+  work();
+  for (auto& t : pool)
+    t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+void write_index(const std::filesystem::path& out, const DemoOptions& o, const DemoResult& r,
+                 const std::vector<SimulationJob>& jobs) {
+  HtmlReport page("tpf demo: the whole loop on the digital twin");
+  page.mark_simulated();
+  page.paragraph("simulate → identify → diagnose → train → evaluate, in " +
+                 format_number(r.seconds, 3) + " s.");
+  page.heading("Pages");
+  page.links({{"diagnose.html", "diagnose",
+               "— what the declared model misses, the effects added, held-out before/after"},
+              {"evaluate.html", "evaluate",
+               "— tactile-only, proprioceptive-only and fusion side by side (Table I, dead "
+               "bands, detection, force, teaching)"}});
+  page.heading("Diagnosis");
+  page.list(r.findings);
+  page.heading("Headline");
+  page.preformatted(evaluation_headline(r.evaluation));
+  page.heading("Stages");
+  std::vector<std::string> stages;
+  for (const SimulationJob& j : jobs)
+    stages.push_back("log: " + j.log.source);
+  stages.push_back(
+      "nominal model: identify then diagnose on the training log (identified.params.json, "
+      "nominal.params.json = identified + the effects diagnosis added)");
+  std::string nets;
+  for (const TcnTrainResult& t : r.training.results)
+    nets += " best epoch " + std::to_string(t.best_epoch) + " of " +
+            std::to_string(t.history.size()) + ";";
+  stages.push_back(
+      "train: " +
+      std::string(o.per_joint ? "one network per joint" : "one network for all joints") +
+      ", budget " + format_number(o.training_budget_s) +
+      " s (the demo's short "
+      "budget; `tpf train` defaults to 270 s), took " +
+      format_number(r.training.seconds, 3) + " s;" + nets + " weights in tcn.json or tcn.joint<j>.json");
+  page.list(stages);
+  page.write(out / "index.html");
+}
+
+}  // namespace
+
+DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::string&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  std::filesystem::create_directories(o.out);
+  DemoResult result;
+
+  // 1. Simulate.
+  say("[1/5] simulate: training, calibration and held-out logs on " + std::to_string(o.threads) +
+      " threads");
+  std::vector<SimulationJob> jobs{
+      {"training excitation", o.training_scenario, o.training_seed, o.training_s, {}},
+      {"held-out excitation", o.test_scenario, o.test_seed, o.test_s, {}},
+      {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}},
+      {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}},
+      {"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}}};
+  simulate_all(jobs, o.threads, say);
+  const Log& training_log = jobs[0].log;
+
+  // 2. Identify the declared model on the training log.
+  say("[2/5] identify: declared model (base parameters, armature, Stribeck + load friction) on "
+      "the training log");
+  const auto model = load_robot<double, kArmJoints>(data_file("arm4.robot.json"));
+  IdentifyOptions identify_options;
+  identify_options.progress = say;
+  const Identification<kArmJoints> identified = identify(training_log, model, identify_options);
+  save_nominal_model<kArmJoints>(o.out / "identified.params.json", identified.nominal,
+                                 training_log.source);
+
+  // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
+  say("[3/5] diagnose: candidate effects on the training log's held-out blocks");
+  DiagnoseOptions diagnose_options;
+  diagnose_options.progress = say;
+  const Diagnosis<kArmJoints> diagnosis = diagnose(training_log, model, diagnose_options);
+  for (const std::string& f : diagnosis.findings)
+    say("diagnose: " + f);
+  save_nominal_model<kArmJoints>(o.out / "nominal.params.json", diagnosis.nominal,
+                                 training_log.source);
+  write_diagnosis_report(diagnosis, o.out / "diagnose.html");
+  AtomicFile diagnosis_file(o.out / "diagnosis.json");
+  diagnosis_file.write(diagnosis_json(diagnosis));
+  diagnosis_file.commit();
+  result.findings = diagnosis.findings;
+  ArmEstimatorSetup setup;
+  setup.nominal = diagnosis.nominal;
+  setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
+
+  // 4. Train.
+  say("[4/5] train: estimator features on the training log, then the TCN (budget " +
+      format_number(o.training_budget_s) + " s)");
+  setup.parameters = arm_estimator_parameters(estimate_sensor_noise(training_log));
+  const std::vector<EstimatorTrace> traces{
+      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(training_log))};
+  CompensatorTrainingOptions training;
+  training.per_joint = o.per_joint;
+  training.tcn.max_seconds = o.training_budget_s;
+  training.tcn.max_epochs = o.training_epochs;
+  training.tcn.split_cutoff_hz = o.split_cutoff_hz;
+  training.tcn.threads = o.threads;
+  training.tcn.seed = o.training_seed;
+  int last_epoch = 0;
+  result.training = train_compensator(
+      traces, setup.nominal.effort_per_newton_metre, training, [&](const TcnTrainProgress& p) {
+        if (p.epoch - last_epoch >= 5 || p.last) {
+          last_epoch = p.epoch;
+          char line[200];
+          std::snprintf(
+              line, sizeof line,
+              "train: epoch %d, loss %.4g, held-out %.4g (best %.4g), %.0f s, ~%.0f s left",
+              p.epoch, p.train_loss, p.validation_loss, p.best_validation_loss, p.elapsed_seconds,
+              p.remaining_seconds);
+          say(line);
+        }
+      });
+  const auto weights = o.out / "tcn.json";
+  setup.weight_files = write_compensator(result.training, weights);
+  setup.layout = result.training.layout;
+
+  // 5. Evaluate.
+  say("[5/5] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
+      std::to_string(o.contacts_seed) + ", " + std::to_string(o.teaching_seed) + ")");
+  EvaluationLogs logs;
+  logs.calibration = &jobs[3].log;
+  logs.excitation = {&jobs[1].log};
+  logs.contacts = &jobs[2].log;
+  logs.teaching = &jobs[4].log;
+  const Scenario teaching = load_scenario(data_file("scenarios/teaching.json").string());
+  logs.teaching_scenario = &teaching;
+  logs.teaching_seed = o.teaching_seed;
+  logs.teaching_duration_s = o.teaching_s;
+  setup.parameters = arm_estimator_parameters(estimate_sensor_noise(jobs[3].log));
+  result.evaluation = evaluate(setup, logs, say);
+  std::vector<std::string> notes{
+      "nominal model: identified and diagnosed on the training log (nominal.params.json)",
+      "compensator: one network " + std::string(o.per_joint ? "per joint" : "for all joints") +
+          ", trained " + format_number(result.training.seconds, 3) + " s on " + jobs[0].log.source};
+  for (const SimulationJob& j : jobs)
+    if (&j != &jobs[0]) notes.push_back("log: " + j.log.source);
+  evaluation_report(result.evaluation, true, notes).write(o.out / "evaluate.html");
+  AtomicFile json(o.out / "evaluation.json");
+  json.write(evaluation_json(result.evaluation));
+  json.commit();
+
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_index(o.out, o, result, jobs);
+  result.index = o.out / "index.html";
+  return result;
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,56 @@
+// `tpf demo`: the whole loop on the digital twin, from simulation to one report.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "offline/evaluate/evaluation.hpp"
+#include "offline/training/train_compensator.hpp"
+
+namespace tpf::offline {
+
+struct DemoOptions {
+  std::filesystem::path out = "tpf-demo";
+  /// Training log: contact-free excitation with effects the nominal model does not declare.
+  std::string training_scenario = "scenarios/excitation-undeclared.json";
+  std::string test_scenario = "scenarios/excitation-undeclared.json";
+  std::uint64_t training_seed = 1;
+  std::uint64_t calibration_seed = 2;  ///< dead-band σ; never a test seed
+  std::uint64_t test_seed = 3;         ///< held-out excitation
+  std::uint64_t contacts_seed = 4;
+  std::uint64_t teaching_seed = 5;
+  double training_s = 300.0;
+  double calibration_s = 60.0;
+  double test_s = 120.0;
+  double contacts_s = 90.0;
+  double teaching_s = 60.0;
+  /// Training budget [s] (wall clock; the full `tpf train` default is 270 s).
+  double training_budget_s = 90.0;
+  int training_epochs = 200;  ///< upper bound on epochs (early stopping usually ends sooner)
+  /// One network per joint (the default: measured better than one network for all joints on
+  /// held-out twin data, docs/evaluation.md); false: one network for all joints.
+  bool per_joint = true;
+  /// Cut-off of the trainer's zero-phase low/high split of the target [Hz].
+  double split_cutoff_hz = 2.0;
+  int threads = 2;
+};
+
+struct DemoResult {
+  Evaluation evaluation;
+  CompensatorTraining training;
+  std::vector<std::string> findings;  ///< the diagnosis, in plain sentences
+  std::filesystem::path index;        ///< the report's entry page
+  double seconds = 0.0;
+};
+
+/// simulate (training, calibration and held-out logs, two at a time) → identify → diagnose (the
+/// nominal model: declared + added effects) → train → evaluate → report (out/index.html linking
+/// out/diagnose.html and out/evaluate.html; parameters, weights and evaluation.json beside it).
+/// `progress` gets one line per stage. Everything is SIMULATED.
+DemoResult run_demo(const DemoOptions& options,
+                    const std::function<void(const std::string&)>& progress = {});
+
+}  // namespace tpf::offline

@@ -1,0 +1,152 @@
+#include "offline/training/arm_estimator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "tpf/common/error.hpp"
+#include "tpf/estimation/transition_sigma.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
+#include "tpf/nn/tcn_weight_file.hpp"
+
+namespace tpf::offline {
+namespace {
+
+/// 1.4826·MAD(x): the std of Gaussian samples, robust to outliers. NaN when x is empty.
+double robust_std(std::vector<double>& x) {
+  if (x.empty()) return std::nan("");
+  const auto mid = x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2);
+  std::nth_element(x.begin(), mid, x.end());
+  const double median = *mid;
+  for (double& v : x)
+    v = std::abs(v - median);
+  std::nth_element(x.begin(), mid, x.end());
+  return 1.4826 * *mid;
+}
+
+template <typename Compensator>
+using ArmEstimator =
+    Estimator<double, kArmJoints, kArmPads, RecordingCompensator<Compensator, double, kArmJoints>>;
+
+/// Builds the estimator with its compensator loaded and calls `use(estimator)`.
+template <typename Use>
+auto with_arm_estimator(const ArmEstimatorSetup& s, Use&& use) {
+  switch (s.layout) {
+    case CompensatorLayout::AllJoints: {
+      auto e = std::make_unique<ArmEstimator<AllJointsTcn>>(s.nominal, s.pads, s.parameters);
+      load_tcn_weights(s.weight_files.at(0), e->compensator().inner);
+      return use(*e);
+    }
+    case CompensatorLayout::PerJoint: {
+      auto e = std::make_unique<ArmEstimator<JointTcns>>(s.nominal, s.pads, s.parameters);
+      for (int j = 0; j < kArmJoints; ++j)
+        load_tcn_weights(s.weight_files.at(static_cast<std::size_t>(j)),
+                         e->compensator().inner.network(j));
+      return use(*e);
+    }
+    case CompensatorLayout::None:
+      break;
+  }
+  auto e = std::make_unique<ArmEstimator<ZeroCompensator<double, kArmJoints>>>(s.nominal, s.pads,
+                                                                               s.parameters);
+  return use(*e);
+}
+
+}  // namespace
+
+SensorNoise estimate_sensor_noise(const Log& log) {
+  SensorNoise noise;
+  const std::string effort = log.effort_prefix();
+  const Eigen::VectorXd t = log.col("t");
+  const double rate = log.meta.rate_hz();
+  const double period = std::isfinite(rate) ? 1.0 / rate : 0.0025;
+  for (int j = 0; j < kArmJoints; ++j) {
+    const auto dq = log.col(indexed_name("dq", j + 1));
+    const auto e = log.col(indexed_name(effort, j + 1));
+    std::vector<double> d;
+    for (Eigen::Index k = 1; k < log.rows(); ++k) {
+      const bool rest = std::abs(dq[k]) < 1e-4 && std::abs(dq[k - 1]) < 1e-4;
+      if (rest && t[k] - t[k - 1] < 1.5 * period && std::isfinite(e[k] - e[k - 1]))
+        d.push_back(e[k] - e[k - 1]);
+    }
+    if (d.size() < 10)
+      throw Error::at(log.source, 0, indexed_name(effort, j + 1),
+                      "too few static rows to estimate the effort noise");
+    noise.effort[j] = robust_std(d) / std::sqrt(2.0);
+  }
+  std::vector<double> d;
+  for (int k = 1; k <= log.pad_count(); ++k) {
+    const auto p = log.col(indexed_name("p", k));
+    for (Eigen::Index r = 1; r < log.rows(); ++r)
+      if (std::isfinite(p[r] - p[r - 1])) d.push_back(p[r] - p[r - 1]);
+  }
+  noise.pad_kpa = d.empty() ? 0.0 : robust_std(d) / std::sqrt(2.0);
+  return noise;
+}
+
+ArmParameters arm_estimator_parameters(const SensorNoise& noise, double pad_gain_kpa_per_n) {
+  ArmParameters p;
+  const int window =
+      static_cast<int>(std::lround(p.static_friction.baseline_window_s / p.sample_period_s));
+  // The effort is rounded to 1 unit: its variance adds 1/12.
+  const JointVector<double, kArmJoints> sigma =
+      (noise.effort.array().square() + 1.0 / 12.0).sqrt().matrix();
+  p.static_dead_band = static_dead_band_from_noise<double, kArmJoints>(sigma, window);
+  if (noise.pad_kpa > 0)
+    p.skin.detector = detector_settings_from_noise(noise.pad_kpa, p.sample_period_s, 0.0105);
+  p.skin.force_gain = 1.0 / (pad_gain_kpa_per_n * 1000.0 * 0.0025);
+  return p;
+}
+
+std::filesystem::path joint_weight_path(const std::filesystem::path& path, int joint) {
+  return path.parent_path() /
+         (path.stem().string() + ".joint" + std::to_string(joint + 1) + ".json");
+}
+
+std::vector<std::string> compensator_files(const std::filesystem::path& path,
+                                           CompensatorLayout& layout) {
+  if (std::filesystem::exists(path)) {
+    const TcnWeightFile file = read_tcn_weight_file(path.string());
+    file.require_architecture(4 * kArmJoints, kArmHidden, kArmLevels, 4, kArmJoints);
+    layout = CompensatorLayout::AllJoints;
+    return {path.string()};
+  }
+  std::vector<std::string> files;
+  for (int j = 0; j < kArmJoints; ++j) {
+    const auto p = joint_weight_path(path, j);
+    if (!std::filesystem::exists(p))
+      throw Error::at(path.string(), 0, "weights",
+                      "no such weight file, nor per-joint files like " + p.string());
+    read_tcn_weight_file(p.string()).require_architecture(4, kArmHidden, kArmLevels, 4, 1);
+    files.push_back(p.string());
+  }
+  layout = CompensatorLayout::PerJoint;
+  return files;
+}
+
+EstimatorTrace trace_arm_estimator(const ArmEstimatorSetup& setup,
+                                   const std::vector<ArmSample>& samples) {
+  return with_arm_estimator(setup, [&](auto& e) { return trace_estimator(e, samples); });
+}
+
+ArmEstimatorStep make_arm_estimator_step(const ArmEstimatorSetup& setup) {
+  return with_arm_estimator(setup, [](auto& e) -> ArmEstimatorStep {
+    using E = std::decay_t<decltype(e)>;
+    auto shared = std::make_shared<E>(std::move(e));
+    return [shared](const ArmSample& s) -> const EstimatorOutput<double, kArmJoints>& {
+      return shared->update(s);
+    };
+  });
+}
+
+TransitionSigma<double, kArmJoints> calibrate_arm_sigma(ArmEstimatorSetup& setup,
+                                                        const std::vector<ArmSample>& samples,
+                                                        const std::string& source) {
+  const auto sigma = with_arm_estimator(
+      setup, [&](auto& e) { return calibrate_transition_sigma(e, samples, 0.07, source); });
+  setup.parameters.nominal_sigma = sigma.nominal;
+  setup.parameters.fused_sigma = sigma.fused;
+  return sigma;
+}
+
+}  // namespace tpf::offline

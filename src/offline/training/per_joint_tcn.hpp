@@ -1,0 +1,46 @@
+// One streaming TCN per joint behind the estimator's compensator interface.
+#pragma once
+
+#include <array>
+
+#include "tpf/estimation/compensator.hpp"
+#include "tpf/nn/tcn.hpp"
+
+namespace tpf {
+
+/// N independent networks Tcn<S, 4, Hidden, Levels, 4, 1>; network j sees only joint j's inputs
+/// [q_j, q̇_j, q̈_j, τ̂_fric,s,j] (picked from x = compensator_input(...) at j, N + j, 2N + j, 3N + j)
+/// and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step. Large: keep on the
+/// heap (inside the estimator).
+template <typename S, int N, int Hidden, int Levels>
+class PerJointTcn {
+ public:
+  using Network = Tcn<S, 4, Hidden, Levels, 4, 1>;
+  using Input = Eigen::Matrix<S, 4 * N, 1>;
+  using Output = Eigen::Matrix<S, N, 1>;
+
+  /// τ_TCN,j = network_j(x_j) for every joint.
+  const Output& step(const Input& x) noexcept {
+    for (int j = 0; j < N; ++j)
+      output_[j] = networks_[j].step(joint_input(x, j))[0];
+    return output_;
+  }
+  /// Prewarms every network with its part of the steady input x̄.
+  void reset(const Input& x) noexcept {
+    for (int j = 0; j < N; ++j)
+      networks_[j].reset(joint_input(x, j));
+  }
+
+  Network& network(int j) noexcept { return networks_[j]; }
+
+  /// x_j = [x_j, x_{N+j}, x_{2N+j}, x_{3N+j}].
+  static typename Network::Input joint_input(const Input& x, int j) noexcept {
+    return typename Network::Input(x[j], x[N + j], x[2 * N + j], x[3 * N + j]);
+  }
+
+ private:
+  std::array<Network, N> networks_{};
+  Output output_ = Output::Zero();
+};
+
+}  // namespace tpf

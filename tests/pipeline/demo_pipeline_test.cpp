@@ -1,0 +1,75 @@
+// The whole loop on very short twin logs (SIMULATED): every stage runs and writes its outputs.
+#include "offline/pipeline/demo_pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "offline/training/arm_estimator.hpp"
+#include "tpf/estimation/nominal_model.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
+
+namespace tpf::offline {
+namespace {
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
+  DemoOptions o;
+  o.out = std::filesystem::temp_directory_path() / "tpf_demo_pipeline_test";
+  std::filesystem::remove_all(o.out);
+  o.training_s = 30.0;
+  o.calibration_s = 10.0;
+  o.test_s = 10.0;
+  o.contacts_s = 12.0;
+  o.teaching_s = 6.0;
+  o.training_budget_s = 5.0;
+  o.training_epochs = 2;
+  std::vector<std::string> lines;
+  const DemoResult r = run_demo(o, [&](const std::string& l) { lines.push_back(l); });
+
+  for (const char* stage :
+       {"[1/5] simulate", "[2/5] identify", "[3/5] diagnose", "[4/5] train", "[5/5] evaluate"}) {
+    EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+      return l.rfind(stage, 0) == 0;
+    })) << stage;
+  }
+  const std::string index = read_text(o.out / "index.html");
+  EXPECT_NE(index.find("href=\"evaluate.html\""), std::string::npos);
+  EXPECT_NE(index.find("href=\"diagnose.html\""), std::string::npos);
+  EXPECT_NE(index.find("SIMULATED"), std::string::npos);
+  EXPECT_NE(read_text(o.out / "evaluate.html").find("SIMULATED"), std::string::npos);
+  EXPECT_NE(read_text(o.out / "diagnose.html").find("SIMULATED"), std::string::npos);
+
+  const auto json = nlohmann::json::parse(read_text(o.out / "evaluation.json"));
+  EXPECT_TRUE(json.at("simulated").get<bool>());
+  EXPECT_EQ(json.at("residual_table").size(), 15u);  // (4 joints + all) × 3 regimes
+  EXPECT_GT(json.at("detection").at("tactile-only").at("events").get<int>(), 0);
+
+  // The written model and weights load into the run-time types.
+  const auto nominal = load_nominal_model<kArmJoints>(
+      o.out / "nominal.params.json", std::string(TPF_TEST_DATA_DIR) + "/arm4.robot.json");
+  EXPECT_EQ(nominal.effort_unit, "mA");
+  CompensatorLayout layout = CompensatorLayout::None;
+  const auto files = compensator_files(o.out / "tcn.json", layout);  // one network per joint
+  EXPECT_EQ(layout, CompensatorLayout::PerJoint);
+  ASSERT_EQ(files.size(), 4u);
+  auto tcn = std::make_unique<JointTcns>();
+  for (int j = 0; j < kArmJoints; ++j)
+    load_tcn_weights(files[j], tcn->network(j));
+  ASSERT_EQ(r.training.results.size(), 4u);
+  for (const auto& t : r.training.results)
+    EXPECT_LE(t.history.size(), 2u);
+  std::filesystem::remove_all(o.out);
+}
+
+}  // namespace
+}  // namespace tpf::offline

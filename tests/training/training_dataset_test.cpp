@@ -1,0 +1,131 @@
+// Training features are what the run-time estimator computes; the target is effort −
+// predict_effort. Twin logs are SIMULATED.
+#include "offline/training/training_dataset.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "offline/pipeline/declared_model.hpp"
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/simulate.hpp"
+#include "offline/train/tcn_parameters.hpp"
+#include "offline/training/arm_estimator.hpp"
+#include "offline/training/estimator_samples.hpp"
+#include "support/arm_fixture.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
+
+namespace tpf::offline {
+namespace {
+
+using test::data_path;
+using Vec = JointVector<double, kArmJoints>;
+
+const Log& excitation_log() {
+  static const Log log = [] {
+    Log l = simulate_to_log(load_scenario(data_path("scenarios/excitation.json")), 7, 12.0);
+    l.source = "excitation seed 7 (simulated)";
+    return l;
+  }();
+  return log;
+}
+
+ArmEstimatorSetup twin_setup() {
+  ArmEstimatorSetup s;
+  s.nominal = declared_nominal_model(data_path("arm4.robot.json"), data_path("arm4.friction.json"));
+  s.pads = load_pads(data_path("arm4.pads.json"), s.nominal.model);
+  s.parameters = arm_estimator_parameters(estimate_sensor_noise(excitation_log()));
+  return s;
+}
+
+TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
+  const ArmEstimatorSetup setup = twin_setup();
+  const auto samples = estimator_samples<kArmJoints, kArmPads>(excitation_log());
+  const EstimatorTrace trace = trace_arm_estimator(setup, samples);
+  ASSERT_EQ(trace.rows(), excitation_log().rows());
+  EXPECT_EQ(trace.contact.maxCoeff(), 0) << "no pad may switch on in a contact-free log";
+
+  // Independent re-computation with the documented trainer recipe: acceleration filter,
+  // predict_effort, StaticFrictionTracker with contact = false, compensator_input.
+  AccelerationFilter<double, kArmJoints> filter(setup.parameters.acceleration_cutoff_hz,
+                                                setup.parameters.acceleration_damping);
+  StaticFrictionTracker<double, kArmJoints> tracker(setup.parameters.static_friction);
+  Data<double, kArmJoints> data(setup.nominal.model);
+  double t_prev = std::numeric_limits<double>::quiet_NaN();
+  int moving_rows = 0, static_rows = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const ArmSample& s = samples[k];
+    const auto r = static_cast<Eigen::Index>(k);
+    if (k == 0) filter.reset(s.dq);
+    const double h = k == 0 ? setup.parameters.sample_period_s : s.t - t_prev;
+    t_prev = s.t;
+    const Vec ddq = filter.update(s.dq, h);
+    Vec rigid, friction;
+    predict_effort(setup.nominal, data, s.q, s.dq, ddq, rigid, friction);
+    const Vec residual = s.effort - rigid - friction;
+    tracker.update(s.t, s.dq, residual, false, std::numeric_limits<double>::infinity(),
+                   Vec::Zero());
+    const auto x =
+        compensator_input<double, kArmJoints>(s.q, s.dq, ddq, tracker.friction_estimate());
+    ASSERT_LT((trace.inputs.row(r).transpose() - x).cwiseAbs().maxCoeff(), 1e-9) << "row " << k;
+    ASSERT_LT((trace.residual.row(r).transpose() - residual).cwiseAbs().maxCoeff(), 1e-9);
+    for (int j = 0; j < kArmJoints; ++j)
+      (tracker.is_static(j) ? static_rows : moving_rows)++;
+  }
+  EXPECT_GT(static_rows, 1000);  // the log holds both rests and moves
+  EXPECT_GT(moving_rows, 1000);
+}
+
+TEST(TrainingFeatures, TargetIsTheResidualInNewtonMetresAndJointColumnsArePicked) {
+  const ArmEstimatorSetup setup = twin_setup();
+  const EstimatorTrace trace =
+      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(excitation_log()));
+  const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
+  const TcnSequence all = training_sequence(trace, scale);
+  ASSERT_EQ(all.inputs.cols(), 16);
+  ASSERT_EQ(all.residual.cols(), 4);
+  for (int j = 0; j < kArmJoints; ++j) {
+    EXPECT_LT((all.residual.col(j) * scale[j] - trace.residual.col(j)).cwiseAbs().maxCoeff(), 1e-9);
+    const TcnSequence one = training_sequence(trace, scale, j);
+    ASSERT_EQ(one.inputs.cols(), 4);
+    for (int c = 0; c < 4; ++c)
+      EXPECT_EQ(one.inputs.col(c), trace.inputs.col(c * kArmJoints + j));
+    EXPECT_LT((one.residual.col(0) - all.residual.col(j)).cwiseAbs().maxCoeff(), 1e-12);
+  }
+  EXPECT_THROW(training_sequence(trace, scale.head(3)), Error);
+}
+
+TEST(TrainingFeatures, ScaledHeadsScaleTheStreamingOutputExactly) {
+  TcnArchitecture a;
+  a.inputs = 16;
+  a.outputs = 4;
+  TcnParameters p = init_tcn_parameters(a, 3);
+  p.input_mean = Eigen::VectorXd::LinSpaced(16, -1.0, 1.0);
+  p.input_std = Eigen::VectorXd::LinSpaced(16, 0.5, 2.0);
+  TcnParameters scaled = p;
+  const Eigen::Vector4d scale(208.0, 210.0, 350.0, 1.0);
+  scale_tcn_outputs(scaled, scale);
+  auto plain = std::make_unique<AllJointsTcn>(), big = std::make_unique<AllJointsTcn>();
+  const TcnWeightFile fp = to_weight_file(p), fs = to_weight_file(scaled);
+  tcn_weights_from_file(fp, plain->weights());
+  tcn_weights_from_file(fs, big->weights());
+  plain->reset(AllJointsTcn::Input::Zero());
+  big->reset(AllJointsTcn::Input::Zero());
+  for (int k = 0; k < 60; ++k) {
+    const AllJointsTcn::Input x = AllJointsTcn::Input::Constant(0.1 * k).array().sin();
+    const Eigen::Vector4d y = plain->step(x), z = big->step(x);
+    EXPECT_LT((z - scale.cwiseProduct(y)).cwiseAbs().maxCoeff(), 1e-9 * (1 + z.norm()));
+  }
+}
+
+TEST(TrainingFeatures, SamplesRefuseAWrongJointCount) {
+  Log log;
+  log.source = "three.csv";
+  log.columns = {"t", "q1", "q2", "q3", "dq1", "dq2", "dq3", "i1", "i2", "i3"};
+  log.values = Eigen::MatrixXd::Zero(2, 10);
+  EXPECT_THROW((estimator_samples<kArmJoints, kArmPads>(log)), Error);
+}
+
+}  // namespace
+}  // namespace tpf::offline
