@@ -135,6 +135,32 @@ TEST(CliBadFiles, KilledRunNeverLeavesAHalfWrittenOutput) {
     EXPECT_TRUE(name == "s.json" || name.rfind(".out.csv.tmp.", 0) == 0) << name;
 }
 
+// `tpf identify` and `tpf diagnose` on bad logs: the reader's error, one line, nothing written.
+TEST(CliBadFiles, IdentifyAndDiagnoseNameTheLogAndTheLine) {
+  CliSandbox box("bad_logs");
+  const std::string head = "# tpf-log: 1\nt,q1,q2,q3,q4,dq1,dq2,dq3,dq4,i1,i2,i3,i4\n";
+  const std::string row = "0,0,0,0,0,0,0,0,0,1,2,3,4\n";
+  const std::string robot = kData + "/arm4.robot.json";
+  const std::vector<std::pair<std::string, std::string>> logs = {
+      {"", "the file is empty"},
+      {head + row + "0.0025,0,0,0,0,0,0,0", "log.csv:4: the file ends mid-line"},
+      {"# tpf-log: 2\n" + head.substr(13) + row, "log.csv:1: tpf-log: version 2"},
+      {"t,q1\n0,1\n", "q"},  // wrong header: no joint columns
+      {head + "0,0,0,0,0,0,0,0,0,1e400,2,3,4\n", "log.csv:3: i1: '1e400' is out of range"},
+  };
+  for (const auto& [text, place] : logs) {
+    SCOPED_TRACE(place);
+    box.write("log.csv", text);
+    expect_refused(box,
+                   box.tpf("identify --quiet --log log.csv --robot " + robot + " --out out.csv"),
+                   "log.csv", place);
+    expect_refused(box,
+                   box.tpf("diagnose --quiet --log log.csv --robot " + robot +
+                           " --json out.csv --params out.csv"),
+                   "log.csv", place);
+  }
+}
+
 TEST(CliBadFiles, UnknownCommandAndMissingFileExitNonZero) {
   CliSandbox box("usage");
   EXPECT_NE(box.tpf("no-such-command").exit_code, 0);

@@ -7,6 +7,7 @@
 
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_object.hpp"
+#include "tpf/common/json_parse.hpp"
 #include "tpf/friction/friction_file.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
 
@@ -39,7 +40,8 @@ TEST(JsonFuzzRegressions, NumberBeyondTheDoubleRangeNamesFileAndLine) {
                           "{\n  \"format\": \"tpf-friction\",\n  \"coulomb\": "
                           "[1, 1e999, 1, 1]\n}\n");
   const std::string file = path.string();
-  for (const std::string& msg : {message_of([&] { json::Object::read_file(path); }),
+  for (const std::string& msg : {message_of([&] { json::parse_file(path); }),
+                                 message_of([&] { json::Object::read_file(path); }),
                                  message_of([&] { load_stribeck_parameters<double, 4>(file); }),
                                  message_of([&] { read_tcn_weight_file(file); })}) {
     EXPECT_EQ(msg.rfind(file + ":3: not valid JSON: ", 0), 0u) << msg;
@@ -48,14 +50,28 @@ TEST(JsonFuzzRegressions, NumberBeyondTheDoubleRangeNamesFileAndLine) {
   std::filesystem::remove(path);
 }
 
-// A huge "version" was cast to int for the message (undefined behaviour, UBSan
-// float-cast-overflow). It is now refused by range, quoted as written.
-TEST(JsonFuzzRegressions, HugeVersionIsQuotedNotCast) {
-  const auto path = write("version.json", R"({"format": "tpf-pads", "version": 1e300})");
-  const std::string msg = message_of([&] { json::Object::read_document(path, "tpf-pads", 1); });
-  EXPECT_NE(msg.find("version: must be in"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("got 1e+300"), std::string::npos) << msg;
+// 300 000 nested '[': parsing succeeded, then copying the value (Object) recursed once per level
+// and overflowed the stack (ASan stack-overflow). Nesting is now refused past 64 levels, naming
+// the line where it happens, in every loader.
+TEST(JsonFuzzRegressions, DeepNestingIsRefusedNamingTheLine) {
+  const auto path = write(
+      "deep.json", "{\"format\":\n" + std::string(300000, '[') + std::string(300000, ']') + "}");
+  const std::string file = path.string();
+  for (const std::string& msg : {message_of([&] { json::parse_file(path); }),
+                                 message_of([&] { json::Object::read_file(path); }),
+                                 message_of([&] { read_tcn_weight_file(file); })})
+    EXPECT_EQ(msg, file + ":2: nested deeper than 64 levels");
   std::filesystem::remove(path);
+}
+
+// A tensor shape of four 10⁶ dimensions overflowed the signed product of the shape (UBSan
+// signed-integer-overflow); it is a value-count mismatch like any other.
+TEST(JsonFuzzRegressions, HugeTensorShapeIsAValueCountMismatch) {
+  const std::string msg = message_of([] {
+    read_tcn_weight_file(std::string(TPF_RELIABILITY_CORPUS_DIR) +
+                         "/fuzz_tcn_weights/crash-shape-product-overflow.json");
+  });
+  EXPECT_NE(msg.find("tensors.blocks.0.conv.weight.values"), std::string::npos) << msg;
 }
 
 }  // namespace

@@ -1,13 +1,12 @@
 #include "tpf/common/json_object.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "tpf/common/error.hpp"
+#include "tpf/common/json_parse.hpp"
 
 namespace tpf::json {
 
@@ -122,38 +121,8 @@ std::string Object::text(const std::string& key) {
   return text(key, "");
 }
 
-void fail_unparsable(const std::filesystem::path& path, std::size_t byte, std::string_view what) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (byte == 0) {  // no offset: find the token the message quotes, e.g. "parsing '1e999'"
-    const std::size_t open = what.find('\'');
-    const std::size_t close = open == std::string_view::npos ? open : what.find('\'', open + 1);
-    if (close != std::string_view::npos) {
-      const std::size_t at = text.find(what.substr(open + 1, close - open - 1));
-      if (at != std::string::npos) byte = at + 1;
-    }
-  }
-  const long line = byte == 0 ? 0
-                              : 1 + std::count(text.begin(),
-                                               text.begin() + static_cast<std::ptrdiff_t>(
-                                                                  std::min(byte - 1, text.size())),
-                                               '\n');
-  throw Error::at(path.string(), line, "", std::string("not valid JSON: ").append(what));
-}
-
 Object Object::read_file(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw Error::at(file, 0, "", "cannot open the file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    tpf::json::fail_unparsable(path, e.byte, e.what());
-  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
-    tpf::json::fail_unparsable(path, 0, e.what());
-  }
-  return Object(j, file, "");
+  return Object(json::parse_file(path), path.string(), "");
 }
 
 Object Object::read_document(const std::filesystem::path& path, std::string_view format,

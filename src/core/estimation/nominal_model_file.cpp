@@ -260,7 +260,12 @@ void save_nominal_model(const std::filesystem::path& params_file,
     std::ofstream out(temp);
     if (!out) throw Error::at(file, 0, "", "cannot create the temporary file " + temp.string());
     out << j.dump(2) << "\n";
-    if (!out.flush()) throw Error::at(file, 0, "", "write failed");
+    if (!out.flush()) {
+      out.close();
+      std::error_code ignored;
+      std::filesystem::remove(temp, ignored);  // nothing half-written is left behind
+      throw Error::at(file, 0, "", "write failed");
+    }
   }
   std::error_code ec;
   std::filesystem::rename(temp, params_file, ec);

@@ -1,8 +1,11 @@
 // Reading, validating and writing TCN weight files (start-up code: allocates and throws).
 #include "tpf/nn/tcn_weight_file.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -10,7 +13,7 @@
 #include <sstream>
 
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
+#include "tpf/common/json_parse.hpp"
 
 namespace tpf {
 namespace {
@@ -76,8 +79,11 @@ TcnTensor read_tensor(const nlohmann::json& json, const std::string& path,
   }
   tensor.values =
       finite_numbers(member(json, "values", path, field + ".values"), path, field + ".values");
-  const long long expected =
-      std::accumulate(tensor.shape.begin(), tensor.shape.end(), 1LL, std::multiplies<long long>());
+  // Dimensions are ≤ 10⁶ < 2²⁰: capping the running product at 2⁴⁰ keeps it exact up to any real
+  // value count and free of signed overflow for any number of dimensions.
+  long long expected = 1;
+  for (const int d : tensor.shape)
+    expected = std::min(expected * d, 1LL << 40);
   if (static_cast<long long>(tensor.values.size()) != expected) {
     fail(path, field + ".values",
          std::to_string(tensor.values.size()) + " values for shape " + shape_text(tensor.shape) +
@@ -142,14 +148,7 @@ void TcnWeightFile::require_architecture(int in, int hid, int lev, int ker, int 
 TcnWeightFile read_tcn_weight_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) fail(path, "", "cannot open the TCN weight file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    tpf::json::fail_unparsable(path, e.byte, e.what());
-  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
-    tpf::json::fail_unparsable(path, 0, e.what());
-  }
+  const nlohmann::json json = tpf::json::parse_file(path);
 
   const nlohmann::json& format = member(json, "format", path, "format");
   if (format != kFormat) fail(path, "format", "expected \"tpf-tcn-weights\", got " + format.dump());
@@ -221,10 +220,28 @@ void write_tcn_weight_file(const std::string& path, const TcnWeightFile& file) {
   }
   json["tensors"] = std::move(tensors);
 
-  std::ofstream out(path);
-  if (!out) fail(path, "", "cannot write the TCN weight file");
-  out << json.dump(1) << '\n';
-  if (!out) fail(path, "", "writing the TCN weight file failed");
+  // Atomic: a temporary beside the target, flushed and checked, then renamed into place; a failed
+  // write (disk full) leaves neither a half-written file nor the temporary.
+  const std::filesystem::path target(path);
+  const std::filesystem::path temp =
+      (target.has_parent_path() ? target.parent_path() : std::filesystem::path(".")) /
+      ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()));
+  std::error_code ec;
+  {
+    std::ofstream out(temp);
+    if (!out) fail(path, "", "cannot write the TCN weight file");
+    out << json.dump(1) << '\n';
+    if (!out.flush()) {
+      out.close();
+      std::filesystem::remove(temp, ec);
+      fail(path, "", "writing the TCN weight file failed");
+    }
+  }
+  std::filesystem::rename(temp, target, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    fail(path, "", "cannot rename the temporary file into place");
+  }
 }
 
 }  // namespace tpf
