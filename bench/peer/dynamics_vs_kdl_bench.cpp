@@ -28,7 +28,8 @@ struct Fixture {
     std::uniform_real_distribution<double> u(-2.0, 2.0);
     for (int i = 0; i < 256; ++i) {
       Vec a, b, c;
-      for (int j = 0; j < N; ++j) a(j) = u(rng), b(j) = u(rng), c(j) = u(rng);
+      for (int j = 0; j < N; ++j)
+        a(j) = u(rng), b(j) = u(rng), c(j) = u(rng);
       q.push_back(a), dq.push_back(b), ddq.push_back(c);
     }
   }
@@ -48,7 +49,8 @@ void BM_Rnea_tpf(benchmark::State& state) {
   Fixture& f = Fixture::get();
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(tpf::rnea(f.model, f.data, f.q[i & 255], f.dq[i & 255], f.ddq[i & 255]));
+    benchmark::DoNotOptimize(
+        tpf::rnea(f.model, f.data, f.q[i & 255], f.dq[i & 255], f.ddq[i & 255]));
     ++i;
   }
 }
@@ -56,7 +58,8 @@ void BM_Rnea_kdl(benchmark::State& state) {
   Fixture& f = Fixture::get();
   KDL::ChainIdSolver_RNE solver(f.chain, KDL::Vector(0, 0, -9.81));
   std::vector<KDL::JntArray> q, dq, ddq;
-  for (int i = 0; i < 256; ++i) q.push_back(to_kdl(f.q[i])), dq.push_back(to_kdl(f.dq[i])), ddq.push_back(to_kdl(f.ddq[i]));
+  for (int i = 0; i < 256; ++i)
+    q.push_back(to_kdl(f.q[i])), dq.push_back(to_kdl(f.dq[i])), ddq.push_back(to_kdl(f.ddq[i]));
   KDL::JntArray tau(N);
   KDL::Wrenches wrenches(f.chain.getNrOfSegments(), KDL::Wrench::Zero());
   std::size_t i = 0;
@@ -70,13 +73,15 @@ void BM_Rnea_kdl(benchmark::State& state) {
 void BM_Gravity_tpf(benchmark::State& state) {
   Fixture& f = Fixture::get();
   std::size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(tpf::compute_gravity(f.model, f.data, f.q[i++ & 255]));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(tpf::compute_gravity(f.model, f.data, f.q[i++ & 255]));
 }
 void BM_Gravity_kdl(benchmark::State& state) {
   Fixture& f = Fixture::get();
   KDL::ChainDynParam dyn(f.chain, KDL::Vector(0, 0, -9.81));
   std::vector<KDL::JntArray> q;
-  for (int i = 0; i < 256; ++i) q.push_back(to_kdl(f.q[i]));
+  for (int i = 0; i < 256; ++i)
+    q.push_back(to_kdl(f.q[i]));
   KDL::JntArray g(N);
   std::size_t i = 0;
   for (auto _ : state) {
@@ -88,13 +93,15 @@ void BM_Gravity_kdl(benchmark::State& state) {
 void BM_MassMatrix_tpf(benchmark::State& state) {
   Fixture& f = Fixture::get();
   std::size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(tpf::compute_mass_matrix(f.model, f.data, f.q[i++ & 255]));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(tpf::compute_mass_matrix(f.model, f.data, f.q[i++ & 255]));
 }
 void BM_MassMatrix_kdl(benchmark::State& state) {
   Fixture& f = Fixture::get();
   KDL::ChainDynParam dyn(f.chain, KDL::Vector(0, 0, -9.81));
   std::vector<KDL::JntArray> q;
-  for (int i = 0; i < 256; ++i) q.push_back(to_kdl(f.q[i]));
+  for (int i = 0; i < 256; ++i)
+    q.push_back(to_kdl(f.q[i]));
   KDL::JntSpaceInertiaMatrix M(N);
   std::size_t i = 0;
   for (auto _ : state) {
@@ -122,7 +129,8 @@ void BM_PadJacobian_kdl(benchmark::State& state) {
   KDL::ChainJntToJacSolver solver(f.chain);
   KDL::ChainFkSolverPos_recursive fk(f.chain);
   std::vector<KDL::JntArray> q;
-  for (int i = 0; i < 256; ++i) q.push_back(to_kdl(f.q[i]));
+  for (int i = 0; i < 256; ++i)
+    q.push_back(to_kdl(f.q[i]));
   KDL::Jacobian J(N);
   KDL::Frame link_pose;
   const KDL::Vector center(kPadCenter.x(), kPadCenter.y(), kPadCenter.z());

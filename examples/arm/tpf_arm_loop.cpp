@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
                       "give 1 to " + std::to_string(arm::kMaxJoints) + " motor IDs");
     std::vector<std::uint8_t> id_bytes;
     id_bytes.reserve(ids.size());
-    for (const int id : ids) id_bytes.push_back(static_cast<std::uint8_t>(id));
+    for (const int id : ids)
+      id_bytes.push_back(static_cast<std::uint8_t>(id));
     const dxl::BusTiming timing{baud, 1.0, margin_ms};
     if (set_baud_from > 0) {
       serial::FdTransport slow = serial::open_serial_port(motors_path, set_baud_from);

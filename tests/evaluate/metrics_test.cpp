@@ -1,8 +1,8 @@
 // Evaluation metrics on hand-made sequences with known answers.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <numbers>
 
 #include "offline/evaluate/contact_detection.hpp"

@@ -10,10 +10,10 @@
 
 #include "offline/common/data_files.hpp"
 #include "offline/diagnose/diagnose.hpp"
+#include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/atomic_file.hpp"
-#include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"
@@ -95,7 +95,8 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
       ", budget " + format_number(o.training_budget_s) +
       " s (the demo's short "
       "budget; `tpf train` defaults to 270 s), took " +
-      format_number(r.training.seconds, 3) + " s;" + nets + " weights in tcn.json or tcn.joint<j>.json");
+      format_number(r.training.seconds, 3) + " s;" + nets +
+      " weights in tcn.json or tcn.joint<j>.json");
   page.list(stages);
   page.write(out / "index.html");
 }

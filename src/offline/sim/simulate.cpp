@@ -334,8 +334,8 @@ Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duratio
   std::vector<double> values;
   const auto summary = simulate(
       scenario, seed, duration,
-      [&](std::span<const double> row) { values.insert(values.end(), row.begin(), row.end()); },
-      {}, external_torque);
+      [&](std::span<const double> row) { values.insert(values.end(), row.begin(), row.end()); }, {},
+      external_torque);
   const auto cols = static_cast<Eigen::Index>(log.columns.size());
   log.values =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
