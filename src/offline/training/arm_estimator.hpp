@@ -10,7 +10,7 @@
 
 #include "offline/log/log.hpp"
 #include "offline/training/estimator_trace.hpp"
-#include "offline/training/per_joint_tcn.hpp"
+#include "tpf/nn/per_joint_tcn.hpp"
 #include "tpf/estimation/estimator.hpp"
 #include "tpf/estimation/transition_sigma.hpp"
 #include "tpf/nn/tcn.hpp"
