@@ -9,7 +9,7 @@
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
-#include "offline/log/atomic_file.hpp"
+#include "tpf/common/atomic_file.hpp"
 #include "offline/log/read_log.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -48,7 +48,7 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
     std::printf("wrote %s\n", a.report.c_str());
   }
   if (!a.json.empty()) {
-    tpf::offline::AtomicFile out(a.json);  // complete or absent, never half-written
+    tpf::AtomicFile out(a.json);  // complete or absent, never half-written
     out.write(diagnosis_json(d) + "\n");
     out.commit();
     std::printf("wrote %s\n", a.json.c_str());

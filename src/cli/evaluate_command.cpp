@@ -11,7 +11,7 @@
 #include "offline/common/data_files.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
-#include "offline/log/atomic_file.hpp"
+#include "tpf/common/atomic_file.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/sim/scenario.hpp"
 
@@ -78,7 +78,7 @@ void run_evaluate(const EvaluateCommandOptions& o) {
   if (!o.teaching.empty()) notes.push_back("teaching log: " + o.teaching);
   const auto html = std::filesystem::path(o.out) / "evaluate.html";
   evaluation_report(ev, simulated, notes).write(html);
-  AtomicFile json(std::filesystem::path(o.out) / "evaluation.json");
+  tpf::AtomicFile json(std::filesystem::path(o.out) / "evaluation.json");
   json.write(evaluation_json(ev));
   json.commit();
   std::printf("%s", evaluation_headline(ev).c_str());

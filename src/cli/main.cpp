@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 
 int main(int argc, char** argv) {
@@ -10,6 +11,8 @@ int main(int argc, char** argv) {
       "tpf: external torque and contact wrench estimation for geared robot arms.\n"
       "Simulate the arm's digital twin, identify a model from a log, diagnose what it misses,\n"
       "train the friction compensator and evaluate the estimators. Logs: docs/log-format.md."};
+  // Interrupted or killed: no hidden temporary is left beside the files being written.
+  tpf::remove_temporaries_on_termination();
   app.require_subcommand(1);
   app.set_version_flag("--version", "tpf 0.1.0");
   tpf::cli::register_info_command(app);

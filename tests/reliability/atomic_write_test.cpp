@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
 
@@ -70,6 +71,48 @@ TEST(AtomicWrite, TcnWeightFileOnAFullDiskFailsAndLeavesTheOldFile) {
                           std::filesystem::directory_iterator()),
             1)
       << "a temporary was left behind";
+  std::filesystem::remove_all(dir);
+}
+
+/// Files in `dir`, hidden ones included.
+int files_in(const std::filesystem::path& dir) {
+  int n = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir))
+    ++n;
+  return n;
+}
+
+/// A child that opens an AtomicFile in `dir`, writes half of it and is then killed by SIGTERM;
+/// returns the signal that ended it.
+int killed_mid_write(const std::filesystem::path& dir, bool cleanup_installed) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (cleanup_installed) remove_temporaries_on_termination();
+    AtomicFile file(dir / "params.json");
+    file.write("{\"format\": ");
+    ::kill(::getpid(), SIGTERM);
+    ::_exit(0);  // not reached: SIGTERM ends the child
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+}
+
+// A `tpf` command killed while writing (Ctrl-C, a job scheduler's SIGTERM) left its hidden
+// temporary behind; main() now installs remove_temporaries_on_termination().
+TEST(AtomicWrite, AKilledWriterLeavesNoTemporaryOnceCleanupIsInstalled) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tpf_killed_writer_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // Without the handlers the half-written temporary stays: the check below can fail.
+  EXPECT_EQ(killed_mid_write(dir, false), SIGTERM);
+  EXPECT_EQ(files_in(dir), 1);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // With them, the process still ends by the same signal, and nothing is left.
+  EXPECT_EQ(killed_mid_write(dir, true), SIGTERM);
+  EXPECT_EQ(files_in(dir), 0);
   std::filesystem::remove_all(dir);
 }
 

@@ -1,14 +1,12 @@
 // Start-up code of the nominal model: column names, base parameters of a model, parameter files.
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
-#include <system_error>
 
+#include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_object.hpp"
 #include "tpf/estimation/nominal_model.hpp"
@@ -252,27 +250,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
     }
   }
 
-  // Atomic: write a temporary beside the target, then rename it into place.
-  const std::filesystem::path dir = params_file.has_parent_path() ? params_file.parent_path() : ".";
-  const std::filesystem::path temp =
-      dir / ("." + params_file.filename().string() + ".tmp." + std::to_string(::getpid()));
-  {
-    std::ofstream out(temp);
-    if (!out) throw Error::at(file, 0, "", "cannot create the temporary file " + temp.string());
-    out << j.dump(2) << "\n";
-    if (!out.flush()) {
-      out.close();
-      std::error_code ignored;
-      std::filesystem::remove(temp, ignored);  // nothing half-written is left behind
-      throw Error::at(file, 0, "", "write failed");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, params_file, ec);
-  if (ec) {
-    std::filesystem::remove(temp, ec);
-    throw Error::at(file, 0, "", "cannot rename the temporary file into place");
-  }
+  write_file_atomically(params_file, j.dump(2) + "\n");
 }
 
 #define TPF_INSTANTIATE_NOMINAL_MODEL(N)                                                        \

@@ -1,8 +1,6 @@
 // Reading, validating and writing TCN weight files (start-up code: allocates and throws).
 #include "tpf/nn/tcn_weight_file.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +10,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_parse.hpp"
 
@@ -220,28 +219,7 @@ void write_tcn_weight_file(const std::string& path, const TcnWeightFile& file) {
   }
   json["tensors"] = std::move(tensors);
 
-  // Atomic: a temporary beside the target, flushed and checked, then renamed into place; a failed
-  // write (disk full) leaves neither a half-written file nor the temporary.
-  const std::filesystem::path target(path);
-  const std::filesystem::path temp =
-      (target.has_parent_path() ? target.parent_path() : std::filesystem::path(".")) /
-      ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()));
-  std::error_code ec;
-  {
-    std::ofstream out(temp);
-    if (!out) fail(path, "", "cannot write the TCN weight file");
-    out << json.dump(1) << '\n';
-    if (!out.flush()) {
-      out.close();
-      std::filesystem::remove(temp, ec);
-      fail(path, "", "writing the TCN weight file failed");
-    }
-  }
-  std::filesystem::rename(temp, target, ec);
-  if (ec) {
-    std::filesystem::remove(temp, ec);
-    fail(path, "", "cannot rename the temporary file into place");
-  }
+  write_file_atomically(path, json.dump(1) + "\n");
 }
 
 }  // namespace tpf

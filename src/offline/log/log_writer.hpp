@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "offline/log/atomic_file.hpp"
+#include "tpf/common/atomic_file.hpp"
 #include "offline/log/log.hpp"
 #include "offline/log/log_metadata.hpp"
 

@@ -13,7 +13,7 @@
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
-#include "offline/log/atomic_file.hpp"
+#include "tpf/common/atomic_file.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"

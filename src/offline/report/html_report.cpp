@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "offline/log/atomic_file.hpp"
+#include "tpf/common/atomic_file.hpp"
 #include "offline/report/plot_canvas.hpp"
 #include "offline/report/text_format.hpp"
 
