@@ -29,3 +29,37 @@ function(tpf_add_subfolders)
   endforeach()
 endfunction()
 set_target_properties(tpf_warnings PROPERTIES EXPORT_NAME build_flags)
+
+# One program per concept folder: every immediate subfolder of the current source folder becomes
+# the executable tpf_<folder>_<suffix> built from its *.cpp files and linked with the core (and the
+# offline library where it is built), unless the folder brings its own CMakeLists.txt, which is
+# added instead; folders named in the further arguments are skipped. The areas made are returned in
+# <out_var>.
+# tpf_add_area_programs(<suffix> <out_var> [skipped folder...])
+function(tpf_add_area_programs suffix out_var)
+  file(GLOB areas LIST_DIRECTORIES true RELATIVE ${CMAKE_CURRENT_SOURCE_DIR}
+       ${CMAKE_CURRENT_SOURCE_DIR}/*)
+  list(SORT areas)
+  set(made "")
+  foreach(area IN LISTS areas)
+    set(dir ${CMAKE_CURRENT_SOURCE_DIR}/${area})
+    if(NOT IS_DIRECTORY ${dir} OR area IN_LIST ARGN)
+      continue()
+    endif()
+    if(EXISTS ${dir}/CMakeLists.txt)
+      add_subdirectory(${area})
+      continue()
+    endif()
+    file(GLOB sources CONFIGURE_DEPENDS ${dir}/*.cpp)
+    if(NOT sources)
+      continue()
+    endif()
+    add_executable(tpf_${area}_${suffix} ${sources})
+    target_link_libraries(tpf_${area}_${suffix} PRIVATE tpf::core tpf_warnings)
+    if(TARGET tpf_offline)
+      target_link_libraries(tpf_${area}_${suffix} PRIVATE tpf::offline)
+    endif()
+    list(APPEND made ${area})
+  endforeach()
+  set(${out_var} ${made} PARENT_SCOPE)
+endfunction()
