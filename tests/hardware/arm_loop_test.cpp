@@ -188,10 +188,17 @@ TEST(ArmLoop, CycleDoesNotAllocate) {
   dxl::ph54::ChainStateReader reader(*rig.bus, rig.ids, rig.chain.fast_sync_read);
   ArmLoopOptions options;
   options.cycles = 40;
-  ArmLoop loop(*rig.bus, reader, rig.ids, rig.pads.get(), nullptr, options);
+  EstimatorFiles files;  // the core Estimator runs in every cycle
+  files.params = std::string(TPF_TEST_DATA_DIR) + "/arm4.params.json";
+  files.robot = std::string(TPF_TEST_DATA_DIR) + "/arm4.robot.json";
+  files.pads = std::string(TPF_TEST_DATA_DIR) + "/arm4.pads.json";
+  files.weights = std::string(TPF_TEST_DATA_DIR) + "/weights/arm4.tcn.json";
+  EstimatorHook estimator(files);
+  ArmLoop loop(*rig.bus, reader, rig.ids, rig.pads.get(), nullptr, options, &estimator);
   test::AllocationCounter allocations;
   loop.run();
   EXPECT_EQ(allocations.count(), 0u);
+  EXPECT_EQ(loop.report().estimator.updates, 40u);
 }
 
 }  // namespace
