@@ -35,7 +35,8 @@ void ArmLoop::run() {
     sample_.cycle = n;
     cycle(start);
     statistics_.record(static_cast<double>(woke - deadline) * 1e-9,
-                       static_cast<double>(bus_time_ns_) * 1e-9);
+                       static_cast<double>(bus_time_ns_) * 1e-9,
+                       static_cast<double>(estimator_time_ns_) * 1e-9);
     deadline += period;
     for (const MonoNs now = monotonic_now(); now > deadline; deadline += period)
       ++report_.missed_deadlines;  // overran: keep the grid, skip whole periods
@@ -60,7 +61,11 @@ void ArmLoop::cycle(MonoNs start) {
   }
   bus_time_ns_ = monotonic_now() - t0;  // read, alert follow-up and goal write
   read_pads(t0);
-  if (estimator_ != nullptr) estimator_->update(sample_);
+  if (estimator_ != nullptr) {
+    const MonoNs e0 = monotonic_now();
+    estimator_->update(sample_);
+    estimator_time_ns_ = monotonic_now() - e0;
+  }
   if (log_ != nullptr) log_->push(sample_);
 }
 

@@ -78,6 +78,7 @@ class ArmLoop {
   std::array<double, dxl::ph54::kMaxChainMotors> q_start_{};
   bool have_start_ = false;
   std::int64_t bus_time_ns_ = 0;
+  std::int64_t estimator_time_ns_ = 0;
   ArmLoopReport report_;
 };
 

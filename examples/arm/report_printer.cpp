@@ -14,6 +14,9 @@ void print_report(std::FILE* out, const ArmLoopReport& r, std::size_t motors) {
                t.lateness_p50_s * 1e6, t.lateness_p99_s * 1e6, t.lateness_max_s * 1e6);
   std::fprintf(out, "bus time per cycle p50 %.1f us, p99 %.1f us, max %.1f us\n", t.bus_p50_s * 1e6,
                t.bus_p99_s * 1e6, t.bus_max_s * 1e6);
+  if (r.estimator_used)
+    std::fprintf(out, "estimator time per cycle p50 %.1f us, p99 %.1f us, max %.1f us\n",
+                 t.estimator_p50_s * 1e6, t.estimator_p99_s * 1e6, t.estimator_max_s * 1e6);
   const dxl::BusCounters& b = r.bus;
   std::fprintf(
       out,
