@@ -94,6 +94,10 @@ int main(int argc, char** argv) {
     if (!no_estimator) {
       if (ids.size() != static_cast<std::size_t>(arm::EstimatorHook::kJoints))
         throw Error::at("--ids", 0, "", "the estimator is built for the 4-joint arm4: give 4 IDs");
+      if (rate != 400.0)
+        throw Error::at("--rate", 0, "",
+                        "the estimator's filters and friction networks are set for 400 Hz "
+                        "(use --no-estimator for other rates)");
       if (est.weights == "none") est.weights.clear();
       estimator = std::make_unique<arm::EstimatorHook>(est);
       std::printf("%s\n", estimator->description().c_str());
