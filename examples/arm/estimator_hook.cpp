@@ -1,6 +1,7 @@
 #include "arm/estimator_hook.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "offline/log/read_log.hpp"
@@ -45,8 +46,10 @@ offline::ArmEstimatorSetup load_setup(const EstimatorFiles& f, std::string& desc
     noise.effort.setConstant(f.effort_noise_ma);
     noise.pad_kpa = f.pad_noise_kpa;
     setup.parameters = offline::arm_estimator_parameters(noise, f.pad_gain_kpa_per_n);
-    description += ", dead bands from the noise (" + std::to_string(f.effort_noise_ma) + " mA, " +
-                   std::to_string(f.pad_noise_kpa) + " kPa)";
+    char noise_text[96];
+    std::snprintf(noise_text, sizeof noise_text, ", dead bands from the noise (%g mA, %g kPa)",
+                  f.effort_noise_ma, f.pad_noise_kpa);
+    description += noise_text;
   }
   return setup;
 }

@@ -4,9 +4,14 @@
 #include "arm/estimator_hook.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/simulate.hpp"
 #include "support/allocation_counter.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/estimator_status.hpp"
@@ -80,6 +85,19 @@ TEST(EstimatorHook, FlagsFaultyCyclesAndDoesNotAllocate) {
   const auto& out = hook.output();
   EXPECT_LT(out.residual.cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_EQ(out.estimate(TorqueEstimator::Proprioceptive).torque.cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(EstimatorHook, ReadsItsDeadBandsOffACalibrationLog) {
+  // A contact-free twin log (simulated, excitation: rests and moves on every joint).
+  const std::string log = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                          "/tpf_hook_calibration_" + std::to_string(::getpid()) + ".csv";
+  offline::simulate_to_file(offline::load_scenario(data("scenarios/excitation.json")), 11, 20.0,
+                            log);
+  EstimatorFiles f = arm4_files();
+  f.calibration_log = log;
+  EstimatorHook hook(f);
+  EXPECT_NE(hook.description().find("dead bands from " + log), std::string::npos);
+  std::remove(log.c_str());
 }
 
 TEST(EstimatorHook, RefusesBadFilesNamingThem) {
