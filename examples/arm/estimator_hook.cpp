@@ -97,9 +97,10 @@ void EstimatorHook::update(const CycleSample& s) noexcept {
     EstimateRecord r;
     r.t = s.t;
     r.status = out.status;
-    r.contact_pad = skipped ? -1 : out.wrench.pad;
-    r.external_torque_nm = out.external.torque;
-    r.normal_force_n = -out.wrench.force_contact.z();
+    r.contact_pad = skipped ? -1 : out.wrench.pad;  // a skipped cycle has no estimate: NaN
+    r.external_torque_nm =
+        skipped ? JointVector<double, kJoints>::Constant(nan) : out.external.torque;
+    r.normal_force_n = skipped ? nan : -out.wrench.force_contact.z();
     trace_.push_back(r);
   }
 }

@@ -34,7 +34,8 @@ struct EstimatorFiles {
   std::size_t trace_capacity = 0;
 };
 
-/// One cycle's estimate, as kept in the trace.
+/// One cycle's estimate, as kept in the trace. A skipped cycle (non-finite input, stale time)
+/// has no estimate: NaN torques and force, contact_pad −1, the reason in `status`.
 struct EstimateRecord {
   double t = 0.0;  ///< the cycle's time [s]
   std::uint32_t status = 0;

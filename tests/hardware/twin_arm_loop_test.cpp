@@ -184,11 +184,16 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
     return truth[k];
   };
   JointVector<double, 4> estimated = JointVector<double, 4>::Zero(), expected = estimated;
-  int held = 0, held_on_pad = 0, free = 0, free_flagged = 0;
+  int held = 0, held_on_pad = 0, free = 0, free_flagged = 0, skipped = 0;
+  int skipped_without_numbers = 0;
   double force = 0.0;
   for (const EstimateRecord& rec : estimator.trace()) {
     const double t = rec.t + offset;
-    if (rec.status & (kStatusNonFiniteInput | kStatusStaleTime)) continue;
+    if (rec.status & (kStatusNonFiniteInput | kStatusStaleTime)) {
+      ++skipped;  // flagged, and no numbers
+      skipped_without_numbers += std::isnan(rec.external_torque_nm[1]) && rec.contact_pad < 0;
+      continue;
+    }
     if (t > kFull + 0.3 && t < kRelease - 0.05) {  // the push held
       ++held;
       held_on_pad += rec.contact_pad == kPad;
@@ -200,6 +205,8 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
       free_flagged += rec.contact_pad >= 0;
     }
   }
+  EXPECT_EQ(skipped, static_cast<int>(r.motor_read_failures));
+  EXPECT_EQ(skipped_without_numbers, skipped);
   ASSERT_GT(held, 300);
   ASSERT_GT(free, 50);
   estimated /= held;
