@@ -4,6 +4,7 @@
 #include <complex>
 #include <cstdio>
 
+#include "offline/identify/identification_setup.hpp"
 #include "offline/signal/acceleration.hpp"
 #include "tpf/common/error.hpp"
 
@@ -67,14 +68,11 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     if (options.progress) options.progress(line);
   };
   Diagnosis<N> out;
-  out.samples = extract_joint_samples(log, options.samples);
+  IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
+  out.samples = std::move(setup.samples);
   const JointSamples& s = out.samples;
-  if (s.joints() != N)
-    throw Error::at(log.source, 0, "",
-                    "the log has " + std::to_string(s.joints()) + " joints, the robot file " +
-                        std::to_string(N));
-  const JointVector<double, N> scale = effort_scale<N>(model, s.effort_unit);
-  const BaseParameters base = rigid_body_base_parameters(model);
+  const JointVector<double, N>& scale = setup.effort_scale;
+  const BaseParameters& base = setup.base;
   const double threshold = options.samples.regimes.static_velocity;
   FitSelection selection;  // fit on moving samples: friction at rest has memory
   selection.regimes = {false, true, true};
@@ -96,22 +94,23 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
 
   // 2. Residual of the declared model: noise floor, ripple periods, prediction rate.
   say("diagnose: pass 2/4: residual analysis");
-  const Eigen::MatrixXd prediction0 = declared.predict(s, theta0);
   // The delay candidate shifts the rigid-body part (smooth); the friction's own lag at a reversal
   // is friction memory, not a delay of the drive.
   Eigen::VectorXd rigid0 = Eigen::VectorXd::Zero(theta0.size());
   for (const FeatureGroup& g : declared.groups())
-    if (g.key == "rigid")
+    if (g.kind == FeatureKind::Rigid)
       for (int c : g.columns)
         rigid0[c] = theta0[c];
-  const Eigen::MatrixXd rigid_prediction0 = declared.predict(s, rigid0);
-  out.residual_before = s.effort - prediction0;
+  const std::vector<Eigen::MatrixXd> predictions0 = declared.predict_each(s, {theta0, rigid0});
+  const Eigen::MatrixXd& rigid_prediction0 = predictions0[1];
+  out.residual_before = s.effort - predictions0[0];
   out.noise_floor.resize(N);
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles.resize(N);
   inputs.ripple_motor_cycles.resize(N);
   inputs.prediction_rate.resize(s.size(), N);
+  inputs.abs_gravity = gravity_load(model, s);
   inputs.reference_temperature =
       s.temperature.cols() == N
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -190,13 +189,26 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
 
   // 4. Residual after, the effect terms, and the extended nominal model.
   say("diagnose: pass 4/4: refit with the selected effects");
-  out.residual_after = s.effort - design.predict(s, theta);
+  // One pass for the whole refit, each selected effect's term and the non-friction part.
+  std::vector<Eigen::VectorXd> thetas{theta};
   for (int g : out.selected) {
     Eigen::VectorXd part = Eigen::VectorXd::Zero(design.features());
     for (int c : out.groups[g].columns)
       part[c] = theta[c];
-    out.effect_terms.push_back(design.predict(s, part));
+    thetas.push_back(part);
   }
+  Eigen::VectorXd non_friction = theta;
+  for (const FeatureGroup& g : out.groups)
+    if (g.kind == FeatureKind::Friction || g.kind == FeatureKind::LoadFriction ||
+        g.kind == FeatureKind::Thermal)
+      for (int c : g.columns)
+        non_friction[c] = 0.0;
+  thetas.push_back(non_friction);
+  std::vector<Eigen::MatrixXd> predictions = design.predict_each(s, thetas);
+  out.residual_after = s.effort - predictions.front();
+  for (std::size_t e = 0; e < out.selected.size(); ++e)
+    out.effect_terms.push_back(std::move(predictions[e + 1]));
+  const Eigen::MatrixXd& rigid_prediction = predictions.back();
 
   NominalModel<double, N>& nominal = out.nominal;
   nominal.model = model;
@@ -205,44 +217,40 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   nominal.base_count = base.size();
   Eigen::VectorXd payload = Eigen::VectorXd::Zero(11 * N);
   StribeckParameters<double, N> linear;
-  Eigen::VectorXd non_friction = theta;
   bool load_selected = false;
   for (const FeatureGroup& g : out.groups) {
     const int j = g.joint;
     auto value = [&](int i) { return theta[g.columns[i]]; };
-    if (g.key == "friction" || g.key == "load_friction" || g.key == "thermal")
-      for (int c : g.columns)
-        non_friction[c] = 0.0;
-    if (g.key == "rigid") {
+    if (g.kind == FeatureKind::Rigid) {
       for (int i = 0; i < base.size(); ++i)
         nominal.base_columns[i] = base.independent[i];
-    } else if (g.key == "friction") {
+    } else if (g.kind == FeatureKind::Friction) {
       linear.coulomb[j] = linear.static_friction[j] = std::max(value(0), 0.0);
       linear.viscous[j] = std::max(value(1), 0.0);
-    } else if (g.key == "payload") {
+    } else if (g.kind == FeatureKind::Payload) {
       for (int i = 0; i < 10; ++i)
         payload[10 * (N - 1) + i] = value(i);
-    } else if (g.key == "load_friction") {
+    } else if (g.kind == FeatureKind::LoadFriction) {
       linear.load_coulomb[j] = std::max(value(0), 0.0);
       linear.load_viscous[j] = std::max(value(1), 0.0);
       load_selected = load_selected || value(0) != 0.0 || value(1) != 0.0;
-    } else if (g.key == "ripple" || g.key == "ripple_motor") {
+    } else if (g.kind == FeatureKind::Ripple || g.kind == FeatureKind::RippleMotor) {
       if (value(0) == 0.0 && value(1) == 0.0) continue;
       RippleTerm<double>& t = nominal.added.ripple[nominal.added.ripple_count++];
       t.joint = j;
-      t.motor_side = g.key == "ripple_motor";
+      t.motor_side = g.kind == FeatureKind::RippleMotor;
       t.cycles_per_rev = t.motor_side ? inputs.ripple_motor_cycles[j] : inputs.ripple_cycles[j];
       t.sin_amplitude = value(0);
       t.cos_amplitude = value(1);
-    } else if (g.key == "thermal") {
+    } else if (g.kind == FeatureKind::Thermal) {
       nominal.added.thermal_viscous[j] = value(0);
       nominal.added.reference_temperature = inputs.reference_temperature;
-    } else if (g.key == "spring") {
+    } else if (g.kind == FeatureKind::Spring) {
       nominal.added.spring_stiffness[j] = value(0);
       nominal.added.spring_offset[j] = value(1);
-    } else if (g.key == "delay") {
+    } else if (g.kind == FeatureKind::Delay) {
       if (value(0) != 0.0) nominal.added.effort_lead_s = value(0);
-    } else if (g.key == "coupling") {
+    } else if (g.kind == FeatureKind::Coupling) {
       int i = 0;
       for (int k = 0; k < N; ++k)
         if (k != j) {
@@ -253,15 +261,14 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   }
   const Eigen::VectorXd payload_base = base.project(payload);
   for (const FeatureGroup& g : out.groups)
-    if (g.key == "rigid")
+    if (g.kind == FeatureKind::Rigid)
       for (int i = 0; i < base.size(); ++i)
         nominal.base_values[i] = theta[g.columns[i]] + payload_base[i];
-  const Eigen::MatrixXd rigid_prediction = design.predict(s, non_friction);
   Eigen::VectorXd sigma(N);
   for (int j = 0; j < N; ++j)
     sigma[j] = 1.0 / std::sqrt(weights[j]);
-  nominal.friction =
-      fit_friction_curves<N>(model, s, rigid_prediction, linear, load_selected, 20000, sigma);
+  nominal.friction = fit_friction_curves<N>(s, rigid_prediction, inputs.abs_gravity, linear,
+                                            load_selected, 20000, sigma);
 
   // Findings in plain words.
   if (out.selected.empty())
