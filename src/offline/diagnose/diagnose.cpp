@@ -1,5 +1,6 @@
 #include "offline/diagnose/diagnose.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -103,7 +104,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
         rigid0[c] = theta0[c];
   const std::vector<Eigen::MatrixXd> predictions0 = declared.predict_each(s, {theta0, rigid0});
   const Eigen::MatrixXd& rigid_prediction0 = predictions0[1];
-  out.residual_before = s.effort - predictions0[0];
+  const Eigen::MatrixXd residual0 = s.effort - predictions0[0];  // declared, fitted on motion
   out.noise_floor.resize(N);
   CandidateInputs inputs;
   inputs.enabled = true;
@@ -132,7 +133,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     Eigen::VectorXd q(m), r(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       q[i] = s.q(moving[i * stride], j);
-      r[i] = out.residual_before(moving[i * stride], j);
+      r[i] = residual0(moving[i * stride], j);
     }
     inputs.ripple_cycles[j] = m > 100 ? dominant_cycles(q, r, 3, 64, 1.0) : 0.0;
     inputs.ripple_motor_cycles[j] =
@@ -149,8 +150,22 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
   std::vector<int> columns = design.declared_columns();
+  // The friction held at rest (last direction of motion × level, and × |G| once load-dependent
+  // friction is selected) is fitted on the static training samples on top of the model fitted
+  // on motion, which it leaves unchanged.
+  FitSelection at_rest = selection;
+  at_rest.regimes = {true, false, false};
+  auto with_held_friction = [&](const Eigen::VectorXd& moving_theta, const std::vector<int>& used) {
+    std::vector<int> held;
+    for (const FeatureGroup& g : design.groups())
+      if ((g.kind == FeatureKind::Friction || g.kind == FeatureKind::LoadFriction) &&
+          std::find(used.begin(), used.end(), g.columns[2]) != used.end())
+        held.push_back(g.columns[2]);
+    return refit_columns(grams, held, moving_theta, at_rest);
+  };
   Eigen::VectorXd theta = fit_columns(grams, columns, selection);
-  out.before = heldout_table(grams, theta);
+  const Eigen::VectorXd theta_before = with_held_friction(theta, columns);
+  out.before = heldout_table(grams, theta_before);
   std::vector<bool> used(out.groups.size(), false);
   for (int round = 1; round <= options.max_effects; ++round) {
     int best = -1;
@@ -185,12 +200,14 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     columns.insert(columns.end(), out.groups[best].columns.begin(), out.groups[best].columns.end());
     theta = fit_columns(grams, columns, selection);
   }
+  theta = with_held_friction(theta, columns);
   out.after = heldout_table(grams, theta);
 
   // 4. Residual after, the effect terms, and the extended nominal model.
   say("diagnose: pass 4/4: refit with the selected effects");
-  // One pass for the whole refit, each selected effect's term and the non-friction part.
-  std::vector<Eigen::VectorXd> thetas{theta};
+  // One pass for the declared and the extended model, each selected effect's term and the
+  // non-friction part.
+  std::vector<Eigen::VectorXd> thetas{theta, theta_before};
   for (int g : out.selected) {
     Eigen::VectorXd part = Eigen::VectorXd::Zero(design.features());
     for (int c : out.groups[g].columns)
@@ -205,9 +222,10 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
         non_friction[c] = 0.0;
   thetas.push_back(non_friction);
   std::vector<Eigen::MatrixXd> predictions = design.predict_each(s, thetas);
-  out.residual_after = s.effort - predictions.front();
+  out.residual_after = s.effort - predictions[0];
+  out.residual_before = s.effort - predictions[1];
   for (std::size_t e = 0; e < out.selected.size(); ++e)
-    out.effect_terms.push_back(std::move(predictions[e + 1]));
+    out.effect_terms.push_back(std::move(predictions[e + 2]));
   const Eigen::MatrixXd& rigid_prediction = predictions.back();
 
   NominalModel<double, N>& nominal = out.nominal;
