@@ -81,7 +81,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   // 1. The declared model alone.
   say("diagnose: pass 1/4: declared model");
   const EffectDesign<N> declared(model, base, scale, s, {}, threshold);
-  const DesignGrams grams0 = declared.accumulate(s);
+  // A first fit for the candidates' inputs (weights, ripple periods, prediction rate): every
+  // 4th sample is plenty; selection and the before/after table use every sample (pass 3).
+  const DesignGrams grams0 = declared.accumulate(s, 4);
   Eigen::VectorXd theta0 = fit_columns(grams0, declared.declared_columns(), selection);
   Eigen::VectorXd weights(N);
   for (int j = 0; j < N; ++j) {

@@ -1,5 +1,6 @@
 #include "offline/identify/effect_design.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -200,7 +201,8 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
 }
 
 template <int N>
-DesignGrams EffectDesign<N>::accumulate(const JointSamples& s) const {
+DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const {
+  stride = std::max(stride, 1);
   constexpr int kBlock = 256;
   const Eigen::Index n = s.size();
   auto work = [&](Eigen::Index begin, Eigen::Index end, DesignGrams& out) {
@@ -221,7 +223,7 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s) const {
       gram[slot].selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
       fill_count[slot] = 0;
     };
-    for (Eigen::Index k = begin; k < end; ++k) {
+    for (Eigen::Index k = begin; k < end; k += stride) {
       if (!s.valid[k]) continue;
       fill(s, k, ws);
       for (int j = 0; j < N; ++j) {
