@@ -8,6 +8,7 @@
 #include "offline/identify/identification_setup.hpp"
 #include "offline/signal/acceleration.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -290,7 +291,50 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   nominal.friction = fit_friction_curves<N>(s, rigid_prediction, inputs.abs_gravity, linear,
                                             load_selected, 20000, sigma);
 
+  // A payload against the robot file's inertias (CAD).
+  {
+    const Eigen::VectorXd cad_values = base.project(
+        dynamic_parameters(model, JointVector<double, N>::Zero(), JointVector<double, N>::Zero())
+            .head(11 * N));
+    Eigen::VectorXd cad = Eigen::VectorXd::Zero(design.features());
+    std::vector<int> friction_columns, payload_columns;
+    for (const FeatureGroup& g : out.groups) {
+      if (g.kind == FeatureKind::Rigid)
+        for (int i = 0; i < base.size(); ++i)
+          cad[g.columns[i]] = cad_values[i];
+      if (g.kind == FeatureKind::Friction)
+        friction_columns.insert(friction_columns.end(), g.columns.begin(), g.columns.begin() + 2);
+      if (g.kind == FeatureKind::Payload) payload_columns = g.columns;
+    }
+    std::vector<int> with_payload = friction_columns;
+    with_payload.insert(with_payload.end(), payload_columns.begin(), payload_columns.end());
+    const Eigen::VectorXd without = refit_columns(grams, friction_columns, cad, selection);
+    const Eigen::VectorXd with = refit_columns(grams, with_payload, cad, selection);
+    const auto [sse0, n] = heldout_sse(heldout_table(grams, without), -1, weights);
+    const auto [sse1, n1] = heldout_sse(heldout_table(grams, with), -1, weights);
+    CadPayloadCheck& c = out.cad_payload;
+    c.improvement = sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
+    c.bic_change = n * std::log(std::max(sse1, 1e-300) / std::max(sse0, 1e-300)) +
+                   10.0 * std::log(std::max(n, 2.0));
+    c.mass = with[payload_columns[0]];
+    if (c.mass > 0)
+      c.centre = Vector3<double>(with[payload_columns[1]], with[payload_columns[2]],
+                                 with[payload_columns[3]]) /
+                 c.mass;
+    c.claimed = c.improvement >= options.min_improvement && c.bic_change < 0 && c.mass > 0;
+  }
+
   // Findings in plain words.
+  if (out.cad_payload.claimed)
+    out.findings.push_back(
+        format("Against the robot file's inertias: a payload of %.3g kg on the last link",
+               out.cad_payload.mass) +
+        format(" at (%.3f, %.3f, %.3f) m in its frame", out.cad_payload.centre.x(),
+               out.cad_payload.centre.y(), out.cad_payload.centre.z()) +
+        format(" — removes %.1f %% of the held-out residual sum of squares of the CAD model "
+               "(absorbed by the identified rigid body, so not a missing effect of the "
+               "identified model).",
+               100 * out.cad_payload.improvement));
   if (out.selected.empty())
     out.findings.push_back(
         "No candidate effect lowers the held-out residual enough to be claimed (threshold " +
