@@ -136,7 +136,7 @@ TEST(TcnTrainer, SampleWeightsWeighTheLoss) {
   const double plain = TcnTrainer(data, o).loss(p, false);
   // A uniform weight changes nothing (the MSE is normalised by Σ w).
   data.sequences[0].weight = Eigen::MatrixXd::Constant(data.sequences[0].inputs.rows(), 1, 7.0);
-  EXPECT_NEAR(TcnTrainer(data, o).loss(p, false), plain, 1e-12 * plain);
+  EXPECT_NEAR(TcnTrainer(data, o).loss(p, false), plain, 1e-6 * plain);  // float windows
   // Weighting half the samples 0 changes it (the per-sample weighting itself is checked against
   // an explicit sum in TcnGradient.SampleScaleWeighsTheLossAndItsGradient).
   TcnDataset masked = data;

@@ -25,7 +25,7 @@ struct CompensatorTrainingOptions {
   /// Per-sample loss weights by regime (regime_weights): break-away and rest count this many
   /// times a moving sample.
   double static_to_kinetic_weight = 10.0;
-  double static_weight = 1.0;
+  double static_weight = 3.0;
   /// Labelling of the regimes for the weights (the static-to-kinetic window after |q̇| crosses
   /// static_velocity lasts fallback_transition_s).
   RegimeOptions regimes;
