@@ -26,7 +26,8 @@ struct TrainCommandOptions {
   bool per_joint = false;
   int joint_hidden = tpf::offline::kArmJointHidden;
   bool quiet = false;
-  double static_to_kinetic_weight = tpf::offline::CompensatorTrainingOptions{}.static_to_kinetic_weight;
+  double static_to_kinetic_weight =
+      tpf::offline::CompensatorTrainingOptions{}.static_to_kinetic_weight;
   double static_weight = tpf::offline::CompensatorTrainingOptions{}.static_weight;
   tpf::offline::TcnTrainOptions tcn;
 };

@@ -97,13 +97,14 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
   stages.push_back(
       "nominal model: identify then diagnose on the training log (identified.params.json, "
       "nominal.params.json = identified + the effects diagnosis added)");
-  stages.push_back("train: " +
-                   std::string(o.per_joint ? "one network per joint" : "one network for all joints") +
-                   ", budget " + std::to_string(o.training_epochs) +
-                   " epochs per network (reproducible: the same seed gives the same weights on "
-                   "any machine), took " +
-                   format_number(r.training.seconds, 3) + " s;" + training_summary(r.training) +
-                   " weights in tcn.json or tcn.joint<j>.json");
+  stages.push_back(
+      "train: " +
+      std::string(o.per_joint ? "one network per joint" : "one network for all joints") +
+      ", budget " + std::to_string(o.training_epochs) +
+      " epochs per network (reproducible: the same seed gives the same weights on "
+      "any machine), took " +
+      format_number(r.training.seconds, 3) + " s;" + training_summary(r.training) +
+      " weights in tcn.json or tcn.joint<j>.json");
   page.list(stages);
   page.write(out / "index.html");
 }
@@ -207,8 +208,8 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   std::vector<std::string> notes{
       "nominal model: identified and diagnosed on the training log (nominal.params.json)",
       "compensator: one network " + std::string(o.per_joint ? "per joint" : "for all joints") +
-          ", trained " + format_number(result.training.seconds, 3) + " s on " +
-          jobs[0].log.source + ";" + training_summary(result.training)};
+          ", trained " + format_number(result.training.seconds, 3) + " s on " + jobs[0].log.source +
+          ";" + training_summary(result.training)};
   for (const SimulationJob& j : jobs)
     if (&j != &jobs[0]) notes.push_back("log: " + j.log.source);
   evaluation_report(result.evaluation, true, notes).write(o.out / "evaluate.html");

@@ -29,10 +29,10 @@ struct DemoOptions {
   double teaching_s = 60.0;
   /// Training budget: epochs per network (early stopping may end sooner). An epoch budget, not a
   /// wall-clock one, so the same seeds give the same weights on every machine.
-  int training_epochs = 40;
+  int training_epochs = 100;
   /// Wall-clock safety net for the whole training [s] (0: none); the report says if it ended
   /// training, since the weights then depend on the machine's speed.
-  double training_safety_s = 240.0;
+  double training_safety_s = 180.0;
   /// One network per joint (the default: measured better than one network for all joints on
   /// held-out twin data, docs/evaluation.md); false: one network for all joints.
   bool per_joint = true;

@@ -153,10 +153,9 @@ TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options
     int in_run = 0;
     for (Eigen::Index first = field - 1; first < length; first += options_.window_outputs) {
       const Eigen::Index outputs = std::min<Eigen::Index>(options_.window_outputs, length - first);
-      const double weight =
-          seg.scale.size() == 0
-              ? static_cast<double>(outputs * a.outputs)
-              : seg.scale.middleCols(first, outputs).squaredNorm();
+      const double weight = seg.scale.size() == 0
+                                ? static_cast<double>(outputs * a.outputs)
+                                : seg.scale.middleCols(first, outputs).squaredNorm();
       if (in_run % options_.validation_block_windows == 0) ++blocks;
       windows.push_back({index, first, outputs, weight});
       block_of.push_back(blocks - 1);
@@ -212,8 +211,8 @@ std::vector<TcnTrainer::WindowSpan> TcnTrainer::window_spans(bool validation) co
   const Eigen::Index field = options_.architecture.receptive_field();
   std::vector<WindowSpan> spans;
   for (const Window& w : validation ? validation_ : training_)
-    spans.push_back({w.segment, w.first_output - (field - 1), w.first_output,
-                     w.first_output + w.outputs});
+    spans.push_back(
+        {w.segment, w.first_output - (field - 1), w.first_output, w.first_output + w.outputs});
   return spans;
 }
 
@@ -251,9 +250,8 @@ double TcnTrainer::sum_loss_in(const BasicTcnParameters<S>& parameters,
       const Window& w = windows[i];
       const Segment<S>& s = segments[w.segment];
       // An empty scale (no weights) gives a 0-column view; it is not passed on.
-      const TcnWindowMatrix<S> scale =
-          s.scale.middleCols(std::min(w.first_output, s.scale.cols()),
-                             s.scale.size() == 0 ? 0 : w.outputs);
+      const TcnWindowMatrix<S> scale = s.scale.middleCols(std::min(w.first_output, s.scale.cols()),
+                                                          s.scale.size() == 0 ? 0 : w.outputs);
       losses[c] += tcn_window_loss<S>(
           parameters, s.inputs.middleCols(w.first_output - (field - 1), w.outputs + field - 1),
           s.low.middleCols(w.first_output, w.outputs), s.high.middleCols(w.first_output, w.outputs),

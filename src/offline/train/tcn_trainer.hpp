@@ -93,7 +93,7 @@ struct TcnTrainResult {
   std::vector<TcnTrainProgress> history;
   int best_epoch = 0;
   double best_validation_loss = 0.0;
-  bool stopped_early = false;  ///< patience ran out (not max_epochs nor the time budget)
+  bool stopped_early = false;    ///< patience ran out (not max_epochs nor the time budget)
   bool stopped_on_time = false;  ///< the wall-clock safety net max_seconds ended training
 };
 

@@ -10,9 +10,9 @@
 
 #include "offline/log/log.hpp"
 #include "offline/training/estimator_trace.hpp"
-#include "tpf/nn/per_joint_tcn.hpp"
 #include "tpf/estimation/estimator.hpp"
 #include "tpf/estimation/transition_sigma.hpp"
+#include "tpf/nn/per_joint_tcn.hpp"
 #include "tpf/nn/tcn.hpp"
 #include "tpf/skin/pad_layout.hpp"
 
@@ -73,8 +73,8 @@ ArmParameters arm_estimator_parameters(const SensorNoise& noise, double pad_gain
 
 /// The weight files of a compensator path: `path` itself when it holds an all-joints network
 /// (inputs 4N, outputs N), else `<path stem>.joint1.json` … `.joint4.json` (per-joint networks
-/// of 4 inputs, 1 output, all of the same hidden size, kArmJointHidden or kArmHidden). Throws tpf::Error naming the path when neither exists or a file has
-/// the wrong shape.
+/// of 4 inputs, 1 output, all of the same hidden size, kArmJointHidden or kArmHidden). Throws
+/// tpf::Error naming the path when neither exists or a file has the wrong shape.
 std::vector<std::string> compensator_files(const std::filesystem::path& path,
                                            CompensatorLayout& layout);
 

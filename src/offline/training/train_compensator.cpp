@@ -15,9 +15,10 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const TcnProgressCallback& progress) {
   if (options.per_joint && !is_arm_joint_hidden(options.joint_hidden))
     throw Error::at("compensator training", 0, "joint_hidden",
-                    std::to_string(options.joint_hidden) + " channels; the arm's per-joint networks "
-                    "are compiled for " + std::to_string(kArmJointHidden) + " or " +
-                    std::to_string(kArmHidden));
+                    std::to_string(options.joint_hidden) +
+                        " channels; the arm's per-joint networks "
+                        "are compiled for " +
+                        std::to_string(kArmJointHidden) + " or " + std::to_string(kArmHidden));
   const auto start = std::chrono::steady_clock::now();
   CompensatorTraining out;
   out.layout = options.per_joint ? CompensatorLayout::PerJoint : CompensatorLayout::AllJoints;

@@ -41,7 +41,8 @@ struct CompensatorTraining {
 
 /// Trains on the traces of contact-free logs (training_sequence of each, weighted by
 /// regime_weights), with the trainer's zero-phase split, Adam, held-out blocks and early stopping;
-/// per joint, each network gets max_epochs and max_seconds/N. The best parameters are scaled to the effort unit (scale_tcn_outputs).
+/// per joint, each network gets max_epochs and max_seconds/N. The best parameters are scaled to the
+/// effort unit (scale_tcn_outputs).
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const Eigen::VectorXd& effort_per_newton_metre,
                                       const CompensatorTrainingOptions& options,

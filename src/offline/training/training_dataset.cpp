@@ -34,8 +34,7 @@ Eigen::MatrixXd regime_weights(const EstimatorTrace& trace, int joint, double st
   const int count = joint < 0 ? static_cast<int>(n) : 1;
   Eigen::MatrixXd w = Eigen::MatrixXd::Ones(trace.rows(), count);
   for (int c = 0; c < count; ++c) {
-    const std::vector<Regime> labels =
-        label_regimes(trace.t, trace.dq.col(first + c), regimes);
+    const std::vector<Regime> labels = label_regimes(trace.t, trace.dq.col(first + c), regimes);
     for (Eigen::Index k = 0; k < trace.rows(); ++k) {
       const Regime g = labels[static_cast<std::size_t>(k)];
       if (g == Regime::StaticToKinetic) w(k, c) = static_to_kinetic_weight;
