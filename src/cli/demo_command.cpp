@@ -45,6 +45,15 @@ void register_demo_command(CLI::App& app) {
       std::fflush(stdout);
     });
     std::printf("\n%s", offline::evaluation_headline(result.evaluation).c_str());
+    for (const auto& t : result.training.results)
+      if (t.stopped_on_time) {
+        std::printf(
+            "\nWARNING: the training's wall-clock safety net (--train-safety-seconds) ended a "
+            "network after %zu of %d epochs: these weights and numbers depend on this machine's "
+            "speed\n",
+            t.history.size(), o->training_epochs);
+        break;
+      }
     std::printf("\ntpf demo: done in %.0f s; report: %s\n", result.seconds,
                 std::filesystem::absolute(result.index).string().c_str());
   });
