@@ -25,9 +25,12 @@ namespace {
 constexpr int N = 4, P = 11;
 using Tcn32 = tpf::Tcn<double, 4 * N, 32, 4, 4, N>;
 using BenchEstimator = tpf::Estimator<double, N, P, Tcn32>;
-/// The layout the tools ship (docs/tcn.md): one 16-channel, 4-level network per joint.
-using ShippedCompensator = tpf::PerJointTcn<double, N, 16, 4>;
-using ShippedEstimator = tpf::Estimator<double, N, P, ShippedCompensator>;
+/// The layout the tools ship (docs/tcn.md): one 16-channel, 4-level network per joint, evaluated
+/// in float; and the same networks in double, for the ratio.
+template <typename NetScalar>
+using JointNetworks = tpf::PerJointTcn<double, N, 16, 4, NetScalar>;
+template <typename NetScalar>
+using ShippedEstimator = tpf::Estimator<double, N, P, JointNetworks<NetScalar>>;
 using PlainEstimator = tpf::Estimator<double, N, P>;  // ZeroCompensator: everything but the TCN
 using Sample = tpf::EstimatorSample<double, N, P>;
 
@@ -99,13 +102,14 @@ std::unique_ptr<BenchEstimator> make_estimator() {
 }
 
 /// The estimator with the default per-joint weights data/weights/arm4.tcn.joint<j>.json.
-std::unique_ptr<ShippedEstimator> make_shipped_estimator() {
-  ShippedCompensator tcns;
+template <typename NetScalar>
+std::unique_ptr<ShippedEstimator<NetScalar>> make_shipped_estimator() {
+  JointNetworks<NetScalar> tcns;
   for (int j = 0; j < N; ++j)
     tpf::load_tcn_weights(data("weights/arm4.tcn.joint" + std::to_string(j + 1) + ".json"),
                           tcns.network(j));
   const auto nominal = twin_nominal();
-  return std::make_unique<ShippedEstimator>(
+  return std::make_unique<ShippedEstimator<NetScalar>>(
       nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model), parameters(), tcns);
 }
 
@@ -155,11 +159,18 @@ void BM_EstimatorStep(benchmark::State& state) {
 }
 BENCHMARK(BM_EstimatorStep)->Iterations(400000)->Unit(benchmark::kNanosecond);
 
+/// The shipped compensator (float networks), and the same networks in double.
+template <typename NetScalar>
 void BM_EstimatorStepShippedCompensator(benchmark::State& state) {
-  auto est = make_shipped_estimator();
+  auto est = make_shipped_estimator<NetScalar>();
   time_steps(state, *est);
 }
-BENCHMARK(BM_EstimatorStepShippedCompensator)->Iterations(400000)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_EstimatorStepShippedCompensator<float>)
+    ->Iterations(400000)
+    ->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_EstimatorStepShippedCompensator<double>)
+    ->Iterations(400000)
+    ->Unit(benchmark::kNanosecond);
 
 void BM_EstimatorStepWithoutCompensator(benchmark::State& state) {
   auto est = make_plain_estimator();

@@ -51,5 +51,35 @@ TEST(PerJointTcn, EachJointRunsItsOwnNetworkOnItsOwnInputs) {
   EXPECT_NE(bank->step(raw.col(5))[0], other->step(swapped)[0]);
 }
 
+// Float networks behind the double interface (what the tools ship): the same weights give the
+// double networks' outputs to float precision, and the step still allocates nothing.
+TEST(PerJointTcn, FloatNetworksMatchTheDoubleOnesToFloatPrecision) {
+  using FloatNetworks = PerJointTcn<double, kJoints, 8, 3, float>;
+  const offline::TcnArchitecture a{4, 8, 3, 4, 1};
+  auto exact = std::make_unique<PerJoint>();
+  auto rounded = std::make_unique<FloatNetworks>();
+  for (int j = 0; j < kJoints; ++j) {
+    const offline::TcnParameters p = test::random_tcn_parameters(a, 60 + j);
+    test::load_parameters(p, exact->network(j));
+    test::load_parameters(p, rounded->network(j));
+  }
+  const Eigen::MatrixXd raw = test::random_inputs(4 * kJoints, 120, 61);
+  exact->reset(raw.col(0));
+  rounded->reset(raw.col(0));
+  double largest = 0.0, worst = 0.0;
+  for (Eigen::Index t = 1; t < raw.cols(); ++t) {
+    const PerJoint::Input x = raw.col(t);
+    const PerJoint::Output y = exact->step(x);
+    test::AllocationCounter allocations;
+    const FloatNetworks::Output& z = rounded->step(x);
+    EXPECT_EQ(allocations.count(), 0u);
+    largest = std::max(largest, y.cwiseAbs().maxCoeff());
+    worst = std::max(worst, (z - y).cwiseAbs().maxCoeff());
+  }
+  EXPECT_GT(largest, 0.1);
+  EXPECT_GT(worst, 0.0);             // it really ran in float
+  EXPECT_LT(worst, 1e-5 * largest);  // ≈ 2^-24 per operation, a few hundred operations deep
+}
+
 }  // namespace
 }  // namespace tpf

@@ -8,21 +8,26 @@
 
 namespace tpf {
 
-/// N independent networks Tcn<S, 4, Hidden, Levels, 4, 1>; network j sees only joint j's inputs
-/// [q_j, q̇_j, q̈_j, τ̂_fric,s,j] (picked from x = compensator_input(...) at j, N + j, 2N + j, 3N + j)
-/// and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step. Large: keep on the
-/// heap (inside the estimator).
-template <typename S, int N, int Hidden, int Levels>
+/// N independent networks Tcn<NetScalar, 4, Hidden, Levels, 4, 1>; network j sees only joint j's
+/// inputs [q_j, q̇_j, q̈_j, τ̂_fric,s,j] (picked from x = compensator_input(...) at j, N + j, 2N + j,
+/// 3N + j) and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step. Large: keep
+/// on the heap (inside the estimator).
+///
+/// The estimator's scalar S and the networks' NetScalar may differ: with NetScalar = float the
+/// inputs are rounded to float on the way in and the outputs widened on the way out, which halves
+/// the network step (twice the SIMD width) at a relative error of ≈ 1e-6 of the output
+/// (docs/tcn.md, "Precision").
+template <typename S, int N, int Hidden, int Levels, typename NetScalar = S>
 class PerJointTcn {
  public:
-  using Network = Tcn<S, 4, Hidden, Levels, 4, 1>;
+  using Network = Tcn<NetScalar, 4, Hidden, Levels, 4, 1>;
   using Input = Eigen::Matrix<S, 4 * N, 1>;
   using Output = Eigen::Matrix<S, N, 1>;
 
   /// τ_TCN,j = network_j(x_j) for every joint.
   const Output& step(const Input& x) noexcept {
     for (int j = 0; j < N; ++j)
-      output_[j] = networks_[j].step(joint_input(x, j))[0];
+      output_[j] = static_cast<S>(networks_[j].step(joint_input(x, j))[0]);
     return output_;
   }
   /// Prewarms every network with its part of the steady input x̄.
@@ -33,9 +38,10 @@ class PerJointTcn {
 
   Network& network(int j) noexcept { return networks_[j]; }
 
-  /// x_j = [x_j, x_{N+j}, x_{2N+j}, x_{3N+j}].
+  /// x_j = [x_j, x_{N+j}, x_{2N+j}, x_{3N+j}], in the networks' scalar.
   static typename Network::Input joint_input(const Input& x, int j) noexcept {
-    return typename Network::Input(x[j], x[N + j], x[2 * N + j], x[3 * N + j]);
+    return Eigen::Matrix<S, 4, 1>(x[j], x[N + j], x[2 * N + j], x[3 * N + j])
+        .template cast<NetScalar>();
   }
 
  private:
