@@ -8,15 +8,15 @@
 
 namespace tpf {
 
-/// N independent networks Tcn<S, 4, Hidden, Levels, 4, 1>; network j sees only joint j's inputs
-/// [q_j, q̇_j, q̈_j, τ̂_fric,s,j] (picked from x = compensator_input(...) at j, N + j, 2N + j, 3N + j)
-/// and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step. Large: keep on the
-/// heap (inside the estimator).
+/// N independent networks Tcn<S, 5, Hidden, Levels, 4, 1>; network j sees only joint j's inputs
+/// [q_j, q̇_j, q̈_j, τ̂_fric,s,j, τ_fric,nom,j] (picked from x = compensator_input(...) at j, N + j,
+/// …, 4N + j) and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step. Large:
+/// keep on the heap (inside the estimator).
 template <typename S, int N, int Hidden, int Levels>
 class PerJointTcn {
  public:
-  using Network = Tcn<S, 4, Hidden, Levels, 4, 1>;
-  using Input = Eigen::Matrix<S, 4 * N, 1>;
+  using Network = Tcn<S, kCompensatorInputsPerJoint, Hidden, Levels, 4, 1>;
+  using Input = CompensatorInput<S, N>;
   using Output = Eigen::Matrix<S, N, 1>;
 
   /// τ_TCN,j = network_j(x_j) for every joint.
@@ -33,9 +33,10 @@ class PerJointTcn {
 
   Network& network(int j) noexcept { return networks_[j]; }
 
-  /// x_j = [x_j, x_{N+j}, x_{2N+j}, x_{3N+j}].
+  /// x_j = [x_j, x_{N+j}, …, x_{4N+j}]: channel c of joint j is x_{cN+j}.
   static typename Network::Input joint_input(const Input& x, int j) noexcept {
-    return typename Network::Input(x[j], x[N + j], x[2 * N + j], x[3 * N + j]);
+    return Eigen::Map<const typename Network::Input, Eigen::Unaligned, Eigen::InnerStride<N>>(
+        x.data() + j);
   }
 
  private:
