@@ -23,7 +23,7 @@
 namespace {
 
 constexpr int N = 4, P = 11;
-using Tcn32 = tpf::Tcn<double, 4 * N, 32, 4, 4, N>;
+using Tcn32 = tpf::Tcn<double, tpf::kCompensatorInputsPerJoint * N, 32, 4, 4, N>;
 using BenchEstimator = tpf::Estimator<double, N, P, Tcn32>;
 /// The layout the tools ship (docs/tcn.md): one 16-channel, 4-level network per joint, evaluated
 /// in float; and the same networks in double, for the ratio.

@@ -1,6 +1,6 @@
 // Step cost of the whole friction compensator of the 4-joint arm, per layout, behind the
-// estimator's interface (FrictionCompensator, 16 inputs → 4 outputs): one network for all joints
-// (16 → 32 → 4) against one network per joint (4 × (4 → H → 1), H = 16 or 32), float and double,
+// estimator's interface (FrictionCompensator, 20 inputs → 4 outputs): one network for all joints
+// (20 → 32 → 4) against one network per joint (4 × (5 → H → 1), H = 16 or 32), float and double,
 // 4 levels, kernel 4. Random weights: the cost does not depend on their values.
 #include <benchmark/benchmark.h>
 
@@ -14,6 +14,7 @@
 namespace {
 
 constexpr int kJoints = 4;
+constexpr int kInputs = tpf::kCompensatorInputsPerJoint;
 
 tpf::TcnWeightFile random_file(int inputs, int hidden, int outputs, std::uint64_t seed) {
   tpf::offline::TcnParameters p =
@@ -25,7 +26,7 @@ tpf::TcnWeightFile random_file(int inputs, int hidden, int outputs, std::uint64_
 
 template <typename S, typename Compensator>
 void run(benchmark::State& state, Compensator& c) {
-  Eigen::Matrix<S, 4 * kJoints, 1> x = Eigen::Matrix<S, 4 * kJoints, 1>::LinSpaced(-0.5, 0.5);
+  tpf::CompensatorInput<S, kJoints> x = tpf::CompensatorInput<S, kJoints>::LinSpaced(-0.5, 0.5);
   c.reset(x);
   S t = 0;
   for (auto _ : state) {
@@ -37,8 +38,8 @@ void run(benchmark::State& state, Compensator& c) {
 
 template <typename S>
 void AllJoints(benchmark::State& state) {
-  auto c = std::make_unique<tpf::Tcn<S, 4 * kJoints, 32, 4, 4, kJoints>>();
-  tpf::tcn_weights_from_file(random_file(4 * kJoints, 32, kJoints, 1), c->weights());
+  auto c = std::make_unique<tpf::Tcn<S, kInputs * kJoints, 32, 4, 4, kJoints>>();
+  tpf::tcn_weights_from_file(random_file(kInputs * kJoints, 32, kJoints, 1), c->weights());
   run<S>(state, *c);
 }
 
@@ -46,7 +47,7 @@ template <typename S, int Hidden>
 void PerJoint(benchmark::State& state) {
   auto c = std::make_unique<tpf::PerJointTcn<S, kJoints, Hidden, 4>>();
   for (int j = 0; j < kJoints; ++j)
-    tpf::tcn_weights_from_file(random_file(4, Hidden, 1, j + 1), c->network(j).weights());
+    tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j).weights());
   run<S>(state, *c);
 }
 

@@ -1,5 +1,5 @@
 // Step cost of the two compensator layouts the trainer can produce, behind the estimator's
-// interface: one network for all joints (16 → 32 → 4) against one network per joint (4 × (4 → 32
+// interface: one network for all joints (20 → 32 → 4) against one network per joint (4 × (5 → 32
 // → 1)), 4 levels, kernel 4, double. Random weights: the cost does not depend on their values.
 #include <benchmark/benchmark.h>
 
@@ -13,7 +13,9 @@ namespace {
 
 using tpf::offline::AllJointsTcn;
 using JointTcns = tpf::offline::JointTcns<tpf::offline::kArmHidden>;
-using Input = Eigen::Matrix<double, 16, 1>;
+using tpf::offline::kArmJoints;
+using Input = tpf::CompensatorInput<double, kArmJoints>;
+constexpr int kInputs = tpf::kCompensatorInputsPerJoint;
 
 tpf::offline::TcnArchitecture architecture(int inputs, int outputs) {
   tpf::offline::TcnArchitecture a;
@@ -36,19 +38,19 @@ void run(benchmark::State& state, Compensator& c) {
 
 void AllJointsStep(benchmark::State& state) {
   auto c = std::make_unique<AllJointsTcn>();
-  tpf::tcn_weights_from_file(
-      tpf::offline::to_weight_file(tpf::offline::init_tcn_parameters(architecture(16, 4), 1)),
-      c->weights());
+  tpf::tcn_weights_from_file(tpf::offline::to_weight_file(tpf::offline::init_tcn_parameters(
+                                 architecture(kInputs * kArmJoints, kArmJoints), 1)),
+                             c->weights());
   run(state, *c);
 }
 BENCHMARK(AllJointsStep);
 
 void PerJointStep(benchmark::State& state) {
   auto c = std::make_unique<JointTcns>();
-  for (int j = 0; j < 4; ++j)
-    tpf::tcn_weights_from_file(
-        tpf::offline::to_weight_file(tpf::offline::init_tcn_parameters(architecture(4, 1), j + 1)),
-        c->network(j).weights());
+  for (int j = 0; j < kArmJoints; ++j)
+    tpf::tcn_weights_from_file(tpf::offline::to_weight_file(tpf::offline::init_tcn_parameters(
+                                   architecture(kInputs, 1), j + 1)),
+                               c->network(j).weights());
   run(state, *c);
 }
 BENCHMARK(PerJointStep);

@@ -230,7 +230,7 @@ TEST(EstimatorTwin, TransitionSigmaCalibrationAndACompensatorOfKnownWeights) {
   std::cout << "[ simulated ] transition σ (mA): " << sigma.nominal.transpose() << "\n";
 
   // A TCN whose only non-zero weight is the low head's bias b: τ_TCN ≡ b.
-  using SmallTcn = Tcn<double, 4 * kJoints, 8, 2, 4, kJoints>;
+  using SmallTcn = Tcn<double, kCompensatorInputsPerJoint * kJoints, 8, 2, 4, kJoints>;
   SmallTcn tcn;
   const Vec b(30.0, -20.0, 10.0, 5.0);
   tcn.weights().low_bias = b;

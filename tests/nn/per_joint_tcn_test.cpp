@@ -15,7 +15,7 @@ constexpr int kJoints = 3;
 using PerJoint = PerJointTcn<double, kJoints, 8, 3>;
 
 TEST(PerJointTcn, EachJointRunsItsOwnNetworkOnItsOwnInputs) {
-  const offline::TcnArchitecture a{4, 8, 3, 4, 1};
+  const offline::TcnArchitecture a{kCompensatorInputsPerJoint, 8, 3, 4, 1};
   auto bank = std::make_unique<PerJoint>();
   std::array<PerJoint::Network, kJoints> alone{};
   for (int j = 0; j < kJoints; ++j) {
@@ -23,11 +23,11 @@ TEST(PerJointTcn, EachJointRunsItsOwnNetworkOnItsOwnInputs) {
     test::load_parameters(p, bank->network(j));
     test::load_parameters(p, alone[j]);
   }
-  // x = [q; q̇; q̈; τ̂_fric,s], each block N long.
-  const Eigen::MatrixXd raw = test::random_inputs(4 * kJoints, 80, 50);
+  // x = [q; q̇; q̈; τ̂_fric,s; τ_fric,nom], each block N long.
+  const Eigen::MatrixXd raw = test::random_inputs(kCompensatorInputsPerJoint * kJoints, 80, 50);
   const auto joint_column = [&](Eigen::Index t, int j) {
-    return Eigen::Vector4d(raw(j, t), raw(kJoints + j, t), raw(2 * kJoints + j, t),
-                           raw(3 * kJoints + j, t));
+    return Eigen::Matrix<double, 5, 1>(raw(j, t), raw(kJoints + j, t), raw(2 * kJoints + j, t),
+                                       raw(3 * kJoints + j, t), raw(4 * kJoints + j, t));
   };
   bank->reset(raw.col(0));
   for (int j = 0; j < kJoints; ++j)
@@ -55,7 +55,7 @@ TEST(PerJointTcn, EachJointRunsItsOwnNetworkOnItsOwnInputs) {
 // double networks' outputs to float precision, and the step still allocates nothing.
 TEST(PerJointTcn, FloatNetworksMatchTheDoubleOnesToFloatPrecision) {
   using FloatNetworks = PerJointTcn<double, kJoints, 8, 3, float>;
-  const offline::TcnArchitecture a{4, 8, 3, 4, 1};
+  const offline::TcnArchitecture a{kCompensatorInputsPerJoint, 8, 3, 4, 1};
   auto exact = std::make_unique<PerJoint>();
   auto rounded = std::make_unique<FloatNetworks>();
   for (int j = 0; j < kJoints; ++j) {
@@ -63,7 +63,7 @@ TEST(PerJointTcn, FloatNetworksMatchTheDoubleOnesToFloatPrecision) {
     test::load_parameters(p, exact->network(j));
     test::load_parameters(p, rounded->network(j));
   }
-  const Eigen::MatrixXd raw = test::random_inputs(4 * kJoints, 120, 61);
+  const Eigen::MatrixXd raw = test::random_inputs(kCompensatorInputsPerJoint * kJoints, 120, 61);
   exact->reset(raw.col(0));
   rounded->reset(raw.col(0));
   double largest = 0.0, worst = 0.0;

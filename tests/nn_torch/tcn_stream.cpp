@@ -78,15 +78,16 @@ int main(int argc, char** argv) {
     if (rows.empty()) throw tpf::Error::at(argv[2], 0, "rows", "no input rows");
     if (file.levels != 4 || file.kernel != 4)
       throw tpf::Error::at(argv[1], 0, "architecture", "this tool is compiled for 4 levels, K = 4");
-    if (file.inputs == 4 && file.hidden == 16 && file.outputs == 1)
-      stream<4, 16, 1>(argv[1], rows, argv[3]);
-    else if (file.inputs == 4 && file.hidden == 32 && file.outputs == 1)
-      stream<4, 32, 1>(argv[1], rows, argv[3]);
-    else if (file.inputs == 16 && file.hidden == 32 && file.outputs == 4)
-      stream<16, 32, 4>(argv[1], rows, argv[3]);
+    // The arm's layouts: 5 inputs per joint (tpf::kCompensatorInputsPerJoint), 4 joints.
+    if (file.inputs == 5 && file.hidden == 16 && file.outputs == 1)
+      stream<5, 16, 1>(argv[1], rows, argv[3]);
+    else if (file.inputs == 5 && file.hidden == 32 && file.outputs == 1)
+      stream<5, 32, 1>(argv[1], rows, argv[3]);
+    else if (file.inputs == 20 && file.hidden == 32 && file.outputs == 4)
+      stream<20, 32, 4>(argv[1], rows, argv[3]);
     else
       throw tpf::Error::at(argv[1], 0, "architecture",
-                           "compiled for 4→16→1, 4→32→1 and 16→32→4 only");
+                           "compiled for 5→16→1, 5→32→1 and 20→32→4 only");
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;

@@ -83,7 +83,7 @@ def main():
     torch.set_num_threads(1)
     ok = True
     with tempfile.TemporaryDirectory() as folder:
-        for inputs, hidden, outputs in ((4, 16, 1), (4, 32, 1), (16, 32, 4)):
+        for inputs, hidden, outputs in ((5, 16, 1), (5, 32, 1), (20, 32, 4)):
             model = TpfTcn(inputs, hidden, 4, 4, outputs).to(torch.float64)
             with torch.no_grad():
                 model.mean.copy_(torch.randn(inputs))
@@ -106,6 +106,7 @@ def main():
             x[:, 0] = 0.5 * torch.sin(1.3 * t)                # q [rad]
             x[:, 1] = 0.65 * torch.cos(1.3 * t)               # q' [rad/s]
             x[:, 2] = -0.845 * torch.sin(1.3 * t)             # q'' [rad/s^2]
+            x[:, 4] = 400.0 * torch.tanh(x[:, 1] / 0.01)      # nominal friction [mA]
             good, _ = compare(model, args.stream, args.weights, x, folder,
                               f"tpf -> PyTorch, {os.path.basename(args.weights)}")
             ok &= good

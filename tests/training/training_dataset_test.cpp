@@ -3,8 +3,10 @@
 #include "offline/training/training_dataset.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "offline/pipeline/declared_model.hpp"
@@ -47,7 +49,8 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
   EXPECT_EQ(trace.contact.maxCoeff(), 0) << "no pad may switch on in a contact-free log";
 
   // Independent re-computation with the documented trainer recipe: acceleration filter,
-  // predict_effort, StaticFrictionTracker with contact = false, compensator_input.
+  // predict_effort, StaticFrictionTracker with contact = false, compensator_input with the
+  // nominal friction of predict_effort.
   AccelerationFilter<double, kArmJoints> filter(setup.parameters.acceleration_cutoff_hz,
                                                 setup.parameters.acceleration_damping);
   StaticFrictionTracker<double, kArmJoints> tracker(setup.parameters.static_friction);
@@ -66,8 +69,8 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
     const Vec residual = s.effort - rigid - friction;
     tracker.update(s.t, s.dq, residual, false, std::numeric_limits<double>::infinity(),
                    Vec::Zero());
-    const auto x =
-        compensator_input<double, kArmJoints>(s.q, s.dq, ddq, tracker.friction_estimate());
+    const auto x = compensator_input<double, kArmJoints>(s.q, s.dq, ddq,
+                                                         tracker.friction_estimate(), friction);
     ASSERT_LT((trace.inputs.row(r).transpose() - x).cwiseAbs().maxCoeff(), 1e-9) << "row " << k;
     ASSERT_LT((trace.residual.row(r).transpose() - residual).cwiseAbs().maxCoeff(), 1e-9);
     for (int j = 0; j < kArmJoints; ++j)
@@ -83,13 +86,13 @@ TEST(TrainingFeatures, TargetIsTheResidualInNewtonMetresAndJointColumnsArePicked
       trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(excitation_log()));
   const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
   const TcnSequence all = training_sequence(trace, scale);
-  ASSERT_EQ(all.inputs.cols(), 16);
+  ASSERT_EQ(all.inputs.cols(), 20);
   ASSERT_EQ(all.residual.cols(), 4);
   for (int j = 0; j < kArmJoints; ++j) {
     EXPECT_LT((all.residual.col(j) * scale[j] - trace.residual.col(j)).cwiseAbs().maxCoeff(), 1e-9);
     const TcnSequence one = training_sequence(trace, scale, j);
-    ASSERT_EQ(one.inputs.cols(), 4);
-    for (int c = 0; c < 4; ++c)
+    ASSERT_EQ(one.inputs.cols(), 5);
+    for (int c = 0; c < 5; ++c)
       EXPECT_EQ(one.inputs.col(c), trace.inputs.col(c * kArmJoints + j));
     EXPECT_LT((one.residual.col(0) - all.residual.col(j)).cwiseAbs().maxCoeff(), 1e-12);
   }
@@ -122,11 +125,11 @@ TEST(TrainingFeatures, RegimeWeightsMarkRestAndTheBreakAwayWindow) {
 
 TEST(TrainingFeatures, ScaledHeadsScaleTheStreamingOutputExactly) {
   TcnArchitecture a;
-  a.inputs = 16;
+  a.inputs = AllJointsTcn::Input::RowsAtCompileTime;
   a.outputs = 4;
   TcnParameters p = init_tcn_parameters(a, 3);
-  p.input_mean = Eigen::VectorXd::LinSpaced(16, -1.0, 1.0);
-  p.input_std = Eigen::VectorXd::LinSpaced(16, 0.5, 2.0);
+  p.input_mean = Eigen::VectorXd::LinSpaced(a.inputs, -1.0, 1.0);
+  p.input_std = Eigen::VectorXd::LinSpaced(a.inputs, 0.5, 2.0);
   TcnParameters scaled = p;
   const Eigen::Vector4d scale(208.0, 210.0, 350.0, 1.0);
   scale_tcn_outputs(scaled, scale);
@@ -141,6 +144,47 @@ TEST(TrainingFeatures, ScaledHeadsScaleTheStreamingOutputExactly) {
     const Eigen::Vector4d y = plain->step(x), z = big->step(x);
     EXPECT_LT((z - scale.cwiseProduct(y)).cwiseAbs().maxCoeff(), 1e-9 * (1 + z.norm()));
   }
+}
+
+TEST(TrainingFeatures, WeightFilesOfTheOldFourInputSizeAreRefusedNamingTheFile) {
+  // Per-joint files written before τ_fric,nom joined the input (4 inputs per joint).
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("tpf_training_old_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  TcnArchitecture old;
+  old.inputs = 4;
+  old.hidden = kArmJointHidden;
+  old.levels = kArmLevels;
+  for (int j = 0; j < kArmJoints; ++j)
+    write_tcn_weight_file(joint_weight_path(dir / "old.json", j).string(),
+                          to_weight_file(init_tcn_parameters(old, 1)));
+  CompensatorLayout layout = CompensatorLayout::None;
+  try {
+    compensator_files(dir / "old.json", layout);
+    ADD_FAILURE() << "a 4-input weight file was accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_NE(message.find(joint_weight_path(dir / "old.json", 0).string()), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("architecture.inputs: 4 in the file, 5 expected"), std::string::npos)
+        << message;
+  }
+  // The all-joints file of the old size (16 inputs) likewise.
+  old.inputs = 4 * kArmJoints;
+  old.hidden = kArmHidden;
+  old.outputs = kArmJoints;
+  write_tcn_weight_file((dir / "all.json").string(), to_weight_file(init_tcn_parameters(old, 1)));
+  try {
+    compensator_files(dir / "all.json", layout);
+    ADD_FAILURE() << "a 16-input all-joints file was accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find((dir / "all.json").string()), std::string::npos) << message;
+    EXPECT_NE(message.find("architecture.inputs: 16 in the file, 20 expected"), std::string::npos)
+        << message;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(TrainingFeatures, SamplesRefuseAWrongJointCount) {

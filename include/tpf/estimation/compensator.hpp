@@ -8,26 +8,38 @@
 
 namespace tpf {
 
-/// A streaming friction compensator for N joints: `step(x)` takes the 4N inputs of
+/// Inputs per joint of the compensator: q, q̇, q̈, τ̂_fric,s and τ_fric,nom (compensator_input).
+inline constexpr int kCompensatorInputsPerJoint = 5;
+
+/// The compensator input of N joints, x = [q; q̇; q̈; τ̂_fric,s; τ_fric,nom], 5N long.
+template <typename S, int N>
+using CompensatorInput = Eigen::Matrix<S, kCompensatorInputsPerJoint * N, 1>;
+
+/// A streaming friction compensator for N joints: `step(x)` takes the 5N inputs of
 /// compensator_input and returns the N predicted friction residuals τ_TCN (the effort unit of the
 /// residual it was trained on); `reset(x)` prewarms its history with a steady input.
-/// tpf::Tcn<S, 4N, Hidden, Levels, Kernel, N> satisfies it, and so does ZeroCompensator.
+/// tpf::Tcn<S, 5N, Hidden, Levels, Kernel, N> satisfies it, and so does ZeroCompensator.
 template <typename C, typename S, int N>
-concept FrictionCompensator = requires(C c, const Eigen::Matrix<S, 4 * N, 1>& x) {
+concept FrictionCompensator = requires(C c, const CompensatorInput<S, N>& x) {
   { c.step(x) } -> std::convertible_to<Eigen::Matrix<S, N, 1>>;
   c.reset(x);
 };
 
-/// The compensator input x = [q; q̇; q̈; τ̂_fric,s] (4N: rad, rad/s, rad/s², effort unit), with
-/// τ̂_fric,s = StaticFrictionTracker::friction_estimate() (0 on moving joints). The trainer builds
+/// The compensator input x = [q; q̇; q̈; τ̂_fric,s; τ_fric,nom] (5N: rad, rad/s, rad/s², effort
+/// unit, effort unit), block c of N holding channel c of every joint, with
+///   τ̂_fric,s  = StaticFrictionTracker::friction_estimate() (the held friction, 0 while moving);
+///   τ_fric,nom = the nominal model's friction at q̇ as predict_effort evaluates it,
+///                [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇) + (b + α_v|G|)·q̇.
+/// τ_fric,nom is bounded and tells rest (sgn 0 = 0) from the first velocity quantum at full
+/// Coulomb level, which the normalised q̇ cannot (docs/tcn.md, "Break-away"). The trainer builds
 /// its training inputs with this same function.
 template <typename S, int N>
-Eigen::Matrix<S, 4 * N, 1> compensator_input(const JointVector<S, N>& q,
-                                             const JointVector<S, N>& dq,
-                                             const JointVector<S, N>& ddq,
-                                             const JointVector<S, N>& static_friction) noexcept {
-  Eigen::Matrix<S, 4 * N, 1> x;
-  x << q, dq, ddq, static_friction;
+CompensatorInput<S, N> compensator_input(const JointVector<S, N>& q, const JointVector<S, N>& dq,
+                                         const JointVector<S, N>& ddq,
+                                         const JointVector<S, N>& static_friction,
+                                         const JointVector<S, N>& nominal_friction) noexcept {
+  CompensatorInput<S, N> x;
+  x << q, dq, ddq, static_friction, nominal_friction;
   return x;
 }
 
@@ -36,8 +48,8 @@ Eigen::Matrix<S, 4 * N, 1> compensator_input(const JointVector<S, N>& q,
 template <typename S, int N>
 struct ZeroCompensator {
   using Output = Eigen::Matrix<S, N, 1>;
-  const Output& step(const Eigen::Matrix<S, 4 * N, 1>&) noexcept { return zero; }
-  void reset(const Eigen::Matrix<S, 4 * N, 1>&) noexcept {}
+  const Output& step(const CompensatorInput<S, N>&) noexcept { return zero; }
+  void reset(const CompensatorInput<S, N>&) noexcept {}
   Output zero = Output::Zero();
 };
 

@@ -30,10 +30,10 @@ namespace tpf {
 ///     the workspace); τ_res = τ_meas − τ_dyn − τ_fric;
 ///  3. skin: filtered pressure, hysteresis, contact flags and onset times (Skin);
 ///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
-///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s);
+///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s, τ_fric) (compensator_input; τ_fric is step 2's);
 ///  6. three estimates (TorqueEstimator), each with its dead band, and the combined one;
 ///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal.
-/// `Compensator` is tpf::Tcn<S, 4N, H, L, K, N> or ZeroCompensator<S, N> (no compensation).
+/// `Compensator` is tpf::Tcn<S, 5N, H, L, K, N>, PerJointTcn or ZeroCompensator<S, N> (none).
 /// update() allocates nothing, throws nothing and never blocks; what it could not do is in the
 /// output's status bits. The object is large with a TCN inside: keep it on the heap.
 template <typename S, int N, int P, typename Compensator = ZeroCompensator<S, N>>
@@ -82,6 +82,7 @@ class Estimator {
     }
     S h = parameters_.sample_period_s;
     std::uint32_t stuck = 0;
+    const bool first = !started_;
     if (started_) {
       h = sample.t - output_.t;
       if (h > parameters_.max_gap_factor * parameters_.sample_period_s) status |= kStatusTimeGap;
@@ -132,9 +133,12 @@ class Estimator {
     out.state = tracker_.state();
     out.static_friction = tracker_.friction_estimate();
 
-    // 5. Compensator.
-    out.compensation =
-        compensator_.step(compensator_input<S, N>(sample.q, sample.dq, ddq, out.static_friction));
+    // 5. Compensator, prewarmed on the first sample with its steady input (q̈ = 0, no baseline).
+    if (first)
+      compensator_.reset(compensator_input<S, N>(sample.q, sample.dq, Vector::Zero().eval(),
+                                                 Vector::Zero().eval(), out.effort_friction));
+    out.compensation = compensator_.step(compensator_input<S, N>(
+        sample.q, sample.dq, ddq, out.static_friction, out.effort_friction));
 
     // 6. External torque, three ways and combined.
     constexpr std::uint32_t all = N == 32 ? ~0u : (1u << N) - 1;
@@ -262,8 +266,6 @@ class Estimator {
     skin_.set_ignored(0);
     tracker_.reset();
     held_residual_.setZero();
-    compensator_.reset(
-        compensator_input<S, N>(sample.q, sample.dq, Vector::Zero().eval(), Vector::Zero().eval()));
   }
 
   void set_estimate(TorqueEstimator which, const Vector& residual, std::uint32_t valid) noexcept {

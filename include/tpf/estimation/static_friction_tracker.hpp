@@ -51,7 +51,8 @@ struct StaticFrictionSettings {
 /// Trainer use (contact-free logs), row by row in time order:
 ///   tracker.reset();
 ///   for each row: tracker.update(t, dq, residual, false, +inf, zero);  // residual = τ_res
-///                 input = compensator_input(q, dq, ddq, tracker.friction_estimate());
+///                 input = compensator_input(q, dq, ddq, tracker.friction_estimate(),
+///                                           friction);  // friction: predict_effort's
 /// Allocation-free, no exceptions. History holds `History` samples (64 = 160 ms at 400 Hz).
 template <typename S, int N, int History = 64>
 class StaticFrictionTracker {

@@ -8,10 +8,10 @@
 
 namespace tpf {
 
-/// N independent networks Tcn<NetScalar, 4, Hidden, Levels, 4, 1>; network j sees only joint j's
-/// inputs [q_j, q̇_j, q̈_j, τ̂_fric,s,j] (picked from x = compensator_input(...) at j, N + j, 2N + j,
-/// 3N + j) and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step. Large: keep
-/// on the heap (inside the estimator).
+/// N independent networks Tcn<NetScalar, 5, Hidden, Levels, 4, 1>; network j sees only joint j's
+/// inputs [q_j, q̇_j, q̈_j, τ̂_fric,s,j, τ_fric,nom,j] (picked from x = compensator_input(...) at j,
+/// N + j, …, 4N + j) and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step.
+/// Large: keep on the heap (inside the estimator).
 ///
 /// The estimator's scalar S and the networks' NetScalar may differ: with NetScalar = float the
 /// inputs are rounded to float on the way in and the outputs widened on the way out, which halves
@@ -20,8 +20,8 @@ namespace tpf {
 template <typename S, int N, int Hidden, int Levels, typename NetScalar = S>
 class PerJointTcn {
  public:
-  using Network = Tcn<NetScalar, 4, Hidden, Levels, 4, 1>;
-  using Input = Eigen::Matrix<S, 4 * N, 1>;
+  using Network = Tcn<NetScalar, kCompensatorInputsPerJoint, Hidden, Levels, 4, 1>;
+  using Input = CompensatorInput<S, N>;
   using Output = Eigen::Matrix<S, N, 1>;
 
   /// τ_TCN,j = network_j(x_j) for every joint.
@@ -38,9 +38,11 @@ class PerJointTcn {
 
   Network& network(int j) noexcept { return networks_[j]; }
 
-  /// x_j = [x_j, x_{N+j}, x_{2N+j}, x_{3N+j}], in the networks' scalar.
+  /// x_j = [x_j, x_{N+j}, …, x_{4N+j}] (channel c of joint j is x_{cN+j}), in the networks'
+  /// scalar.
   static typename Network::Input joint_input(const Input& x, int j) noexcept {
-    return Eigen::Matrix<S, 4, 1>(x[j], x[N + j], x[2 * N + j], x[3 * N + j])
+    using JointInput = Eigen::Matrix<S, kCompensatorInputsPerJoint, 1>;
+    return Eigen::Map<const JointInput, Eigen::Unaligned, Eigen::InnerStride<N>>(x.data() + j)
         .template cast<NetScalar>();
   }
 

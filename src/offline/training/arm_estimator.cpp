@@ -114,7 +114,8 @@ std::vector<std::string> compensator_files(const std::filesystem::path& path,
                                            CompensatorLayout& layout) {
   if (std::filesystem::exists(path)) {
     const TcnWeightFile file = read_tcn_weight_file(path.string());
-    file.require_architecture(4 * kArmJoints, kArmHidden, kArmLevels, 4, kArmJoints);
+    file.require_architecture(kCompensatorInputsPerJoint * kArmJoints, kArmHidden, kArmLevels, 4,
+                              kArmJoints);
     layout = CompensatorLayout::AllJoints;
     return {path.string()};
   }
@@ -127,7 +128,7 @@ std::vector<std::string> compensator_files(const std::filesystem::path& path,
                       "no such weight file, nor per-joint files like " + p.string());
     const TcnWeightFile file = read_tcn_weight_file(p.string());
     if (j == 0) hidden = is_arm_joint_hidden(file.hidden) ? file.hidden : kArmJointHidden;
-    file.require_architecture(4, hidden, kArmLevels, 4, 1);
+    file.require_architecture(kCompensatorInputsPerJoint, hidden, kArmLevels, 4, 1);
     files.push_back(p.string());
   }
   layout = CompensatorLayout::PerJoint;

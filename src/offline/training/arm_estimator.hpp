@@ -29,8 +29,9 @@ using ArmParameters = EstimatorParameters<double, kArmJoints>;
 inline constexpr int kArmHidden = 32;
 inline constexpr int kArmJointHidden = 16;
 inline constexpr int kArmLevels = 4;
-/// One network for all joints: inputs compensator_input (4N), outputs τ_TCN (N).
-using AllJointsTcn = Tcn<double, 4 * kArmJoints, kArmHidden, kArmLevels, 4, kArmJoints>;
+/// One network for all joints: inputs compensator_input (5N), outputs τ_TCN (N).
+using AllJointsTcn =
+    Tcn<double, kCompensatorInputsPerJoint * kArmJoints, kArmHidden, kArmLevels, 4, kArmJoints>;
 /// One network per joint, Hidden ∈ {kArmJointHidden, kArmHidden}, evaluated in float (trained in
 /// double; the float step is ≈ 2× faster, docs/tcn.md "Precision").
 template <int Hidden = kArmJointHidden>
@@ -73,8 +74,8 @@ SensorNoise estimate_sensor_noise(const Log& log);
 ArmParameters arm_estimator_parameters(const SensorNoise& noise, double pad_gain_kpa_per_n = 1.5);
 
 /// The weight files of a compensator path: `path` itself when it holds an all-joints network
-/// (inputs 4N, outputs N), else `<path stem>.joint1.json` … `.joint4.json` (per-joint networks
-/// of 4 inputs, 1 output, all of the same hidden size, kArmJointHidden or kArmHidden). Throws
+/// (inputs 5N, outputs N), else `<path stem>.joint1.json` … `.joint4.json` (per-joint networks
+/// of 5 inputs, 1 output, all of the same hidden size, kArmJointHidden or kArmHidden). Throws
 /// tpf::Error naming the path when neither exists or a file has the wrong shape.
 std::vector<std::string> compensator_files(const std::filesystem::path& path,
                                            CompensatorLayout& layout);

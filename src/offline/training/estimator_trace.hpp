@@ -19,7 +19,7 @@ namespace tpf::offline {
 struct EstimatorTrace {
   Eigen::VectorXd t;             ///< [s]
   Eigen::MatrixXd dq;            ///< T × N [rad/s], the sample's
-  Eigen::MatrixXd inputs;        ///< T × 4N, exactly what the compensator received
+  Eigen::MatrixXd inputs;        ///< T × 5N, exactly what the compensator received
   Eigen::MatrixXd residual;      ///< T × N, τ_res = τ_meas − τ_dyn − τ_fric (nominal)
   Eigen::MatrixXd compensation;  ///< T × N, τ_TCN
   /// Per TorqueEstimator: the external residual after its dead band, T × N; NaN where the
@@ -54,7 +54,7 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
   EstimatorTrace tr;
   tr.t = Eigen::VectorXd::Constant(T, nan);
   tr.dq = Eigen::MatrixXd::Constant(T, N, nan);
-  tr.inputs = Eigen::MatrixXd::Constant(T, 4 * N, nan);
+  tr.inputs = Eigen::MatrixXd::Constant(T, kCompensatorInputsPerJoint * N, nan);
   tr.residual = tr.dq;
   tr.compensation = tr.dq;
   for (auto& e : tr.estimates)

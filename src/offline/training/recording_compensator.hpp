@@ -9,11 +9,12 @@
 namespace tpf::offline {
 
 /// Forwards step/reset to `Inner` (a Tcn, PerJointTcn or ZeroCompensator) and remembers the last
-/// input x = compensator_input(q, q̇, q̈, τ̂_fric,s) that the estimator built. Allocation-free.
+/// input x = compensator_input(q, q̇, q̈, τ̂_fric,s, τ_fric,nom) that the estimator built.
+/// Allocation-free.
 template <typename Inner, typename S, int N>
 requires FrictionCompensator<Inner, S, N>
 struct RecordingCompensator {
-  using Input = Eigen::Matrix<S, 4 * N, 1>;
+  using Input = CompensatorInput<S, N>;
 
   decltype(auto) step(const Input& x) noexcept {
     last_input = x;

@@ -33,7 +33,7 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                        options.static_to_kinetic_weight, options.regimes);
       dataset.sequences.push_back(std::move(sequence));
     }
-    o.architecture.inputs = options.per_joint ? 4 : 4 * kArmJoints;
+    o.architecture.inputs = kCompensatorInputsPerJoint * (options.per_joint ? 1 : kArmJoints);
     o.architecture.outputs = options.per_joint ? 1 : kArmJoints;
     o.architecture.hidden = options.per_joint ? options.joint_hidden : kArmHidden;
     o.architecture.levels = kArmLevels;

@@ -9,7 +9,8 @@ namespace tpf::offline {
 TcnSequence training_sequence(const EstimatorTrace& trace,
                               const Eigen::VectorXd& effort_per_newton_metre, int joint) {
   const Eigen::Index n = trace.residual.cols();
-  if (trace.inputs.cols() != 4 * n || effort_per_newton_metre.size() != n || joint >= n)
+  constexpr int channels = kCompensatorInputsPerJoint;
+  if (trace.inputs.cols() != channels * n || effort_per_newton_metre.size() != n || joint >= n)
     throw Error::at("estimator trace", 0, "columns",
                     "inputs, residual and effort scale sizes disagree");
   TcnSequence s;
@@ -18,8 +19,8 @@ TcnSequence training_sequence(const EstimatorTrace& trace,
     s.residual = trace.residual * effort_per_newton_metre.cwiseInverse().asDiagonal();
     return s;
   }
-  s.inputs.resize(trace.rows(), 4);
-  for (int c = 0; c < 4; ++c)
+  s.inputs.resize(trace.rows(), channels);
+  for (int c = 0; c < channels; ++c)
     s.inputs.col(c) = trace.inputs.col(c * n + joint);
   s.residual = trace.residual.col(joint) / effort_per_newton_metre[joint];
   return s;

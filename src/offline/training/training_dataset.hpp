@@ -11,8 +11,9 @@
 namespace tpf::offline {
 
 /// One training sequence from the trace of a contact-free log (N joints):
-///   inputs   = the compensator inputs the estimator built, x = [q; q̇; q̈; τ̂_fric,s] (T × 4N), or
-///              for joint ≥ 0 that joint's four columns [q_j, q̇_j, q̈_j, τ̂_fric,s,j] (T × 4);
+///   inputs   = the compensator inputs the estimator built, x = [q; q̇; q̈; τ̂_fric,s; τ_fric,nom]
+///              (T × 5N), or for joint ≥ 0 that joint's five columns
+///              [q_j, q̇_j, q̈_j, τ̂_fric,s,j, τ_fric,nom,j] (T × 5);
 ///   residual = τ_res / effort_per_newton_metre = (τ_meas − predict_effort(q, q̇, q̈)) [N·m]
 ///              (T × N, or T × 1 for one joint): the friction the nominal model misses.
 /// Rows the estimator skipped stay NaN: the trainer cuts the sequence there. Training in N·m keeps
