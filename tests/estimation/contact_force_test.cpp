@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "support/arm_fixture.hpp"
 #include "tpf/kinematics/point_jacobian.hpp"
@@ -146,6 +147,26 @@ TEST(ContactForce, EqualsTheStackedWeightedLeastSquaresWithItsPosteriorStd) {
     EXPECT_LT((est.force_contact - f).norm(), 1e-9 * (1.0 + f.norm())) << trial;
     const tpf::Matrix3<double> cov = (Hr.transpose() * Hr).inverse();
     EXPECT_LT((est.force_std_contact - cov.diagonal().cwiseSqrt()).norm(), 1e-9) << trial;
+  }
+}
+
+// Without torque evidence (σ_τ = ∞ on every joint) the MAP is its prior: exactly the pad's
+// answer (0, 0, −F_pad) with the prior's std, so fusion can never do worse than the pad when the
+// torques are worthless and say so.
+TEST(ContactForce, PriorAloneIsThePadAnswer) {
+  const auto layout = pads();
+  tpf::ContactForceSettings<double> settings;
+  for (int k = 1; k < 11; ++k) {
+    const Case c =
+        pad_case(geometry(layout[static_cast<std::size_t>(k)]), Vec(0.3, -0.4, 0.7, 0.5));
+    const Vec tau(1.0, -2.0, 0.5, 3.0);  // anything: it carries no weight
+    const double F = 7.5;
+    const auto est = tpf::estimate_contact_force<double, 4>(
+        c.J, c.R, tau, Vec::Constant(std::numeric_limits<double>::infinity()), F, settings);
+    EXPECT_LT((est.force_contact - tpf::Vector3<double>(0, 0, -F)).norm(), 1e-12) << k;
+    const double st = settings.shear_relative * F + settings.prior_floor_n;
+    const double sn = settings.prior_relative * F + settings.prior_floor_n;
+    EXPECT_LT((est.force_std_contact - tpf::Vector3<double>(st, st, sn)).norm(), 1e-9) << k;
   }
 }
 

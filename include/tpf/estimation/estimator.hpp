@@ -16,6 +16,7 @@
 #include "tpf/estimation/estimator_status.hpp"
 #include "tpf/estimation/estimator_types.hpp"
 #include "tpf/estimation/nominal_model.hpp"
+#include "tpf/estimation/persistence_test.hpp"
 #include "tpf/estimation/repeated_reading_detector.hpp"
 #include "tpf/estimation/static_friction_tracker.hpp"
 #include "tpf/kinematics/contact_frame.hpp"
@@ -32,7 +33,8 @@ namespace tpf {
 ///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
 ///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s, τ_fric) (compensator_input; τ_fric is step 2's);
 ///  6. three estimates (TorqueEstimator), each with its dead band, and the combined one;
-///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal.
+///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal;
+///  8. contact: a pad, or the combined torque outside its band for a while (PersistenceTest).
 /// `Compensator` is tpf::Tcn<S, 5N, H, L, K, N>, PerJointTcn or ZeroCompensator<S, N> (none).
 /// update() allocates nothing, throws nothing and never blocks; what it could not do is in the
 /// output's status bits. The object is large with a TCN inside: keep it on the heap.
@@ -57,6 +59,7 @@ class Estimator {
         acceleration_(parameters.acceleration_cutoff_hz, parameters.acceleration_damping),
         frozen_joints_(parameters.frozen_limit_samples),
         stuck_pads_(parameters.stuck_pad_limit_samples),
+        torque_alarm_(parameters.torque_alarm_samples),
         compensator_(std::move(compensator)) {
     update_sigmas();
   }
@@ -162,6 +165,7 @@ class Estimator {
     }
     out.external.valid = all;
     held_residual_ = out.external.residual;  // what a joint stopping next cycle holds
+    const bool torque_alarm = torque_alarm_.update((out.external.residual.array() != S(0)).any());
 
     // 7. Contact force at the most loaded pad: the torque evidence (before any dead band: the
     // static Δτ_res on resting joints, τ_res − τ_TCN on moving ones) weighted by its σ, with the
@@ -172,13 +176,18 @@ class Estimator {
       const PadGeometry<S>& g = skin_.geometry(pad);
       const Vector3<S> point = pad_point_in_world(data_, g);
       point_jacobian(nominal_.model, data_, g.link, point, jacobian_);
+      // A joint that stopped in contact took its baseline from the moving estimate it held
+      // (HoldLastEstimate), so its evidence also carries that estimate's error: σ² adds up.
+      const std::uint32_t held = tracker_.frozen_mask() & ~tracker_.onset_mask();
       Vector evidence, sigma;
       for (int j = 0; j < N; ++j) {
         const bool at_rest = fixed.valid & (1u << j);
         const S r = at_rest ? tracker_.static_external()[j] : out.residual[j] - out.compensation[j];
         evidence[j] = -r / nominal_.effort_per_newton_metre[j];
-        sigma[j] =
-            (at_rest ? static_sigma_[j] : moving_sigma_[j]) / nominal_.effort_per_newton_metre[j];
+        const S s = !at_rest             ? moving_sigma_[j]
+                    : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
+                                         : static_sigma_[j];
+        sigma[j] = s / nominal_.effort_per_newton_metre[j];
       }
       out.wrench =
           estimate_contact_force(jacobian_, contact_frame_in_world(data_, g.link, g.normal),
@@ -194,6 +203,9 @@ class Estimator {
         out.external.residual = -nominal_.effort_per_newton_metre.cwiseProduct(out.external.torque);
       }
     }
+
+    // 8. Contact: the pads, or a torque-only alarm that persisted (contacts off the pads).
+    out.contact = skin_.any_contact() || torque_alarm;
 
     out.ddq = ddq;
     out.t = sample.t;
@@ -215,7 +227,8 @@ class Estimator {
   /// σ of the torque evidence the wrench weighs (effort unit): on a resting joint
   /// √((static band/3)² + τ_s²/3) — the noise plus the push the friction may hold unseen (up to
   /// the break-away level τ_s, taken as uniform); on a moving joint σ_fused (σ_nominal when there
-  /// is no fused σ; the wrench settings' torque_noise_nm when neither is calibrated).
+  /// is no fused σ; the wrench settings' torque_noise_nm when neither is calibrated). A resting
+  /// joint whose baseline was set when it stopped in contact weighs √(static² + moving²).
   const Vector& static_sigma() const noexcept { return static_sigma_; }
   const Vector& moving_sigma() const noexcept { return moving_sigma_; }
   Compensator& compensator() noexcept { return compensator_; }
@@ -265,6 +278,7 @@ class Estimator {
     skin_.reset(sample.t, p);
     skin_.set_ignored(0);
     tracker_.reset();
+    torque_alarm_.reset();
     held_residual_.setZero();
   }
 
@@ -287,6 +301,7 @@ class Estimator {
   AccelerationFilter<S, N> acceleration_;
   RepeatedReadingDetector<S, N, 3> frozen_joints_;
   RepeatedReadingDetector<S, P> stuck_pads_;
+  PersistenceTest torque_alarm_;
   Compensator compensator_;
   Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
   Vector held_residual_ = Vector::Zero();  ///< last torque-only estimate (StopPolicy)

@@ -35,6 +35,12 @@ struct EstimatorParameters {
   JointVector<S, N> nominal_sigma = JointVector<S, N>::Zero();
   JointVector<S, N> fused_sigma = JointVector<S, N>::Zero();
   S dead_band_factor = S(1.5);
+  /// The torque-only contact alarm (EstimatorOutput::contact without a pad) needs the combined
+  /// external torque outside its dead band on some joint for this many consecutive cycles
+  /// (PersistenceTest): a contact-free arm's outliers (break-away transitions) are short, a push
+  /// is not. Chosen on a contact-free calibration log for a false-alarm rate
+  /// (persistence_for_false_alarm_rate); 1 = every single exceedance alarms.
+  int torque_alarm_samples = 1;
   /// Half-width of the static model-free estimate's dead band (effort unit): a few times the
   /// effort noise, e.g. 3·σ_noise·√(1 + 1/n_window) (see static_dead_band_from_noise).
   JointVector<S, N> static_dead_band = JointVector<S, N>::Zero();

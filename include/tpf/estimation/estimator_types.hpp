@@ -57,6 +57,9 @@ struct EstimatorOutput {
   /// otherwise StaticModelFree where valid and Fused elsewhere, each after its dead band.
   ExternalTorque<S, N> external;
   ContactForce<S> wrench;  ///< at the most loaded pad in contact (pad = −1: none)
+  /// Contact believed: a pad in contact, or (contacts off the pads) the combined external torque
+  /// outside its dead band for parameters.torque_alarm_samples cycles in a row.
+  bool contact = false;
 
   const ExternalTorque<S, N>& estimate(TorqueEstimator e) const noexcept {
     return estimates[static_cast<int>(e)];

@@ -5,6 +5,7 @@
 
 #include "offline/training/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/estimation/persistence_test.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -28,21 +29,43 @@ std::array<Eigen::MatrixXd, kModalityCount> external_torques(const EstimatorTrac
           tr.external * to_nm};
 }
 
-/// Per row: does the modality say "contact"?
-std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr) {
+/// Per row: is the estimate outside its dead band on some joint? (0 on skipped rows.)
+Eigen::VectorXi any_joint_outside_band(const Eigen::MatrixXd& estimate) {
+  Eigen::VectorXi e = Eigen::VectorXi::Zero(estimate.rows());
+  for (Eigen::Index k = 0; k < estimate.rows(); ++k)
+    for (int j = 0; j < kArmJoints; ++j)
+      if (std::isfinite(estimate(k, j)) && estimate(k, j) != 0.0) e[k] = 1;
+  return e;
+}
+
+/// Per row: does the modality say "contact"? Tactile: a pad; proprioceptive: any joint outside
+/// its band; fusion: the estimator's EstimatorOutput::contact — a pad, or the combined estimate
+/// outside its band for `persistence` rows in a row (the estimator's PersistenceTest, replayed on
+/// the rows it processed).
+std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr, int persistence) {
   std::array<Eigen::VectorXi, kModalityCount> d;
-  const Eigen::MatrixXd& proprio = tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)];
-  const Eigen::MatrixXd fused = combined_external(tr);
   d[0] = tr.contact.cwiseMax(0);
-  d[1] = Eigen::VectorXi::Zero(tr.rows());
+  d[1] = any_joint_outside_band(tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)]);
+  const Eigen::VectorXi torque = any_joint_outside_band(combined_external(tr));
+  PersistenceTest alarm(persistence);
   d[2] = d[0];
-  for (Eigen::Index k = 0; k < tr.rows(); ++k) {
-    for (int j = 0; j < kArmJoints; ++j) {
-      if (std::isfinite(proprio(k, j)) && proprio(k, j) != 0.0) d[1][k] = 1;
-      if (std::isfinite(fused(k, j)) && fused(k, j) != 0.0) d[2][k] = 1;
-    }
-  }
+  for (Eigen::Index k = 0; k < tr.rows(); ++k)
+    if (std::isfinite(tr.t[k]) && alarm.update(torque[k] != 0)) d[2][k] = 1;
   return d;
+}
+
+/// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on a contact-free log
+/// (rows without a pad in contact; the estimator as configured in `setup`).
+int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
+  const EstimatorTrace tr =
+      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log));
+  const Eigen::VectorXi outside = any_joint_outside_band(combined_external(tr));
+  std::vector<int> free;
+  for (Eigen::Index k = 0; k < tr.rows(); ++k)
+    if (std::isfinite(tr.t[k]) && tr.contact[k] == 0) free.push_back(outside[k]);
+  return persistence_for_false_alarm_rate(
+      Eigen::Map<const Eigen::VectorXi>(free.data(), static_cast<Eigen::Index>(free.size())),
+      kTorqueAlarmFalseAlarmRate, kTorqueAlarmMaxSamples);
 }
 
 Eigen::MatrixXd columns(const Log& log, const std::string& prefix, int count) {
@@ -62,7 +85,7 @@ void contact_metrics(const Log& log, const EstimatorTrace& tr, Evaluation& ev) {
   const Eigen::MatrixXd force = ground_truth_force(log);
   const Eigen::VectorXd gt_contact = log.col("gt_contact");
   const auto events = contact_events(gt_contact, force);
-  const auto detected = detections(tr);
+  const auto detected = detections(tr, ev.torque_alarm_samples);
   for (int m = 0; m < kModalityCount; ++m)
     ev.detection[m] = detection_stats(tr.t, events, force, detected[m]);
   // Force error: static rows with one contact on the pad the skin reports, where the arm observes
@@ -144,6 +167,8 @@ Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
   say("evaluate: calibrating the dead bands on " + logs.calibration->source);
   ev.sigma = calibrate_arm_sigma(setup, estimator_samples<kArmJoints, kArmPads>(*logs.calibration),
                                  logs.calibration->source);
+  ev.torque_alarm_samples = setup.parameters.torque_alarm_samples =
+      calibrate_torque_alarm(setup, *logs.calibration);
   const ArmParameters& p = setup.parameters;
   ev.dead_bands.proprioceptive = p.dead_band_factor * p.nominal_sigma;
   ev.dead_bands.fusion_moving = p.dead_band_factor * p.fused_sigma;
@@ -200,6 +225,7 @@ std::string evaluation_json(const Evaluation& ev) {
   json j;
   j["simulated"] = true;
   j["sigma"] = {{"nominal", vec(ev.sigma.nominal)}, {"fused", vec(ev.sigma.fused)}};
+  j["torque_alarm_samples"] = ev.torque_alarm_samples;
   j["dead_bands"] = {{"proprioceptive", vec(ev.dead_bands.proprioceptive)},
                      {"fusion_moving", vec(ev.dead_bands.fusion_moving)},
                      {"fusion_static", vec(ev.dead_bands.fusion_static)},

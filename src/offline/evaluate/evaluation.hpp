@@ -37,6 +37,11 @@ struct EvaluationLogs {
   double teaching_duration_s = 0.0;
 };
 
+/// False-alarm rate the torque-only contact alarm's persistence is chosen for, per contact-free
+/// row of the calibration log, and the longest persistence allowed (0.2 s at 400 Hz).
+inline constexpr double kTorqueAlarmFalseAlarmRate = 1e-3;
+inline constexpr int kTorqueAlarmMaxSamples = 80;
+
 /// Per joint dead bands (effort unit) and the pad's on level.
 struct DeadBands {
   JointVector<double, kArmJoints> proprioceptive;  ///< 1.5·σ_nominal
@@ -57,6 +62,8 @@ struct TeachingErrors {
 struct Evaluation {
   TransitionSigma<double, kArmJoints> sigma;
   DeadBands dead_bands;
+  /// Persistence of the torque-only contact alarm (cycles), from the calibration log.
+  int torque_alarm_samples = 1;
   std::vector<ResidualRow> table;  ///< Table I on the held-out excitation logs
   Eigen::Index excitation_rows = 0;
   bool has_contacts = false, has_teaching = false;
