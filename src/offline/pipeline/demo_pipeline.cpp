@@ -13,11 +13,11 @@
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
-#include "tpf/common/atomic_file.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"
 #include "offline/training/estimator_samples.hpp"
+#include "tpf/common/atomic_file.hpp"
 #include "tpf/model/load_robot.hpp"
 
 namespace tpf::offline {
@@ -31,8 +31,10 @@ struct SimulationJob {
   Log log;
 };
 
-/// Runs the jobs on `threads` threads (each simulation is deterministic in its seed).
-void simulate_all(std::vector<SimulationJob>& jobs, int threads,
+/// Runs the jobs on `threads` threads (each simulation is deterministic in its seed). Every log is
+/// recorded on the same arm: each job's scenario keeps its script, drive and sensors but takes the
+/// arm's physical effects (payload, ripple, load friction, …).
+void simulate_all(std::vector<SimulationJob>& jobs, const EffectsConfig& arm, int threads,
                   const std::function<void(const std::string&)>& say) {
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
@@ -41,7 +43,8 @@ void simulate_all(std::vector<SimulationJob>& jobs, int threads,
     for (std::size_t k = next++; k < jobs.size(); k = next++) {
       SimulationJob& job = jobs[k];
       try {
-        const Scenario scenario = load_scenario(data_file(job.scenario).string());
+        Scenario scenario = load_scenario(data_file(job.scenario).string());
+        scenario.effects = arm;
         job.log = simulate_to_log(scenario, job.seed, job.duration_s);
         job.log.source = job.label + " (simulated, " + job.scenario + ", seed " +
                          std::to_string(job.seed) + ", " + format_number(job.duration_s) + " s)";
@@ -128,7 +131,10 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
       {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}},
       {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}},
       {"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}}};
-  simulate_all(jobs, o.threads, say);
+  // The arm is the training scenario's: the held-out, contact and teaching logs come from the same
+  // plant the model was identified on (its payload, ripple, … included).
+  const EffectsConfig arm = load_scenario(data_file(o.training_scenario).string()).effects;
+  simulate_all(jobs, arm, o.threads, say);
   const Log& training_log = jobs[0].log;
 
   // 2. Identify the declared model on the training log.
@@ -199,7 +205,8 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   logs.excitation = {&jobs[1].log};
   logs.contacts = &jobs[2].log;
   logs.teaching = &jobs[4].log;
-  const Scenario teaching = load_scenario(data_file("scenarios/teaching.json").string());
+  Scenario teaching = load_scenario(data_file("scenarios/teaching.json").string());
+  teaching.effects = arm;  // the closed loop runs on the same arm
   logs.teaching_scenario = &teaching;
   logs.teaching_seed = o.teaching_seed;
   logs.teaching_duration_s = o.teaching_s;
@@ -207,6 +214,8 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   result.evaluation = evaluate(setup, logs, say);
   std::vector<std::string> notes{
       "nominal model: identified and diagnosed on the training log (nominal.params.json)",
+      "arm: every log is simulated on one arm, with the physical effects of " +
+          o.training_scenario + " (the contact and teaching scripts keep their own motion)",
       "compensator: one network " + std::string(o.per_joint ? "per joint" : "for all joints") +
           ", trained " + format_number(result.training.seconds, 3) + " s on " + jobs[0].log.source +
           ";" + training_summary(result.training)};
