@@ -22,6 +22,7 @@ namespace {
 constexpr int N = 4, P = 11;
 using Tcn32 = tpf::Tcn<double, 4 * N, 32, 4, 4, N>;
 using BenchEstimator = tpf::Estimator<double, N, P, Tcn32>;
+using PlainEstimator = tpf::Estimator<double, N, P>;  // ZeroCompensator: everything but the TCN
 using Sample = tpf::EstimatorSample<double, N, P>;
 
 std::string data(const std::string& name) {
@@ -50,15 +51,27 @@ const std::vector<Sample>& samples() {
   return rows;
 }
 
-/// The estimator with a seeded random TCN (weights ~ U(−0.05, 0.05)): the arithmetic of a trained
-/// one, without a weight file.
-std::unique_ptr<BenchEstimator> make_estimator() {
+tpf::NominalModel<double, N> twin_nominal() {
   const auto model = tpf::load_robot<double, N>(data("arm4.robot.json"));
   auto friction = tpf::load_stribeck_parameters<double, N>(data("arm4.friction.json"));
   const auto scale = tpf::effort_scale<N>(model, "mA");
   for (auto* v : {&friction.coulomb, &friction.static_friction, &friction.viscous,
                   &friction.load_coulomb, &friction.load_viscous})
     *v = v->cwiseProduct(scale);
+  return tpf::nominal_from_model<N>(model, friction, scale);
+}
+
+tpf::EstimatorParameters<double, N> parameters() {
+  tpf::EstimatorParameters<double, N> p;
+  p.skin.force_gain = 1.0 / (1.5 * 1000.0 * 0.0025);
+  p.nominal_sigma = p.fused_sigma = tpf::JointVector<double, N>::Constant(100.0);
+  p.static_dead_band = tpf::JointVector<double, N>::Constant(20.0);
+  return p;
+}
+
+/// The estimator with a seeded random TCN (weights ~ U(−0.05, 0.05)): the arithmetic of a trained
+/// one, without a weight file.
+std::unique_ptr<BenchEstimator> make_estimator() {
   Tcn32 tcn;
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(-0.05, 0.05);
@@ -74,17 +87,22 @@ std::unique_ptr<BenchEstimator> make_estimator() {
       fill(w);
   fill(tcn.weights().low_weight);
   fill(tcn.weights().high_weight);
-  tpf::EstimatorParameters<double, N> p;
-  p.skin.force_gain = 1.0 / (1.5 * 1000.0 * 0.0025);
-  p.nominal_sigma = p.fused_sigma = tpf::JointVector<double, N>::Constant(100.0);
-  p.static_dead_band = tpf::JointVector<double, N>::Constant(20.0);
-  return std::make_unique<BenchEstimator>(tpf::nominal_from_model<N>(model, friction, scale),
-                                          tpf::load_pads(data("arm4.pads.json"), model), p, tcn);
+  const auto nominal = twin_nominal();
+  return std::make_unique<BenchEstimator>(
+      nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model), parameters(), tcn);
 }
 
-void BM_EstimatorStep(benchmark::State& state) {
+std::unique_ptr<PlainEstimator> make_plain_estimator() {
+  const auto nominal = twin_nominal();
+  return std::make_unique<PlainEstimator>(
+      nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model), parameters());
+}
+
+/// Replays the teaching log through `est` (time keeps advancing), one timed update per iteration;
+/// median, p99, p99.9 and max of the per-step wall time as counters.
+template <typename Est>
+void time_steps(benchmark::State& state, Est& est) {
   const auto& rows = samples();
-  auto est = make_estimator();
   std::vector<double> ns;
   ns.reserve(1 << 22);
   std::size_t r = 0;
@@ -94,13 +112,13 @@ void BM_EstimatorStep(benchmark::State& state) {
     Sample s = rows[r];
     s.t += t_offset;
     const auto start = std::chrono::steady_clock::now();
-    const auto& out = est->update(s);
+    const auto& out = est.update(s);
     const auto stop = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(out.wrench.force_world);
     wrenches += out.wrench.pad >= 0;
     if (ns.size() < ns.capacity())
       ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count());
-    if (++r == rows.size()) {  // replay the log, time keeps advancing
+    if (++r == rows.size()) {
       r = 0;
       t_offset += rows.back().t - rows.front().t + 0.0025;
     }
@@ -113,6 +131,41 @@ void BM_EstimatorStep(benchmark::State& state) {
   state.counters["max_ns"] = ns.back();
   state.counters["contact_share"] = static_cast<double>(wrenches) / static_cast<double>(ns.size());
 }
+
+void BM_EstimatorStep(benchmark::State& state) {
+  auto est = make_estimator();
+  time_steps(state, *est);
+}
 BENCHMARK(BM_EstimatorStep)->Iterations(400000)->Unit(benchmark::kNanosecond);
+
+void BM_EstimatorStepWithoutCompensator(benchmark::State& state) {
+  auto est = make_plain_estimator();
+  time_steps(state, *est);
+}
+BENCHMARK(BM_EstimatorStepWithoutCompensator)->Iterations(400000)->Unit(benchmark::kNanosecond);
+
+/// The nominal model alone on the log's states: the link form (per cycle) against the regressor
+/// form it replaced.
+template <bool kLinkForm>
+void BM_PredictEffort(benchmark::State& state) {
+  const auto& rows = samples();
+  const auto nominal = twin_nominal();
+  const auto links = tpf::nominal_links(nominal);
+  tpf::Data<double, N> d(nominal.model);
+  tpf::JointVector<double, N> rigid, friction, ddq = tpf::JointVector<double, N>::Constant(0.3);
+  std::size_t r = 0;
+  for (auto _ : state) {
+    const Sample& s = rows[r];
+    if constexpr (kLinkForm)
+      tpf::predict_effort(nominal, links, d, s.q, s.dq, ddq, rigid, friction);
+    else
+      tpf::predict_effort_by_regressor(nominal, d, s.q, s.dq, ddq, rigid, friction);
+    benchmark::DoNotOptimize(rigid);
+    benchmark::DoNotOptimize(friction);
+    if (++r == rows.size()) r = 0;
+  }
+}
+BENCHMARK(BM_PredictEffort<true>)->Name("BM_PredictEffort/link_form");
+BENCHMARK(BM_PredictEffort<false>)->Name("BM_PredictEffort/regressor_form");
 
 }  // namespace

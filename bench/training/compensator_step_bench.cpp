@@ -12,7 +12,7 @@
 namespace {
 
 using tpf::offline::AllJointsTcn;
-using tpf::offline::JointTcns;
+using JointTcns = tpf::offline::JointTcns<tpf::offline::kArmHidden>;
 using Input = Eigen::Matrix<double, 16, 1>;
 
 tpf::offline::TcnArchitecture architecture(int inputs, int outputs) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cerrno>
 
-#include "arm/estimator_hook.hpp"
 #include "arm/excitation.hpp"
 #include "dynamixel/ph54/chain_setup.hpp"
 #include "dynamixel/ph54/control_table.hpp"
@@ -16,8 +15,8 @@ using serial::monotonic_now;
 
 ArmLoop::ArmLoop(dxl::Bus& bus, dxl::ph54::ChainStateReader& motors,
                  std::span<const std::uint8_t> ids, pad::PadReader* pads, CsvLogWriter* log,
-                 ArmLoopOptions options)
-    : bus_(bus), motors_(motors), pads_(pads), log_(log), options_(options) {
+                 ArmLoopOptions options, EstimatorHook* estimator)
+    : bus_(bus), motors_(motors), pads_(pads), log_(log), options_(options), estimator_(estimator) {
   std::copy_n(ids.begin(), std::min(ids.size(), ids_.size()), ids_.begin());
   sample_.joints = std::min(motors_.size(), kMaxJoints);  // the log and estimator take ≤ 8
 }
@@ -25,6 +24,7 @@ ArmLoop::ArmLoop(dxl::Bus& bus, dxl::ph54::ChainStateReader& motors,
 void ArmLoop::run() {
   const auto period = static_cast<MonoNs>(1e9 / options_.rate_hz);
   const MonoNs start = monotonic_now();
+  start_ns_ = start;
   MonoNs deadline = start + period;
   for (std::uint64_t n = 0; !stop_.load(std::memory_order_relaxed); ++n) {
     if (options_.cycles != 0 && n >= options_.cycles) break;
@@ -35,7 +35,8 @@ void ArmLoop::run() {
     sample_.cycle = n;
     cycle(start);
     statistics_.record(static_cast<double>(woke - deadline) * 1e-9,
-                       static_cast<double>(bus_time_ns_) * 1e-9);
+                       static_cast<double>(bus_time_ns_) * 1e-9,
+                       static_cast<double>(estimator_time_ns_) * 1e-9);
     deadline += period;
     for (const MonoNs now = monotonic_now(); now > deadline; deadline += period)
       ++report_.missed_deadlines;  // overran: keep the grid, skip whole periods
@@ -60,7 +61,11 @@ void ArmLoop::cycle(MonoNs start) {
   }
   bus_time_ns_ = monotonic_now() - t0;  // read, alert follow-up and goal write
   read_pads(t0);
-  run_estimator_hook(sample_);
+  if (estimator_ != nullptr) {
+    const MonoNs e0 = monotonic_now();
+    estimator_->update(sample_);
+    estimator_time_ns_ = monotonic_now() - e0;
+  }
   if (log_ != nullptr) log_->push(sample_);
 }
 
@@ -113,6 +118,8 @@ ArmLoopReport ArmLoop::report() const {
   r.pads_used = pads_ != nullptr;
   if (pads_ != nullptr) r.pads = pads_->stats();
   if (log_ != nullptr) r.log_rows_dropped = log_->rows_dropped();
+  r.estimator_used = estimator_ != nullptr;
+  if (estimator_ != nullptr) r.estimator = estimator_->statistics();
   return r;
 }
 

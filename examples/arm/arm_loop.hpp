@@ -1,6 +1,7 @@
 // The arm's 400 Hz loop: absolute deadlines on CLOCK_MONOTONIC (clock_nanosleep TIMER_ABSTIME),
-// one Fast Sync Read of the chain per cycle, the latest pad sample, the estimator hook, an
-// optional excitation (Sync Write Goal Position) and a log row. Faults are counted, never fatal.
+// one Fast Sync Read of the chain per cycle, the latest pad sample, the core Estimator
+// (EstimatorHook), an optional excitation (Sync Write Goal Position) and a log row. Faults are
+// counted, never fatal.
 #pragma once
 
 #include <array>
@@ -8,6 +9,7 @@
 #include <cstdint>
 
 #include "arm/csv_log_writer.hpp"
+#include "arm/estimator_hook.hpp"
 #include "arm/loop_statistics.hpp"
 #include "dynamixel/ph54/chain_state_reader.hpp"
 #include "teensy/host/pad_reader.hpp"
@@ -32,13 +34,17 @@ struct ArmLoopReport {
   bool pads_used = false;
   pad::PadReaderStats pads;
   std::uint64_t log_rows_dropped = 0;
+  bool estimator_used = false;
+  EstimatorStatistics estimator;
 };
 
 class ArmLoop {
  public:
-  /// `ids` as given to `motors`. `pads` and `log` may be null. All must outlive the loop.
+  /// `ids` as given to `motors`. `pads`, `log` and `estimator` may be null. All must outlive the
+  /// loop.
   ArmLoop(dxl::Bus& bus, dxl::ph54::ChainStateReader& motors, std::span<const std::uint8_t> ids,
-          pad::PadReader* pads, CsvLogWriter* log, ArmLoopOptions options);
+          pad::PadReader* pads, CsvLogWriter* log, ArmLoopOptions options,
+          EstimatorHook* estimator = nullptr);
 
   /// Runs on the calling thread until `cycles` are done or request_stop().
   void run();
@@ -47,6 +53,8 @@ class ArmLoop {
   ArmLoopReport report() const;
   /// The sample of the last cycle run.
   const CycleSample& last_sample() const noexcept { return sample_; }
+  /// CLOCK_MONOTONIC [ns] at which run() started: a sample's t is counted from here.
+  serial::MonoNs start_ns() const noexcept { return start_ns_; }
 
  private:
   void cycle(std::int64_t start_ns);
@@ -60,6 +68,8 @@ class ArmLoop {
   pad::PadReader* pads_;
   CsvLogWriter* log_;
   ArmLoopOptions options_;
+  EstimatorHook* estimator_;
+  serial::MonoNs start_ns_ = 0;
   std::atomic<bool> stop_{false};
   LoopStatistics statistics_;
   CycleSample sample_;
@@ -68,6 +78,7 @@ class ArmLoop {
   std::array<double, dxl::ph54::kMaxChainMotors> q_start_{};
   bool have_start_ = false;
   std::int64_t bus_time_ns_ = 0;
+  std::int64_t estimator_time_ns_ = 0;
   ArmLoopReport report_;
 };
 

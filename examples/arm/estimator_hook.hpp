@@ -1,14 +1,96 @@
-// Where the core Estimator runs in the arm loop (a later issue): called once per cycle with the
-// cycle's sample, on the real-time thread, after the bus read and before the log.
+// The core Estimator in the arm loop: built at start-up from files (nominal model, pad layout,
+// friction-compensator weights, sensor noise), updated once per cycle on the real-time thread
+// with the cycle's sample, its outcome counted for the report. The assembly is the offline tools'
+// own (tpf::offline::ArmEstimatorSetup, arm_estimator_parameters, make_arm_estimator_step), so
+// the loop runs exactly the estimator `tpf evaluate` scores; tpf::offline is used at start-up only.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
 #include "arm/cycle_sample.hpp"
+#include "offline/training/arm_estimator.hpp"
 
 namespace tpf::arm {
 
-/// Per-cycle estimator entry point. It must not allocate, block or do I/O. Today no estimator is
-/// linked, so it does nothing; the core Estimator (tpf::core) will be called from here with
-/// q, dq, i and p of `sample`.
-void run_estimator_hook(const CycleSample& sample) noexcept;
+/// Where the estimator comes from. Paths default to the project's data/ folder (tpf_arm_loop).
+struct EstimatorFiles {
+  std::string params;  ///< tpf-params file (`tpf identify` / `tpf diagnose`), effort unit mA
+  std::string robot;   ///< robot file the parameters were identified for
+  std::string pads;    ///< pad layout (tpf-pads); pad k is the pad board's channel k
+  /// Compensator weights: an all-joints file, or a path whose `<stem>.joint<j>.json` exist (one
+  /// network per joint); empty: no compensator (the fused estimate is the nominal residual).
+  std::string weights;
+  /// Contact-free log of this arm (optional): the sensor noise and the transition σ of the dead
+  /// bands are read off it, as `tpf evaluate` does. Without it: the noise below, σ = 0.
+  std::string calibration_log;
+  double effort_noise_ma = 6.0;  ///< current noise σ (PH54 at rest, hardware.md §2)
+  double pad_noise_kpa = 0.03;   ///< pad pressure noise σ
+  double pad_gain_kpa_per_n = 1.5;
+  /// Estimates kept for inspection (one per cycle, reserved at start-up; 0: none).
+  std::size_t trace_capacity = 0;
+};
+
+/// One cycle's estimate, as kept in the trace. A skipped cycle (non-finite input, stale time)
+/// has no estimate: NaN torques and force, contact_pad −1, the reason in `status`.
+struct EstimateRecord {
+  double t = 0.0;  ///< the cycle's time [s]
+  std::uint32_t status = 0;
+  int contact_pad = -1;  ///< most loaded pad in contact (0-based), −1: none
+  JointVector<double, offline::kArmJoints> external_torque_nm =
+      JointVector<double, offline::kArmJoints>::Zero();  ///< τ_ext
+  double normal_force_n = 0.0;  ///< estimated contact normal force at contact_pad
+};
+
+/// What the estimator did over a run.
+struct EstimatorStatistics {
+  static constexpr int kStatusBits = 9;  ///< EstimatorStatus bits 0..8
+  std::uint64_t updates = 0;
+  std::uint64_t clean = 0;  ///< status 0: estimated from fresh, finite data
+  std::array<std::uint64_t, kStatusBits> status_bit{};  ///< cycles with bit b set
+  std::uint64_t contact_cycles = 0;                     ///< a pad in contact (skin)
+  std::uint64_t static_cycles = 0;                      ///< state machine not in Dynamic
+  std::uint64_t non_finite_estimates = 0;  ///< clean cycles whose τ_ext was not finite (bug)
+  std::array<double, kMaxJoints> max_abs_torque_nm{};  ///< max |τ_ext| over clean cycles
+};
+
+class EstimatorHook {
+ public:
+  static constexpr int kJoints = offline::kArmJoints;
+  static constexpr int kPads = offline::kArmPads;
+  using Output = EstimatorOutput<double, kJoints>;
+
+  /// Start-up: loads every file and builds the estimator. Throws tpf::Error naming the file and
+  /// field on bad input (also when the parameter file's effort unit is not mA).
+  explicit EstimatorHook(const EstimatorFiles& files);
+
+  /// Per cycle (no allocation, no exception, no I/O): the sample's q, q̇, current (mA) and pad
+  /// pressures (kPa, channel k → pad k) become an EstimatorSample. A failed motor read feeds NaN
+  /// q (the estimator skips the cycle: kStatusNonFiniteInput); stale or missing pads feed NaN
+  /// pressures (kept state: kStatusPadDataInvalid).
+  void update(const CycleSample& sample) noexcept;
+
+  /// The last cycle's output (valid after the first update).
+  const Output& output() const noexcept { return *output_; }
+  const EstimatorStatistics& statistics() const noexcept { return statistics_; }
+  std::span<const EstimateRecord> trace() const noexcept { return trace_; }
+  /// One line on what was loaded (for the start-up print).
+  const std::string& description() const noexcept { return description_; }
+
+ private:
+  offline::ArmEstimatorStep step_;
+  offline::ArmSample input_;
+  const Output* output_ = nullptr;
+  Output empty_;
+  EstimatorStatistics statistics_;
+  std::vector<EstimateRecord> trace_;
+  std::string description_;
+};
+
+/// Name of EstimatorStatus bit b ("non-finite input", …), for reports.
+const char* estimator_status_name(int bit) noexcept;
 
 }  // namespace tpf::arm

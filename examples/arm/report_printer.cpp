@@ -1,5 +1,7 @@
 #include "arm/report_printer.hpp"
 
+#include <algorithm>
+
 namespace tpf::arm {
 
 void print_report(std::FILE* out, const ArmLoopReport& r, std::size_t motors) {
@@ -12,6 +14,9 @@ void print_report(std::FILE* out, const ArmLoopReport& r, std::size_t motors) {
                t.lateness_p50_s * 1e6, t.lateness_p99_s * 1e6, t.lateness_max_s * 1e6);
   std::fprintf(out, "bus time per cycle p50 %.1f us, p99 %.1f us, max %.1f us\n", t.bus_p50_s * 1e6,
                t.bus_p99_s * 1e6, t.bus_max_s * 1e6);
+  if (r.estimator_used)
+    std::fprintf(out, "estimator time per cycle p50 %.1f us, p99 %.1f us, max %.1f us\n",
+                 t.estimator_p50_s * 1e6, t.estimator_p99_s * 1e6, t.estimator_max_s * 1e6);
   const dxl::BusCounters& b = r.bus;
   std::fprintf(
       out,
@@ -43,6 +48,26 @@ void print_report(std::FILE* out, const ArmLoopReport& r, std::size_t motors) {
   std::fprintf(out, "alert onsets %llu, log rows dropped %llu\n",
                static_cast<unsigned long long>(r.alert_events),
                static_cast<unsigned long long>(r.log_rows_dropped));
+  if (!r.estimator_used) {
+    std::fputs("estimator: not used\n", out);
+    return;
+  }
+  const EstimatorStatistics& e = r.estimator;
+  std::fprintf(out,
+               "estimator: updates %llu, clean %llu, contact cycles %llu, static cycles %llu, "
+               "non-finite estimates %llu\n",
+               static_cast<unsigned long long>(e.updates), static_cast<unsigned long long>(e.clean),
+               static_cast<unsigned long long>(e.contact_cycles),
+               static_cast<unsigned long long>(e.static_cycles),
+               static_cast<unsigned long long>(e.non_finite_estimates));
+  for (int b = 0; b < EstimatorStatistics::kStatusBits; ++b)
+    if (e.status_bit[static_cast<std::size_t>(b)] != 0)
+      std::fprintf(out, "estimator status: %s %llu\n", estimator_status_name(b),
+                   static_cast<unsigned long long>(e.status_bit[static_cast<std::size_t>(b)]));
+  std::fputs("estimator: max |tau_ext| over clean cycles [N*m]", out);
+  for (std::size_t j = 0; j < std::min<std::size_t>(motors, EstimatorHook::kJoints); ++j)
+    std::fprintf(out, " %.2f", e.max_abs_torque_nm[j]);
+  std::fputs("\n", out);
 }
 
 }  // namespace tpf::arm

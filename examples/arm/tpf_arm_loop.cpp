@@ -1,6 +1,6 @@
-// tpf_arm_loop: runs the 400 Hz loop on the real arm (or on tpf_arm_emulate's ptys), writes a
-// tpf CSV log and prints loop statistics.
-//   tpf_arm_loop --motors /dev/ttyUSB0 --pads /dev/ttyACM0 --duration 60 --log run.csv
+// tpf_arm_loop: runs the 400 Hz loop on the real arm (or on tpf_arm_emulate's ptys) with the core
+// Estimator, writes a tpf CSV log and prints loop and estimator statistics.
+//   tpf_arm_loop --motors /dev/ttyUSB0 --pads /dev/ttyACM0 --hold --duration 60 --log run.csv
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include "arm/report_printer.hpp"
 #include "dynamixel/ph54/chain_setup.hpp"
 #include "dynamixel/serial/serial_port.hpp"
+#include "offline/common/data_files.hpp"
 #include "tpf/common/error.hpp"
 
 namespace {
@@ -24,7 +25,19 @@ extern "C" void on_signal(int) {
 
 int main(int argc, char** argv) {
   using namespace tpf;
-  CLI::App app{"400 Hz loop of the PH54 arm with the pad board: reads, logs, reports"};
+  CLI::App app{
+      "400 Hz loop of the PH54 arm with the pad board: reads the motors and pads, runs the tpf "
+      "estimator (external joint torques, contact force) on every cycle, logs and reports.\n"
+      "The estimator is built from a parameter file (tpf identify/diagnose), the robot and pad "
+      "layout files and friction-network weights (tpf train); defaults are the project's data/ "
+      "files for the arm4. Its input is the motor current in mA: hold the arm (--hold) or "
+      "excite it (--excite) so the drives carry the load; with torque off the currents are 0."};
+  arm::EstimatorFiles est;
+  est.params = offline::data_file("arm4.params.json").string();
+  est.robot = offline::data_file("arm4.robot.json").string();
+  est.pads = offline::data_file("arm4.pads.json").string();
+  est.weights = offline::data_file("weights/arm4.tcn.json").string();
+  bool no_estimator = false, hold = false;
   std::string motors_path, pads_path, log_path, note = "recorded by tpf_arm_loop";
   int baud = 4'000'000, set_baud_from = 0, priority = 80;
   std::vector<int> ids{1, 2, 3, 4};
@@ -49,12 +62,46 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 127));
   app.add_option("--timeout-margin", margin_ms, "extra response timeout [ms]");
   app.add_option("--priority", priority, "SCHED_FIFO priority");
+  app.add_flag("--hold", hold,
+               "position mode, goal = the pose read at start, torque on: the drives hold the arm");
+  app.add_flag("--no-estimator", no_estimator, "only read, log and report");
+  app.add_option("--params", est.params, "nominal model (tpf-params, effort in mA)")
+      ->capture_default_str();
+  app.add_option("--robot", est.robot, "robot file of the parameters")->capture_default_str();
+  app.add_option("--pad-layout", est.pads, "pad layout (tpf-pads); pad k = board channel k")
+      ->capture_default_str();
+  app.add_option("--weights", est.weights,
+                 "friction network: an all-joints weight file, or a path whose "
+                 "<stem>.joint1..4.json exist (one network per joint); 'none': no compensator")
+      ->capture_default_str();
+  app.add_option("--calibration-log", est.calibration_log,
+                 "contact-free log of this arm: sensor noise and dead bands are read off it");
+  app.add_option("--effort-noise", est.effort_noise_ma,
+                 "current noise sigma [mA] for the dead bands (without --calibration-log)")
+      ->capture_default_str();
+  app.add_option("--pad-noise", est.pad_noise_kpa,
+                 "pad noise sigma [kPa] for the contact thresholds (without --calibration-log)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   try {
     if (ids.empty() || ids.size() > arm::kMaxJoints)
       throw Error::at("--ids", 0, "",
                       "give 1 to " + std::to_string(arm::kMaxJoints) + " motor IDs");
+    if (hold && excite > 0.0) throw Error::at("--hold", 0, "", "use --hold or --excite, not both");
+    // Files first: a bad file stops the program before it touches the motors.
+    std::unique_ptr<arm::EstimatorHook> estimator;
+    if (!no_estimator) {
+      if (ids.size() != static_cast<std::size_t>(arm::EstimatorHook::kJoints))
+        throw Error::at("--ids", 0, "", "the estimator is built for the 4-joint arm4: give 4 IDs");
+      if (rate != 400.0)
+        throw Error::at("--rate", 0, "",
+                        "the estimator's filters and friction networks are set for 400 Hz "
+                        "(use --no-estimator for other rates)");
+      if (est.weights == "none") est.weights.clear();
+      estimator = std::make_unique<arm::EstimatorHook>(est);
+      std::printf("%s\n", estimator->description().c_str());
+    }
     std::vector<std::uint8_t> id_bytes;
     id_bytes.reserve(ids.size());
     for (const int id : ids)
@@ -82,41 +129,45 @@ int main(int argc, char** argv) {
     dxl::ph54::ChainConfig config;
     config.ids = id_bytes;
     config.bus_watchdog_20ms = static_cast<std::uint8_t>(watchdog);
-    config.mode =
-        excite > 0.0 ? dxl::ph54::OperatingMode::position : dxl::ph54::OperatingMode::current;
+    config.mode = excite > 0.0 || hold ? dxl::ph54::OperatingMode::position
+                                       : dxl::ph54::OperatingMode::current;
     const dxl::ph54::ChainInfo chain = dxl::ph54::set_up_chain(bus, config);
     for (const auto& m : chain.motors)
       std::printf("motor id %u: model %u, firmware %u\n", m.id, m.model, m.firmware);
     std::printf("per-cycle read: %s (574, 10 bytes)\n",
                 chain.fast_sync_read ? "Fast Sync Read" : "Sync Read (firmware < 12)");
-    if (excite > 0.0) dxl::ph54::set_torque(bus, id_bytes, true);
-    bus.set_timing(timing);  // in the loop: wire time + 1 ms USB turnaround + margin
 
     std::unique_ptr<pad::PadReader> pads;
     if (!pads_path.empty()) {
       pads = std::make_unique<pad::PadReader>(pad::PadReaderOptions{pads_path});
       pads->start();
     }
+    // The log's pads are the layout's (p<k> = pad k of the layout) when the estimator runs.
+    const std::size_t log_pads = !pads ? 0 : estimator ? arm::EstimatorHook::kPads : 16;
     std::unique_ptr<arm::CsvLogWriter> log;
     if (!log_path.empty())
-      log = std::make_unique<arm::CsvLogWriter>(log_path, id_bytes.size(), pads ? 16 : 0,
+      log = std::make_unique<arm::CsvLogWriter>(log_path, id_bytes.size(), log_pads,
                                                 arm::LogMetadata{"arm4", rate, note});
     dxl::ph54::ChainStateReader reader(bus, id_bytes, chain.fast_sync_read);
     arm::ArmLoopOptions options;
     options.rate_hz = rate;
     options.cycles = duration > 0.0 ? static_cast<std::uint64_t>(duration * rate) : 0;
     options.excitation_rad = excite;
-    arm::ArmLoop loop(bus, reader, id_bytes, pads.get(), log.get(), options);
+    arm::ArmLoop loop(bus, reader, id_bytes, pads.get(), log.get(), options, estimator.get());
 
     std::string rt_message;
     arm::enter_realtime(priority, rt_message);
     std::printf("%s\n", rt_message.c_str());
+    // Torque on last: from here the bus watchdog (100 ms) expects the loop's reads.
+    if (excite > 0.0) dxl::ph54::set_torque(bus, id_bytes, true);
+    if (hold) dxl::ph54::hold_present_position(bus, id_bytes);
+    bus.set_timing(timing);  // in the loop: wire time + 1 ms USB turnaround + margin
     g_loop = &loop;
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     loop.run();
     g_loop = nullptr;
-    if (excite > 0.0) dxl::ph54::set_torque(bus, id_bytes, false);
+    if (excite > 0.0 || hold) dxl::ph54::set_torque(bus, id_bytes, false);
     if (pads) pads->stop();
     if (log) log->close();
     arm::print_report(stdout, loop.report(), id_bytes.size());

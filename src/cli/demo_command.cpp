@@ -17,7 +17,12 @@ void register_demo_command(CLI::App& app) {
       "demo", "Run the whole loop on the digital twin and write a report (the README's main job)");
   cmd->add_option("--out", *out, "output folder for parameters, weights and the report")
       ->capture_default_str();
-  cmd->add_option("--train-seconds", o->training_budget_s, "training budget [s]")
+  cmd->add_option("--train-epochs", o->training_epochs,
+                  "training budget: epochs per network (reproducible on any machine)")
+      ->capture_default_str();
+  cmd->add_option("--train-safety-seconds", o->training_safety_s,
+                  "wall-clock safety net for the training [s] (0: none; the report says if it "
+                  "triggered)")
       ->capture_default_str();
   cmd->add_option("--train-duration", o->training_s, "simulated training log [s]")
       ->capture_default_str();
@@ -25,6 +30,9 @@ void register_demo_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--split-cutoff", o->split_cutoff_hz,
                   "cut-off of the zero-phase low/high split of the TCN target [Hz]")
+      ->capture_default_str();
+  cmd->add_option("--joint-hidden", o->joint_hidden,
+                  "hidden channels of a per-joint network (16 or 32)")
       ->capture_default_str();
   cmd->add_flag("!--all-joints", o->per_joint,
                 "one network for all joints instead of one per joint (the default)");
@@ -37,6 +45,15 @@ void register_demo_command(CLI::App& app) {
       std::fflush(stdout);
     });
     std::printf("\n%s", offline::evaluation_headline(result.evaluation).c_str());
+    for (const auto& t : result.training.results)
+      if (t.stopped_on_time) {
+        std::printf(
+            "\nWARNING: the training's wall-clock safety net (--train-safety-seconds) ended a "
+            "network after %zu of %d epochs: these weights and numbers depend on this machine's "
+            "speed\n",
+            t.history.size(), o->training_epochs);
+        break;
+      }
     std::printf("\ntpf demo: done in %.0f s; report: %s\n", result.seconds,
                 std::filesystem::absolute(result.index).string().c_str());
   });

@@ -24,8 +24,11 @@ struct TrainCommandOptions {
   std::string out;
   std::string checkpoint;
   bool per_joint = false;
+  int joint_hidden = tpf::offline::kArmJointHidden;
   bool quiet = false;
-  int onset_copies = 1;
+  double static_to_kinetic_weight =
+      tpf::offline::CompensatorTrainingOptions{}.static_to_kinetic_weight;
+  double static_weight = tpf::offline::CompensatorTrainingOptions{}.static_weight;
   tpf::offline::TcnTrainOptions tcn;
 };
 
@@ -45,7 +48,9 @@ void run_train(TrainCommandOptions o) {
   options.tcn = o.tcn;
   options.tcn.checkpoint_path = o.checkpoint;
   options.per_joint = o.per_joint;
-  options.onset_copies = o.onset_copies;
+  options.joint_hidden = o.joint_hidden;
+  options.static_to_kinetic_weight = o.static_to_kinetic_weight;
+  options.static_weight = o.static_weight;
   const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
   const CompensatorTraining result = train_compensator(
       traces, scale, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
@@ -55,7 +60,10 @@ void run_train(TrainCommandOptions o) {
     const TcnTrainResult& r = result.results[k];
     std::printf("train: network %zu: best epoch %d of %zu, held-out loss %.4g (N*m^2)%s\n", k + 1,
                 r.best_epoch, r.history.size(), r.best_validation_loss,
-                r.stopped_early ? ", stopped early" : "");
+                r.stopped_early     ? ", stopped early"
+                : r.stopped_on_time ? ", STOPPED BY THE WALL-CLOCK SAFETY NET (--max-seconds): "
+                                      "not reproducible on another machine"
+                                    : "");
   }
   std::printf("train: %zu training / %zu held-out windows, %.1f s\n", result.training_windows,
               result.validation_windows, result.seconds);
@@ -69,7 +77,7 @@ void register_train_command(CLI::App& app) {
   auto o = std::make_shared<TrainCommandOptions>();
   o->robot = offline::data_file("arm4.robot.json").string();
   o->pads = offline::data_file("arm4.pads.json").string();
-  o->tcn.max_seconds = 270.0;
+  o->tcn.max_seconds = 0.0;
   CLI::App* cmd = app.add_subcommand(
       "train",
       "Train the friction compensator (TCN) on contact-free excitation logs: target = effort − "
@@ -90,11 +98,19 @@ void register_train_command(CLI::App& app) {
                   "Weight file to write (per joint: <stem>.joint<j>.json beside it)")
       ->required();
   cmd->add_flag("--per-joint", o->per_joint, "One network per joint instead of one for all");
+  cmd->add_option("--joint-hidden", o->joint_hidden,
+                  "Hidden channels of a per-joint network (16 or 32; all joints: 32)")
+      ->capture_default_str();
   cmd->add_option("--seed", o->tcn.seed, "Seed (initialisation, held-out choice, batches)")
       ->capture_default_str();
-  cmd->add_option("--max-seconds", o->tcn.max_seconds, "Wall-clock budget (0: none)")
+  cmd->add_option("--max-epochs", o->tcn.max_epochs,
+                  "Epoch budget per network (the reproducible budget; early stopping may end "
+                  "sooner)")
       ->capture_default_str();
-  cmd->add_option("--max-epochs", o->tcn.max_epochs)->capture_default_str();
+  cmd->add_option("--max-seconds", o->tcn.max_seconds,
+                  "Wall-clock safety net for the whole run (0: none); results then depend on the "
+                  "machine's speed")
+      ->capture_default_str();
   cmd->add_option("--patience", o->tcn.patience, "Early stopping: epochs without improvement")
       ->capture_default_str();
   cmd->add_option("--split-cutoff", o->tcn.split_cutoff_hz,
@@ -104,8 +120,11 @@ void register_train_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--checkpoint", o->checkpoint,
                   "Write the best model so far here at each improvement (outputs in N*m)");
-  cmd->add_option("--onset-copies", o->onset_copies,
-                  "Extra copies of one window per motion onset (weighs break-away; 0: none)")
+  cmd->add_option("--break-away-weight", o->static_to_kinetic_weight,
+                  "Loss weight of static-to-kinetic samples (moving samples weigh 1)")
+      ->capture_default_str();
+  cmd->add_option("--rest-weight", o->static_weight,
+                  "Loss weight of static samples (moving samples weigh 1)")
       ->capture_default_str();
   cmd->add_flag("--quiet", o->quiet, "No progress bar");
   cmd->callback([o] { run_train(*o); });

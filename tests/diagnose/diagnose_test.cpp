@@ -47,6 +47,23 @@ std::vector<std::string> selected_keys(const Diagnosis<kJoints>& d) {
 TEST(Diagnose, CleanLogClaimsNothing) {
   const auto d = run(clean_scenario(), 21);
   EXPECT_TRUE(d.selected.empty());
+  EXPECT_FALSE(d.cad_payload.claimed) << d.cad_payload.mass << " kg";
+}
+
+TEST(Diagnose, FindsAPayloadAgainstTheRobotFilesInertias) {
+  // 0.6 kg at (0.08, 0, 0) m on the last link, not in the robot file. The identified rigid body
+  // absorbs it (no missing effect), but held against the robot file's inertias it shows.
+  auto scenario = clean_scenario();
+  scenario.effects.payload.enabled = true;
+  scenario.effects.payload.mass = 0.6;
+  scenario.effects.payload.position = Vector3<double>(0.08, 0.0, 0.0);
+  const auto d = run(scenario, 33);
+  EXPECT_TRUE(d.selected.empty());
+  ASSERT_TRUE(d.cad_payload.claimed);
+  EXPECT_NEAR(d.cad_payload.mass, 0.6, 0.06);
+  EXPECT_NEAR(d.cad_payload.centre.x(), 0.08, 0.015);
+  EXPECT_NEAR(d.cad_payload.centre.y(), 0.0, 0.015);
+  EXPECT_NEAR(d.cad_payload.centre.z(), 0.0, 0.015);
 }
 
 TEST(Diagnose, NamesLoadDependentFriction) {
@@ -58,9 +75,32 @@ TEST(Diagnose, NamesLoadDependentFriction) {
   for (const auto& k : keys)
     EXPECT_EQ(k, "load_friction");
   // The effect acts while sliding: the held-out moving RMSE of the most loaded joint (2) drops.
-  // (At rest the effort holds the friction the motion left behind, a memory effect that no
-  // memoryless candidate explains, and the static RMSE stays.)
   EXPECT_LT(d.after[1][2].rmse(), 0.85 * d.before[1][2].rmse());
+  // At rest the declared model holds sgn(last motion)·F and the load candidate adds
+  // sgn(last motion)·α|G| (fitted on static samples). The static residual is dominated by the
+  // pre-sliding memory (≈140 mA on joint 2 with or without load friction in the twin, against
+  // ≈25 mA of load-dependent variation), so it may not grow but cannot halve
+  // (docs/identification.md).
+  EXPECT_LE(d.after[1][0].rmse(), 1.01 * d.before[1][0].rmse());
+}
+
+TEST(Diagnose, NamesTemperatureDependentFriction) {
+  // The arm starts warm (45 °C) and cools towards 25 °C with a 60 s time constant; the viscous
+  // friction rises by 1.2 %/K as it cools. The diagnosis sees temp<j>, never the coefficients.
+  auto scenario = clean_scenario();
+  scenario.effects.thermal.enabled = true;
+  scenario.effects.thermal.initial_c = 45.0;
+  scenario.effects.thermal.ambient_c = 25.0;
+  scenario.effects.thermal.time_constant_s = 60.0;
+  scenario.effects.thermal.viscous_per_k = -0.012;
+  const auto d = run(scenario, 31);
+  const auto keys = selected_keys(d);
+  ASSERT_FALSE(keys.empty());
+  for (const auto& k : keys)
+    EXPECT_EQ(k, "thermal");
+  // Friction falls as the joint warms: the fitted β·(T − T_ref)·q̇ coefficient is negative.
+  for (int g : d.selected)
+    EXPECT_LT(d.nominal.added.thermal_viscous[d.groups[g].joint], 0.0);
 }
 
 TEST(Diagnose, NamesRippleAndSpring) {

@@ -54,7 +54,9 @@ TEST(ContactForce, DistalPadRecoversNormalAndShearFromExactTorques) {
                                          -10.0);
     const tpf::Vector3<double> f_world = c.R * f_contact;
     const Vec tau = c.J.topRows<3>().transpose() * f_world;  // τ_ext = J_vᵀ f
-    const auto est = tpf::estimate_contact_force<double, 4>(c.J, c.R, tau, 10.0);
+    // Exact torques: a σ_τ of 1e-4 N·m says so (the shear prior then hardly matters).
+    const auto est =
+        tpf::estimate_contact_force<double, 4>(c.J, c.R, tau, Vec::Constant(1e-4), 10.0);
     if (!est.observable_by_arm) continue;  // singular poses are checked below
     ++checked;
     EXPECT_TRUE(est.valid);
@@ -77,7 +79,11 @@ TEST(ContactForce, ProximalPadUsesThePadReadingForTheNormal) {
   const Case c = pad_case(pad, q);
   const tpf::Vector3<double> f_contact(1.5, -2.0, -12.0);
   const Vec tau = c.J.topRows<3>().transpose() * (c.R * f_contact);
-  const auto est = tpf::estimate_contact_force<double, 4>(c.J, c.R, tau, 12.0);
+  // Exact torques (σ_τ = 1e-4 N·m) and no shear prior: the pad alone fills the unseen direction.
+  tpf::ContactForceSettings<double> settings;
+  settings.shear_relative = 1e6;
+  const auto est =
+      tpf::estimate_contact_force<double, 4>(c.J, c.R, tau, Vec::Constant(1e-4), 12.0, settings);
   EXPECT_FALSE(est.observable_by_arm);
   EXPECT_LT(est.inverse_condition, 1e-6);
   if (est.valid) {
@@ -101,6 +107,75 @@ TEST(ContactForce, UnobservableContactIsFlaggedNotZeroed) {
   EXPECT_TRUE(std::isinf(est.condition));
   EXPECT_TRUE(est.force_contact.allFinite());
   EXPECT_GT(est.force_contact.norm(), 1.0);  // still the least-squares answer, not zeros
+}
+
+// The solve is the maximum a posteriori force: the same as stacking the weighted torque rows and
+// the prior rows and solving by QR, with the posterior std from the normal matrix.
+TEST(ContactForce, EqualsTheStackedWeightedLeastSquaresWithItsPosteriorStd) {
+  const auto layout = pads();
+  tpf::test::RandomStates random(5);
+  tpf::ContactForceSettings<double> settings;
+  for (int trial = 0; trial < 20; ++trial) {
+    const tpf::PadGeometry<double> pad = geometry(layout[static_cast<std::size_t>(trial % 11)]);
+    const Case c = pad_case(pad, random.vector(1.2));
+    const Vec tau = random.vector(3.0);
+    const Vec sigma = random.vector(0.5).cwiseAbs() + Vec::Constant(0.05);
+    const double F = 4.0 + trial;
+    const auto est = tpf::estimate_contact_force<double, 4>(c.J, c.R, tau, sigma, F, settings);
+
+    const Eigen::Matrix<double, 3, 4> Jc = c.R.transpose() * c.J.topRows<3>();
+    const double sn = settings.prior_relative * F + settings.prior_floor_n;
+    const double st = settings.shear_relative * F + settings.prior_floor_n;
+    Eigen::Matrix<double, 7, 3> H = Eigen::Matrix<double, 7, 3>::Zero();
+    Eigen::Matrix<double, 7, 1> y = Eigen::Matrix<double, 7, 1>::Zero();
+    H.topRows<4>() = sigma.cwiseInverse().asDiagonal() * Jc.transpose();
+    y.head<4>() = tau.cwiseQuotient(sigma);
+    H(4, 0) = 1.0 / st;
+    H(5, 1) = 1.0 / st;
+    H(6, 2) = 1.0 / sn;
+    y(6) = -F / sn;
+    // The tiny shear ridge (1e-9 relative) is part of the solve; include it.
+    const double ridge =
+        settings.shear_regularisation * (H.topRows<4>().transpose() * H.topRows<4>()).trace();
+    Eigen::Matrix<double, 9, 3> Hr = Eigen::Matrix<double, 9, 3>::Zero();
+    Eigen::Matrix<double, 9, 1> yr = Eigen::Matrix<double, 9, 1>::Zero();
+    Hr.topRows<7>() = H;
+    yr.head<7>() = y;
+    Hr(7, 0) = Hr(8, 1) = std::sqrt(ridge);
+    const tpf::Vector3<double> f = Hr.colPivHouseholderQr().solve(yr);
+    EXPECT_LT((est.force_contact - f).norm(), 1e-9 * (1.0 + f.norm())) << trial;
+    const tpf::Matrix3<double> cov = (Hr.transpose() * Hr).inverse();
+    EXPECT_LT((est.force_std_contact - cov.diagonal().cwiseSqrt()).norm(), 1e-9) << trial;
+  }
+}
+
+// The two limits of the fusion: torques known far better than the pad → the arm decides (exact
+// force, shear included); torques far worse → the pad decides (−F_pad along the normal).
+TEST(ContactForce, WeighsTheTorquesAgainstThePadByTheirStd) {
+  const auto layout = pads();
+  const tpf::PadGeometry<double> pad = geometry(layout[9]);
+  const Case c = pad_case(pad, Vec(0.3, -0.4, 0.7, 0.5));
+  const tpf::Vector3<double> f_contact(3.0, -2.0, -10.0);
+  const Vec tau = c.J.topRows<3>().transpose() * (c.R * f_contact);
+  const double pad_reading = 6.0;  // the pad is off by 40 %
+  const auto sharp =
+      tpf::estimate_contact_force<double, 4>(c.J, c.R, tau, Vec::Constant(1e-4), pad_reading);
+  ASSERT_TRUE(sharp.observable_by_arm);
+  EXPECT_LT((sharp.force_contact - f_contact).norm(), 1e-3);
+  const auto blunt =
+      tpf::estimate_contact_force<double, 4>(c.J, c.R, tau, Vec::Constant(1e4), pad_reading);
+  EXPECT_LT((blunt.force_contact - tpf::Vector3<double>(0, 0, -pad_reading)).norm(), 1e-3);
+  EXPECT_NEAR(blunt.force_std_contact[2], 0.5 * pad_reading + 1.0, 1e-3);  // the prior's σ_n
+  // One joint's torque badly wrong: declared by its σ, it no longer pulls the estimate away.
+  Vec wrong = tau;
+  wrong[1] += 5.0;
+  const Vec equal = Vec::Constant(0.05);
+  Vec declared = equal;
+  declared[1] = 50.0;
+  const auto naive = tpf::estimate_contact_force<double, 4>(c.J, c.R, wrong, equal, pad_reading);
+  const auto aware = tpf::estimate_contact_force<double, 4>(c.J, c.R, wrong, declared, pad_reading);
+  EXPECT_LT((aware.force_contact - f_contact).norm(),
+            0.25 * (naive.force_contact - f_contact).norm());
 }
 
 }  // namespace

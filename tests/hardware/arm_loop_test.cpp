@@ -38,6 +38,14 @@ std::string temp_path(const std::string& name) {
 constexpr int kDevicePriority = 20;
 constexpr dxl::BusTiming kLoopTiming{4'000'000, 1.0, 3.0};
 
+pad::PadBoardEmulatorOptions board_options(const std::string& link, int garbage) {
+  pad::PadBoardEmulatorOptions o;
+  o.link_path = link;
+  o.startup_garbage_bytes = garbage;
+  o.realtime_priority = kDevicePriority;
+  return o;
+}
+
 /// Emulated arm on ptys plus the host side opened through the real serial code.
 struct ArmRig {
   serial::PtyPair motor_pty;
@@ -51,8 +59,7 @@ struct ArmRig {
   dxl::ph54::ChainInfo chain;
 
   explicit ArmRig(const std::string& name, int garbage = 0)
-      : board(pad::PadBoardEmulatorOptions{temp_path(name + "_pads"), 16, 1000.0, 0.0, garbage,
-                                           kDevicePriority}) {
+      : board(board_options(temp_path(name + "_pads"), garbage)) {
     motors.start(kDevicePriority);
     board.start();
     port = serial::open_serial_port(motor_pty.slave_path(), 4'000'000);
@@ -181,10 +188,17 @@ TEST(ArmLoop, CycleDoesNotAllocate) {
   dxl::ph54::ChainStateReader reader(*rig.bus, rig.ids, rig.chain.fast_sync_read);
   ArmLoopOptions options;
   options.cycles = 40;
-  ArmLoop loop(*rig.bus, reader, rig.ids, rig.pads.get(), nullptr, options);
+  EstimatorFiles files;  // the core Estimator runs in every cycle
+  files.params = std::string(TPF_TEST_DATA_DIR) + "/arm4.params.json";
+  files.robot = std::string(TPF_TEST_DATA_DIR) + "/arm4.robot.json";
+  files.pads = std::string(TPF_TEST_DATA_DIR) + "/arm4.pads.json";
+  files.weights = std::string(TPF_TEST_DATA_DIR) + "/weights/arm4.tcn.json";
+  EstimatorHook estimator(files);
+  ArmLoop loop(*rig.bus, reader, rig.ids, rig.pads.get(), nullptr, options, &estimator);
   test::AllocationCounter allocations;
   loop.run();
   EXPECT_EQ(allocations.count(), 0u);
+  EXPECT_EQ(loop.report().estimator.updates, 40u);
 }
 
 }  // namespace

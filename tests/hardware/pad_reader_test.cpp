@@ -34,19 +34,30 @@ TEST(PadReader, StreamsAlignedSamplesAndCountsFaults) {
   ASSERT_TRUE(test::wait_until([&] { return reader.stats().frames >= 100; }));
   board.corrupt_next_frames(2);
   board.drop_next_frames(5);
-  const std::uint64_t before = reader.stats().frames;
-  ASSERT_TRUE(test::wait_until([&] { return reader.stats().frames >= before + 100; }));
+  // On a loaded machine the reader can be starved while the pty buffers hundreds of frames: the
+  // faults then arrive behind that backlog. Wait (bounded) for their counts, not for a number of
+  // frames, and for the reader to drain the backlog.
+  const auto faults_seen = [&] {
+    const PadReaderStats st = reader.stats();
+    return st.crc_errors + st.cobs_errors >= 2 && st.lost_frames >= 5 + 2;
+  };
+  EXPECT_TRUE(test::wait_until(faults_seen, 20.0));
 
   PadSample s;
-  ASSERT_TRUE(reader.latest(s));
+  bool causal = true;
+  const auto fresh = [&] {  // the reader is current: the sample was taken < 200 ms ago
+    if (!reader.latest(s)) return false;
+    causal = causal && s.device_time_ns <= s.received_ns;
+    return s.received_ns - s.device_time_ns < 200'000'000;
+  };
+  ASSERT_TRUE(test::wait_until(fresh, 20.0));
   EXPECT_EQ(s.n, 16);
   for (int k = 0; k < 16; ++k) {
     EXPECT_GE(s.kpa[k], 1.0f);
     EXPECT_LE(s.kpa[k], 3.0f);
   }
-  // The device time maps onto the host clock: before the receive time, and not long before.
-  EXPECT_LE(s.device_time_ns, s.received_ns + 1'000'000);
-  EXPECT_GT(s.device_time_ns, s.received_ns - 200'000'000);
+  // The device time maps onto the host clock: never after the receive time (causality).
+  EXPECT_TRUE(causal);
   const PadReaderStats stats = reader.stats();
   EXPECT_GE(stats.crc_errors + stats.cobs_errors, 2u);
   EXPECT_GE(stats.lost_frames, 5u + 2u);  // dropped and corrupted frames both leave seq gaps

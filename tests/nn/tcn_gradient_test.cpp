@@ -7,7 +7,8 @@
 namespace tpf::offline {
 namespace {
 
-void expect_gradient_matches_finite_differences(const TcnArchitecture& a, std::uint64_t seed) {
+void expect_gradient_matches_finite_differences(const TcnArchitecture& a, std::uint64_t seed,
+                                                bool weighted = false) {
   TcnParameters p = test::random_tcn_parameters(a, seed);
   p.input_mean.setZero();  // the window model takes normalised inputs
   p.input_std.setOnes();
@@ -16,10 +17,14 @@ void expect_gradient_matches_finite_differences(const TcnArchitecture& a, std::u
   const Eigen::MatrixXd low = test::random_inputs(a.outputs, outputs, seed + 2);
   const Eigen::MatrixXd high = test::random_inputs(a.outputs, outputs, seed + 3);
   const double w_low = 0.7, w_high = 1.9;
+  const Eigen::MatrixXd scale =
+      (test::random_inputs(a.outputs, outputs, seed + 4).array().abs() + 0.1).matrix();
+  const TcnWindowMatrix<double> scale_ref = scale;
+  const TcnWindowMatrix<double>* s = weighted ? &scale_ref : nullptr;
 
   TcnWindowWorkspace ws;
   TcnParameters g = zero_tcn_parameters(a);
-  tcn_window_loss(p, x, low, high, w_low, w_high, ws, &g);
+  tcn_window_loss(p, x, low, high, w_low, w_high, ws, &g, s);
   const Eigen::VectorXd analytic = flatten(g);
 
   std::vector<std::string> names;
@@ -36,10 +41,10 @@ void expect_gradient_matches_finite_differences(const TcnArchitecture& a, std::u
     const double saved = theta[k];
     theta[k] = saved + h;
     unflatten(theta, p);
-    const double up = tcn_window_loss(p, x, low, high, w_low, w_high, ws, nullptr);
+    const double up = tcn_window_loss(p, x, low, high, w_low, w_high, ws, nullptr, s);
     theta[k] = saved - h;
     unflatten(theta, p);
-    const double down = tcn_window_loss(p, x, low, high, w_low, w_high, ws, nullptr);
+    const double down = tcn_window_loss(p, x, low, high, w_low, w_high, ws, nullptr, s);
     theta[k] = saved;
     const double numeric = (up - down) / (2 * h);
     EXPECT_NEAR(analytic[k], numeric, 1e-6 * (1.0 + std::abs(numeric))) << names[k];
@@ -54,6 +59,32 @@ TEST(TcnGradient, EveryTensorMatchesFiniteDifferencesWithProjection) {
 
 TEST(TcnGradient, EveryTensorMatchesFiniteDifferencesWithIdentitySkip) {
   expect_gradient_matches_finite_differences({4, 4, 2, 4, 1}, 202);
+}
+
+TEST(TcnGradient, EveryTensorMatchesFiniteDifferencesWithSampleWeights) {
+  expect_gradient_matches_finite_differences({3, 5, 3, 3, 2}, 505, true);
+}
+
+TEST(TcnGradient, SampleScaleWeighsTheLossAndItsGradient) {
+  const TcnArchitecture a{4, 6, 2, 3, 2};
+  const TcnParameters p = test::random_tcn_parameters(a, 606);
+  const Eigen::Index outputs = 12, width = a.receptive_field() - 1 + outputs;
+  const Eigen::MatrixXd x = test::random_inputs(a.inputs, width, 607);
+  const Eigen::MatrixXd low = test::random_inputs(a.outputs, outputs, 608);
+  Eigen::MatrixXd high = test::random_inputs(a.outputs, outputs, 609);
+  Eigen::MatrixXd scale = (test::random_inputs(a.outputs, outputs, 610).array().abs()).matrix();
+  scale.col(3).setZero();
+  TcnWindowWorkspace ws;
+  tcn_window_forward(p, x, ws);
+  const double expected = 0.5 * (scale.cwiseProduct(ws.low - low)).squaredNorm() +
+                          2.0 * (scale.cwiseProduct(ws.high - high)).squaredNorm();
+  const TcnWindowMatrix<double> s = scale;
+  TcnParameters g1 = zero_tcn_parameters(a), g2 = zero_tcn_parameters(a);
+  EXPECT_NEAR(tcn_window_loss(p, x, low, high, 0.5, 2.0, ws, &g1, &s), expected, 1e-12 * expected);
+  // A zero-weight sample is ignored whatever its target.
+  high.col(3).array() += 100.0;
+  EXPECT_NEAR(tcn_window_loss(p, x, low, high, 0.5, 2.0, ws, &g2, &s), expected, 1e-12 * expected);
+  EXPECT_EQ(flatten(g1), flatten(g2));
 }
 
 TEST(TcnGradient, WindowForwardEqualsNaiveNetwork) {

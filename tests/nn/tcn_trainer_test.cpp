@@ -31,6 +31,7 @@ TEST(TcnTrainer, OverfitsATinySetToNearZeroLoss) {
   TcnTrainOptions o = small_options();
   o.architecture.hidden = 16;
   o.window_outputs = 70;  // two windows: one trained, one held out
+  o.validation_block_windows = 1;
   o.batch_windows = 1;
   o.max_epochs = 350;
   o.patience = o.max_epochs;
@@ -98,6 +99,52 @@ TEST(TcnTrainer, CheckpointLoadsIntoTheCoreEngineWithTheSameOutputs) {
         {worst, std::abs(tcn.low()(0) - ws.low(0, t)), std::abs(tcn.high()(0) - ws.high(0, t))});
   }
   EXPECT_LT(worst, 1e-10);
+}
+
+TEST(TcnTrainer, HeldOutWindowsAreContiguousBlocksDisjointFromTraining) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(20.0, 400.0, 5));  // 8000 samples
+  TcnTrainOptions o = small_options();
+  o.validation_block_windows = 6;
+  o.validation_fraction = 0.25;
+  const TcnTrainer trainer(data, o);
+  const auto train = trainer.window_spans(false), held = trainer.window_spans(true);
+  ASSERT_FALSE(held.empty());
+  // No sample (input history or target) of a training window lies in a held-out window.
+  for (const auto& t : train)
+    for (const auto& h : held)
+      EXPECT_TRUE(t.segment != h.segment || t.end <= h.first_input || h.end <= t.first_input)
+          << "training [" << t.first_input << ", " << t.end << ") overlaps held-out ["
+          << h.first_input << ", " << h.end << ")";
+  // Held-out outputs form contiguous stretches of whole blocks: 8000 − 21 outputs in windows of
+  // 64 are 125 windows, 21 blocks, round(0.25·21) = 5 held out, so at most 5 stretches.
+  int stretches = 0;
+  for (std::size_t i = 0; i < held.size(); ++i)
+    stretches += i == 0 || held[i].first_output != held[i - 1].end;
+  EXPECT_LE(stretches, 5);
+  Eigen::Index held_outputs = 0;
+  for (const auto& h : held)
+    held_outputs += h.end - h.first_output;
+  EXPECT_GE(held_outputs, 4 * 6 * 64 - 5 * 21);  // ≈ 5 blocks of 6 windows, less the guards
+}
+
+TEST(TcnTrainer, SampleWeightsWeighTheLoss) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 6));
+  const TcnTrainOptions o = small_options();
+  const TcnParameters p = init_tcn_parameters(o.architecture, 3);
+  const double plain = TcnTrainer(data, o).loss(p, false);
+  // A uniform weight changes nothing (the MSE is normalised by Σ w).
+  data.sequences[0].weight = Eigen::MatrixXd::Constant(data.sequences[0].inputs.rows(), 1, 7.0);
+  EXPECT_NEAR(TcnTrainer(data, o).loss(p, false), plain, 1e-6 * plain);  // float windows
+  // Weighting half the samples 0 changes it (the per-sample weighting itself is checked against
+  // an explicit sum in TcnGradient.SampleScaleWeighsTheLossAndItsGradient).
+  TcnDataset masked = data;
+  for (Eigen::Index k = 0; k < masked.sequences[0].weight.rows(); k += 2)
+    masked.sequences[0].weight(k, 0) = 0.0;
+  EXPECT_GT(std::abs(TcnTrainer(masked, o).loss(p, false) - plain), 1e-6 * plain);
+  data.sequences[0].weight(10, 0) = -1.0;
+  EXPECT_THROW(TcnTrainer(data, o), Error);
 }
 
 TEST(TcnTrainer, SkipsNonFiniteRowsAndRefusesBadShapes) {

@@ -31,7 +31,6 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   o.test_s = 10.0;
   o.contacts_s = 12.0;
   o.teaching_s = 6.0;
-  o.training_budget_s = 5.0;
   o.training_epochs = 2;
   std::vector<std::string> lines;
   const DemoResult r = run_demo(o, [&](const std::string& l) { lines.push_back(l); });
@@ -62,7 +61,7 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   const auto files = compensator_files(o.out / "tcn.json", layout);  // one network per joint
   EXPECT_EQ(layout, CompensatorLayout::PerJoint);
   ASSERT_EQ(files.size(), 4u);
-  auto tcn = std::make_unique<JointTcns>();
+  auto tcn = std::make_unique<JointTcns<>>();
   for (int j = 0; j < kArmJoints; ++j)
     load_tcn_weights(files[j], tcn->network(j));
   ASSERT_EQ(r.training.results.size(), 4u);

@@ -222,9 +222,10 @@ TEST(EstimatorBadSamples, FrozenSensorIsFlaggedAfterTheLimitAndClearsWhenLive) {
 }
 
 // A pad reads 30 kPa whatever happens (a blocked tube): flagged after the limit; once it reads
-// live again the flag clears and its contact flag follows the clean run.
+// live again the flag clears and its contact flag follows the clean run. (That the phantom
+// contact does not reach later estimates: tests/estimation/stuck_pad_test.cpp.)
 TEST(EstimatorBadSamples, PadStuckHighIsFlaggedAndContactRecovers) {
-  const int limit = twin_parameters().frozen_limit_samples;
+  const int limit = twin_parameters().stuck_pad_limit_samples;
   const std::size_t end = kBad + static_cast<std::size_t>(limit) + 100;
   auto clean = make_estimator();
   auto est = make_estimator();

@@ -96,6 +96,30 @@ TEST(TrainingFeatures, TargetIsTheResidualInNewtonMetresAndJointColumnsArePicked
   EXPECT_THROW(training_sequence(trace, scale.head(3)), Error);
 }
 
+TEST(TrainingFeatures, RegimeWeightsMarkRestAndTheBreakAwayWindow) {
+  // A hand-made trace at 400 Hz: joint 0 rests 0.1 s then moves; joint 1 moves throughout.
+  EstimatorTrace trace;
+  const Eigen::Index rows = 200;
+  trace.t = Eigen::VectorXd::LinSpaced(rows, 0.0, (rows - 1) * 0.0025);
+  trace.dq = Eigen::MatrixXd::Constant(rows, 2, 0.01);
+  trace.dq.col(0).head(40).setZero();
+  trace.dq(100, 0) = std::numeric_limits<double>::quiet_NaN();
+  RegimeOptions regimes;
+  regimes.fallback_transition_s = 0.0688;  // rows k0 … k0 + 27 (27 · 2.5 ms < 68.8 ms)
+  const Eigen::MatrixXd w = regime_weights(trace, -1, 2.0, 10.0, regimes);
+  ASSERT_EQ(w.rows(), rows);
+  ASSERT_EQ(w.cols(), 2);
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    const double expected = k < 40 ? 2.0 : k < 40 + 28 ? 10.0 : 1.0;
+    EXPECT_EQ(w(k, 0), expected) << "row " << k;
+    EXPECT_EQ(w(k, 1), 1.0) << "row " << k;
+  }
+  const Eigen::MatrixXd one = regime_weights(trace, 0, 2.0, 10.0, regimes);
+  ASSERT_EQ(one.cols(), 1);
+  EXPECT_EQ(one.col(0), w.col(0));
+  EXPECT_THROW(regime_weights(trace, 2, 1.0, 1.0), Error);
+}
+
 TEST(TrainingFeatures, ScaledHeadsScaleTheStreamingOutputExactly) {
   TcnArchitecture a;
   a.inputs = 16;

@@ -14,6 +14,7 @@
 #include "dynamixel/emulator/ph54_registers.hpp"
 #include "dynamixel/protocol/packet_receiver.hpp"
 #include "dynamixel/serial/byte_transport.hpp"
+#include "dynamixel/serial/monotonic_clock.hpp"
 
 namespace tpf::dxl::emu {
 
@@ -53,6 +54,8 @@ class MotorChainEmulator {
   /// Reads a register of motor `id` (inspection in tests).
   std::uint32_t register_value(std::uint8_t id, std::uint16_t address, std::size_t size);
   std::uint64_t instructions_seen() const noexcept { return instructions_.load(); }
+  /// CLOCK_MONOTONIC [ns] at start(): the plant's time 0 (it is advanced in real time).
+  serial::MonoNs boot_ns() const noexcept { return boot_ns_; }
 
  private:
   void run();

@@ -66,6 +66,26 @@ void set_torque(Bus& bus, const std::vector<std::uint8_t>& ids, bool enable) {
     write_u8(bus, id, torque_enable, enable ? 1 : 0, "torque enable");
 }
 
+void hold_present_position(Bus& bus, const std::vector<std::uint8_t>& ids) {
+  for (const std::uint8_t id : ids) {
+    std::uint8_t position[4] = {};
+    StatusError error{};
+    CommResult r = CommResult::rx_timeout;
+    for (int attempt = 0; attempt < kAttempts && r != CommResult::success; ++attempt)
+      r = bus.read(id, present_position, position, error);
+    if (r != CommResult::success || error.number() != StatusError::none)
+      throw Error::at(motor_name(id), 0, "present position",
+                      std::string("read failed: ") + to_string(r));
+    r = CommResult::rx_timeout;
+    for (int attempt = 0; attempt < kAttempts && r != CommResult::success; ++attempt)
+      r = bus.write(id, goal_position, position, error);
+    if (r != CommResult::success || error.number() != StatusError::none)
+      throw Error::at(motor_name(id), 0, "goal position",
+                      std::string("write failed: ") + to_string(r));
+    write_u8(bus, id, torque_enable, 1, "torque enable");
+  }
+}
+
 bool read_hardware_error(Bus& bus, std::uint8_t id, std::uint8_t& bits) noexcept {
   std::uint8_t value[1] = {};
   StatusError error{};

@@ -41,6 +41,11 @@ void write_baud_rate(Bus& bus, const std::vector<std::uint8_t>& ids, BaudCode co
 /// Torque Enable(512) on every motor.
 void set_torque(Bus& bus, const std::vector<std::uint8_t>& ids, bool enable);
 
+/// Holds the arm where it is: per motor, reads Present Position(580), writes it to Goal
+/// Position(564), then Torque Enable = 1 (position mode must already be set). Writing the goal
+/// first keeps the motor from jumping to a stale goal. Throws tpf::Error naming the motor.
+void hold_present_position(Bus& bus, const std::vector<std::uint8_t>& ids);
+
 /// Reads Hardware Error Status(518) of one motor (after a status with the Alert bit).
 /// Returns false if the read failed. Per-cycle safe (no allocation).
 bool read_hardware_error(Bus& bus, std::uint8_t id, std::uint8_t& bits) noexcept;

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -87,21 +88,28 @@ void PadBoardEmulator::run() {
     PadFrame frame;
     frame.seq = seq_++;
     frame.t_us = static_cast<std::uint32_t>(static_cast<std::uint64_t>(device_s * 1e6));
-    frame.n = static_cast<std::uint8_t>(options_.pads);
-    for (int k = 0; k < options_.pads; ++k) {
-      frame.kpa[k] = pressure_kpa(k, device_s);
+    int pads = options_.pads;
+    if (options_.source)
+      pads = std::clamp(options_.source(std::span(frame.kpa)), 0, static_cast<int>(kMaxPads));
+    else
+      for (int k = 0; k < pads; ++k)
+        frame.kpa[k] = pressure_kpa(k, device_s);
+    frame.n = static_cast<std::uint8_t>(pads);
+    for (int k = 0; k < pads; ++k)
       if (frame.kpa[k] > 2.5f) frame.contact_mask |= 1u << k;
-    }
     if (drop_.load() > 0) {
       drop_.fetch_sub(1);
       continue;
     }
     std::size_t n = encode_frame(frame, wire);
-    if (corrupt_.load() > 0) {
-      corrupt_.fetch_sub(1);
-      wire[n / 2] = static_cast<std::uint8_t>(wire[n / 2] == 0x55 ? 0x56 : 0x55);  // stays ≠ 00
+    const bool corrupt = corrupt_.load() > 0;
+    if (corrupt) wire[n / 2] = static_cast<std::uint8_t>(wire[n / 2] == 0x55 ? 0x56 : 0x55);
+    // A frame that does not fit (host not reading) is lost; a requested corruption then goes to
+    // the next frame that reaches the wire, so each one is seen by the host.
+    if (pty_->master().write(std::span(wire, n), deadline)) {
+      sent_.fetch_add(1);
+      if (corrupt) corrupt_.fetch_sub(1);
     }
-    if (pty_->master().write(std::span(wire, n), deadline)) sent_.fetch_add(1);
   }
 }
 

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <thread>
 
@@ -20,6 +22,10 @@ struct PadBoardEmulatorOptions {
   double clock_drift_ppm = 0.0;   ///< device micros() runs fast by this much
   int startup_garbage_bytes = 0;  ///< noise sent before the first frame of each connection
   int realtime_priority = 0;      ///< > 0: SCHED_FIFO for the streaming thread (best effort)
+  /// Where the pressures come from: called once per frame on the streaming thread, fills
+  /// kpa[0..n) and returns n (≤ kMaxPads; `pads` is then ignored), e.g. the digital twin's pads
+  /// (TwinMotorPlant::pad_pressures). Empty: the synthetic pressure_kpa(k, t) on `pads` pads.
+  std::function<int(std::span<float> kpa)> source;
 };
 
 class PadBoardEmulator {

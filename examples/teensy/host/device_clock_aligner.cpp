@@ -1,5 +1,6 @@
 #include "teensy/host/device_clock_aligner.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tpf::pad {
@@ -51,6 +52,7 @@ void DeviceClockAligner::close_block() noexcept {
   x_ref_ = mx;
   offset_ = my;
   drift_ = (blocks_ >= 3 && var > 1e-12) ? (sxy_ / s0_ - mx * my) / var : 0.0;
+  drift_ = std::clamp(drift_, -kMaxDriftPpm * 1e-6, kMaxDriftPpm * 1e-6);
 }
 
 std::int64_t DeviceClockAligner::to_host_ns(std::uint32_t device_us) const noexcept {

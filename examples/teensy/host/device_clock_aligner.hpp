@@ -10,6 +10,10 @@ namespace tpf::pad {
 
 class DeviceClockAligner {
  public:
+  /// Largest drift believed [ppm]: quartz clocks stay within ±100 ppm; a steeper line comes from
+  /// block minima inflated by a starved reader, and extrapolating it would misplace samples.
+  static constexpr double kMaxDriftPpm = 1000.0;
+
   /// `block` samples per min-filter block (e.g. 100 = 0.1 s at 1 kHz); `forgetting` ∈ (0, 1] is
   /// the weight kept by older blocks per new block.
   explicit DeviceClockAligner(int block = 100, double forgetting = 0.98) noexcept

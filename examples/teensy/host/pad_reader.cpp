@@ -102,7 +102,9 @@ void PadReader::run() {
     parser.feed(std::span(chunk).first(r.bytes), [&](const PadFrame& f) {
       clock.add(f.t_us, received);
       sample.index = parser.counters().frames;
-      sample.device_time_ns = clock.to_host_ns(f.t_us);
+      // Causality: a frame was sampled before it arrived. The line fit can put it later when a
+      // block's minimum was inflated (the reader starved on a loaded machine).
+      sample.device_time_ns = std::min(clock.to_host_ns(f.t_us), received);
       sample.received_ns = received;
       sample.n = f.n;
       sample.flags = f.flags;

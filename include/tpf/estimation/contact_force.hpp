@@ -13,13 +13,19 @@ namespace tpf {
 /// Settings of estimate_contact_force.
 template <typename S>
 struct ContactForceSettings {
-  S torque_noise_nm = S(0.05);  ///< σ_τ: std of the external-torque estimate [N·m]
-  S prior_relative = S(0.5);    ///< σ_Fn = prior_relative·F_pad + prior_floor_n: the pad is rough
+  /// σ_τ: std of the external-torque estimate [N·m] when no per-joint σ is given.
+  S torque_noise_nm = S(0.05);
+  S prior_relative = S(0.5);  ///< σ_Fn = prior_relative·F_pad + prior_floor_n: the pad is rough
   S prior_floor_n = S(1);
+  /// σ_t = shear_relative·F_pad + prior_floor_n: the zero-mean prior on each shear component, a
+  /// soft friction cone (a hand's shear on a pad stays below ≈ μ·F_n, μ ≲ 1).
+  S shear_relative = S(0.5);
   /// Shear (x, y of the contact frame) is valid when √(λ_min/λ_max) of its information block
   /// (J_xy J_xyᵀ against the largest eigenvalue of JJᵀ) is at least this.
   S min_inverse_condition = S(0.02);
-  S shear_regularisation = S(1e-9);  ///< ridge on shear, relative to λ_max (keeps the solve finite)
+  /// Ridge on the shear, relative to trace(J_c W J_cᵀ): keeps the solve finite when the shear
+  /// prior is switched off; small enough never to compete with a prior.
+  S shear_regularisation = S(1e-12);
 };
 
 /// A contact force estimate. Contact frame: z = the pad's outward normal (a push has f_z < 0).
@@ -31,28 +37,36 @@ struct ContactForce {
   S condition = S(0);          ///< σ_max/σ_min of the contact Jacobian alone (+inf when rank < 3)
   S inverse_condition = S(0);  ///< σ_min/σ_max of the contact Jacobian alone, in [0, 1]
   S shear_inverse_condition = S(0);  ///< the same for the shear block, normal known from the pad
-  int pad = -1;                      ///< pad index, −1 when no pad is in contact
-  bool observable_by_arm = false;    ///< the Jacobian alone fixes all three components
-  bool valid = false;                ///< the estimate is meaningful (see estimate_contact_force)
+  /// Posterior std of each component of force_contact [N] (√diag A⁻¹ of the solve below).
+  Vector3<S> force_std_contact = Vector3<S>::Zero();
+  int pad = -1;                    ///< pad index, −1 when no pad is in contact
+  bool observable_by_arm = false;  ///< the Jacobian alone fixes all three components
+  bool valid = false;              ///< the estimate is meaningful (see estimate_contact_force)
 };
 
 /// Solves for the force f (contact frame) acting at the pad point from the external torque τ [N·m]
 /// (what the environment applies to the robot, τ = J_cᵀ f with J_c = Rᵀ·J_v the linear rows of the
-/// point Jacobian in the contact frame), with the pad reading F_pad ≥ 0 [N] as a prior on the
-/// normal component, f_z ≈ −F_pad:
-///   (J_c J_cᵀ/σ_τ² + Λ) f = J_c τ/σ_τ² + Λ f₀,  Λ = diag(ε, ε, 1/σ_Fn²),  f₀ = (0, 0, −F_pad),
-/// ε = shear_regularisation·λ_max/σ_τ². The Jacobian's own conditioning decides what the arm sees:
-/// `valid` when the shear block (normal fixed by the pad) has inverse condition ≥ the setting, so
-/// the prior fills in the normal only where the arm cannot observe it (proximal pads, rank < 3);
-/// when the shear is unobservable too, `valid` is false and the numbers say why. Allocation-free.
+/// point Jacobian in the contact frame), weighting each joint by the std σ_τ,j of its τ estimate
+/// and the pad reading F_pad ≥ 0 [N] as a prior f ≈ f₀ = (0, 0, −F_pad) — the maximum a posteriori
+/// force under Gaussian errors:
+///   (J_c W J_cᵀ + Λ) f = J_c W τ + Λ f₀,  W = diag(1/σ_τ,j²),  Λ = diag(1/σ_t², 1/σ_t², 1/σ_n²),
+/// σ_n = prior_relative·F_pad + prior_floor_n, σ_t = shear_relative·F_pad + prior_floor_n, plus a
+/// tiny ridge shear_regularisation·trace(J_c W J_cᵀ) on the shear (keeps the solve finite without
+/// a prior). Where the arm sees a component well (small σ_τ, good conditioning) the torques decide
+/// it; where it does not (proximal pads, rank < 3, joints stuck in friction) the pad does. The
+/// posterior std √diag (J_c W J_cᵀ + Λ)⁻¹ comes with the estimate. The Jacobian's own
+/// conditioning gives `condition`, `inverse_condition`, `observable_by_arm` and `valid` (the shear
+/// block, normal fixed by the pad, has inverse condition ≥ min_inverse_condition); when the shear
+/// is unobservable, `valid` is false and the numbers say why. Allocation-free.
 template <typename S, int N>
 ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact,
-                                       const JointVector<S, N>& tau_ext, S pad_force,
+                                       const JointVector<S, N>& tau_ext,
+                                       const JointVector<S, N>& tau_sigma_nm, S pad_force,
                                        const ContactForceSettings<S>& settings = {}) noexcept {
   using std::max, std::sqrt;
   ContactForce<S> out;
   const Eigen::Matrix<S, 3, N> Jc = R_contact.transpose() * J_world.template topRows<3>();
-  const Matrix3<S> info = Jc * Jc.transpose();  // J_c J_cᵀ, symmetric 3×3
+  const Matrix3<S> info = Jc * Jc.transpose();  // J_c J_cᵀ, symmetric 3×3: the geometry alone
 
   const Eigen::SelfAdjointEigenSolver<Matrix3<S>> eig(info, Eigen::EigenvaluesOnly);
   const Vector3<S> lambda = eig.eigenvalues().cwiseMax(S(0));  // ascending
@@ -66,20 +80,34 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   out.shear_inverse_condition = sqrt(max(shear.eigenvalues()[0], S(0)) / lambda_max);
   out.observable_by_arm = out.inverse_condition >= settings.min_inverse_condition;
 
-  const S w = S(1) / (settings.torque_noise_nm * settings.torque_noise_nm);
+  const JointVector<S, N> w = tau_sigma_nm.cwiseAbs2().cwiseInverse();
+  const Eigen::Matrix<S, 3, N> JcW = Jc * w.asDiagonal();
+  Matrix3<S> A = JcW * Jc.transpose();
   const S sigma_n = settings.prior_relative * pad_force + settings.prior_floor_n;
-  Matrix3<S> A = w * info;
-  const S ridge = settings.shear_regularisation * w * lambda_max;
-  A(0, 0) += ridge;
-  A(1, 1) += ridge;
+  const S sigma_t = settings.shear_relative * pad_force + settings.prior_floor_n;
+  const S ridge = settings.shear_regularisation * A.trace();
+  A(0, 0) += ridge + S(1) / (sigma_t * sigma_t);
+  A(1, 1) += ridge + S(1) / (sigma_t * sigma_t);
   A(2, 2) += S(1) / (sigma_n * sigma_n);
-  Vector3<S> b = w * (Jc * tau_ext);
+  Vector3<S> b = JcW * tau_ext;
   b[2] += -pad_force / (sigma_n * sigma_n);
-  out.force_contact = A.ldlt().solve(b);
+  const Eigen::LDLT<Matrix3<S>> ldlt(A);
+  out.force_contact = ldlt.solve(b);
+  out.force_std_contact = ldlt.solve(Matrix3<S>::Identity()).diagonal().cwiseMax(S(0)).cwiseSqrt();
   out.force_world = R_contact * out.force_contact;
   out.valid = out.shear_inverse_condition >= settings.min_inverse_condition &&
               out.force_contact.allFinite();
   return out;
+}
+
+/// The same with one σ_τ = settings.torque_noise_nm for every joint.
+template <typename S, int N>
+ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact,
+                                       const JointVector<S, N>& tau_ext, S pad_force,
+                                       const ContactForceSettings<S>& settings = {}) noexcept {
+  return estimate_contact_force(J_world, R_contact, tau_ext,
+                                JointVector<S, N>::Constant(settings.torque_noise_nm).eval(),
+                                pad_force, settings);
 }
 
 }  // namespace tpf

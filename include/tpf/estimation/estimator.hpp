@@ -49,14 +49,17 @@ class Estimator {
   Estimator(NominalModel<S, N> nominal, const std::vector<Pad>& pads,
             const EstimatorParameters<S, N>& parameters, Compensator compensator = {})
       : nominal_(std::move(nominal)),
+        links_(nominal_links(nominal_)),
         data_(nominal_.model),
         parameters_(parameters),
         skin_(pads, parameters.skin, N),
         tracker_(parameters.static_friction),
         acceleration_(parameters.acceleration_cutoff_hz, parameters.acceleration_damping),
         frozen_joints_(parameters.frozen_limit_samples),
-        stuck_pads_(parameters.frozen_limit_samples),
-        compensator_(std::move(compensator)) {}
+        stuck_pads_(parameters.stuck_pad_limit_samples),
+        compensator_(std::move(compensator)) {
+    update_sigmas();
+  }
 
   /// Forgets the past: the next sample starts every filter, the state machine and the TCN.
   void reset() noexcept {
@@ -78,11 +81,13 @@ class Estimator {
       return output_;
     }
     S h = parameters_.sample_period_s;
+    std::uint32_t stuck = 0;
     if (started_) {
       h = sample.t - output_.t;
       if (h > parameters_.max_gap_factor * parameters_.sample_period_s) status |= kStatusTimeGap;
       if (frozen_joints_.update(joint_reading(sample))) status |= kStatusFrozenInput;
-      if (stuck_pads_.update(sample.pressure)) status |= kStatusPadStuck;
+      stuck = stuck_pads_.update(off_rail(sample.pressure));
+      if (stuck) status |= kStatusPadStuck;
     } else {
       start(sample);
     }
@@ -102,18 +107,28 @@ class Estimator {
         status |= kStatusPositionOutOfRange;
     }
 
-    // 2. Nominal model (predict_effort runs compute_gravity last: data_.oMi is at q).
+    // 2. Nominal model (one forward kinematics: data_.oMi is at q for the wrench below).
     Output& out = output_;
-    predict_effort(nominal_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
+    predict_effort(nominal_, links_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
                    out.effort_friction);
     out.residual = sample.effort - out.effort_rigid - out.effort_friction;
 
-    // 3. Skin.
+    // 3. Skin. A stuck pad is disbelieved until it reads live again and its detector has
+    // released, so its phantom contact reaches neither the state machine nor the wrench.
     if (skin_.update(sample.t, h, sample.pressure) > 0) status |= kStatusPadDataInvalid;
+    const std::uint32_t newly_ignored = stuck & ~skin_.ignored();
+    std::uint32_t ignored = skin_.ignored() | stuck;
+    for (int k = 0; k < P; ++k)
+      if (!(stuck & (1u << k)) && !skin_.detector(k).in_contact()) ignored &= ~(1u << k);
+    skin_.set_ignored(ignored);
+    if (ignored) status |= kStatusPadIgnored;
+    // A baseline frozen at the stuck pad's onset is re-taken at the remaining contacts' onset
+    // (without remaining contact the tracker simply resumes tracking).
+    if (newly_ignored && skin_.any_contact()) tracker_.refreeze(skin_.earliest_onset());
 
     // 4. State machine, holding the last combined estimate for joints that stop in contact.
     tracker_.update(sample.t, sample.dq, out.residual, skin_.any_contact(),
-                    skin_.earliest_new_onset(), out.external.residual);
+                    skin_.earliest_new_onset(), held_residual_);
     out.state = tracker_.state();
     out.static_friction = tracker_.friction_estimate();
 
@@ -142,20 +157,38 @@ class Estimator {
       out.external.torque[j] = use_static ? fixed.torque[j] : fused.torque[j];
     }
     out.external.valid = all;
+    held_residual_ = out.external.residual;  // what a joint stopping next cycle holds
 
-    // 7. Contact force at the most loaded pad.
+    // 7. Contact force at the most loaded pad: the torque evidence (before any dead band: the
+    // static Δτ_res on resting joints, τ_res − τ_TCN on moving ones) weighted by its σ, with the
+    // pad's reading as the prior.
     out.wrench = ContactForce<S>{};
     const int pad = skin_.most_loaded();
     if (pad >= 0) {
       const PadGeometry<S>& g = skin_.geometry(pad);
       const Vector3<S> point = pad_point_in_world(data_, g);
       point_jacobian(nominal_.model, data_, g.link, point, jacobian_);
+      Vector evidence, sigma;
+      for (int j = 0; j < N; ++j) {
+        const bool at_rest = fixed.valid & (1u << j);
+        const S r = at_rest ? tracker_.static_external()[j] : out.residual[j] - out.compensation[j];
+        evidence[j] = -r / nominal_.effort_per_newton_metre[j];
+        sigma[j] =
+            (at_rest ? static_sigma_[j] : moving_sigma_[j]) / nominal_.effort_per_newton_metre[j];
+      }
       out.wrench =
           estimate_contact_force(jacobian_, contact_frame_in_world(data_, g.link, g.normal),
-                                 out.external.torque, skin_.normal_force(pad), parameters_.wrench);
+                                 evidence, sigma, skin_.normal_force(pad), parameters_.wrench);
       out.wrench.pad = pad;
       out.wrench.point_world = point;
       if (!out.wrench.valid) status |= kStatusWrenchUnobservable;
+      // One pad touched: the fused external torque is that of the fused force, τ = J_vᵀ f̂ (both
+      // senses, consistent with a force at the pad). Several pads: four torques cannot separate
+      // the forces, so the torque estimate above stands.
+      if (skin_.contact_count() == 1 && out.wrench.force_world.allFinite()) {
+        out.external.torque = jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
+        out.external.residual = -nominal_.effort_per_newton_metre.cwiseProduct(out.external.torque);
+      }
     }
 
     out.ddq = ddq;
@@ -173,12 +206,29 @@ class Estimator {
   void set_transition_sigma(const Vector& nominal_sigma, const Vector& fused_sigma) noexcept {
     parameters_.nominal_sigma = nominal_sigma;
     parameters_.fused_sigma = fused_sigma;
+    update_sigmas();
   }
+  /// σ of the torque evidence the wrench weighs (effort unit): on a resting joint
+  /// √((static band/3)² + τ_s²/3) — the noise plus the push the friction may hold unseen (up to
+  /// the break-away level τ_s, taken as uniform); on a moving joint σ_fused (σ_nominal when there
+  /// is no fused σ; the wrench settings' torque_noise_nm when neither is calibrated).
+  const Vector& static_sigma() const noexcept { return static_sigma_; }
+  const Vector& moving_sigma() const noexcept { return moving_sigma_; }
   Compensator& compensator() noexcept { return compensator_; }
 
  private:
   static bool finite(const Sample& s) noexcept {
     return std::isfinite(s.t) && s.q.allFinite() && s.dq.allFinite() && s.effort.allFinite();
+  }
+
+  /// The pad readings for stuck detection: a reading on a rail (≤ 0 or ≥ full scale) is NaN, so
+  /// it never counts as a repeat — a push that saturates the sensor is not a stuck pad.
+  Eigen::Matrix<S, P, 1> off_rail(const Eigen::Matrix<S, P, 1>& p) const noexcept {
+    Eigen::Matrix<S, P, 1> r = p;
+    for (int k = 0; k < P; ++k)
+      if (!(p[k] > S(0) && p[k] < parameters_.skin.full_scale_kpa))
+        r[k] = std::numeric_limits<S>::quiet_NaN();
+    return r;
   }
 
   /// A joint's reading as one row: [q, q̇, effort].
@@ -188,16 +238,30 @@ class Estimator {
     return r;
   }
 
+  void update_sigmas() noexcept {
+    const Vector floor = parameters_.wrench.torque_noise_nm * nominal_.effort_per_newton_metre;
+    const Vector noise = parameters_.static_dead_band / S(3);
+    static_sigma_ = (noise.cwiseAbs2() + nominal_.friction.static_friction.cwiseAbs2() / S(3))
+                        .cwiseSqrt()
+                        .cwiseMax(floor);
+    for (int j = 0; j < N; ++j) {
+      const S fused = parameters_.fused_sigma[j], nominal = parameters_.nominal_sigma[j];
+      moving_sigma_[j] = fused > S(0) ? fused : (nominal > S(0) ? nominal : floor[j]);
+    }
+  }
+
   void start(const Sample& sample) noexcept {
     started_ = true;
     frozen_joints_.reset(joint_reading(sample));
-    stuck_pads_.reset(sample.pressure);
+    stuck_pads_.reset(off_rail(sample.pressure));
     acceleration_.reset(sample.dq);
     Eigen::Matrix<S, P, 1> p = sample.pressure;
     for (int k = 0; k < P; ++k)
       if (!std::isfinite(p[k])) p[k] = S(0);
     skin_.reset(sample.t, p);
+    skin_.set_ignored(0);
     tracker_.reset();
+    held_residual_.setZero();
     compensator_.reset(
         compensator_input<S, N>(sample.q, sample.dq, Vector::Zero().eval(), Vector::Zero().eval()));
   }
@@ -213,6 +277,7 @@ class Estimator {
   }
 
   NominalModel<S, N> nominal_;
+  NominalLinks<S, N> links_;  ///< nominal_ in link form for the per-cycle dynamics
   Data<S, N> data_;
   EstimatorParameters<S, N> parameters_;
   Skin<S, P> skin_;
@@ -222,6 +287,9 @@ class Estimator {
   RepeatedReadingDetector<S, P> stuck_pads_;
   Compensator compensator_;
   Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
+  Vector held_residual_ = Vector::Zero();  ///< last torque-only estimate (StopPolicy)
+  Vector static_sigma_ = Vector::Zero();
+  Vector moving_sigma_ = Vector::Zero();
   Output output_;
   bool started_ = false;
 };

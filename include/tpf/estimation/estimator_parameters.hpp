@@ -19,6 +19,11 @@ struct EstimatorParameters {
   /// A reading repeated exactly for more samples than this is flagged frozen (joints) or stuck
   /// (pads); 200 = 0.5 s at 400 Hz. 0 disables (e.g. for noise-free simulated data).
   int frozen_limit_samples = 200;
+  /// A pad pressure repeated exactly for more than this many samples is stuck (40 = 0.1 s at
+  /// 400 Hz): a live pad's noise (≈ 3 ADC steps) repeats 40 times with probability < 1e-30, and
+  /// the sooner a stuck pad is found the shorter the phantom contact it causes. Readings on the
+  /// sensor's rails (0, skin.full_scale_kpa) do not count: saturation is a hard push. 0 disables.
+  int stuck_pad_limit_samples = 40;
 
   StaticFrictionSettings<S> static_friction;
   SkinSettings<S> skin;

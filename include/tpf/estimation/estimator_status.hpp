@@ -27,9 +27,14 @@ enum EstimatorStatus : std::uint32_t {
   /// A joint's q, q̇ and effort have all repeated bit for bit for more than frozen_limit_samples
   /// samples while t advanced: a frozen sensor or a stalled bus. Processed as given; distrust it.
   kStatusFrozenInput = 1u << 7,
-  /// A pad's pressure has repeated bit for bit for more than frozen_limit_samples samples (stuck
-  /// or saturated): its contact flag may be stale. Clears as soon as the reading changes.
+  /// A pad's pressure has repeated bit for bit for more than stuck_pad_limit_samples samples
+  /// (stuck or saturated). Clears as soon as the reading changes; the pad stays ignored
+  /// (kStatusPadIgnored) until its detector has released.
   kStatusPadStuck = 1u << 8,
+  /// A pad is disbelieved (Skin::set_ignored): it was found stuck and has not yet been seen
+  /// live and released since. Its contact reaches neither the state machine nor the wrench; a
+  /// static-friction baseline its phantom onset froze is re-taken at the remaining contacts' onset.
+  kStatusPadIgnored = 1u << 9,
 };
 
 }  // namespace tpf

@@ -52,7 +52,9 @@ struct EstimatorOutput {
   JointVector<S, N> static_friction = JointVector<S, N>::Zero();  ///< τ̂_fric,s (0 when moving)
   JointVector<S, N> compensation = JointVector<S, N>::Zero();     ///< τ_TCN
   std::array<ExternalTorque<S, N>, kTorqueEstimatorCount> estimates{};  ///< by TorqueEstimator
-  /// The estimate the wrench uses: StaticModelFree where valid, Fused elsewhere.
+  /// The estimator's answer (fusion of both senses): with exactly one pad in contact, the torque
+  /// of the fused contact force, J_vᵀ·wrench.force_world (no dead band: the pad gates it);
+  /// otherwise StaticModelFree where valid and Fused elsewhere, each after its dead band.
   ExternalTorque<S, N> external;
   ContactForce<S> wrench;  ///< at the most loaded pad in contact (pad = −1: none)
 

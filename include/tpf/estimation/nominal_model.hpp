@@ -17,7 +17,9 @@
 #include "tpf/dynamics/base_parameters.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/dynamics/rnea.hpp"
+#include "tpf/estimation/link_parameters.hpp"
 #include "tpf/friction/stribeck.hpp"
+#include "tpf/kinematics/forward_kinematics.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/model.hpp"
 
@@ -109,18 +111,78 @@ JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
   return tau;
 }
 
+/// The nominal model in link form for the per-cycle path (computed once at start-up):
+///   rigid = the identified base values scattered onto their regressor columns (zero elsewhere),
+///           a standard parameter vector π with Y·π = Y_b·π_b for every motion (Y_b is made of
+///           columns of Y), evaluated by link_parameter_torque;
+///   load  = the inertias of nominal.model, whose |G(q)| drives the load-dependent friction.
+template <typename S, int N>
+struct NominalLinks {
+  LinkParameters<S, N> rigid;
+  LinkParameters<S, N> load;
+  bool load_dependent = false;  ///< some α_c or α_v ≠ 0: G(q) of `load` is needed
+};
+
+/// NominalLinks of `nominal` (see there). Allocation-free; columns outside 0..13N−1 are ignored.
+template <typename S, int N>
+NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
+  DynamicParameters<S, N> pi = DynamicParameters<S, N>::Zero();
+  for (int i = 0; i < nominal.base_count; ++i) {
+    const int c = nominal.base_columns[i];
+    if (c >= 0 && c < regressor_columns<N>) pi[c] += nominal.base_values[i];
+  }
+  NominalLinks<S, N> links;
+  links.rigid = link_parameters<S, N>(pi);
+  links.load = link_parameters<S, N>(dynamic_parameters(
+      nominal.model, JointVector<S, N>::Zero().eval(), JointVector<S, N>::Zero().eval()));
+  links.load_dependent = (nominal.friction.load_coulomb.array() != S(0)).any() ||
+                         (nominal.friction.load_viscous.array() != S(0)).any();
+  return links;
+}
+
 /// Predicted effort in the log's effort unit, split in two:
 ///   rigid    = diag(effort_per_newton_metre)·Y_b(q,q̇,q̈)·π_b + added(q,q̇,q̈)
 ///              (rigid body incl. armature, plus ripple, spring and coupling when added),
 ///   friction = [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇) + (b + α_v|G|)·q̇,
 ///              G = G(q) of nominal.model [N·m], sgn(0) = 0: at rest the friction is not
 ///              predicted (it is whatever the drive settled at; the estimator's FSM handles it).
-/// Allocation-free (the regressor lives on the stack), no exceptions.
+/// The per-cycle form: one forward kinematics (left in data.liMi / data.oMi at q), Y_b·π_b by
+/// Newton–Euler on the link form `links` = nominal_links(nominal) (equal to the regressor form to
+/// rounding), and G(q) by a gravity-only pass when the friction is load dependent.
+/// Allocation-free, no exceptions.
+template <typename S, int N>
+void predict_effort(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
+                    Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
+                    const NoDeduce<JointVector<S, N>>& dq, const NoDeduce<JointVector<S, N>>& ddq,
+                    JointVector<S, N>& rigid, JointVector<S, N>& friction) noexcept {
+  forward_kinematics(nominal.model, data, q);
+  rigid = nominal.effort_per_newton_metre.cwiseProduct(
+              link_parameter_torque(nominal.model, links.rigid, data, dq, ddq)) +
+          added_effort(nominal, q, dq, ddq);
+  JointVector<S, N> abs_gravity = JointVector<S, N>::Zero();
+  if (links.load_dependent)
+    abs_gravity = link_parameter_gravity(nominal.model, links.load, data).cwiseAbs();
+  friction = stribeck_friction(nominal.friction, dq, abs_gravity);
+}
+
+/// predict_effort with the link form built on the spot (a few dozen copies): for offline callers
+/// that evaluate a model once; a per-cycle caller keeps nominal_links(nominal) instead.
 template <typename S, int N>
 void predict_effort(const NominalModel<S, N>& nominal, Data<S, N>& data,
                     const NoDeduce<JointVector<S, N>>& q, const NoDeduce<JointVector<S, N>>& dq,
                     const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
                     JointVector<S, N>& friction) {
+  predict_effort(nominal, nominal_links(nominal), data, q, dq, ddq, rigid, friction);
+}
+
+/// The regressor form of predict_effort (the reference the link form is tested against, and the
+/// form identification fits): Y_b·π_b from compute_regressor, G(q) by compute_gravity.
+template <typename S, int N>
+void predict_effort_by_regressor(const NominalModel<S, N>& nominal, Data<S, N>& data,
+                                 const NoDeduce<JointVector<S, N>>& q,
+                                 const NoDeduce<JointVector<S, N>>& dq,
+                                 const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
+                                 JointVector<S, N>& friction) {
   Regressor<S, N> Y;
   rigid = nominal.effort_per_newton_metre.cwiseProduct(
               rigid_body_torque(nominal, data, Y, q, dq, ddq)) +

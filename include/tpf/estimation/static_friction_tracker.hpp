@@ -136,6 +136,19 @@ class StaticFrictionTracker {
     }
   }
 
+  /// Re-takes the baseline of every joint frozen at a tactile onset from the window before
+  /// `onset` (the earliest onset of the contacts still believed), for when the pad whose onset
+  /// froze it turns out to be stuck: baseline_j = mean of r_j over [onset − lead − window,
+  /// onset − lead) of its static stretch; unchanged where the history does not reach back that far
+  /// (then the remaining contact began first and froze the baseline itself). The outputs follow at
+  /// the next update.
+  void refreeze(S onset) noexcept {
+    const S end = onset - settings_.baseline_lead_s;
+    for (int j = 0; j < N; ++j)
+      if (frozen_ & from_onset_ & (Mask(1) << j))
+        baseline_[j] = window_mean(j, end - settings_.baseline_window_s, end, baseline_[j]);
+  }
+
   ContactState state() const noexcept { return state_; }
   /// τ̂_fric,s: the baseline on static joints, 0 on moving ones (the TCN input), effort unit.
   const Vector& friction_estimate() const noexcept { return friction_; }

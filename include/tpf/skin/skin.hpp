@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -32,11 +33,16 @@ template <typename S>
 struct SkinSettings {
   PadDetectorSettings<S> detector;
   S force_gain = S(1);
+  /// The pressure sensors' range end [kPa] (0–5 psi sensors): a reading there is saturated, a
+  /// hard push, not a stuck sensor.
+  S full_scale_kpa = S(34.474);
 };
 
 /// Pads 0..P−1 (the pad layout file's order; log column p<k> is pad k−1).
 template <typename S, int P>
 class Skin {
+  static_assert(P <= 32, "pad masks are 32 bits wide");
+
  public:
   static constexpr int pads = P;
   using Pressures = Eigen::Matrix<S, P, 1>;
@@ -82,19 +88,40 @@ class Skin {
     return skipped;
   }
 
-  bool in_contact(int k) const noexcept { return detectors_[k].in_contact(); }
+  /// Pads to disbelieve (bit k: pad k), e.g. a pad stuck high: they keep filtering, but
+  /// in_contact, any_contact, onset, earliest_new_onset and most_loaded treat them as untouched.
+  void set_ignored(std::uint32_t mask) noexcept { ignored_ = mask; }
+  std::uint32_t ignored() const noexcept { return ignored_; }
+  bool is_ignored(int k) const noexcept { return ignored_ & (std::uint32_t(1) << k); }
+
+  /// Pad k reports contact and is not ignored.
+  bool in_contact(int k) const noexcept { return !is_ignored(k) && detectors_[k].in_contact(); }
   bool any_contact() const noexcept {
-    for (const auto& d : detectors_)
-      if (d.in_contact()) return true;
+    for (int k = 0; k < P; ++k)
+      if (in_contact(k)) return true;
     return false;
   }
+  /// Number of pads in contact (ignored pads excluded).
+  int contact_count() const noexcept {
+    int n = 0;
+    for (int k = 0; k < P; ++k)
+      n += in_contact(k) ? 1 : 0;
+    return n;
+  }
   /// True when pad k switched on at the last update.
-  bool onset(int k) const noexcept { return detectors_[k].changed() && detectors_[k].in_contact(); }
+  bool onset(int k) const noexcept { return detectors_[k].changed() && in_contact(k); }
   /// The earliest onset time among pads that switched on at the last update; +inf if none did.
   S earliest_new_onset() const noexcept {
     S t = std::numeric_limits<S>::infinity();
     for (int k = 0; k < P; ++k)
       if (onset(k) && detectors_[k].onset_time() < t) t = detectors_[k].onset_time();
+    return t;
+  }
+  /// The earliest onset time among pads in contact (ignored pads excluded); +inf if none is.
+  S earliest_onset() const noexcept {
+    S t = std::numeric_limits<S>::infinity();
+    for (int k = 0; k < P; ++k)
+      if (in_contact(k) && detectors_[k].onset_time() < t) t = detectors_[k].onset_time();
     return t;
   }
   /// The pad in contact with the largest load, or −1 when none is.
@@ -118,6 +145,7 @@ class Skin {
   SkinSettings<S> settings_;
   std::array<PadGeometry<S>, P> geometry_{};
   std::array<PadContactDetector<S>, P> detectors_{};
+  std::uint32_t ignored_ = 0;
 };
 
 /// Contact point p = oMi[link]·c [m] of a pad, world frame. Needs forward_kinematics first.

@@ -1,11 +1,14 @@
 #include "offline/diagnose/diagnose.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 
+#include "offline/identify/identification_setup.hpp"
 #include "offline/signal/acceleration.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -67,14 +70,11 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     if (options.progress) options.progress(line);
   };
   Diagnosis<N> out;
-  out.samples = extract_joint_samples(log, options.samples);
+  IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
+  out.samples = std::move(setup.samples);
   const JointSamples& s = out.samples;
-  if (s.joints() != N)
-    throw Error::at(log.source, 0, "",
-                    "the log has " + std::to_string(s.joints()) + " joints, the robot file " +
-                        std::to_string(N));
-  const JointVector<double, N> scale = effort_scale<N>(model, s.effort_unit);
-  const BaseParameters base = rigid_body_base_parameters(model);
+  const JointVector<double, N>& scale = setup.effort_scale;
+  const BaseParameters& base = setup.base;
   const double threshold = options.samples.regimes.static_velocity;
   FitSelection selection;  // fit on moving samples: friction at rest has memory
   selection.regimes = {false, true, true};
@@ -82,7 +82,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   // 1. The declared model alone.
   say("diagnose: pass 1/4: declared model");
   const EffectDesign<N> declared(model, base, scale, s, {}, threshold);
-  const DesignGrams grams0 = declared.accumulate(s);
+  // A first fit for the candidates' inputs (weights, ripple periods, prediction rate): every
+  // 4th sample is plenty; selection and the before/after table use every sample (pass 3).
+  const DesignGrams grams0 = declared.accumulate(s, 4);
   Eigen::VectorXd theta0 = fit_columns(grams0, declared.declared_columns(), selection);
   Eigen::VectorXd weights(N);
   for (int j = 0; j < N; ++j) {
@@ -96,22 +98,23 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
 
   // 2. Residual of the declared model: noise floor, ripple periods, prediction rate.
   say("diagnose: pass 2/4: residual analysis");
-  const Eigen::MatrixXd prediction0 = declared.predict(s, theta0);
   // The delay candidate shifts the rigid-body part (smooth); the friction's own lag at a reversal
   // is friction memory, not a delay of the drive.
   Eigen::VectorXd rigid0 = Eigen::VectorXd::Zero(theta0.size());
   for (const FeatureGroup& g : declared.groups())
-    if (g.key == "rigid")
+    if (g.kind == FeatureKind::Rigid)
       for (int c : g.columns)
         rigid0[c] = theta0[c];
-  const Eigen::MatrixXd rigid_prediction0 = declared.predict(s, rigid0);
-  out.residual_before = s.effort - prediction0;
+  const std::vector<Eigen::MatrixXd> predictions0 = declared.predict_each(s, {theta0, rigid0});
+  const Eigen::MatrixXd& rigid_prediction0 = predictions0[1];
+  const Eigen::MatrixXd residual0 = s.effort - predictions0[0];  // declared, fitted on motion
   out.noise_floor.resize(N);
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles.resize(N);
   inputs.ripple_motor_cycles.resize(N);
   inputs.prediction_rate.resize(s.size(), N);
+  inputs.abs_gravity = gravity_load(model, s);
   inputs.reference_temperature =
       s.temperature.cols() == N
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -133,7 +136,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     Eigen::VectorXd q(m), r(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       q[i] = s.q(moving[i * stride], j);
-      r[i] = out.residual_before(moving[i * stride], j);
+      r[i] = residual0(moving[i * stride], j);
     }
     inputs.ripple_cycles[j] = m > 100 ? dominant_cycles(q, r, 3, 64, 1.0) : 0.0;
     inputs.ripple_motor_cycles[j] =
@@ -150,8 +153,22 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
   std::vector<int> columns = design.declared_columns();
+  // The friction held at rest (last direction of motion × level, and × |G| once load-dependent
+  // friction is selected) is fitted on the static training samples on top of the model fitted
+  // on motion, which it leaves unchanged.
+  FitSelection at_rest = selection;
+  at_rest.regimes = {true, false, false};
+  auto with_held_friction = [&](const Eigen::VectorXd& moving_theta, const std::vector<int>& used) {
+    std::vector<int> held;
+    for (const FeatureGroup& g : design.groups())
+      if ((g.kind == FeatureKind::Friction || g.kind == FeatureKind::LoadFriction) &&
+          std::find(used.begin(), used.end(), g.columns[2]) != used.end())
+        held.push_back(g.columns[2]);
+    return refit_columns(grams, held, moving_theta, at_rest);
+  };
   Eigen::VectorXd theta = fit_columns(grams, columns, selection);
-  out.before = heldout_table(grams, theta);
+  const Eigen::VectorXd theta_before = with_held_friction(theta, columns);
+  out.before = heldout_table(grams, theta_before);
   std::vector<bool> used(out.groups.size(), false);
   for (int round = 1; round <= options.max_effects; ++round) {
     int best = -1;
@@ -186,17 +203,33 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     columns.insert(columns.end(), out.groups[best].columns.begin(), out.groups[best].columns.end());
     theta = fit_columns(grams, columns, selection);
   }
+  theta = with_held_friction(theta, columns);
   out.after = heldout_table(grams, theta);
 
   // 4. Residual after, the effect terms, and the extended nominal model.
   say("diagnose: pass 4/4: refit with the selected effects");
-  out.residual_after = s.effort - design.predict(s, theta);
+  // One pass for the declared and the extended model, each selected effect's term and the
+  // non-friction part.
+  std::vector<Eigen::VectorXd> thetas{theta, theta_before};
   for (int g : out.selected) {
     Eigen::VectorXd part = Eigen::VectorXd::Zero(design.features());
     for (int c : out.groups[g].columns)
       part[c] = theta[c];
-    out.effect_terms.push_back(design.predict(s, part));
+    thetas.push_back(part);
   }
+  Eigen::VectorXd non_friction = theta;
+  for (const FeatureGroup& g : out.groups)
+    if (g.kind == FeatureKind::Friction || g.kind == FeatureKind::LoadFriction ||
+        g.kind == FeatureKind::Thermal)
+      for (int c : g.columns)
+        non_friction[c] = 0.0;
+  thetas.push_back(non_friction);
+  std::vector<Eigen::MatrixXd> predictions = design.predict_each(s, thetas);
+  out.residual_after = s.effort - predictions[0];
+  out.residual_before = s.effort - predictions[1];
+  for (std::size_t e = 0; e < out.selected.size(); ++e)
+    out.effect_terms.push_back(std::move(predictions[e + 2]));
+  const Eigen::MatrixXd& rigid_prediction = predictions.back();
 
   NominalModel<double, N>& nominal = out.nominal;
   nominal.model = model;
@@ -205,44 +238,40 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   nominal.base_count = base.size();
   Eigen::VectorXd payload = Eigen::VectorXd::Zero(11 * N);
   StribeckParameters<double, N> linear;
-  Eigen::VectorXd non_friction = theta;
   bool load_selected = false;
   for (const FeatureGroup& g : out.groups) {
     const int j = g.joint;
     auto value = [&](int i) { return theta[g.columns[i]]; };
-    if (g.key == "friction" || g.key == "load_friction" || g.key == "thermal")
-      for (int c : g.columns)
-        non_friction[c] = 0.0;
-    if (g.key == "rigid") {
+    if (g.kind == FeatureKind::Rigid) {
       for (int i = 0; i < base.size(); ++i)
         nominal.base_columns[i] = base.independent[i];
-    } else if (g.key == "friction") {
+    } else if (g.kind == FeatureKind::Friction) {
       linear.coulomb[j] = linear.static_friction[j] = std::max(value(0), 0.0);
       linear.viscous[j] = std::max(value(1), 0.0);
-    } else if (g.key == "payload") {
+    } else if (g.kind == FeatureKind::Payload) {
       for (int i = 0; i < 10; ++i)
         payload[10 * (N - 1) + i] = value(i);
-    } else if (g.key == "load_friction") {
+    } else if (g.kind == FeatureKind::LoadFriction) {
       linear.load_coulomb[j] = std::max(value(0), 0.0);
       linear.load_viscous[j] = std::max(value(1), 0.0);
       load_selected = load_selected || value(0) != 0.0 || value(1) != 0.0;
-    } else if (g.key == "ripple" || g.key == "ripple_motor") {
+    } else if (g.kind == FeatureKind::Ripple || g.kind == FeatureKind::RippleMotor) {
       if (value(0) == 0.0 && value(1) == 0.0) continue;
       RippleTerm<double>& t = nominal.added.ripple[nominal.added.ripple_count++];
       t.joint = j;
-      t.motor_side = g.key == "ripple_motor";
+      t.motor_side = g.kind == FeatureKind::RippleMotor;
       t.cycles_per_rev = t.motor_side ? inputs.ripple_motor_cycles[j] : inputs.ripple_cycles[j];
       t.sin_amplitude = value(0);
       t.cos_amplitude = value(1);
-    } else if (g.key == "thermal") {
+    } else if (g.kind == FeatureKind::Thermal) {
       nominal.added.thermal_viscous[j] = value(0);
       nominal.added.reference_temperature = inputs.reference_temperature;
-    } else if (g.key == "spring") {
+    } else if (g.kind == FeatureKind::Spring) {
       nominal.added.spring_stiffness[j] = value(0);
       nominal.added.spring_offset[j] = value(1);
-    } else if (g.key == "delay") {
+    } else if (g.kind == FeatureKind::Delay) {
       if (value(0) != 0.0) nominal.added.effort_lead_s = value(0);
-    } else if (g.key == "coupling") {
+    } else if (g.kind == FeatureKind::Coupling) {
       int i = 0;
       for (int k = 0; k < N; ++k)
         if (k != j) {
@@ -253,17 +282,59 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   }
   const Eigen::VectorXd payload_base = base.project(payload);
   for (const FeatureGroup& g : out.groups)
-    if (g.key == "rigid")
+    if (g.kind == FeatureKind::Rigid)
       for (int i = 0; i < base.size(); ++i)
         nominal.base_values[i] = theta[g.columns[i]] + payload_base[i];
-  const Eigen::MatrixXd rigid_prediction = design.predict(s, non_friction);
   Eigen::VectorXd sigma(N);
   for (int j = 0; j < N; ++j)
     sigma[j] = 1.0 / std::sqrt(weights[j]);
-  nominal.friction =
-      fit_friction_curves<N>(model, s, rigid_prediction, linear, load_selected, 20000, sigma);
+  nominal.friction = fit_friction_curves<N>(s, rigid_prediction, inputs.abs_gravity, linear,
+                                            load_selected, 20000, sigma);
+
+  // A payload against the robot file's inertias (CAD).
+  {
+    const Eigen::VectorXd cad_values = base.project(
+        dynamic_parameters(model, JointVector<double, N>::Zero(), JointVector<double, N>::Zero())
+            .head(11 * N));
+    Eigen::VectorXd cad = Eigen::VectorXd::Zero(design.features());
+    std::vector<int> friction_columns, payload_columns;
+    for (const FeatureGroup& g : out.groups) {
+      if (g.kind == FeatureKind::Rigid)
+        for (int i = 0; i < base.size(); ++i)
+          cad[g.columns[i]] = cad_values[i];
+      if (g.kind == FeatureKind::Friction)
+        friction_columns.insert(friction_columns.end(), g.columns.begin(), g.columns.begin() + 2);
+      if (g.kind == FeatureKind::Payload) payload_columns = g.columns;
+    }
+    std::vector<int> with_payload = friction_columns;
+    with_payload.insert(with_payload.end(), payload_columns.begin(), payload_columns.end());
+    const Eigen::VectorXd without = refit_columns(grams, friction_columns, cad, selection);
+    const Eigen::VectorXd with = refit_columns(grams, with_payload, cad, selection);
+    const auto [sse0, n] = heldout_sse(heldout_table(grams, without), -1, weights);
+    const auto [sse1, n1] = heldout_sse(heldout_table(grams, with), -1, weights);
+    CadPayloadCheck& c = out.cad_payload;
+    c.improvement = sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
+    c.bic_change = n * std::log(std::max(sse1, 1e-300) / std::max(sse0, 1e-300)) +
+                   10.0 * std::log(std::max(n, 2.0));
+    c.mass = with[payload_columns[0]];
+    if (c.mass > 0)
+      c.centre = Vector3<double>(with[payload_columns[1]], with[payload_columns[2]],
+                                 with[payload_columns[3]]) /
+                 c.mass;
+    c.claimed = c.improvement >= options.min_improvement && c.bic_change < 0 && c.mass > 0;
+  }
 
   // Findings in plain words.
+  if (out.cad_payload.claimed)
+    out.findings.push_back(
+        format("Against the robot file's inertias: a payload of %.3g kg on the last link",
+               out.cad_payload.mass) +
+        format(" at (%.3f, %.3f, %.3f) m in its frame", out.cad_payload.centre.x(),
+               out.cad_payload.centre.y(), out.cad_payload.centre.z()) +
+        format(" — removes %.1f %% of the held-out residual sum of squares of the CAD model "
+               "(absorbed by the identified rigid body, so not a missing effect of the "
+               "identified model).",
+               100 * out.cad_payload.improvement));
   if (out.selected.empty())
     out.findings.push_back(
         "No candidate effect lowers the held-out residual enough to be claimed (threshold " +

@@ -34,6 +34,18 @@ struct CandidateTrial {
   bool selected = false;
 };
 
+/// A payload judged against the robot file's inertias (CAD): the rigid body is held at the robot
+/// file's base parameters and friction refitted with and without the 10 inertial parameters of a
+/// body on the last link. Only meaningful when the robot file's inertias are right; an
+/// identified rigid body absorbs a payload (it is then not a missing effect).
+struct CadPayloadCheck {
+  bool claimed = false;      ///< improvement ≥ min_improvement, BIC falls and mass > 0
+  double improvement = 0.0;  ///< fraction of the held-out moving SSE removed (all joints)
+  double bic_change = 0.0;
+  double mass = 0.0;                                 ///< kg
+  Vector3<double> centre = Vector3<double>::Zero();  ///< m, last link's frame
+};
+
 template <int N>
 struct Diagnosis {
   JointSamples samples;
@@ -46,7 +58,8 @@ struct Diagnosis {
   std::vector<Eigen::MatrixXd> effect_terms;        ///< per selected group: its fitted effort term
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
   std::vector<std::string> notes;     ///< skipped candidates and why
-  NominalModel<double, N> nominal;    ///< the declared model plus the selected effects
+  CadPayloadCheck cad_payload;
+  NominalModel<double, N> nominal;  ///< the declared model plus the selected effects
 };
 
 /// Runs the diagnosis of `log` for the arm of `model` (robot file). Never hands ground truth

@@ -65,6 +65,12 @@ std::string diagnosis_json(const Diagnosis<N>& d) {
                         {"title", d.groups[g].title},
                         {"joint", d.groups[g].joint + 1}});
   j["selected"] = selected;
+  const CadPayloadCheck& c = d.cad_payload;
+  j["payload_against_robot_file"] = {{"claimed", c.claimed},
+                                     {"heldout_improvement_percent", 100 * c.improvement},
+                                     {"bic_change", c.bic_change},
+                                     {"mass_kg", c.mass},
+                                     {"centre_m", {c.centre.x(), c.centre.y(), c.centre.z()}}};
   j["findings"] = d.findings;
   j["notes"] = d.notes;
   // NaN is not JSON: write null.

@@ -18,13 +18,14 @@ Eigen::MatrixXd combined_external(const EstimatorTrace& tr) {
   return fixed.array().isFinite().select(fixed, fused);
 }
 
-/// τ̂_ext [N·m] of each modality per row (T × N).
+/// τ̂_ext [N·m] of each modality per row (T × N): tactile J_vᵀ(−F_n·n), the proprioceptive
+/// estimate, and the estimator's fused answer (EstimatorOutput::external).
 std::array<Eigen::MatrixXd, kModalityCount> external_torques(const EstimatorTrace& tr,
                                                              const Vec& scale) {
   const Eigen::MatrixXd to_nm = -scale.cwiseInverse().asDiagonal().toDenseMatrix();
   return {tr.torque_tactile,
           tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)] * to_nm,
-          combined_external(tr) * to_nm};
+          tr.external * to_nm};
 }
 
 /// Per row: does the modality say "contact"?

@@ -14,8 +14,23 @@
 
 namespace tpf::offline {
 
+/// The physical family a group of columns belongs to (FeatureGroup::key spells it out).
+enum class FeatureKind {
+  Rigid,
+  Friction,
+  Payload,
+  LoadFriction,
+  Ripple,
+  RippleMotor,
+  Thermal,
+  Spring,
+  Delay,
+  Coupling
+};
+
 /// One named family of columns. Per-joint families act on that joint's effort only.
 struct FeatureGroup {
+  FeatureKind kind = FeatureKind::Rigid;
   std::string key;    ///< rigid, friction, load_friction, ripple, ripple_motor, payload, thermal,
                       ///< spring, delay, coupling
   std::string title;  ///< e.g. "load-dependent friction, joint 2"
@@ -31,6 +46,7 @@ struct CandidateInputs {
   Eigen::VectorXd ripple_cycles;        ///< per joint: periods per output revolution, 0 = none
   Eigen::VectorXd ripple_motor_cycles;  ///< per joint: periods per motor revolution, 0 = none
   Eigen::MatrixXd prediction_rate;  ///< d(declared prediction)/dt per sample and joint, or empty
+  Eigen::MatrixXd abs_gravity;      ///< |G_j(q)| per sample and joint [N·m] (gravity_load)
   double reference_temperature = 25.0;  ///< °C
 };
 
@@ -56,16 +72,21 @@ class EffectDesign {
   /// Columns of the declared model.
   std::vector<int> declared_columns() const;
 
-  /// One pass over the samples (two threads): the Gram matrices per joint, regime and split.
-  DesignGrams accumulate(const JointSamples& samples) const;
+  /// One pass over the samples (two threads): the Gram matrices per joint, regime and split,
+  /// of every `stride`-th sample (1 = all; a first, rough fit can afford fewer).
+  DesignGrams accumulate(const JointSamples& samples, int stride = 1) const;
   /// Prediction φᵀθ per sample and joint (NaN where the sample is invalid).
   Eigen::MatrixXd predict(const JointSamples& samples, const Eigen::VectorXd& theta) const;
+  /// φᵀθ_i for several parameter vectors in one pass over the samples (one regressor per sample).
+  std::vector<Eigen::MatrixXd> predict_each(const JointSamples& samples,
+                                            const std::vector<Eigen::VectorXd>& thetas) const;
 
  private:
   struct Workspace;
   /// Fills the local features of every joint row of sample k into `local` (N × max local size).
   void fill(const JointSamples& samples, Eigen::Index k, Workspace& ws) const;
-  void add_group(FeatureGroup group, int count);
+  void add_group(FeatureKind kind, std::string key, std::string title, int joint,
+                 std::vector<std::string> column_names);
 
   Model<double, N> model_;
   std::vector<int> base_columns_;
@@ -75,7 +96,8 @@ class EffectDesign {
   bool has_temperature_;
   int features_ = 0;
   std::vector<FeatureGroup> groups_;
-  std::vector<std::vector<int>> local_;  ///< per joint: local index → global feature
+  std::vector<std::vector<int>> local_;         ///< per joint: local index → global feature
+  std::vector<std::vector<int>> joint_groups_;  ///< per joint: the groups acting on it, in order
   int max_local_ = 0;
 };
 

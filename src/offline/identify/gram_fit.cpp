@@ -19,12 +19,29 @@ DesignGrams& DesignGrams::operator+=(const DesignGrams& other) {
   return *this;
 }
 
-Eigen::VectorXd fit_columns(const DesignGrams& grams, const std::vector<int>& columns,
-                            const FitSelection& selection) {
+namespace {
+
+// Solves the equilibrated normal equations A x = b (complete orthogonal decomposition; a column
+// that never appears, zero diagonal, stays zero).
+Eigen::VectorXd solve_normal_equations(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+  const Eigen::Index m = A.rows();
+  Eigen::VectorXd d(m);
+  for (Eigen::Index a = 0; a < m; ++a)
+    d[a] = A(a, a) > 0 ? 1.0 / std::sqrt(A(a, a)) : 0.0;
+  const Eigen::MatrixXd As = d.asDiagonal() * A * d.asDiagonal();
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(As);
+  cod.setThreshold(1e-11);
+  return d.asDiagonal() * cod.solve(Eigen::VectorXd(d.asDiagonal() * b));
+}
+
+// Σ_j w_j Σ_r G over the selected training rows: A = Σφ_cφ_cᵀ, b = Σφ_c(y − φᵀθ_fixed).
+void normal_equations(const DesignGrams& grams, const std::vector<int>& columns,
+                      const Eigen::VectorXd* fixed, const FitSelection& selection,
+                      Eigen::MatrixXd& A, Eigen::VectorXd& b) {
   const int p = grams.features;
   const int m = static_cast<int>(columns.size());
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, m);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
+  A = Eigen::MatrixXd::Zero(m, m);
+  b = Eigen::VectorXd::Zero(m);
   for (int j = 0; j < grams.joints; ++j) {
     const double w = selection.joint_weights.size() ? selection.joint_weights[j] : 1.0;
     for (int r = 0; r < DesignGrams::kRegimes; ++r) {
@@ -32,23 +49,40 @@ Eigen::VectorXd fit_columns(const DesignGrams& grams, const std::vector<int>& co
       const Eigen::MatrixXd& g = grams.at(j, r, 0);
       for (int a = 0; a < m; ++a) {
         b[a] += w * g(columns[a], p);
+        if (fixed) b[a] -= w * g.row(columns[a]).head(p).dot(*fixed);
         for (int c = 0; c < m; ++c)
           A(a, c) += w * g(columns[a], columns[c]);
       }
     }
   }
-  // Equilibrate: a column that never appears (zero diagonal) stays zero.
-  Eigen::VectorXd d(m);
-  for (int a = 0; a < m; ++a)
-    d[a] = A(a, a) > 0 ? 1.0 / std::sqrt(A(a, a)) : 0.0;
-  const Eigen::MatrixXd As = d.asDiagonal() * A * d.asDiagonal();
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(As);
-  cod.setThreshold(1e-11);
-  const Eigen::VectorXd xs = cod.solve(Eigen::VectorXd(d.asDiagonal() * b));
-  Eigen::VectorXd theta = Eigen::VectorXd::Zero(p);
-  for (int a = 0; a < m; ++a)
-    theta[columns[a]] = d[a] * xs[a];
+}
+
+}  // namespace
+
+Eigen::VectorXd fit_columns(const DesignGrams& grams, const std::vector<int>& columns,
+                            const FitSelection& selection) {
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+  normal_equations(grams, columns, nullptr, selection, A, b);
+  const Eigen::VectorXd x = solve_normal_equations(A, b);
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(grams.features);
+  for (std::size_t a = 0; a < columns.size(); ++a)
+    theta[columns[a]] = x[static_cast<Eigen::Index>(a)];
   return theta;
+}
+
+Eigen::VectorXd refit_columns(const DesignGrams& grams, const std::vector<int>& columns,
+                              const Eigen::VectorXd& theta, const FitSelection& selection) {
+  Eigen::VectorXd fixed = theta;
+  for (int c : columns)
+    fixed[c] = 0.0;
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+  normal_equations(grams, columns, &fixed, selection, A, b);
+  const Eigen::VectorXd x = solve_normal_equations(A, b);
+  for (std::size_t a = 0; a < columns.size(); ++a)
+    fixed[columns[a]] = x[static_cast<Eigen::Index>(a)];
+  return fixed;
 }
 
 ResidualSums residual_sums(const DesignGrams& grams, const Eigen::VectorXd& theta, int joint,

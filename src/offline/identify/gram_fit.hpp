@@ -43,6 +43,13 @@ struct FitSelection {
 Eigen::VectorXd fit_columns(const DesignGrams& grams, const std::vector<int>& columns,
                             const FitSelection& selection);
 
+/// θ with `columns` refitted on the residual y − φᵀθ of the selected rows while every other
+/// column keeps its value in `theta`: minimises Σ_j w_j Σ (y − φᵀθ_fixed − φ_cᵀθ_c)² over θ_c
+/// (same equilibrated, rank-safe solve as fit_columns). Used to fit the friction held at rest
+/// on static samples without moving the model fitted on motion.
+Eigen::VectorXd refit_columns(const DesignGrams& grams, const std::vector<int>& columns,
+                              const Eigen::VectorXd& theta, const FitSelection& selection);
+
 /// Residual sums of θ on one joint, regime and split.
 struct ResidualSums {
   double count = 0, sum = 0, sum_squares = 0;

@@ -3,10 +3,11 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <random>
-#include <thread>
 
 #include "offline/identify/effect_design.hpp"
 #include "offline/identify/gram_fit.hpp"
+#include "offline/identify/identification_setup.hpp"
+#include "offline/identify/parallel_halves.hpp"
 #include "offline/identify/stribeck_fit.hpp"
 #include "tpf/common/error.hpp"
 
@@ -44,9 +45,7 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const J
       residual.row(k) = s.effort.row(k) - (rigid + friction).transpose();
     }
   };
-  std::thread helper([&] { work(n / 2, n); });
-  work(0, n / 2);
-  helper.join();
+  parallel_halves(n, work);
   return residual;
 }
 
@@ -96,21 +95,20 @@ ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
 }
 
 template <int N>
-StribeckParameters<double, N> fit_friction_curves(const Model<double, N>& model,
-                                                  const JointSamples& s,
+StribeckParameters<double, N> fit_friction_curves(const JointSamples& s,
                                                   const Eigen::MatrixXd& rigid_prediction,
+                                                  const Eigen::MatrixXd& abs_gravity,
                                                   const StribeckParameters<double, N>& linear,
                                                   bool fit_load, int samples_per_joint,
                                                   const Eigen::VectorXd& robust_scale) {
   StribeckParameters<double, N> out = linear;
-  Data<double, N> data;
-  for (int j = 0; j < N; ++j) {
+  auto fit_joint = [&](int j) {
     std::vector<Eigen::Index> rows;
     for (Eigen::Index k = 0; k < s.size(); ++k)
       if (s.valid[k] && !s.heldout[k] && s.regimes[j][k] != Regime::Static &&
           s.regimes[j][k] != Regime::Invalid)
         rows.push_back(k);
-    if (rows.size() < 50) continue;  // too little motion: keep the linear values
+    if (rows.size() < 50) return;  // too little motion: keep the linear values
     const std::size_t stride =
         std::max<std::size_t>(1, rows.size() / static_cast<std::size_t>(samples_per_joint));
     const Eigen::Index m = static_cast<Eigen::Index>((rows.size() + stride - 1) / stride);
@@ -118,7 +116,7 @@ StribeckParameters<double, N> fit_friction_curves(const Model<double, N>& model,
     for (Eigen::Index i = 0; i < m; ++i) {
       const Eigen::Index k = rows[static_cast<std::size_t>(i) * stride];
       dq[i] = s.dq(k, j);
-      abs_g[i] = std::abs(compute_gravity(model, data, s.q.row(k).transpose())[j]);
+      abs_g[i] = abs_gravity(k, j);
       target[i] = s.effort(k, j) - rigid_prediction(k, j);
     }
     JointStribeck start;
@@ -134,7 +132,12 @@ StribeckParameters<double, N> fit_friction_curves(const Model<double, N>& model,
     out.viscous[j] = fit.viscous;
     out.load_coulomb[j] = fit.load_coulomb;
     out.load_viscous[j] = fit.load_viscous;
-  }
+  };
+  // Joints are independent problems: half of them on a helper thread (same result as serial).
+  parallel_halves(N, [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index j = begin; j < end; ++j)
+      fit_joint(static_cast<int>(j));
+  });
   return out;
 }
 
@@ -145,25 +148,22 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     if (options.progress) options.progress(line);
   };
   Identification<N> out;
-  out.samples = extract_joint_samples(log, options.samples);
+  IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
+  out.samples = std::move(setup.samples);
   const JointSamples& s = out.samples;
-  if (s.joints() != N)
-    throw Error::at(log.source, 0, "",
-                    "the log has " + std::to_string(s.joints()) + " joints, the robot file " +
-                        std::to_string(N));
-  const JointVector<double, N> scale = effort_scale<N>(model, s.effort_unit);
-  const BaseParameters base = rigid_body_base_parameters(model);
+  const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
-  const EffectDesign<N> design(model, base, scale, s, {}, options.samples.regimes.static_velocity);
+  const EffectDesign<N> design(model, base, setup.effort_scale, s, {},
+                               options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);
   FitSelection selection;
   selection.regimes = {false, true, true};  // moving samples only
   std::vector<int> columns;
   for (const FeatureGroup& g : design.groups())
-    if (g.key == "rigid")
+    if (g.kind == FeatureKind::Rigid)
       columns.insert(columns.end(), g.columns.begin(), g.columns.end());
-    else if (g.key == "friction")
+    else if (g.kind == FeatureKind::Friction)
       columns.insert(columns.end(), g.columns.begin(), g.columns.begin() + 2);
   Eigen::VectorXd theta = fit_columns(grams, columns, selection);
   out.joint_weights.resize(N);
@@ -181,31 +181,43 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   NominalModel<double, N>& nominal = out.nominal;
   nominal.model = model;
   nominal.effort_unit = s.effort_unit;
-  nominal.effort_per_newton_metre = scale;
+  nominal.effort_per_newton_metre = setup.effort_scale;
   nominal.base_count = base.size();
   Eigen::VectorXd rigid_theta = Eigen::VectorXd::Zero(design.features());
   StribeckParameters<double, N> linear;
   for (const FeatureGroup& g : design.groups()) {
-    if (g.key == "rigid") {
+    if (g.kind == FeatureKind::Rigid) {
       for (int i = 0; i < base.size(); ++i) {
         nominal.base_columns[i] = base.independent[i];
         nominal.base_values[i] = theta[g.columns[i]];
         rigid_theta[g.columns[i]] = theta[g.columns[i]];
       }
-    } else if (g.key == "friction") {
+    } else if (g.kind == FeatureKind::Friction) {
       linear.coulomb[g.joint] = theta[g.columns[0]];
       linear.static_friction[g.joint] = theta[g.columns[0]];
       linear.viscous[g.joint] = theta[g.columns[1]];
     }
   }
 
-  say("identify: pass 2/3: friction curves (Ceres)");
+  say("identify: pass 2/3: rigid-body prediction, friction curves (Ceres)");
   const Eigen::MatrixXd rigid = design.predict(s, rigid_theta);
-  nominal.friction = fit_friction_curves<N>(model, s, rigid, linear, options.fit_load_friction,
+  const Eigen::MatrixXd load = gravity_load(model, s);
+  nominal.friction = fit_friction_curves<N>(s, rigid, load, linear, options.fit_load_friction,
                                             options.friction_samples_per_joint, sigma);
 
   say("identify: pass 3/3: validation on held-out blocks");
-  out.residual = nominal_residual(nominal, s);
+  // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has
+  // no added effects), without a third regressor pass.
+  out.residual.resize(s.size(), N);
+  for (Eigen::Index k = 0; k < s.size(); ++k) {
+    if (!s.valid[k]) {
+      out.residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    const JointVector<double, N> dq = s.dq.row(k).transpose(), abs_g = load.row(k).transpose();
+    const JointVector<double, N> friction = stribeck_friction(nominal.friction, dq, abs_g);
+    out.residual.row(k) = s.effort.row(k) - rigid.row(k) - friction.transpose();
+  }
   out.heldout = split_regime_stats(s, out.residual, true);
   out.training = split_regime_stats(s, out.residual, false);
   out.consistency = check_consistency(nominal);
@@ -224,7 +236,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,    \
                                                const JointSamples&);              \
   template StribeckParameters<double, N> fit_friction_curves<N>(                  \
-      const Model<double, N>&, const JointSamples&, const Eigen::MatrixXd&,       \
+      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,        \
       const StribeckParameters<double, N>&, bool, int, const Eigen::VectorXd&);
 TPF_INSTANTIATE_IDENTIFY(1)
 TPF_INSTANTIATE_IDENTIFY(2)

@@ -68,12 +68,13 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal,
 std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
                                             const Eigen::MatrixXd& residual, bool heldout);
 
-/// Fits the Stribeck + load curve of every joint (Ceres) on the friction target
-/// effort − rigid_prediction of the moving training samples; `linear` gives the start values.
+/// Fits the Stribeck + load curve of every joint (Ceres; joints on two threads, deterministic)
+/// on the friction target effort − rigid_prediction of the moving training samples, with the
+/// load |G_j(q)| of `abs_gravity` (gravity_load); `linear` gives the start values.
 template <int N>
-StribeckParameters<double, N> fit_friction_curves(const Model<double, N>& model,
-                                                  const JointSamples& samples,
+StribeckParameters<double, N> fit_friction_curves(const JointSamples& samples,
                                                   const Eigen::MatrixXd& rigid_prediction,
+                                                  const Eigen::MatrixXd& abs_gravity,
                                                   const StribeckParameters<double, N>& linear,
                                                   bool fit_load, int samples_per_joint,
                                                   const Eigen::VectorXd& robust_scale);

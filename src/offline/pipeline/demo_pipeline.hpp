@@ -27,12 +27,16 @@ struct DemoOptions {
   double test_s = 120.0;
   double contacts_s = 90.0;
   double teaching_s = 60.0;
-  /// Training budget [s] (wall clock; the full `tpf train` default is 270 s).
-  double training_budget_s = 90.0;
-  int training_epochs = 200;  ///< upper bound on epochs (early stopping usually ends sooner)
+  /// Training budget: epochs per network (early stopping may end sooner). An epoch budget, not a
+  /// wall-clock one, so the same seeds give the same weights on every machine.
+  int training_epochs = 100;
+  /// Wall-clock safety net for the whole training [s] (0: none); the report says if it ended
+  /// training, since the weights then depend on the machine's speed.
+  double training_safety_s = 180.0;
   /// One network per joint (the default: measured better than one network for all joints on
   /// held-out twin data, docs/evaluation.md); false: one network for all joints.
   bool per_joint = true;
+  int joint_hidden = kArmJointHidden;  ///< hidden channels of a per-joint network
   /// Cut-off of the trainer's zero-phase low/high split of the target [Hz].
   double split_cutoff_hz = 2.0;
   int threads = 2;

@@ -31,6 +31,7 @@ void check_options(const TcnTrainOptions& o) {
   if (o.batch_windows < 1) fail("options.batch_windows", "must be ≥ 1");
   if (o.threads < 1) fail("options.threads", "must be ≥ 1");
   if (o.max_epochs < 1) fail("options.max_epochs", "must be ≥ 1");
+  if (o.validation_block_windows < 1) fail("options.validation_block_windows", "must be ≥ 1");
   if (!(o.validation_fraction > 0.0 && o.validation_fraction < 1.0)) {
     fail("options.validation_fraction", "must lie in (0, 1)");
   }
@@ -44,8 +45,9 @@ std::vector<std::pair<Eigen::Index, Eigen::Index>> finite_runs(const TcnSequence
   std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;
   Eigen::Index begin = 0;
   for (Eigen::Index r = 0; r <= s.inputs.rows(); ++r) {
-    const bool finite =
-        r < s.inputs.rows() && s.inputs.row(r).allFinite() && s.residual.row(r).allFinite();
+    const bool finite = r < s.inputs.rows() && s.inputs.row(r).allFinite() &&
+                        s.residual.row(r).allFinite() &&
+                        (s.weight.size() == 0 || s.weight.row(r).allFinite());
     if (finite) continue;
     if (r > begin) runs.emplace_back(begin, r);
     begin = r + 1;
@@ -83,6 +85,16 @@ TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options
       fail(name + ".residual", std::to_string(s.residual.rows()) + " rows, inputs have " +
                                    std::to_string(s.inputs.rows()));
     }
+    if (s.weight.size() != 0 &&
+        (s.weight.rows() != s.inputs.rows() || s.weight.cols() != a.outputs)) {
+      fail(name + ".weight", std::to_string(s.weight.rows()) + " × " +
+                                 std::to_string(s.weight.cols()) + ", expected " +
+                                 std::to_string(s.inputs.rows()) + " × " +
+                                 std::to_string(a.outputs) + " or empty");
+    }
+    if (s.weight.size() != 0 && (s.weight.array() < 0.0).any()) {
+      fail(name + ".weight", "a sample weight is negative");
+    }
     Eigen::Index finite_rows = 0;
     for (const auto& [begin, end] : finite_runs(s)) {
       finite_rows += end - begin;
@@ -110,8 +122,11 @@ TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options
     if (!(input_std_[c] > 1e-9 * (1.0 + std::abs(input_mean_[c])))) input_std_[c] = 1.0;
   }
 
-  // Segments (normalised, channels × time), target split, windows.
+  // Segments (normalised, channels × time), target split, windows; windows of a run are
+  // consecutive and grouped into blocks of validation_block_windows for the held-out choice.
   std::vector<Window> windows;
+  std::vector<int> block_of;  // per window
+  int blocks = 0;
   for (const Run& r : runs) {
     Segment<double> seg;
     const Eigen::Index length = r.end - r.begin;
@@ -131,42 +146,81 @@ TcnTrainer::TcnTrainer(const TcnDataset& dataset, const TcnTrainOptions& options
                            .transpose();
     }
     seg.high = r.sequence->residual.middleRows(r.begin, length).transpose() - seg.low;
+    if (r.sequence->weight.size() != 0) {
+      seg.scale = r.sequence->weight.middleRows(r.begin, length).transpose().cwiseSqrt();
+    }
     const int index = static_cast<int>(segments_.size());
+    int in_run = 0;
+    for (Eigen::Index first = field - 1; first < length; first += options_.window_outputs) {
+      const Eigen::Index outputs = std::min<Eigen::Index>(options_.window_outputs, length - first);
+      const double weight = seg.scale.size() == 0
+                                ? static_cast<double>(outputs * a.outputs)
+                                : seg.scale.middleCols(first, outputs).squaredNorm();
+      if (in_run % options_.validation_block_windows == 0) ++blocks;
+      windows.push_back({index, first, outputs, weight});
+      block_of.push_back(blocks - 1);
+      ++in_run;
+    }
     if (options_.single_precision) {
-      float_segments_.push_back(
-          {seg.inputs.cast<float>(), seg.low.cast<float>(), seg.high.cast<float>()});
+      float_segments_.push_back({seg.inputs.cast<float>(), seg.low.cast<float>(),
+                                 seg.high.cast<float>(), seg.scale.cast<float>()});
     }
     segments_.push_back(std::move(seg));
-    for (Eigen::Index first = field - 1; first < length; first += options_.window_outputs) {
-      windows.push_back(
-          {index, first, std::min<Eigen::Index>(options_.window_outputs, length - first)});
-    }
   }
-  if (windows.size() < 2) {
-    fail("dataset", "only " + std::to_string(windows.size()) +
-                        " window(s); at least 2 are needed (one held out)");
+  if (blocks < 2) {
+    fail("dataset", "only " + std::to_string(windows.size()) + " window(s) in " +
+                        std::to_string(blocks) +
+                        " block(s); at least 2 blocks are needed (one held out)");
   }
 
-  // Seeded held-out choice.
+  // Seeded held-out choice of whole blocks.
   std::mt19937_64 rng(options_.seed);
-  std::vector<std::size_t> order(windows.size());
+  std::vector<int> order(static_cast<std::size_t>(blocks));
   std::iota(order.begin(), order.end(), 0);
   std::shuffle(order.begin(), order.end(), rng);
-  const std::size_t held_out = std::clamp<std::size_t>(
-      static_cast<std::size_t>(std::lround(options_.validation_fraction * windows.size())), 1,
-      windows.size() - 1);
-  std::sort(order.begin(), order.begin() + held_out);
-  std::sort(order.begin() + held_out, order.end());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    (i < held_out ? validation_ : training_).push_back(windows[order[i]]);
+  const int held_out = std::clamp<int>(
+      static_cast<int>(std::lround(options_.validation_fraction * blocks)), 1, blocks - 1);
+  std::vector<bool> held(static_cast<std::size_t>(blocks), false);
+  for (int i = 0; i < held_out; ++i)
+    held[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])] = true;
+  for (std::size_t w = 0; w < windows.size(); ++w) {
+    Window window = windows[w];
+    const bool is_held = held[static_cast<std::size_t>(block_of[w])];
+    // The first window after a boundary between the sets: its input history (R − 1 samples
+    // before its first output) would reach into the other set, so its outputs start R − 1 later.
+    const bool after_boundary = w > 0 && windows[w - 1].segment == window.segment &&
+                                held[static_cast<std::size_t>(block_of[w - 1])] != is_held;
+    if (after_boundary) {
+      const Eigen::Index shift = std::min<Eigen::Index>(field - 1, window.outputs);
+      if (shift == window.outputs) continue;
+      const auto& seg = segments_[static_cast<std::size_t>(window.segment)];
+      window.first_output += shift;
+      window.outputs -= shift;
+      window.weight = seg.scale.size() == 0
+                          ? static_cast<double>(window.outputs * a.outputs)
+                          : seg.scale.middleCols(window.first_output, window.outputs).squaredNorm();
+    }
+    (is_held ? validation_ : training_).push_back(window);
+  }
+  if (weight_sum(training_) <= 0.0 || weight_sum(validation_) <= 0.0) {
+    fail("dataset", "the training or the held-out windows have zero total sample weight");
   }
 }
 
-Eigen::Index TcnTrainer::output_count(const std::vector<Window>& windows) const {
-  Eigen::Index n = 0;
+std::vector<TcnTrainer::WindowSpan> TcnTrainer::window_spans(bool validation) const {
+  const Eigen::Index field = options_.architecture.receptive_field();
+  std::vector<WindowSpan> spans;
+  for (const Window& w : validation ? validation_ : training_)
+    spans.push_back(
+        {w.segment, w.first_output - (field - 1), w.first_output, w.first_output + w.outputs});
+  return spans;
+}
+
+double TcnTrainer::weight_sum(const std::vector<Window>& windows) {
+  double n = 0.0;
   for (const Window& w : windows)
-    n += w.outputs;
-  return n * options_.architecture.outputs;
+    n += w.weight;
+  return n;
 }
 
 double TcnTrainer::sum_loss(const TcnParameters& parameters, const std::vector<Window>& windows,
@@ -195,11 +249,14 @@ double TcnTrainer::sum_loss_in(const BasicTcnParameters<S>& parameters,
     for (std::size_t i = begin; i < end; ++i) {
       const Window& w = windows[i];
       const Segment<S>& s = segments[w.segment];
+      // An empty scale (no weights) gives a 0-column view; it is not passed on.
+      const TcnWindowMatrix<S> scale = s.scale.middleCols(std::min(w.first_output, s.scale.cols()),
+                                                          s.scale.size() == 0 ? 0 : w.outputs);
       losses[c] += tcn_window_loss<S>(
           parameters, s.inputs.middleCols(w.first_output - (field - 1), w.outputs + field - 1),
           s.low.middleCols(w.first_output, w.outputs), s.high.middleCols(w.first_output, w.outputs),
           options_.weight_low, options_.weight_high, workspace,
-          gradient != nullptr ? &gradients[c] : nullptr);
+          gradient != nullptr ? &gradients[c] : nullptr, s.scale.size() == 0 ? nullptr : &scale);
     }
   };
   const int threads = std::min(options_.threads, kChunks);
@@ -232,7 +289,7 @@ double TcnTrainer::sum_loss_in(const BasicTcnParameters<S>& parameters,
 
 double TcnTrainer::loss(const TcnParameters& parameters, bool validation) const {
   const std::vector<Window>& windows = validation ? validation_ : training_;
-  return sum_loss(parameters, windows, nullptr) / static_cast<double>(output_count(windows));
+  return sum_loss(parameters, windows, nullptr) / weight_sum(windows);
 }
 
 TcnTrainResult TcnTrainer::train(const TcnProgressCallback& progress) {
@@ -270,7 +327,9 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
       batch.assign(order.begin() + first, order.begin() + last);
       unflatten(Eigen::VectorXd::Zero(theta.size()), gradient);
       epoch_loss += sum_loss(parameters, batch, &gradient);
-      adam.step(theta, flatten(gradient) / static_cast<double>(output_count(batch)));
+      // Normalised by the batch's weight sum (≥ one window's; a zero-weight batch makes no step).
+      const double batch_weight = weight_sum(batch);
+      if (batch_weight > 0.0) adam.step(theta, flatten(gradient) / batch_weight);
       unflatten(theta, parameters);
     }
 
@@ -278,7 +337,7 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
     p.learning_rate = adam.learning_rate();
     p.epoch = epoch;
     p.max_epochs = options_.max_epochs;
-    p.train_loss = epoch_loss / static_cast<double>(output_count(order));
+    p.train_loss = epoch_loss / weight_sum(order);
     p.validation_loss = loss(parameters, true);
     if (p.validation_loss < result.best_validation_loss || result.best_epoch == 0) {
       result.best = parameters;
@@ -304,6 +363,7 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
           std::min(p.remaining_seconds, std::max(0.0, options_.max_seconds - p.elapsed_seconds));
     }
     result.stopped_early = epoch - result.best_epoch >= options_.patience;
+    result.stopped_on_time = out_of_time && !result.stopped_early && epoch < options_.max_epochs;
     p.last = result.stopped_early || out_of_time || epoch == options_.max_epochs;
     if (p.last) p.remaining_seconds = 0.0;
     result.history.push_back(p);

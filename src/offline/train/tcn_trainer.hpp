@@ -22,6 +22,8 @@ struct TcnSequence {
   /// T × Out: the residual of the nominal model τ_meas − (τ_dyn + τ_fric) [N·m], the target of
   /// Tcn::output(). Contact-free data only (there it is the friction truth).
   Eigen::MatrixXd residual;
+  /// T × Out per-sample loss weights ≥ 0 (e.g. to emphasise break-away); empty: all 1.
+  Eigen::MatrixXd weight;
 };
 
 struct TcnDataset {
@@ -34,7 +36,8 @@ struct TcnTrainOptions {
   /// Cut-off of the zero-phase split of the residual r: low = filtfilt of r with a 2nd-order
   /// Butterworth (offline/signal/butterworth.hpp, forward–backward), high = r − low.
   double split_cutoff_hz = 2.0;
-  /// loss = weight_low·MSE(low − target_low) + weight_high·MSE(high − target_high).
+  /// loss = weight_low·MSE(low − target_low) + weight_high·MSE(high − target_high), each MSE
+  /// weighted per sample by TcnSequence::weight (Σ w·e² / Σ w).
   double weight_low = 1.0;
   double weight_high = 1.0;
   /// Supervised steps per window; a window holds R − 1 + window_outputs inputs.
@@ -48,10 +51,16 @@ struct TcnTrainOptions {
   int decay_patience = 4;
   /// Stop when the validation loss has not improved for this many epochs.
   int patience = 15;
-  /// Stop after the epoch that crosses this wall-clock budget [s]; ≤ 0: no budget.
+  /// Stop after the epoch that crosses this wall-clock budget [s]; ≤ 0: no budget. Results then
+  /// depend on the machine's speed: use max_epochs for a reproducible budget and this only as a
+  /// safety net (TcnTrainResult::stopped_on_time says when it triggered).
   double max_seconds = 0.0;
-  /// Share of the windows held out (seeded random choice) for early stopping.
+  /// Share of the windows held out for early stopping: whole blocks of validation_block_windows
+  /// consecutive windows (a seeded choice of blocks), so held-out data is contiguous in time; the
+  /// window after a block boundary starts its inputs at the boundary, so no training window's
+  /// inputs or targets overlap a held-out window's.
   double validation_fraction = 0.15;
+  int validation_block_windows = 8;
   std::uint64_t seed = 1;
   /// Evaluate windows (forward and backward) in float, ≈ 2× faster; the parameters, the Adam
   /// state, the gradient reduction and the reported losses stay in double.
@@ -84,7 +93,8 @@ struct TcnTrainResult {
   std::vector<TcnTrainProgress> history;
   int best_epoch = 0;
   double best_validation_loss = 0.0;
-  bool stopped_early = false;  ///< patience ran out (not max_epochs nor the time budget)
+  bool stopped_early = false;    ///< patience ran out (not max_epochs nor the time budget)
+  bool stopped_on_time = false;  ///< the wall-clock safety net max_seconds ended training
 };
 
 /// Prepares the data once (NaN rows flagged and skipped by cutting the sequence there, target
@@ -112,17 +122,28 @@ class TcnTrainer {
   std::size_t training_windows() const { return training_.size(); }
   std::size_t validation_windows() const { return validation_.size(); }
 
+  /// Where a window lies: samples [first_input, end) of finite run `segment` (runs numbered in
+  /// dataset order), supervising [first_output, end).
+  struct WindowSpan {
+    int segment;
+    Eigen::Index first_input, first_output, end;
+  };
+  /// The spans of the training or the held-out windows.
+  std::vector<WindowSpan> window_spans(bool validation) const;
+
  private:
   template <typename S>
   struct Segment {
     Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic> inputs;  ///< In × T, normalised
     Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic> low;     ///< Out × T
     Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic> high;    ///< Out × T
+    Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic> scale;   ///< Out × T, √weight; empty: 1
   };
   struct Window {
     int segment;
     Eigen::Index first_output;  ///< segment column of the first supervised step
     Eigen::Index outputs;
+    double weight;  ///< Σ of the sample weights of its Out × outputs targets
   };
 
   /// Σ over `windows` of the window loss (and gradient into `gradient` if not null), computed in
@@ -133,7 +154,8 @@ class TcnTrainer {
   double sum_loss_in(const BasicTcnParameters<S>& parameters,
                      const std::vector<Segment<S>>& segments, const std::vector<Window>& windows,
                      TcnParameters* gradient) const;
-  Eigen::Index output_count(const std::vector<Window>& windows) const;
+  /// Σ of the windows' sample weights (the normaliser of the weighted MSE).
+  static double weight_sum(const std::vector<Window>& windows);
 
   static constexpr int kChunks = 4;
 

@@ -53,16 +53,25 @@ template <typename S>
 double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>& inputs,
                        const TcnWindowMatrix<S>& target_low, const TcnWindowMatrix<S>& target_high,
                        double weight_low, double weight_high, BasicTcnWindowWorkspace<S>& ws,
-                       std::type_identity_t<BasicTcnParameters<S>>* gradient) {
+                       std::type_identity_t<BasicTcnParameters<S>>* gradient,
+                       const TcnWindowMatrix<S>* sample_scale) {
   tcn_window_forward(p, inputs, ws);
-  // Residuals become ∂L/∂low and ∂L/∂high in place.
+  // Scaled residuals s⊙(y − target) become ∂L/∂low and ∂L/∂high in place (times 2·w·s).
   ws.low -= target_low;
   ws.high -= target_high;
+  if (sample_scale != nullptr) {
+    ws.low.array() *= sample_scale->array();
+    ws.high.array() *= sample_scale->array();
+  }
   const double loss = weight_low * static_cast<double>(ws.low.squaredNorm()) +
                       weight_high * static_cast<double>(ws.high.squaredNorm());
   if (gradient == nullptr) return loss;
   ws.low *= static_cast<S>(2.0 * weight_low);
   ws.high *= static_cast<S>(2.0 * weight_high);
+  if (sample_scale != nullptr) {
+    ws.low.array() *= sample_scale->array();
+    ws.high.array() *= sample_scale->array();
+  }
 
   const TcnArchitecture& a = p.architecture;
   BasicTcnParameters<S>& g = *gradient;
@@ -115,10 +124,10 @@ template void tcn_window_forward(const BasicTcnParameters<float>&, const TcnWind
 template double tcn_window_loss(const BasicTcnParameters<double>&, const TcnWindowMatrix<double>&,
                                 const TcnWindowMatrix<double>&, const TcnWindowMatrix<double>&,
                                 double, double, BasicTcnWindowWorkspace<double>&,
-                                BasicTcnParameters<double>*);
+                                BasicTcnParameters<double>*, const TcnWindowMatrix<double>*);
 template double tcn_window_loss(const BasicTcnParameters<float>&, const TcnWindowMatrix<float>&,
                                 const TcnWindowMatrix<float>&, const TcnWindowMatrix<float>&,
                                 double, double, BasicTcnWindowWorkspace<float>&,
-                                BasicTcnParameters<float>*);
+                                BasicTcnParameters<float>*, const TcnWindowMatrix<float>*);
 
 }  // namespace tpf::offline

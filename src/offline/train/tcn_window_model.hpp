@@ -42,13 +42,15 @@ void tcn_window_forward(const BasicTcnParameters<S>& parameters, const TcnWindow
                         BasicTcnWindowWorkspace<S>& workspace);
 
 /// Forward pass plus the window loss
-///   L = w_low·Σ (low − target_low)² + w_high·Σ (high − target_high)²   (sums over Out × M),
-/// and, if `gradient` is not null, ∂L/∂θ for every tensor θ added into `*gradient` (same shapes
-/// as `parameters`, by backpropagation through the window). Returns L.
+///   L = w_low·Σ s²⊙(low − target_low)² + w_high·Σ s²⊙(high − target_high)²   (sums over Out × M),
+/// with per-sample weights s² (`sample_scale` = s, Out × M, the square root of the weight; null:
+/// s = 1), and, if `gradient` is not null, ∂L/∂θ for every tensor θ added into `*gradient` (same
+/// shapes as `parameters`, by backpropagation through the window). Returns L.
 template <typename S>
 double tcn_window_loss(const BasicTcnParameters<S>& parameters, const TcnWindowMatrix<S>& inputs,
                        const TcnWindowMatrix<S>& target_low, const TcnWindowMatrix<S>& target_high,
                        double weight_low, double weight_high, BasicTcnWindowWorkspace<S>& workspace,
-                       std::type_identity_t<BasicTcnParameters<S>>* gradient);
+                       std::type_identity_t<BasicTcnParameters<S>>* gradient,
+                       const TcnWindowMatrix<S>* sample_scale = nullptr);
 
 }  // namespace tpf::offline

@@ -28,6 +28,16 @@ template <typename Compensator>
 using ArmEstimator =
     Estimator<double, kArmJoints, kArmPads, RecordingCompensator<Compensator, double, kArmJoints>>;
 
+/// The estimator with per-joint networks of `Hidden` channels loaded from s.weight_files.
+template <int Hidden>
+std::unique_ptr<ArmEstimator<JointTcns<Hidden>>> per_joint_estimator(const ArmEstimatorSetup& s) {
+  auto e = std::make_unique<ArmEstimator<JointTcns<Hidden>>>(s.nominal, s.pads, s.parameters);
+  for (int j = 0; j < kArmJoints; ++j)
+    load_tcn_weights(s.weight_files.at(static_cast<std::size_t>(j)),
+                     e->compensator().inner.network(j));
+  return e;
+}
+
 /// Builds the estimator with its compensator loaded and calls `use(estimator)`.
 template <typename Use>
 auto with_arm_estimator(const ArmEstimatorSetup& s, Use&& use) {
@@ -37,13 +47,10 @@ auto with_arm_estimator(const ArmEstimatorSetup& s, Use&& use) {
       load_tcn_weights(s.weight_files.at(0), e->compensator().inner);
       return use(*e);
     }
-    case CompensatorLayout::PerJoint: {
-      auto e = std::make_unique<ArmEstimator<JointTcns>>(s.nominal, s.pads, s.parameters);
-      for (int j = 0; j < kArmJoints; ++j)
-        load_tcn_weights(s.weight_files.at(static_cast<std::size_t>(j)),
-                         e->compensator().inner.network(j));
-      return use(*e);
-    }
+    case CompensatorLayout::PerJoint:
+      if (read_tcn_weight_file(s.weight_files.at(0)).hidden == kArmHidden)
+        return use(*per_joint_estimator<kArmHidden>(s));
+      return use(*per_joint_estimator<kArmJointHidden>(s));
     case CompensatorLayout::None:
       break;
   }
@@ -112,12 +119,15 @@ std::vector<std::string> compensator_files(const std::filesystem::path& path,
     return {path.string()};
   }
   std::vector<std::string> files;
+  int hidden = 0;
   for (int j = 0; j < kArmJoints; ++j) {
     const auto p = joint_weight_path(path, j);
     if (!std::filesystem::exists(p))
       throw Error::at(path.string(), 0, "weights",
                       "no such weight file, nor per-joint files like " + p.string());
-    read_tcn_weight_file(p.string()).require_architecture(4, kArmHidden, kArmLevels, 4, 1);
+    const TcnWeightFile file = read_tcn_weight_file(p.string());
+    if (j == 0) hidden = is_arm_joint_hidden(file.hidden) ? file.hidden : kArmJointHidden;
+    file.require_architecture(4, hidden, kArmLevels, 4, 1);
     files.push_back(p.string());
   }
   layout = CompensatorLayout::PerJoint;

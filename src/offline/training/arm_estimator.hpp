@@ -10,9 +10,9 @@
 
 #include "offline/log/log.hpp"
 #include "offline/training/estimator_trace.hpp"
-#include "tpf/nn/per_joint_tcn.hpp"
 #include "tpf/estimation/estimator.hpp"
 #include "tpf/estimation/transition_sigma.hpp"
+#include "tpf/nn/per_joint_tcn.hpp"
 #include "tpf/nn/tcn.hpp"
 #include "tpf/skin/pad_layout.hpp"
 
@@ -23,13 +23,21 @@ inline constexpr int kArmPads = 11;
 using ArmNominal = NominalModel<double, kArmJoints>;
 using ArmSample = EstimatorSample<double, kArmJoints, kArmPads>;
 using ArmParameters = EstimatorParameters<double, kArmJoints>;
-/// Hidden channels and levels of the arm's networks (receptive field 46 samples = 115 ms).
+/// Hidden channels and levels of the arm's networks (receptive field 46 samples = 115 ms): one
+/// network for all joints has kArmHidden channels; one network per joint has kArmJointHidden (the
+/// default, docs/tcn.md "per joint or all joints") or kArmHidden.
 inline constexpr int kArmHidden = 32;
+inline constexpr int kArmJointHidden = 16;
 inline constexpr int kArmLevels = 4;
 /// One network for all joints: inputs compensator_input (4N), outputs τ_TCN (N).
 using AllJointsTcn = Tcn<double, 4 * kArmJoints, kArmHidden, kArmLevels, 4, kArmJoints>;
-/// One network per joint.
-using JointTcns = PerJointTcn<double, kArmJoints, kArmHidden, kArmLevels>;
+/// One network per joint, Hidden ∈ {kArmJointHidden, kArmHidden}.
+template <int Hidden = kArmJointHidden>
+using JointTcns = PerJointTcn<double, kArmJoints, Hidden, kArmLevels>;
+/// Whether the offline tools compile per-joint networks of `hidden` channels.
+constexpr bool is_arm_joint_hidden(int hidden) {
+  return hidden == kArmJointHidden || hidden == kArmHidden;
+}
 
 /// Which compensator the estimator runs.
 enum class CompensatorLayout { None, AllJoints, PerJoint };
@@ -65,8 +73,8 @@ ArmParameters arm_estimator_parameters(const SensorNoise& noise, double pad_gain
 
 /// The weight files of a compensator path: `path` itself when it holds an all-joints network
 /// (inputs 4N, outputs N), else `<path stem>.joint1.json` … `.joint4.json` (per-joint networks
-/// of 4 inputs, 1 output). Throws tpf::Error naming the path when neither exists or a file has
-/// the wrong shape.
+/// of 4 inputs, 1 output, all of the same hidden size, kArmJointHidden or kArmHidden). Throws
+/// tpf::Error naming the path when neither exists or a file has the wrong shape.
 std::vector<std::string> compensator_files(const std::filesystem::path& path,
                                            CompensatorLayout& layout);
 

@@ -25,6 +25,7 @@ struct EstimatorTrace {
   /// Per TorqueEstimator: the external residual after its dead band, T × N; NaN where the
   /// estimator gave no estimate (StaticModelFree on moving joints).
   std::array<Eigen::MatrixXd, kTorqueEstimatorCount> estimates;
+  Eigen::MatrixXd external;      ///< T × N, EstimatorOutput::external.residual (the fusion)
   Eigen::VectorXi state;         ///< ContactState as int
   Eigen::VectorXi contact;       ///< skin: 1 while a pad is in contact
   Eigen::VectorXi pad;           ///< most loaded pad in contact (0-based), −1 none
@@ -58,6 +59,7 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
   tr.compensation = tr.dq;
   for (auto& e : tr.estimates)
     e = tr.dq;
+  tr.external = tr.dq;
   tr.state = Eigen::VectorXi::Constant(T, -1);
   tr.contact = tr.state;
   tr.pad = tr.state;
@@ -90,6 +92,7 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
         tr.estimates[static_cast<std::size_t>(e)](r, j) =
             (est.valid & (1u << j)) ? double(est.residual[j]) : nan;
     }
+    tr.external.row(r) = out.external.residual.transpose().template cast<double>();
     tr.state[r] = static_cast<int>(out.state);
     const auto& skin = estimator.skin();
     tr.contact[r] = skin.any_contact() ? 1 : 0;

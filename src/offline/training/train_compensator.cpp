@@ -5,6 +5,7 @@
 #include "offline/train/tcn_parameters.hpp"
 #include "offline/training/baseline_start.hpp"
 #include "offline/training/training_dataset.hpp"
+#include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 
@@ -12,6 +13,12 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const Eigen::VectorXd& effort_per_newton_metre,
                                       const CompensatorTrainingOptions& options,
                                       const TcnProgressCallback& progress) {
+  if (options.per_joint && !is_arm_joint_hidden(options.joint_hidden))
+    throw Error::at("compensator training", 0, "joint_hidden",
+                    std::to_string(options.joint_hidden) +
+                        " channels; the arm's per-joint networks "
+                        "are compiled for " +
+                        std::to_string(kArmJointHidden) + " or " + std::to_string(kArmHidden));
   const auto start = std::chrono::steady_clock::now();
   CompensatorTraining out;
   out.layout = options.per_joint ? CompensatorLayout::PerJoint : CompensatorLayout::AllJoints;
@@ -21,15 +28,16 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     TcnDataset dataset;
     TcnTrainOptions o = options.tcn;
     for (const EstimatorTrace& trace : traces) {
-      dataset.sequences.push_back(training_sequence(trace, effort_per_newton_metre, joint));
-      for (int copy = 0; copy < options.onset_copies; ++copy)
-        for (TcnSequence& s : onset_sequences(trace, effort_per_newton_metre, joint,
-                                              o.architecture.receptive_field(), o.window_outputs,
-                                              options.onset_lead))
-          dataset.sequences.push_back(std::move(s));
+      TcnSequence sequence = training_sequence(trace, effort_per_newton_metre, joint);
+      sequence.weight = regime_weights(trace, joint, options.static_weight,
+                                       options.static_to_kinetic_weight, options.regimes);
+      dataset.sequences.push_back(std::move(sequence));
     }
     o.architecture.inputs = options.per_joint ? 4 : 4 * kArmJoints;
     o.architecture.outputs = options.per_joint ? 1 : kArmJoints;
+    o.architecture.hidden = options.per_joint ? options.joint_hidden : kArmHidden;
+    o.architecture.levels = kArmLevels;
+    o.architecture.kernel = 4;
     if (o.max_seconds > 0) o.max_seconds /= networks;
     if (!o.checkpoint_path.empty() && options.per_joint)
       o.checkpoint_path = joint_weight_path(o.checkpoint_path, joint).string();

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "offline/regimes/regime.hpp"
 #include "offline/train/tcn_trainer.hpp"
 #include "offline/training/arm_estimator.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
@@ -12,16 +13,22 @@
 namespace tpf::offline {
 
 struct CompensatorTrainingOptions {
-  /// Trainer options; architecture.inputs/outputs are set from the layout, hidden and levels must
-  /// stay kArmHidden/kArmLevels (the compiled networks). max_seconds is the whole budget.
+  /// Trainer options; the architecture is set from the layout (inputs, outputs, hidden, levels =
+  /// the compiled networks of arm_estimator.hpp). max_seconds is the whole safety net.
   TcnTrainOptions tcn;
   bool per_joint = false;  ///< one network per joint instead of one for all joints
+  /// Hidden channels of a per-joint network: kArmJointHidden or kArmHidden (the all-joints
+  /// network has kArmHidden).
+  int joint_hidden = kArmJointHidden;
   /// Start from baseline_start (the network predicts τ̂_fric,s) instead of a random network.
   bool start_from_baseline = true;
-  /// Copies of onset_sequences (one window per motion onset, starting onset_lead rows before it)
-  /// added to the data to weigh the static-to-kinetic transition; 0: none.
-  int onset_copies = 1;
-  int onset_lead = 16;
+  /// Per-sample loss weights by regime (regime_weights): break-away and rest count this many
+  /// times a moving sample.
+  double static_to_kinetic_weight = 10.0;
+  double static_weight = 3.0;
+  /// Labelling of the regimes for the weights (the static-to-kinetic window after |q̇| crosses
+  /// static_velocity lasts fallback_transition_s).
+  RegimeOptions regimes;
 };
 
 struct CompensatorTraining {
@@ -32,9 +39,10 @@ struct CompensatorTraining {
   double seconds = 0.0;  ///< wall-clock training time
 };
 
-/// Trains on the traces of contact-free logs (training_sequence of each), with the trainer's
-/// zero-phase split, Adam, held-out windows and early stopping; per joint, each network gets
-/// max_seconds/N. The best parameters are scaled to the effort unit (scale_tcn_outputs).
+/// Trains on the traces of contact-free logs (training_sequence of each, weighted by
+/// regime_weights), with the trainer's zero-phase split, Adam, held-out blocks and early stopping;
+/// per joint, each network gets max_epochs and max_seconds/N. The best parameters are scaled to the
+/// effort unit (scale_tcn_outputs).
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const Eigen::VectorXd& effort_per_newton_metre,
                                       const CompensatorTrainingOptions& options,

@@ -25,30 +25,23 @@ TcnSequence training_sequence(const EstimatorTrace& trace,
   return s;
 }
 
-std::vector<TcnSequence> onset_sequences(const EstimatorTrace& trace,
-                                         const Eigen::VectorXd& effort_per_newton_metre, int joint,
-                                         int receptive_field, int outputs, int lead,
-                                         double static_velocity) {
-  const TcnSequence all = training_sequence(trace, effort_per_newton_metre, joint);
-  const Eigen::Index length = receptive_field - 1 + outputs;
-  std::vector<TcnSequence> out;
-  Eigen::Index last_first = -1;
-  for (Eigen::Index k = 1; k < trace.rows(); ++k) {
-    bool onset = false;
-    for (Eigen::Index j = 0; j < trace.dq.cols(); ++j) {
-      if (joint >= 0 && j != joint) continue;
-      onset = onset || (std::abs(trace.dq(k - 1, j)) < static_velocity &&
-                        std::abs(trace.dq(k, j)) >= static_velocity);
+Eigen::MatrixXd regime_weights(const EstimatorTrace& trace, int joint, double static_weight,
+                               double static_to_kinetic_weight, const RegimeOptions& regimes) {
+  const Eigen::Index n = trace.dq.cols();
+  if (joint >= n || trace.t.size() != trace.dq.rows())
+    throw Error::at("estimator trace", 0, "columns", "joint or row counts disagree");
+  const int first = joint < 0 ? 0 : joint;
+  const int count = joint < 0 ? static_cast<int>(n) : 1;
+  Eigen::MatrixXd w = Eigen::MatrixXd::Ones(trace.rows(), count);
+  for (int c = 0; c < count; ++c) {
+    const std::vector<Regime> labels = label_regimes(trace.t, trace.dq.col(first + c), regimes);
+    for (Eigen::Index k = 0; k < trace.rows(); ++k) {
+      const Regime g = labels[static_cast<std::size_t>(k)];
+      if (g == Regime::StaticToKinetic) w(k, c) = static_to_kinetic_weight;
+      if (g == Regime::Static) w(k, c) = static_weight;
     }
-    if (!onset) continue;
-    const Eigen::Index first = k - lead - (receptive_field - 1);
-    if (first < 0 || first + length > trace.rows() || first < last_first + length / 2) continue;
-    TcnSequence s{all.inputs.middleRows(first, length), all.residual.middleRows(first, length)};
-    if (!s.inputs.allFinite() || !s.residual.allFinite()) continue;
-    out.push_back(std::move(s));
-    last_first = first;
   }
-  return out;
+  return w;
 }
 
 void scale_tcn_outputs(TcnParameters& p, const Eigen::VectorXd& scale) {

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "offline/regimes/regime.hpp"
 #include "offline/train/tcn_trainer.hpp"
 #include "offline/training/estimator_trace.hpp"
 
@@ -20,16 +21,15 @@ namespace tpf::offline {
 TcnSequence training_sequence(const EstimatorTrace& trace,
                               const Eigen::VectorXd& effort_per_newton_metre, int joint = -1);
 
-/// Extra sequences that put weight on break-away: for every static → moving transition of any
-/// joint in the trace (|q̇_j| crossing `static_velocity` after a static row), the rows
-/// [k₀ − lead − (receptive_field − 1), k₀ − lead + outputs), i.e. exactly one training window of
-/// `outputs` supervised steps that starts `lead` rows before the onset. Same columns as
-/// training_sequence(trace, scale, joint). Windows that would leave the trace or hold a NaN row
-/// are left out. These rows also occur in the plain sequence: the emphasis is a duplication.
-std::vector<TcnSequence> onset_sequences(const EstimatorTrace& trace,
-                                         const Eigen::VectorXd& effort_per_newton_metre, int joint,
-                                         int receptive_field, int outputs, int lead,
-                                         double static_velocity = 1e-4);
+/// Per-sample loss weights that emphasise the regimes the nominal model gets most wrong, from the
+/// one regime labelling of the offline tools (label_regimes on each joint's t, q̇ with `regimes`;
+/// no compensated residual exists yet, so a static-to-kinetic window lasts
+/// regimes.fallback_transition_s after |q̇| crosses regimes.static_velocity):
+///   w = static_to_kinetic_weight (StaticToKinetic), static_weight (Static), 1 otherwise.
+/// T × N, or T × 1 for one joint (same columns as training_sequence). Break-away samples are ~3 %
+/// of an excitation log; without a weight the loss hardly sees them.
+Eigen::MatrixXd regime_weights(const EstimatorTrace& trace, int joint, double static_weight,
+                               double static_to_kinetic_weight, const RegimeOptions& regimes = {});
 
 /// Multiplies output o of both heads (weights and bias) by scale[o]: a network trained on
 /// residual/scale then predicts the residual itself (the heads are linear, so this is exact).

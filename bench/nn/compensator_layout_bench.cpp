@@ -1,0 +1,60 @@
+// Step cost of the whole friction compensator of the 4-joint arm, per layout, behind the
+// estimator's interface (FrictionCompensator, 16 inputs → 4 outputs): one network for all joints
+// (16 → 32 → 4) against one network per joint (4 × (4 → H → 1), H = 16 or 32), float and double,
+// 4 levels, kernel 4. Random weights: the cost does not depend on their values.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "offline/train/tcn_parameters.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
+#include "tpf/nn/per_joint_tcn.hpp"
+#include "tpf/nn/tcn.hpp"
+
+namespace {
+
+constexpr int kJoints = 4;
+
+tpf::TcnWeightFile random_file(int inputs, int hidden, int outputs, std::uint64_t seed) {
+  tpf::offline::TcnParameters p =
+      tpf::offline::init_tcn_parameters({inputs, hidden, 4, 4, outputs}, seed);
+  for (auto& b : p.blocks)
+    b.bias.setConstant(0.05);  // keep most units active
+  return tpf::offline::to_weight_file(p);
+}
+
+template <typename S, typename Compensator>
+void run(benchmark::State& state, Compensator& c) {
+  Eigen::Matrix<S, 4 * kJoints, 1> x = Eigen::Matrix<S, 4 * kJoints, 1>::LinSpaced(-0.5, 0.5);
+  c.reset(x);
+  S t = 0;
+  for (auto _ : state) {
+    x(0) = t;
+    benchmark::DoNotOptimize(c.step(x).data());
+    t += S(1e-3);
+  }
+}
+
+template <typename S>
+void AllJoints(benchmark::State& state) {
+  auto c = std::make_unique<tpf::Tcn<S, 4 * kJoints, 32, 4, 4, kJoints>>();
+  tpf::tcn_weights_from_file(random_file(4 * kJoints, 32, kJoints, 1), c->weights());
+  run<S>(state, *c);
+}
+
+template <typename S, int Hidden>
+void PerJoint(benchmark::State& state) {
+  auto c = std::make_unique<tpf::PerJointTcn<S, kJoints, Hidden, 4>>();
+  for (int j = 0; j < kJoints; ++j)
+    tpf::tcn_weights_from_file(random_file(4, Hidden, 1, j + 1), c->network(j).weights());
+  run<S>(state, *c);
+}
+
+BENCHMARK(AllJoints<float>)->Name("Compensator/all_joints_32ch/float");
+BENCHMARK(AllJoints<double>)->Name("Compensator/all_joints_32ch/double");
+BENCHMARK(PerJoint<float, 16>)->Name("Compensator/per_joint_16ch/float");
+BENCHMARK(PerJoint<double, 16>)->Name("Compensator/per_joint_16ch/double");
+BENCHMARK(PerJoint<float, 32>)->Name("Compensator/per_joint_32ch/float");
+BENCHMARK(PerJoint<double, 32>)->Name("Compensator/per_joint_32ch/double");
+
+}  // namespace

@@ -1,0 +1,30 @@
+// What identification and diagnosis both start from: the log's joint samples checked against the
+// robot file, the effort scale of the log's unit, the base parameters and the gravity load.
+#pragma once
+
+#include "offline/identify/joint_samples.hpp"
+#include "offline/log/log.hpp"
+#include "tpf/dynamics/base_parameters.hpp"
+#include "tpf/estimation/nominal_model.hpp"
+
+namespace tpf::offline {
+
+template <int N>
+struct IdentificationSetup {
+  JointSamples samples;
+  JointVector<double, N> effort_scale;  ///< effort per N·m: 1000/K_t (mA) or 1 (N·m)
+  BaseParameters base;                  ///< rigid-body base parameters of the robot file's model
+};
+
+/// extract_joint_samples(log), then: the log must have exactly N joints (tpf::Error naming the
+/// log otherwise), effort_scale for the log's effort unit, rigid_body_base_parameters(model).
+template <int N>
+IdentificationSetup<N> prepare_identification(const Log& log, const Model<double, N>& model,
+                                              const SampleOptions& options);
+
+/// |G_j(q_k)| [N·m] per sample k and joint j with the robot file's inertias: the load that
+/// load-dependent friction scales with. NaN where the sample is invalid. Two threads.
+template <int N>
+Eigen::MatrixXd gravity_load(const Model<double, N>& model, const JointSamples& samples);
+
+}  // namespace tpf::offline
