@@ -1,5 +1,6 @@
 // The full estimator step for the 4-joint arm with its 11 pads: kinematics, nominal dynamics and
-// friction, skin, state machine, a 32-channel TCN and the contact wrench, on a simulated teaching
+// friction, skin, state machine, the shipped compensator (one 16-channel TCN per joint, the
+// default weights in data/weights) and the contact wrench, on a simulated teaching
 // log (motion and contact). Reports the mean per step (Google Benchmark) and, from per-step
 // steady_clock timings, the median and p99.9 as counters.
 #include <benchmark/benchmark.h>
@@ -15,6 +16,8 @@
 #include "tpf/estimation/estimator.hpp"
 #include "tpf/friction/friction_file.hpp"
 #include "tpf/model/load_robot.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
+#include "tpf/nn/per_joint_tcn.hpp"
 #include "tpf/nn/tcn.hpp"
 
 namespace {
@@ -22,6 +25,9 @@ namespace {
 constexpr int N = 4, P = 11;
 using Tcn32 = tpf::Tcn<double, 4 * N, 32, 4, 4, N>;
 using BenchEstimator = tpf::Estimator<double, N, P, Tcn32>;
+/// The layout the tools ship (docs/tcn.md): one 16-channel, 4-level network per joint.
+using ShippedCompensator = tpf::PerJointTcn<double, N, 16, 4>;
+using ShippedEstimator = tpf::Estimator<double, N, P, ShippedCompensator>;
 using PlainEstimator = tpf::Estimator<double, N, P>;  // ZeroCompensator: everything but the TCN
 using Sample = tpf::EstimatorSample<double, N, P>;
 
@@ -92,6 +98,17 @@ std::unique_ptr<BenchEstimator> make_estimator() {
       nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model), parameters(), tcn);
 }
 
+/// The estimator with the default per-joint weights data/weights/arm4.tcn.joint<j>.json.
+std::unique_ptr<ShippedEstimator> make_shipped_estimator() {
+  ShippedCompensator tcns;
+  for (int j = 0; j < N; ++j)
+    tpf::load_tcn_weights(data("weights/arm4.tcn.joint" + std::to_string(j + 1) + ".json"),
+                          tcns.network(j));
+  const auto nominal = twin_nominal();
+  return std::make_unique<ShippedEstimator>(
+      nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model), parameters(), tcns);
+}
+
 std::unique_ptr<PlainEstimator> make_plain_estimator() {
   const auto nominal = twin_nominal();
   return std::make_unique<PlainEstimator>(
@@ -137,6 +154,12 @@ void BM_EstimatorStep(benchmark::State& state) {
   time_steps(state, *est);
 }
 BENCHMARK(BM_EstimatorStep)->Iterations(400000)->Unit(benchmark::kNanosecond);
+
+void BM_EstimatorStepShippedCompensator(benchmark::State& state) {
+  auto est = make_shipped_estimator();
+  time_steps(state, *est);
+}
+BENCHMARK(BM_EstimatorStepShippedCompensator)->Iterations(400000)->Unit(benchmark::kNanosecond);
 
 void BM_EstimatorStepWithoutCompensator(benchmark::State& state) {
   auto est = make_plain_estimator();

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "offline/common/data_files.hpp"
+#include "model_file_options.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
-#include "tpf/common/atomic_file.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/sim/scenario.hpp"
+#include "tpf/common/atomic_file.hpp"
 
 namespace {
 
@@ -91,23 +91,13 @@ namespace tpf::cli {
 
 void register_evaluate_command(CLI::App& app) {
   auto o = std::make_shared<EvaluateCommandOptions>();
-  o->robot = offline::data_file("arm4.robot.json").string();
-  o->pads = offline::data_file("arm4.pads.json").string();
   CLI::App* cmd = app.add_subcommand(
       "evaluate",
       "Compare tactile-only, proprioceptive-only and fusion on held-out logs: Table I (residual "
       "per regime, nominal vs TCN), dead bands, detection latency, force error, teaching");
-  cmd->add_option("--params", o->params, "Nominal model (tpf-params file)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_model_file_options(cmd, o->params, o->robot, o->pads, "Nominal model (tpf-params file)");
   cmd->add_option("--weights", o->weights,
                   "Compensator weights (all joints, or <stem>.joint<j>.json per joint)");
-  cmd->add_option("--robot", o->robot, "Robot file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--pads", o->pads, "Pad layout file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
   cmd->add_option("--calibration", o->calibration,
                   "Contact-free log for the dead-band σ (not a test log, not the training log)")
       ->required()

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "offline/common/data_files.hpp"
+#include "model_file_options.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/training/arm_estimator.hpp"
 #include "offline/training/estimator_samples.hpp"
@@ -75,8 +75,6 @@ namespace tpf::cli {
 
 void register_train_command(CLI::App& app) {
   auto o = std::make_shared<TrainCommandOptions>();
-  o->robot = offline::data_file("arm4.robot.json").string();
-  o->pads = offline::data_file("arm4.pads.json").string();
   o->tcn.max_seconds = 0.0;
   CLI::App* cmd = app.add_subcommand(
       "train",
@@ -85,15 +83,8 @@ void register_train_command(CLI::App& app) {
   cmd->add_option("--log", o->logs, "Contact-free excitation log(s)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--params", o->params, "Nominal model (tpf-params file from identify/diagnose)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--robot", o->robot, "Robot file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--pads", o->pads, "Pad layout file")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
+  add_model_file_options(cmd, o->params, o->robot, o->pads,
+                         "Nominal model (tpf-params file from identify/diagnose)");
   cmd->add_option("--out", o->out,
                   "Weight file to write (per joint: <stem>.joint<j>.json beside it)")
       ->required();

@@ -8,6 +8,24 @@
 namespace tpf {
 namespace detail {
 
+/// The backward Newton–Euler pass on the link forces f_k and moments n_k (link frames, about the
+/// link origin) in data.force/data.moment: f_k += R_{k+1} f_{k+1},
+/// n_k += R_{k+1} n_{k+1} + p_{k+1} × R_{k+1} f_{k+1}, then τ_k = z_k·n_k. Shared by every form
+/// of the inverse dynamics (standard inertias here, linear link parameters in estimation).
+template <typename S, int N>
+void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
+                                JointVector<S, N>& tau) noexcept {
+  for (int k = N; k >= 1; --k) {
+    if (k < N) {
+      const Matrix3<S>& R = data.liMi[k + 1].R;
+      const Vector3<S> f_child = R * data.force[k + 1];
+      data.force[k] += f_child;
+      data.moment[k] += R * data.moment[k + 1] + data.liMi[k + 1].p.cross(f_child);
+    }
+    tau(k - 1) = model.axes[k - 1].dot(data.moment[k]);
+  }
+}
+
 /// The two Newton–Euler passes on the link transforms already in data.liMi, with base linear
 /// acceleration a0 (−g for the full dynamics, 0 for velocity terms only). Writes data.tau without
 /// the armature term. Link quantities are in link frames.
@@ -38,15 +56,7 @@ void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
     data.force[k] = body.mass * data.acc[k] + dw.cross(h) + w.cross(w.cross(h));
     data.moment[k] = I * dw + w.cross(I * w) + h.cross(data.acc[k]);
   }
-  for (int k = N; k >= 1; --k) {
-    if (k < N) {
-      const Matrix3<S>& R = data.liMi[k + 1].R;
-      const Vector3<S> f_child = R * data.force[k + 1];
-      data.force[k] += f_child;
-      data.moment[k] += R * data.moment[k + 1] + data.liMi[k + 1].p.cross(f_child);
-    }
-    data.tau(k - 1) = model.axes[k - 1].dot(data.moment[k]);
-  }
+  newton_euler_backward_pass(model, data, data.tau);
 }
 
 }  // namespace detail

@@ -6,6 +6,7 @@
 
 #include "tpf/common/types.hpp"
 #include "tpf/dynamics/regressor.hpp"
+#include "tpf/dynamics/rnea.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/model.hpp"
 
@@ -73,15 +74,7 @@ JointVector<S, N> link_parameter_torque(const Model<S, N>& model, const LinkPara
     data.moment[k] = I * dw + w.cross(I * w) + h.cross(a);
   }
   JointVector<S, N> tau;
-  for (int k = N; k >= 1; --k) {
-    if (k < N) {
-      const Matrix3<S>& R = data.liMi[k + 1].R;
-      const Vector3<S> f_child = R * data.force[k + 1];
-      data.force[k] += f_child;
-      data.moment[k] += R * data.moment[k + 1] + data.liMi[k + 1].p.cross(f_child);
-    }
-    tau(k - 1) = model.axes[k - 1].dot(data.moment[k]);
-  }
+  detail::newton_euler_backward_pass(model, data, tau);
   for (int j = 0; j < N; ++j) {
     const S sign = dq(j) > S(0) ? S(1) : (dq(j) < S(0) ? S(-1) : S(0));
     tau(j) += p.armature(j) * ddq(j) + p.coulomb(j) * sign + p.viscous(j) * dq(j);
@@ -102,15 +95,7 @@ JointVector<S, N> link_parameter_gravity(const Model<S, N>& model, const LinkPar
     data.moment[k] = p.first_moment[k - 1].cross(a);
   }
   JointVector<S, N> g;
-  for (int k = N; k >= 1; --k) {
-    if (k < N) {
-      const Matrix3<S>& R = data.liMi[k + 1].R;
-      const Vector3<S> f_child = R * data.force[k + 1];
-      data.force[k] += f_child;
-      data.moment[k] += R * data.moment[k + 1] + data.liMi[k + 1].p.cross(f_child);
-    }
-    g(k - 1) = model.axes[k - 1].dot(data.moment[k]);
-  }
+  detail::newton_euler_backward_pass(model, data, g);
   return g;
 }
 
