@@ -7,9 +7,11 @@
 #include <complex>
 #include <numbers>
 
+#include "support/constants.hpp"
+
 namespace {
 
-constexpr double kPeriod = 0.0025;
+using tpf::test::kPeriod;
 using Vec1 = tpf::JointVector<double, 1>;
 
 TEST(AccelerationFilter, RampGivesItsSlope) {

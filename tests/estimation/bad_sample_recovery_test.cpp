@@ -10,20 +10,14 @@
 namespace tpf::test {
 namespace {
 
-constexpr std::size_t kRows = 2400;  // 6 s
-constexpr std::size_t kBad = 900;    // mid push of the first contact
-
-const std::vector<ArmSample>& samples() {
-  static const std::vector<ArmSample> s = samples_from_log(twin_log("static-contacts", 5, 7));
-  return s;
-}
+constexpr std::size_t kBad = 900;  // mid push of the first contact
 
 /// Runs the log with rows edited by `edit`; returns the outputs of every row.
 std::vector<ArmEstimator::Output> run(const std::function<void(std::size_t, ArmSample&)>& edit) {
   auto est = std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), twin_parameters());
   std::vector<ArmEstimator::Output> out;
-  for (std::size_t r = 0; r < kRows; ++r) {
-    ArmSample s = samples()[r];
+  for (std::size_t r = 0; r < kStaticContactRows; ++r) {
+    ArmSample s = static_contact_samples()[r];
     edit(r, s);
     out.push_back(est->update(s));
   }
@@ -34,7 +28,7 @@ std::vector<ArmEstimator::Output> run(const std::function<void(std::size_t, ArmS
 /// rows has decayed by then: e^(−ζω·0.5 s) < 1e-27).
 void expect_back_on_clean_run(const std::vector<ArmEstimator::Output>& faulty, std::size_t from) {
   const auto clean = run([](std::size_t, ArmSample&) {});
-  for (std::size_t r = from; r < kRows; ++r) {
+  for (std::size_t r = from; r < kStaticContactRows; ++r) {
     ASSERT_LT((faulty[r].static_friction - clean[r].static_friction).cwiseAbs().maxCoeff(), 1e-6)
         << "row " << r;
     ASSERT_LT((faulty[r].external.torque - clean[r].external.torque).cwiseAbs().maxCoeff(), 1e-9)
@@ -48,7 +42,7 @@ TEST(BadSampleRecovery, AFrozenSensorLeavesNoTraceOnceLive) {
   const std::size_t end = kBad + 300;  // 0.75 s of one repeated reading
   const auto faulty = run([&](std::size_t r, ArmSample& s) {
     if (r > kBad && r < end) {
-      const ArmSample& frozen = samples()[kBad];
+      const ArmSample& frozen = static_contact_samples()[kBad];
       s.q = frozen.q, s.dq = frozen.dq, s.effort = frozen.effort;
     }
   });

@@ -13,12 +13,9 @@
 
 namespace {
 
+using tpf::test::angle_deg;
 using tpf::test::arm;
 using tpf::test::Vec;
-
-double angle_deg(const tpf::Vector3<double>& a, const tpf::Vector3<double>& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
-}
 
 struct Case {
   tpf::Jacobian<double, 4> J;

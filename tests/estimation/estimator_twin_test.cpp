@@ -21,10 +21,6 @@ Vec row_vector(const offline::Log& log, const char* prefix, Eigen::Index r) {
   return v;
 }
 
-double angle_deg(const Vector3<double>& a, const Vector3<double>& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
-}
-
 std::unique_ptr<ArmEstimator> make_estimator(
     const EstimatorParameters<double, kJoints>& p = twin_parameters()) {
   return std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), p);

@@ -5,9 +5,11 @@
 
 #include <limits>
 
+#include "support/constants.hpp"
+
 namespace {
 
-constexpr double kPeriod = 0.0025;
+using tpf::test::kPeriod;
 constexpr double kNone = std::numeric_limits<double>::infinity();
 using Vec2 = tpf::JointVector<double, 2>;
 using Tracker = tpf::StaticFrictionTracker<double, 2>;

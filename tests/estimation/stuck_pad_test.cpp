@@ -9,13 +9,7 @@
 namespace tpf::test {
 namespace {
 
-constexpr std::size_t kRows = 2400;  // 6 s
 constexpr double kStuckKpa = 30.0;
-
-const std::vector<ArmSample>& samples() {
-  static const std::vector<ArmSample> s = samples_from_log(twin_log("static-contacts", 5, 7));
-  return s;
-}
 
 std::unique_ptr<ArmEstimator> make_estimator() {
   return std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), twin_parameters());
@@ -32,8 +26,8 @@ const CleanRun& clean_run() {
   static const CleanRun run = [] {
     CleanRun c;
     auto est = make_estimator();
-    for (std::size_t r = 0; r < kRows; ++r) {
-      c.out.push_back(est->update(samples()[r]));
+    for (std::size_t r = 0; r < kStaticContactRows; ++r) {
+      c.out.push_back(est->update(static_contact_samples()[r]));
       c.contact.push_back(est->skin().any_contact());
       c.pad.push_back(est->skin().most_loaded());
     }
@@ -59,7 +53,7 @@ void run_stuck(int pad, std::size_t from, std::size_t to, std::size_t check_unti
   auto est = make_estimator();
   bool released = false;
   for (std::size_t r = 0; r < check_until; ++r) {
-    ArmSample s = samples()[r];
+    ArmSample s = static_contact_samples()[r];
     if (r >= from && r < to) s.pressure[pad] = kStuckKpa;
     const auto& out = est->update(s);
     const bool stuck = r >= found && r < to;
@@ -95,7 +89,7 @@ TEST(StuckPad, APhantomContactAloneLeavesNoTrace) {
 
 TEST(StuckPad, APhantomOnsetBeforeARealPushIsReplacedByThePushsOwnBaseline) {
   const std::size_t real = first_contact_row();
-  ASSERT_LT(real + 300, kRows);
+  ASSERT_LT(real + 300, kStaticContactRows);
   const int real_pad = clean_run().pad[real];
   const int phantom = (real_pad + 3) % kPads;
   // The phantom switches on 15 rows before the push is detected, so the push's onset comes while

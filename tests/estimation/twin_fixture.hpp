@@ -63,6 +63,15 @@ inline std::vector<ArmSample> samples_from_log(const offline::Log& log) {
   return samples;
 }
 
+/// Rows of the short static-contacts log (seed 5, 7 s) most estimator tests run: 6 s.
+inline constexpr std::size_t kStaticContactRows = 2400;
+
+/// That log as estimator samples (computed once per program).
+inline const std::vector<ArmSample>& static_contact_samples() {
+  static const std::vector<ArmSample> s = samples_from_log(twin_log("static-contacts", 5, 7));
+  return s;
+}
+
 /// The twin's nominal model in mA: the true rigid body and the memoryless Stribeck curve of
 /// data/arm4.friction.json converted to mA (the twin adds LuGre memory on top).
 inline NominalModel<double, kJoints> twin_nominal() {

@@ -12,7 +12,7 @@ namespace {
 
 using Vec = tpf::JointVector<double, 4>;
 
-tpf::LuGreParameters<double, 4> parameters() {
+tpf::LuGreParameters<double, 4> lugre_reference() {
   tpf::LuGreParameters<double, 4> p;
   p.stribeck.coulomb << 1.3, 1.6, 0.9, 0.6;
   p.stribeck.static_friction << 2.1, 2.5, 1.45, 1.0;
@@ -27,7 +27,7 @@ tpf::LuGreParameters<double, 4> parameters() {
 }
 
 TEST(LuGre, SteadyStateEqualsStribeck) {
-  const auto p = parameters();
+  const auto p = lugre_reference();
   const Vec ag(0.0, 9.0, 4.0, 1.5);
   for (double v : {-1.2, -0.05, -0.004, 0.001, 0.02, 0.3, 2.0}) {
     tpf::LuGreState<double, 4> state;
@@ -46,7 +46,7 @@ TEST(LuGre, SteadyStateEqualsStribeck) {
 }
 
 TEST(LuGre, PreSlidingIsASpringOfStiffnessSigma0) {
-  const auto p = parameters();
+  const auto p = lugre_reference();
   tpf::LuGreState<double, 4> state;
   const double dt = 5e-4, v = 1e-4;  // displacement 1e-6 rad per 20 steps, far below τ_s/σ0
   Vec tau = Vec::Zero();
@@ -65,7 +65,7 @@ TEST(LuGre, PreSlidingIsASpringOfStiffnessSigma0) {
 TEST(LuGre, ReversalShowsHysteresis) {
   // Slide forward to steady state, then reverse: the friction does not jump to −g but passes
   // through zero after a pre-sliding displacement of about g(0)/σ0 (Dahl-like memory).
-  const auto p = parameters();
+  const auto p = lugre_reference();
   tpf::LuGreState<double, 4> state;
   const double dt = 5e-4, v = 0.002;
   for (int k = 0; k < 4000; ++k)
@@ -91,7 +91,7 @@ TEST(LuGre, ReversalShowsHysteresis) {
 }
 
 TEST(LuGre, ExponentialUpdateIsStableForHugeSteps) {
-  const auto p = parameters();
+  const auto p = lugre_reference();
   for (double dt : {1e-3, 1e-1, 10.0}) {
     for (double v : {-3.0, -0.1, 0.5, 3.0}) {
       const double z0 = 5e-4;
@@ -139,7 +139,7 @@ TEST(LuGre, DrivenMassShowsStickSlip) {
 }
 
 TEST(LuGre, StepAllocatesNothing) {
-  const auto p = parameters();
+  const auto p = lugre_reference();
   tpf::LuGreState<double, 4> state;
   const Vec dq(0.3, -0.2, 0.0, -0.05), ag(0.0, 7.0, 3.0, 1.0);
   Vec sum = Vec::Zero();

@@ -12,7 +12,7 @@ namespace {
 
 using Vec = tpf::JointVector<double, 4>;
 
-tpf::StribeckParameters<double, 4> parameters() {
+tpf::StribeckParameters<double, 4> stribeck_reference() {
   tpf::StribeckParameters<double, 4> p;
   p.coulomb << 1.3, 1.6, 0.9, 0.6;
   p.static_friction << 2.1, 2.5, 1.45, 1.0;
@@ -25,7 +25,7 @@ tpf::StribeckParameters<double, 4> parameters() {
 }
 
 TEST(Stribeck, ReferenceValue) {
-  const auto p = parameters();
+  const auto p = stribeck_reference();
   // Joint 2 at q̇ = 0.05 rad/s, |G| = 8 N·m, by hand:
   // [1.6 + 0.045·8 + 0.9·exp(−(0.05/0.035)^1.5)] + (3.2 + 0.06·8)·0.05
   const double expected = 1.6 + 0.36 + 0.9 * std::exp(-std::pow(0.05 / 0.035, 1.5)) + 3.68 * 0.05;
@@ -33,7 +33,7 @@ TEST(Stribeck, ReferenceValue) {
 }
 
 TEST(Stribeck, OddSymmetry) {
-  const auto p = parameters();
+  const auto p = stribeck_reference();
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> v(-2.0, 2.0), g(0.0, 15.0);
   for (int k = 0; k < 200; ++k) {
@@ -47,7 +47,7 @@ TEST(Stribeck, OddSymmetry) {
 }
 
 TEST(Stribeck, LimitsAtZeroAndInfinity) {
-  const auto p = parameters();
+  const auto p = stribeck_reference();
   const double tiny = 1e-12, g = 5.0;
   for (int j = 0; j < 4; ++j) {
     // q̇ → 0⁺: static friction plus the load term; exactly 0 at q̇ = 0.
@@ -63,27 +63,27 @@ TEST(Stribeck, LimitsAtZeroAndInfinity) {
 }
 
 TEST(Stribeck, NoLoadEqualsZeroGravity) {
-  const auto p = parameters();
+  const auto p = stribeck_reference();
   const Vec dq(0.3, -0.01, 0.002, -1.5);
   EXPECT_TRUE(
       tpf::stribeck_friction(p, dq).isApprox(tpf::stribeck_friction(p, dq, Vec(Vec::Zero()))));
 }
 
 TEST(Stribeck, LoadTermsAreLinearInTheirCoefficients) {
-  auto p = parameters();
+  auto p = stribeck_reference();
   const Vec dq(0.3, -0.2, 0.1, -0.05), ag(0.0, 7.0, 3.0, 1.0);
   const Vec with = tpf::stribeck_friction(p, dq, ag);
   p.load_coulomb.setZero();
   p.load_viscous.setZero();
   const Vec without = tpf::stribeck_friction(p, dq, ag);
-  const Vec a_c = parameters().load_coulomb, a_v = parameters().load_viscous;
+  const Vec a_c = stribeck_reference().load_coulomb, a_v = stribeck_reference().load_viscous;
   const Vec expected =
       (a_c.cwiseProduct(ag)).cwiseProduct(dq.cwiseSign()) + a_v.cwiseProduct(ag).cwiseProduct(dq);
   EXPECT_TRUE((with - without).isApprox(expected, 1e-12));
 }
 
 TEST(Stribeck, SmoothFormIsContinuousAndConverges) {
-  const auto p = parameters();
+  const auto p = stribeck_reference();
   const Vec ag = Vec::Constant(2.0);
   const double eps = 0.01;
   // Continuity at 0: values from both sides approach 0 linearly with slope g(0)/ε + b.
@@ -114,7 +114,7 @@ TEST(Stribeck, SmoothFormIsContinuousAndConverges) {
 }
 
 TEST(Stribeck, EvaluationAllocatesNothing) {
-  const auto p = parameters();
+  const auto p = stribeck_reference();
   const Vec dq(0.3, -0.2, 0.1, -0.05), ag(0.0, 7.0, 3.0, 1.0);
   Vec sum = Vec::Zero();
   tpf::test::AllocationCounter counter;

@@ -6,12 +6,13 @@
 #include <limits>
 
 #include "offline/regimes/regime_stats.hpp"
+#include "support/constants.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using tpf::test::kNaN;
 constexpr Regime S = Regime::Static;
 constexpr Regime T = Regime::StaticToKinetic;
 constexpr Regime M = Regime::Moving;

@@ -8,13 +8,14 @@
 #include "offline/signal/acceleration.hpp"
 #include "offline/signal/butterworth.hpp"
 #include "offline/signal/segments.hpp"
+#include "support/constants.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using tpf::test::kNaN;
 constexpr double kRate = 400.0;
 
 Eigen::VectorXd time_axis(Eigen::Index n) {

@@ -5,9 +5,11 @@
 
 #include <random>
 
+#include "support/constants.hpp"
+
 namespace {
 
-constexpr double kPeriod = 1.0 / 400.0;
+using tpf::test::kPeriod;
 constexpr double kNoise = 0.03;  // kPa, the twin's pad noise
 
 tpf::PadDetectorSettings<double> settings() {

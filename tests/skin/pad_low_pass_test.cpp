@@ -8,9 +8,11 @@
 #include <numbers>
 #include <random>
 
+#include "support/constants.hpp"
+
 namespace {
 
-constexpr double kPeriod = 1.0 / 400.0;
+using tpf::test::kPeriod;
 constexpr double kPi = std::numbers::pi;
 
 TEST(PadLowPass, CoefficientIsTheExactZeroOrderHoldDiscretisation) {

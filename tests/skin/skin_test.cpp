@@ -6,13 +6,14 @@
 #include <limits>
 
 #include "support/arm_fixture.hpp"
+#include "support/constants.hpp"
 
 namespace {
 
 using tpf::test::arm;
 using tpf::test::data_path;
 constexpr int kPads = 11;
-constexpr double kPeriod = 1.0 / 400.0;
+using tpf::test::kPeriod;
 using ArmSkin = tpf::Skin<double, kPads>;
 
 std::vector<tpf::Pad> pads() {

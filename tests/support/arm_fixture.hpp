@@ -1,6 +1,8 @@
 // The 4-DoF arm of data/ and seeded random states, shared by the core tests.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "tpf/core.hpp"
@@ -14,6 +16,11 @@ using Vec = JointVector<double, kJoints>;
 
 inline std::string data_path(const std::string& name) {
   return std::string(TPF_TEST_DATA_DIR) + "/" + name;
+}
+
+/// The angle between two vectors, degrees: acos(â·b̂).
+inline double angle_deg(const Vector3<double>& a, const Vector3<double>& b) {
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 inline const Arm& arm() {

@@ -15,13 +15,6 @@
 
 namespace tpf::json {
 
-/// Throws the tpf::Error for a file nlohmann::json could not parse: "file:line: not valid JSON:
-/// <what>". `byte` is parse_error::byte (1-based offset of the error), or 0 for other parse
-/// exceptions (e.g. out_of_range 406, a number like 1e999 too large for a double), whose line is
-/// that of the token quoted in `what`.
-[[noreturn]] void fail_unparsable(const std::filesystem::path& path, std::size_t byte,
-                                  std::string_view what);
-
 class Object {
  public:
   /// `path` is the key path of this object inside the file ("" for the top level).

@@ -85,7 +85,7 @@ void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& es
   Eigen::MatrixXd force(log.rows(), 3);
   force << log.col("gt_fx"), log.col("gt_fy"), log.col("gt_fz");
   double over = 0, under = 0;
-  for (const ContactEvent& e : contact_events(contact, force)) {
+  for (const ContactSpan& e : contact_events(contact, force)) {
     for (int j = 0; j < kArmJoints; ++j) {
       double peak_ideal = 0, peak = 0;
       for (Eigen::Index k = e.first; k <= e.last && t[k] - t[e.first] <= 0.5; ++k) {

@@ -18,17 +18,17 @@ double median(Eigen::VectorXd v) {
 
 }  // namespace
 
-std::vector<ContactEvent> contact_events(const Eigen::VectorXd& contact,
-                                         const Eigen::MatrixXd& force) {
+std::vector<ContactSpan> contact_events(const Eigen::VectorXd& contact,
+                                        const Eigen::MatrixXd& force) {
   if (force.rows() != contact.size() || force.cols() != 3)
     throw Error::at("contact events", 0, "force", "must be T × 3 like the contact column");
-  std::vector<ContactEvent> events;
+  std::vector<ContactSpan> events;
   for (Eigen::Index k = 0; k < contact.size(); ++k) {
     const bool on = std::isfinite(contact[k]) && contact[k] != 0.0;
     const bool was_on = k > 0 && std::isfinite(contact[k - 1]) && contact[k - 1] != 0.0;
     if (on && !was_on) events.push_back({k, k, 0.0});
     if (on) {
-      ContactEvent& e = events.back();
+      ContactSpan& e = events.back();
       e.last = k;
       const double f = force.row(k).norm();
       if (std::isfinite(f)) e.peak_force = std::max(e.peak_force, f);
@@ -37,7 +37,7 @@ std::vector<ContactEvent> contact_events(const Eigen::VectorXd& contact,
   return events;
 }
 
-DetectionStats detection_stats(const Eigen::VectorXd& t, const std::vector<ContactEvent>& events,
+DetectionStats detection_stats(const Eigen::VectorXd& t, const std::vector<ContactSpan>& events,
                                const Eigen::MatrixXd& force, const Eigen::VectorXi& detected,
                                double settle_s) {
   if (detected.size() != t.size() || force.rows() != t.size())
@@ -47,7 +47,7 @@ DetectionStats detection_stats(const Eigen::VectorXd& t, const std::vector<Conta
   std::vector<double> latency, at_detection;
   s.smallest_detected_peak_n = std::numeric_limits<double>::quiet_NaN();
   Eigen::VectorXi excluded = Eigen::VectorXi::Zero(t.size());
-  for (const ContactEvent& e : events) {
+  for (const ContactSpan& e : events) {
     Eigen::Index end = e.last;
     while (end + 1 < t.size() && !(t[end + 1] - t[e.last] > settle_s))
       ++end;

@@ -6,8 +6,9 @@
 
 namespace tpf::offline {
 
-/// One ground-truth contact: rows [first, last] where gt_contact ≠ 0.
-struct ContactEvent {
+/// One ground-truth contact: rows [first, last] where gt_contact ≠ 0. (Not the simulator's
+/// ContactEvent, a scripted push: one name for two types broke the one-definition rule.)
+struct ContactSpan {
   Eigen::Index first = 0;
   Eigen::Index last = 0;
   double peak_force = 0.0;  ///< max |F| [N] over the event
@@ -15,8 +16,8 @@ struct ContactEvent {
 
 /// The events of a log: maximal runs of rows with contact[k] ≠ 0 (NaN counts as no contact);
 /// `force` is T × 3 (N).
-std::vector<ContactEvent> contact_events(const Eigen::VectorXd& contact,
-                                         const Eigen::MatrixXd& force);
+std::vector<ContactSpan> contact_events(const Eigen::VectorXd& contact,
+                                        const Eigen::MatrixXd& force);
 
 /// How one detector did on a set of events.
 struct DetectionStats {
@@ -35,7 +36,7 @@ struct DetectionStats {
 
 /// Scores `detected` (T, nonzero = the detector says contact) against `events`.
 /// Throws tpf::Error on inconsistent sizes.
-DetectionStats detection_stats(const Eigen::VectorXd& t, const std::vector<ContactEvent>& events,
+DetectionStats detection_stats(const Eigen::VectorXd& t, const std::vector<ContactSpan>& events,
                                const Eigen::MatrixXd& force, const Eigen::VectorXi& detected,
                                double settle_s = 0.5);
 

@@ -13,6 +13,7 @@
 #include <set>
 #include <thread>
 
+#include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
@@ -161,17 +162,6 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
   } catch (...) {
     result.exception = std::current_exception();
   }
-}
-
-/// Median of the positive steps of t (used when 'rate_hz' is absent).
-double median_step(const Eigen::VectorXd& t) {
-  if (t.size() < 2) return kNaN;
-  std::vector<double> steps(static_cast<std::size_t>(t.size() - 1));
-  for (Eigen::Index r = 1; r < t.size(); ++r)
-    steps[static_cast<std::size_t>(r - 1)] = t[r] - t[r - 1];
-  auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  return *middle;
 }
 
 }  // namespace
