@@ -45,6 +45,16 @@ TEST(ModelFuzzRegressions, UrdfWithASelfLoopIsRefusedAndFreed) {
 }
 
 // The shipped arm still loads: the loop check accepts a tree.
+// crash-multiline-error.urdf: an attribute with a line break that the loader quotes back in its
+// error. The message must stay one line naming the file (the loaders' contract, fuzz_urdf).
+TEST(ModelFuzzRegressions, AQuotedLineBreakKeepsTheErrorOnOneLine) {
+  const auto file = kCorpus / "fuzz_urdf" / "crash-multiline-error.urdf";
+  const std::string msg = message_of(file);
+  EXPECT_EQ(msg.rfind(file.string(), 0), 0u) << msg;
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  EXPECT_EQ(msg.find('\r'), std::string::npos) << msg;
+}
+
 TEST(ModelFuzzRegressions, TheArmIsATree) {
   EXPECT_EQ(load_urdf_chain(std::filesystem::path(TPF_TEST_DATA_DIR) / "arm4.urdf").joints.size(),
             4u);

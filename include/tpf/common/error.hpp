@@ -22,6 +22,9 @@ class Error : public std::runtime_error {
     if (line > 0) text.append(":").append(std::to_string(line));
     if (!field.empty()) text.append(": ").append(field);
     text.append(": ").append(message);
+    // One line whatever the file quoted back (a name or attribute with a line break in it).
+    for (char& c : text)
+      if (c == '\n' || c == '\r') c = ' ';
     return Error(text);
   }
 };
