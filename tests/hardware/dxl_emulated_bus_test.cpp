@@ -10,6 +10,7 @@
 #include "dynamixel/ph54/chain_setup.hpp"
 #include "dynamixel/ph54/chain_state_reader.hpp"
 #include "dynamixel/ph54/units.hpp"
+#include "dynamixel/protocol/fast_sync_read.hpp"
 #include "dynamixel/serial/byte_pipe.hpp"
 #include "dynamixel/serial/pty_pair.hpp"
 #include "dynamixel/serial/serial_port.hpp"
@@ -93,6 +94,61 @@ TEST(DxlEmulatedBus, FastSyncReadReturnsQuantisedPlantState) {
   // Quantisation: the position is an integer number of pulses.
   const double pulses = joints[1].position_rad / ph54::kRadPerPulse;
   EXPECT_NEAR(pulses, std::round(pulses), 1e-6);
+}
+
+// Regression: Goal Current kept its power-on value (Current Limit, 22.74 A) through set-up, so
+// Torque Enable = 1 drove joints 1–2 at full current until the test's goal arrived; under load
+// FastSyncReadReturnsQuantisedPlantState then read ≈ 16.7 A and 0.69 rad/s on its first poll.
+TEST(DxlEmulatedBus, CurrentModeSetUpZeroesGoalCurrentSoTorqueOnStaysStill) {
+  PipeRig rig;
+  const ph54::ChainInfo info = ph54::set_up_chain(rig.bus, {});
+  for (std::uint8_t id = 1; id <= 4; ++id)
+    EXPECT_EQ(rig.emulator.register_value(id, ph54::goal_current, 2), 0u) << int{id};
+  ph54::set_torque(rig.bus, {1, 2, 3, 4}, true);
+  ph54::ChainStateReader reader(rig.bus, std::array<std::uint8_t, 4>{1, 2, 3, 4},
+                                info.fast_sync_read);
+  std::array<ph54::JointReading, 4> joints;
+  ASSERT_EQ(reader.read(joints), CommResult::success);
+  for (const ph54::JointReading& joint : joints) {
+    EXPECT_EQ(joint.current_mA, 0.0);
+    EXPECT_EQ(joint.velocity_rad_s, 0.0);
+  }
+}
+
+TEST(DxlEmulatedBus, VelocityModeSetUpClearsAStaleGoalVelocity) {
+  PipeRig rig;
+  std::array<std::uint8_t, 4> stale{};
+  put_le(stale, 1000);  // 10 rev/min left by an earlier session (the motor stayed powered)
+  StatusError error{};
+  ASSERT_EQ(rig.bus.write(2, ph54::goal_velocity, stale, error), CommResult::success);
+  ASSERT_EQ(rig.emulator.register_value(2, ph54::goal_velocity, 4), 1000u);
+  ph54::ChainConfig config;
+  config.mode = ph54::OperatingMode::velocity;
+  ph54::set_up_chain(rig.bus, config);
+  EXPECT_EQ(rig.emulator.register_value(2, ph54::goal_velocity, 4), 0u);
+  EXPECT_NE(rig.emulator.register_value(2, ph54::goal_current, 2), 0u);  // still the limit
+}
+
+// A late status left in the host's input (here a Fast Sync Read status with the values of the
+// flaky failure) must not be taken for the answer to the next request: send() discards it.
+TEST(DxlEmulatedBus, StaleStatusInTheInputIsNotTakenForTheFastSyncReadAnswer) {
+  PipeRig rig;
+  const ph54::ChainInfo info = ph54::set_up_chain(rig.bus, {});
+  const std::uint8_t ids[] = {1, 2, 3, 4};
+  std::array<std::uint8_t, 4 * ph54::kStateLength> data{};
+  for (std::size_t k = 0; k < 4; ++k)
+    put_le(std::span(data).subspan(k * ph54::kStateLength, 2), 16717);
+  const std::array<StatusError, 4> errors{};
+  std::array<std::uint8_t, kMaxPacketBytes> stale;
+  const std::size_t n = build_fast_sync_read(ph54::kStateLength, ids, data, errors, stale);
+  ASSERT_GT(n, 0u);
+  ASSERT_TRUE(rig.pipe.b().write(std::span(stale).first(n), serial::monotonic_now() + 1'000'000));
+  ph54::ChainStateReader reader(rig.bus, ids, info.fast_sync_read);
+  std::array<ph54::JointReading, 4> joints;
+  ASSERT_EQ(reader.read(joints), CommResult::success);
+  for (const ph54::JointReading& joint : joints)
+    EXPECT_EQ(joint.current_mA, 0.0);  // torque off: the emulator's answer, not the stale one
+  EXPECT_EQ(rig.bus.counters().garbage_bytes, 0u);
 }
 
 TEST(DxlEmulatedBus, EepromWriteWithTorqueOnIsAnAccessError) {

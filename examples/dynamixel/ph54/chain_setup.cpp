@@ -14,11 +14,10 @@ std::string motor_name(std::uint8_t id) {
 /// Start-up transactions are retried: a single lost or corrupted status must not abort it.
 constexpr int kAttempts = 3;
 
-/// One-byte register write that must succeed with no error status.
-void write_u8(Bus& bus, std::uint8_t id, std::uint16_t address, std::uint8_t value,
-              const char* field) {
+/// Register write that must succeed with no error status.
+void write_register(Bus& bus, std::uint8_t id, std::uint16_t address,
+                    std::span<const std::uint8_t> data, const char* field) {
   StatusError error{};
-  const std::uint8_t data[] = {value};
   CommResult r = CommResult::rx_timeout;
   for (int attempt = 0; attempt < kAttempts && r != CommResult::success; ++attempt)
     r = bus.write(id, address, data, error);
@@ -27,6 +26,23 @@ void write_u8(Bus& bus, std::uint8_t id, std::uint16_t address, std::uint8_t val
   if (error.number() != StatusError::none)
     throw Error::at(motor_name(id), 0, field,
                     "write refused with error number " + std::to_string(error.number()));
+}
+
+void write_u8(Bus& bus, std::uint8_t id, std::uint16_t address, std::uint8_t value,
+              const char* field) {
+  const std::uint8_t data[] = {value};
+  write_register(bus, id, address, data, field);
+}
+
+/// Current mode: Goal Current = 0; velocity mode: Goal Velocity = 0 (torque still off). The goal
+/// registers hold their power-on value (the emulator's Goal Current = Current Limit) or the last
+/// session's goal while the motor stays powered, and Torque Enable = 1 drives towards it at once.
+void write_neutral_goal(Bus& bus, std::uint8_t id, OperatingMode mode) {
+  const std::uint8_t zero[4] = {};
+  if (mode == OperatingMode::current)
+    write_register(bus, id, goal_current, std::span(zero).first(2), "goal current");
+  else if (mode == OperatingMode::velocity)
+    write_register(bus, id, goal_velocity, zero, "goal velocity");
 }
 
 }  // namespace
@@ -51,6 +67,7 @@ ChainInfo set_up_chain(Bus& bus, const ChainConfig& config) {
     write_u8(bus, id, bus_watchdog, 0, "bus watchdog");
     write_u8(bus, id, return_delay_time, config.return_delay_2us, "return delay time");
     write_u8(bus, id, operating_mode, static_cast<std::uint8_t>(config.mode), "operating mode");
+    write_neutral_goal(bus, id, config.mode);
     write_u8(bus, id, bus_watchdog, config.bus_watchdog_20ms, "bus watchdog");
   }
   return chain;

@@ -29,9 +29,11 @@ struct ChainInfo {
 };
 
 /// Pings every ID (must be a PH54: model 2010 or 2020), then writes Torque Enable = 0,
-/// Bus Watchdog = 0 (clears a tripped watchdog), Return Delay Time, Operating Mode and finally
-/// Bus Watchdog. Each transaction is tried up to 3 times; throws tpf::Error naming the motor and
-/// register if it still fails or returns an error status.
+/// Bus Watchdog = 0 (clears a tripped watchdog), Return Delay Time, Operating Mode, a neutral goal
+/// (current mode: Goal Current = 0; velocity mode: Goal Velocity = 0; position modes: see
+/// hold_present_position) so that Torque Enable = 1 does not drive towards a stale goal, and
+/// finally Bus Watchdog. Each transaction is tried up to 3 times; throws tpf::Error naming the
+/// motor and register if it still fails or returns an error status.
 ChainInfo set_up_chain(Bus& bus, const ChainConfig& config);
 
 /// Writes Baud Rate(8) on every motor (torque must be off). The motors switch after the status;
