@@ -106,4 +106,35 @@ TEST(CompensatorDomain, InsideTheDomainTheCompensatorIsUsed) {
   EXPECT_NEAR(r.last_fused, -(kExtrapolation - 1.5 * kFusedSigma), 1e-6);
 }
 
+// The wrench weighs a joint outside the domain as the nominal estimate it falls back to: on a
+// teaching log (a hand moves the arm by a pad), an estimator whose network answers nonsense
+// (300 mA) on every moving joint but whose domain ends at rest gives the same force and external
+// torque as one with a silent network and σ_fused = σ_nominal — wherever no baseline was held at a
+// stop (that σ stays the in-domain one: a joint stops through the domain).
+TEST(CompensatorDomain, TheWrenchWeighsAJointOutsideTheDomainByTheNominalSigma) {
+  const auto samples = samples_from_log(twin_log("teaching", 3, 6));
+  ConstantCompensator nonsense, silent;
+  nonsense.b.setConstant(kExtrapolation);
+  auto outside = std::make_unique<DomainEstimator>(twin_nominal(), twin_pads(),
+                                                   domain_parameters(0.0), nonsense);
+  auto p = domain_parameters(std::numeric_limits<double>::infinity());
+  p.fused_sigma = p.nominal_sigma;
+  auto reference = std::make_unique<DomainEstimator>(twin_nominal(), twin_pads(), p, silent);
+  int compared = 0;
+  for (const ArmSample& s : samples) {
+    const auto& a = outside->update(s);
+    const auto& b = reference->update(s);
+    const auto held = [](const DomainEstimator& e) {
+      return e.tracker().frozen_mask() & ~e.tracker().onset_mask();
+    };
+    if (a.wrench.pad < 0 || held(*outside) || held(*reference)) continue;
+    ASSERT_EQ(a.wrench.pad, b.wrench.pad);
+    ASSERT_TRUE((a.status & kStatusOutsideCompensatorDomain) || a.state != ContactState::Dynamic);
+    EXPECT_LT((a.wrench.force_world - b.wrench.force_world).norm(), 1e-9);
+    EXPECT_LT((a.external.torque - b.external.torque).norm(), 1e-9);
+    ++compared;
+  }
+  EXPECT_GT(compared, 200);
+}
+
 }  // namespace
