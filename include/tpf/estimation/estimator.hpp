@@ -32,7 +32,8 @@ namespace tpf {
 ///  3. skin: filtered pressure, hysteresis, contact flags and onset times (Skin);
 ///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
 ///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s, τ_fric) (compensator_input; τ_fric is step 2's);
-///  6. three estimates (TorqueEstimator), each with its dead band, and the combined one;
+///  6. three estimates (TorqueEstimator), each with its dead band, and the combined one (Fused
+///     is the nominal residual on joints faster than the compensator's domain);
 ///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal;
 ///  8. contact: a pad, or the combined torque outside its band for a while (PersistenceTest).
 /// `Compensator` is tpf::Tcn<S, 5N, H, L, K, N>, PerJointTcn or ZeroCompensator<S, N> (none).
@@ -152,10 +153,20 @@ class Estimator {
     set_estimate(TorqueEstimator::StaticModelFree,
                  dead_band(tracker_.static_external(), parameters_.static_dead_band),
                  tracker_.valid_mask());
-    set_estimate(TorqueEstimator::Fused,
-                 dead_band(Vector(out.residual - out.compensation),
-                           Vector(parameters_.dead_band_factor * parameters_.fused_sigma)),
-                 all);
+    // Fused: τ_res − τ_TCN, except on joints faster than the compensator's domain, where the
+    // network extrapolates and the nominal residual (with its band) stands.
+    Vector fused_residual = out.residual - out.compensation;
+    Vector fused_band = parameters_.dead_band_factor * parameters_.fused_sigma;
+    fused_sigma_now_ = moving_sigma_;
+    for (int j = 0; j < N; ++j) {
+      using std::abs;
+      if (!(abs(sample.dq[j]) > parameters_.compensator_speed_limit[j])) continue;
+      fused_residual[j] = out.residual[j];
+      fused_band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
+      fused_sigma_now_[j] = nominal_moving_sigma_[j];
+      status |= kStatusOutsideCompensatorDomain;
+    }
+    set_estimate(TorqueEstimator::Fused, dead_band(fused_residual, fused_band), all);
     const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
     const ExternalTorque<S, N>& fused = out.estimate(TorqueEstimator::Fused);
     for (int j = 0; j < N; ++j) {
@@ -168,8 +179,8 @@ class Estimator {
     const bool torque_alarm = torque_alarm_.update((out.external.residual.array() != S(0)).any());
 
     // 7. Contact force at the most loaded pad: the torque evidence (before any dead band: the
-    // static Δτ_res on resting joints, τ_res − τ_TCN on moving ones) weighted by its σ, with the
-    // pad's reading as the prior.
+    // static Δτ_res on resting joints, the fused residual on moving ones) weighted by its σ, with
+    // the pad's reading as the prior.
     out.wrench = ContactForce<S>{};
     const int pad = skin_.most_loaded();
     if (pad >= 0) {
@@ -182,9 +193,9 @@ class Estimator {
       Vector evidence, sigma;
       for (int j = 0; j < N; ++j) {
         const bool at_rest = fixed.valid & (1u << j);
-        const S r = at_rest ? tracker_.static_external()[j] : out.residual[j] - out.compensation[j];
+        const S r = at_rest ? tracker_.static_external()[j] : fused_residual[j];
         evidence[j] = -r / nominal_.effort_per_newton_metre[j];
-        const S s = !at_rest             ? moving_sigma_[j]
+        const S s = !at_rest             ? fused_sigma_now_[j]
                     : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
                                          : static_sigma_[j];
         sigma[j] = s / nominal_.effort_per_newton_metre[j];
@@ -227,8 +238,9 @@ class Estimator {
   /// σ of the torque evidence the wrench weighs (effort unit): on a resting joint
   /// √((static band/3)² + τ_s²/3) — the noise plus the push the friction may hold unseen (up to
   /// the break-away level τ_s, taken as uniform); on a moving joint σ_fused (σ_nominal when there
-  /// is no fused σ; the wrench settings' torque_noise_nm when neither is calibrated). A resting
-  /// joint whose baseline was set when it stopped in contact weighs √(static² + moving²).
+  /// is no fused σ; the wrench settings' torque_noise_nm when neither is calibrated), σ_nominal
+  /// on a joint outside the compensator's speed domain. A resting joint whose baseline was set
+  /// when it stopped in contact weighs √(static² + moving²).
   const Vector& static_sigma() const noexcept { return static_sigma_; }
   const Vector& moving_sigma() const noexcept { return moving_sigma_; }
   Compensator& compensator() noexcept { return compensator_; }
@@ -263,7 +275,8 @@ class Estimator {
                         .cwiseMax(floor);
     for (int j = 0; j < N; ++j) {
       const S fused = parameters_.fused_sigma[j], nominal = parameters_.nominal_sigma[j];
-      moving_sigma_[j] = fused > S(0) ? fused : (nominal > S(0) ? nominal : floor[j]);
+      nominal_moving_sigma_[j] = nominal > S(0) ? nominal : floor[j];
+      moving_sigma_[j] = fused > S(0) ? fused : nominal_moving_sigma_[j];
     }
   }
 
@@ -307,6 +320,8 @@ class Estimator {
   Vector held_residual_ = Vector::Zero();  ///< last torque-only estimate (StopPolicy)
   Vector static_sigma_ = Vector::Zero();
   Vector moving_sigma_ = Vector::Zero();
+  Vector nominal_moving_sigma_ = Vector::Zero();  ///< σ_nominal (floor when uncalibrated)
+  Vector fused_sigma_now_ = Vector::Zero();       ///< this cycle's σ of the Fused evidence
   Output output_;
   bool started_ = false;
 };

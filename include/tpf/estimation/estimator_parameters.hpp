@@ -1,6 +1,8 @@
 // The run-time estimator's parameters (everything but the nominal model and the TCN weights).
 #pragma once
 
+#include <limits>
+
 #include "tpf/common/types.hpp"
 #include "tpf/estimation/contact_force.hpp"
 #include "tpf/estimation/static_friction_tracker.hpp"
@@ -35,6 +37,13 @@ struct EstimatorParameters {
   JointVector<S, N> nominal_sigma = JointVector<S, N>::Zero();
   JointVector<S, N> fused_sigma = JointVector<S, N>::Zero();
   S dead_band_factor = S(1.5);
+  /// The compensator's domain [rad/s]: the speeds its training data and the calibration of
+  /// fused_sigma and torque_alarm_samples covered (e.g. max |q̇_j| of the contact-free
+  /// calibration log, speed_envelope). On a joint moving faster the network extrapolates, so its
+  /// Fused estimate falls back to the nominal residual τ_res with the nominal band
+  /// dead_band_factor·nominal_sigma (kStatusOutsideCompensatorDomain). +inf: no limit.
+  JointVector<S, N> compensator_speed_limit =
+      JointVector<S, N>::Constant(std::numeric_limits<S>::infinity());
   /// The torque-only contact alarm (EstimatorOutput::contact without a pad) needs the combined
   /// external torque outside its dead band on some joint for this many consecutive cycles
   /// (PersistenceTest): a contact-free arm's outliers (break-away transitions) are short, a push

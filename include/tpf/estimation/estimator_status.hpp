@@ -35,6 +35,9 @@ enum EstimatorStatus : std::uint32_t {
   /// live and released since. Its contact reaches neither the state machine nor the wrench; a
   /// static-friction baseline its phantom onset froze is re-taken at the remaining contacts' onset.
   kStatusPadIgnored = 1u << 9,
+  /// A joint moves faster than EstimatorParameters::compensator_speed_limit (outside the speeds
+  /// the compensator was trained and calibrated on): its Fused estimate is the nominal one.
+  kStatusOutsideCompensatorDomain = 1u << 10,
 };
 
 }  // namespace tpf

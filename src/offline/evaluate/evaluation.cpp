@@ -165,8 +165,10 @@ Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
   const Vec scale = setup.nominal.effort_per_newton_metre;
 
   say("evaluate: calibrating the dead bands on " + logs.calibration->source);
-  ev.sigma = calibrate_arm_sigma(setup, estimator_samples<kArmJoints, kArmPads>(*logs.calibration),
-                                 logs.calibration->source);
+  const auto calibration = estimator_samples<kArmJoints, kArmPads>(*logs.calibration);
+  ev.compensator_speed_limit = setup.parameters.compensator_speed_limit =
+      speed_envelope(calibration);
+  ev.sigma = calibrate_arm_sigma(setup, calibration, logs.calibration->source);
   ev.torque_alarm_samples = setup.parameters.torque_alarm_samples =
       calibrate_torque_alarm(setup, *logs.calibration);
   const ArmParameters& p = setup.parameters;
@@ -226,6 +228,7 @@ std::string evaluation_json(const Evaluation& ev) {
   j["simulated"] = true;
   j["sigma"] = {{"nominal", vec(ev.sigma.nominal)}, {"fused", vec(ev.sigma.fused)}};
   j["torque_alarm_samples"] = ev.torque_alarm_samples;
+  j["compensator_speed_limit"] = vec(ev.compensator_speed_limit);
   j["dead_bands"] = {{"proprioceptive", vec(ev.dead_bands.proprioceptive)},
                      {"fusion_moving", vec(ev.dead_bands.fusion_moving)},
                      {"fusion_static", vec(ev.dead_bands.fusion_static)},

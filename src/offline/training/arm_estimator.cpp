@@ -150,6 +150,13 @@ ArmEstimatorStep make_arm_estimator_step(const ArmEstimatorSetup& setup) {
   });
 }
 
+JointVector<double, kArmJoints> speed_envelope(const std::vector<ArmSample>& samples) {
+  JointVector<double, kArmJoints> v = JointVector<double, kArmJoints>::Zero();
+  for (const ArmSample& s : samples)
+    if (std::isfinite(s.t) && s.dq.allFinite()) v = v.cwiseMax(s.dq.cwiseAbs());
+  return v;
+}
+
 TransitionSigma<double, kArmJoints> calibrate_arm_sigma(ArmEstimatorSetup& setup,
                                                         const std::vector<ArmSample>& samples,
                                                         const std::string& source) {

@@ -93,6 +93,12 @@ using ArmEstimatorStep =
     std::function<const EstimatorOutput<double, kArmJoints>&(const ArmSample&)>;
 ArmEstimatorStep make_arm_estimator_step(const ArmEstimatorSetup& setup);
 
+/// The speeds a log covers, per joint: max |q̇_j| over its finite samples [rad/s] (0 when none).
+/// Run on the contact-free calibration log it bounds the compensator's domain
+/// (EstimatorParameters::compensator_speed_limit): the speeds over which its σ and the torque
+/// alarm were calibrated, and, with calibration and training drawn from one scenario, trained.
+JointVector<double, kArmJoints> speed_envelope(const std::vector<ArmSample>& samples);
+
 /// calibrate_transition_sigma on contact-free `samples` with the setup's compensator; the result
 /// is stored in setup.parameters (nominal_sigma, fused_sigma) and returned.
 TransitionSigma<double, kArmJoints> calibrate_arm_sigma(ArmEstimatorSetup& setup,

@@ -1,0 +1,140 @@
+// Outside the compensator's speed domain the fused estimate is the nominal one: a network that
+// extrapolates badly at speeds it never saw cannot raise the torque-only contact alarm, and a
+// push off the pads still can (hand-made samples on the twin's nominal model).
+#include <gtest/gtest.h>
+
+#include "twin_fixture.hpp"
+
+namespace {
+
+using namespace tpf;
+using namespace tpf::test;
+
+/// A compensator that answers a constant b whatever its input: a network far outside its
+/// training data (the demo's joint-1 network read −85 mA at 3 rad/s, trained up to 0.8 rad/s).
+struct ConstantCompensator {
+  using Output = Eigen::Matrix<double, kJoints, 1>;
+  const Output& step(const CompensatorInput<double, kJoints>&) noexcept { return b; }
+  void reset(const CompensatorInput<double, kJoints>&) noexcept {}
+  Output b = Output::Zero();
+};
+using DomainEstimator = Estimator<double, kJoints, kPads, ConstantCompensator>;
+
+constexpr double kNominalSigma = 100.0, kFusedSigma = 20.0;  // mA: bands 150 and 30
+constexpr double kExtrapolation = 300.0;                     // mA, the network's wrong answer
+constexpr int kAlarmSamples = 10;
+
+EstimatorParameters<double, kJoints> domain_parameters(double speed_limit) {
+  auto p = twin_parameters();
+  p.nominal_sigma.setConstant(kNominalSigma);
+  p.fused_sigma.setConstant(kFusedSigma);
+  p.torque_alarm_samples = kAlarmSamples;
+  p.compensator_speed_limit.setConstant(speed_limit);
+  return p;
+}
+
+/// 0.5 s of joint 1 turning at `speed` (the others at rest, no pad touched) with the effort the
+/// nominal model predicts minus `push` mA on joint 1 (an external torque +push/K_t off the pads),
+/// so τ_res = −push exactly. q̈ = 0 is given.
+std::vector<ArmSample> turning(double speed, double push) {
+  const auto nominal = twin_nominal();
+  Data<double, kJoints> data(nominal.model);
+  std::vector<ArmSample> samples(200);
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    ArmSample& s = samples[k];
+    s.t = 0.0025 * double(k);
+    s.q << -1.0 + speed * s.t, 0.3, 0.4, 0.1;
+    s.dq << speed, 0.0, 0.0, 0.0;
+    s.ddq.setZero();
+    s.has_ddq = true;
+    Vec rigid, friction;
+    predict_effort(nominal, data, s.q, s.dq, s.ddq, rigid, friction);
+    s.effort = rigid + friction;
+    s.effort[0] -= push;
+    s.pressure.setZero();
+  }
+  return samples;
+}
+
+struct DomainRun {
+  int alarms = 0, first_alarm = -1, outside = 0;
+  double last_fused = 0.0;  ///< joint 1's Fused external residual at the last sample (mA)
+};
+
+DomainRun run(double speed, double push, double speed_limit) {
+  ConstantCompensator c;
+  c.b[0] = kExtrapolation;
+  auto est = std::make_unique<DomainEstimator>(twin_nominal(), twin_pads(),
+                                               domain_parameters(speed_limit), c);
+  DomainRun r;
+  const auto samples = turning(speed, push);
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const auto& out = est->update(samples[k]);
+    if (out.contact && r.first_alarm < 0) r.first_alarm = int(k);
+    r.alarms += out.contact ? 1 : 0;
+    r.outside += (out.status & kStatusOutsideCompensatorDomain) ? 1 : 0;
+    r.last_fused = out.estimate(TorqueEstimator::Fused).residual[0];
+  }
+  return r;
+}
+
+TEST(CompensatorDomain, WithoutALimitTheExtrapolatingNetworkRaisesAFalseAlarm) {
+  const DomainRun r = run(2.0, 0.0, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(r.outside, 0);
+  EXPECT_NEAR(r.last_fused, -(kExtrapolation - 1.5 * kFusedSigma), 1e-6);  // d(0 − b, 30)
+  EXPECT_EQ(r.first_alarm, kAlarmSamples - 1);
+}
+
+TEST(CompensatorDomain, FasterThanTheDomainTheFusedEstimateIsTheNominalOne) {
+  const DomainRun r = run(2.0, 0.0, 1.0);
+  EXPECT_EQ(r.outside, 200);
+  EXPECT_NEAR(r.last_fused, 0.0, 1e-6);  // d(τ_res = 0, 150), not d(0 − b, 30)
+  EXPECT_EQ(r.alarms, 0);
+}
+
+TEST(CompensatorDomain, APushOffThePadsStillAlarmsOutsideTheDomain) {
+  const double push = 400.0;  // mA beyond the nominal band 150
+  const DomainRun r = run(2.0, push, 1.0);
+  EXPECT_NEAR(r.last_fused, -(push - 1.5 * kNominalSigma), 1e-6);
+  EXPECT_EQ(r.first_alarm, kAlarmSamples - 1);
+  EXPECT_EQ(r.alarms, 200 - (kAlarmSamples - 1));
+}
+
+TEST(CompensatorDomain, InsideTheDomainTheCompensatorIsUsed) {
+  const DomainRun r = run(0.5, 0.0, 1.0);
+  EXPECT_EQ(r.outside, 0);
+  EXPECT_NEAR(r.last_fused, -(kExtrapolation - 1.5 * kFusedSigma), 1e-6);
+}
+
+// The wrench weighs a joint outside the domain as the nominal estimate it falls back to: on a
+// teaching log (a hand moves the arm by a pad), an estimator whose network answers nonsense
+// (300 mA) on every moving joint but whose domain ends at rest gives the same force and external
+// torque as one with a silent network and σ_fused = σ_nominal — wherever no baseline was held at a
+// stop (that σ stays the in-domain one: a joint stops through the domain).
+TEST(CompensatorDomain, TheWrenchWeighsAJointOutsideTheDomainByTheNominalSigma) {
+  const auto samples = samples_from_log(twin_log("teaching", 3, 6));
+  ConstantCompensator nonsense, silent;
+  nonsense.b.setConstant(kExtrapolation);
+  auto outside = std::make_unique<DomainEstimator>(twin_nominal(), twin_pads(),
+                                                   domain_parameters(0.0), nonsense);
+  auto p = domain_parameters(std::numeric_limits<double>::infinity());
+  p.fused_sigma = p.nominal_sigma;
+  auto reference = std::make_unique<DomainEstimator>(twin_nominal(), twin_pads(), p, silent);
+  int compared = 0;
+  for (const ArmSample& s : samples) {
+    const auto& a = outside->update(s);
+    const auto& b = reference->update(s);
+    const auto held = [](const DomainEstimator& e) {
+      return e.tracker().frozen_mask() & ~e.tracker().onset_mask();
+    };
+    if (a.wrench.pad < 0 || held(*outside) || held(*reference)) continue;
+    ASSERT_EQ(a.wrench.pad, b.wrench.pad);
+    ASSERT_TRUE((a.status & kStatusOutsideCompensatorDomain) || a.state != ContactState::Dynamic);
+    EXPECT_LT((a.wrench.force_world - b.wrench.force_world).norm(), 1e-9);
+    EXPECT_LT((a.external.torque - b.external.torque).norm(), 1e-9);
+    ++compared;
+  }
+  EXPECT_GT(compared, 200);
+}
+
+}  // namespace
