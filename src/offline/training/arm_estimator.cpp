@@ -47,11 +47,15 @@ SensorNoise estimate_sensor_noise(const Log& log) {
                       "too few static rows to estimate the effort noise");
     noise.effort[j] = robust_std(d) / std::sqrt(2.0);
   }
+  // A pad whose offset sits at the sensor's rail (0 kPa) reads 0 again and again: its
+  // differences there are clipped noise, not noise, and would bias σ low.
+  const double full_scale = SkinSettings<double>{}.full_scale_kpa;
+  const auto live = [full_scale](double p) { return p > 0.0 && p < full_scale; };
   std::vector<double> d;
   for (int k = 1; k <= log.pad_count(); ++k) {
     const auto p = log.col(indexed_name("p", k));
     for (Eigen::Index r = 1; r < log.rows(); ++r)
-      if (std::isfinite(p[r] - p[r - 1])) d.push_back(p[r] - p[r - 1]);
+      if (live(p[r]) && live(p[r - 1])) d.push_back(p[r] - p[r - 1]);
   }
   noise.pad_kpa = d.empty() ? 0.0 : robust_std(d) / std::sqrt(2.0);
   return noise;

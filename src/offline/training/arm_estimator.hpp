@@ -42,7 +42,9 @@ struct SensorNoise {
 
 /// Noise read off a log: per joint, the robust std of the first difference of the effort over
 /// consecutive static rows (|q̇_j| < 1e-4 rad/s), divided by √2, σ = 1.4826·MAD(Δe)/√2; the pads'
-/// likewise over all rows of every pad column (contacts are rare and slow against the noise).
+/// likewise over all pairs of rows of every pad column where both readings are off the sensor's
+/// rails (0, full scale: clipped readings repeat and would bias σ low; contacts are rare and slow
+/// against the noise).
 /// Throws tpf::Error naming the log when a joint never rests.
 SensorNoise estimate_sensor_noise(const Log& log);
 
