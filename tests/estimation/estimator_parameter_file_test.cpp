@@ -244,4 +244,15 @@ TEST_F(EstimatorParameterFile, RefusesUnknownAndBadFieldsNamingThem) {
   EXPECT_THROW(tpf::load_estimator_parameters<4>(path("no-such-file.json")), tpf::Error);
 }
 
+TEST(EstimatorParameterFileData, TheShippedArm4FileLoads) {
+  // data/arm4.estimator.json: written by `tpf calibrate` from a SIMULATED calibration log.
+  const Parameters p =
+      tpf::load_estimator_parameters<4>(std::string(TPF_TEST_DATA_DIR) + "/arm4.estimator.json");
+  // Calibrated: the transition σ's and dead bands are set (the defaults are 0).
+  EXPECT_GT(p.nominal_sigma.minCoeff(), 0.0);
+  EXPECT_GT(p.fused_sigma.minCoeff(), 0.0);
+  EXPECT_GT(p.static_dead_band.minCoeff(), 0.0);
+  EXPECT_GE(p.torque_alarm_samples, 1);
+}
+
 }  // namespace

@@ -11,7 +11,7 @@
 namespace tpf {
 namespace {
 
-using Json = nlohmann::json;
+using Json = nlohmann::ordered_json;  // saved in the struct's order, for people
 using Bound = json::Object::Bound;
 
 constexpr const char* kFormat = "tpf-estimator";

@@ -54,8 +54,8 @@ std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr,
   return d;
 }
 
-/// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on a contact-free log
-/// (rows without a pad in contact; the estimator as configured in `setup`).
+}  // namespace
+
 int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
   const EstimatorTrace tr =
       trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log));
@@ -67,6 +67,8 @@ int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
       Eigen::Map<const Eigen::VectorXi>(free.data(), static_cast<Eigen::Index>(free.size())),
       kTorqueAlarmFalseAlarmRate, kTorqueAlarmMaxSamples);
 }
+
+namespace {
 
 Eigen::MatrixXd columns(const Log& log, const std::string& prefix, int count) {
   Eigen::MatrixXd m(log.rows(), count);
@@ -169,6 +171,7 @@ Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
                                  logs.calibration->source);
   ev.torque_alarm_samples = setup.parameters.torque_alarm_samples =
       calibrate_torque_alarm(setup, *logs.calibration);
+  ev.parameters = setup.parameters;
   const ArmParameters& p = setup.parameters;
   ev.dead_bands.proprioceptive = p.dead_band_factor * p.nominal_sigma;
   ev.dead_bands.fusion_moving = p.dead_band_factor * p.fused_sigma;
