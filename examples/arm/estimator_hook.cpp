@@ -1,55 +1,35 @@
 #include "arm/estimator_hook.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
-#include "offline/log/read_log.hpp"
-#include "offline/training/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/estimator_status.hpp"
-#include "tpf/estimation/nominal_model.hpp"
-#include "tpf/skin/pad_layout.hpp"
 
 namespace tpf::arm {
 
 namespace {
 
-/// The offline tools' estimator set-up for the arm, from the files.
-offline::ArmEstimatorSetup load_setup(const EstimatorFiles& f, std::string& description) {
-  offline::ArmEstimatorSetup setup;
-  setup.nominal = load_nominal_model<offline::kArmJoints>(f.params, f.robot);
+/// The core's estimator set-up for the arm, from the files; `description` says what was loaded.
+ArmEstimatorSetup load_setup(const EstimatorFiles& f, std::string& description) {
+  ArmEstimatorSetup setup = load_arm_estimator_setup(f);
   if (setup.nominal.effort_unit != "mA")
     throw Error::at(f.params, 0, "effort_unit",
                     "is \"" + setup.nominal.effort_unit +
                         "\"; the loop measures motor currents in mA (identify on an i<j> log)");
-  setup.pads = load_pads(f.pads, setup.nominal.model);
-  description = "estimator: " + f.params + ", " + std::to_string(setup.pads.size()) + " pads";
-  if (!f.weights.empty()) {
-    setup.weight_files = offline::compensator_files(f.weights, setup.layout);
-    description += setup.layout == offline::CompensatorLayout::PerJoint
-                       ? ", one friction network per joint (" + f.weights + ")"
-                       : ", friction network " + f.weights;
-  } else {
-    description += ", no friction compensator";
-  }
-  if (!f.calibration_log.empty()) {
-    const offline::Log log = offline::read_log(f.calibration_log);
-    setup.parameters = offline::arm_estimator_parameters(offline::estimate_sensor_noise(log),
-                                                         f.pad_gain_kpa_per_n);
-    offline::calibrate_arm_sigma(
-        setup, offline::estimator_samples<offline::kArmJoints, offline::kArmPads>(log),
-        f.calibration_log);
-    description += ", dead bands from " + f.calibration_log;
-  } else {
-    offline::SensorNoise noise;
-    noise.effort.setConstant(f.effort_noise_ma);
-    noise.pad_kpa = f.pad_noise_kpa;
-    setup.parameters = offline::arm_estimator_parameters(noise, f.pad_gain_kpa_per_n);
-    char noise_text[96];
-    std::snprintf(noise_text, sizeof noise_text, ", dead bands from the noise (%g mA, %g kPa)",
-                  f.effort_noise_ma, f.pad_noise_kpa);
-    description += noise_text;
+  description = "estimator: " + f.params + ", " + std::to_string(setup.pads.size()) +
+                " pads, parameters " + f.estimator;
+  switch (setup.layout) {
+    case CompensatorLayout::PerJoint:
+      description += ", one friction network per joint (" + f.weights + ")";
+      break;
+    case CompensatorLayout::AllJoints:
+      description += ", friction network " + f.weights;
+      break;
+    case CompensatorLayout::None:
+      description += ", no friction compensator";
+      break;
   }
   return setup;
 }
@@ -57,7 +37,7 @@ offline::ArmEstimatorSetup load_setup(const EstimatorFiles& f, std::string& desc
 }  // namespace
 
 EstimatorHook::EstimatorHook(const EstimatorFiles& files) {
-  step_ = offline::make_arm_estimator_step(load_setup(files, description_));
+  step_ = make_arm_estimator_step(load_setup(files, description_));
   output_ = &empty_;
   trace_.reserve(files.trace_capacity);
 }

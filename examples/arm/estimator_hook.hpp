@@ -1,8 +1,8 @@
 // The core Estimator in the arm loop: built at start-up from files (nominal model, pad layout,
-// friction-compensator weights, sensor noise), updated once per cycle on the real-time thread
-// with the cycle's sample, its outcome counted for the report. The assembly is the offline tools'
-// own (tpf::offline::ArmEstimatorSetup, arm_estimator_parameters, make_arm_estimator_step), so
-// the loop runs exactly the estimator `tpf evaluate` scores; tpf::offline is used at start-up only.
+// estimator parameters calibrated offline by `tpf calibrate`, friction-compensator weights),
+// updated once per cycle on the real-time thread with the cycle's sample, its outcome counted for
+// the report. The assembly is the core's (tpf::load_arm_estimator_setup, make_arm_estimator_step),
+// the same the offline tools score: the loop links tpf::core only.
 #pragma once
 
 #include <array>
@@ -12,24 +12,14 @@
 #include <vector>
 
 #include "arm/cycle_sample.hpp"
-#include "offline/training/arm_estimator.hpp"
+#include "tpf/estimation/arm4_estimator.hpp"
 
 namespace tpf::arm {
 
-/// Where the estimator comes from. Paths default to the project's data/ folder (tpf_arm_loop).
-struct EstimatorFiles {
-  std::string params;  ///< tpf-params file (`tpf identify` / `tpf diagnose`), effort unit mA
-  std::string robot;   ///< robot file the parameters were identified for
-  std::string pads;    ///< pad layout (tpf-pads); pad k is the pad board's channel k
-  /// Compensator weights: an all-joints file, or a path whose `<stem>.joint<j>.json` exist (one
-  /// network per joint); empty: no compensator (the fused estimate is the nominal residual).
-  std::string weights;
-  /// Contact-free log of this arm (optional): the sensor noise and the transition σ of the dead
-  /// bands are read off it, as `tpf evaluate` does. Without it: the noise below, σ = 0.
-  std::string calibration_log;
-  double effort_noise_ma = 6.0;  ///< current noise σ (PH54 at rest, hardware.md §2)
-  double pad_noise_kpa = 0.03;   ///< pad pressure noise σ
-  double pad_gain_kpa_per_n = 1.5;
+/// Where the estimator comes from (ArmEstimatorFiles: params, robot, pads, estimator, weights).
+/// Paths default to the project's data/ folder (tpf_arm_loop). The effort unit of the parameter
+/// file must be mA (the loop measures motor currents).
+struct EstimatorFiles : ArmEstimatorFiles {
   /// Estimates kept for inspection (one per cycle, reserved at start-up; 0: none).
   std::size_t trace_capacity = 0;
 };
@@ -40,9 +30,9 @@ struct EstimateRecord {
   double t = 0.0;  ///< the cycle's time [s]
   std::uint32_t status = 0;
   int contact_pad = -1;  ///< most loaded pad in contact (0-based), −1: none
-  JointVector<double, offline::kArmJoints> external_torque_nm =
-      JointVector<double, offline::kArmJoints>::Zero();  ///< τ_ext
-  double normal_force_n = 0.0;  ///< estimated contact normal force at contact_pad
+  JointVector<double, kArmJoints> external_torque_nm =
+      JointVector<double, kArmJoints>::Zero();  ///< τ_ext
+  double normal_force_n = 0.0;                  ///< estimated contact normal force at contact_pad
 };
 
 /// What the estimator did over a run.
@@ -59,8 +49,8 @@ struct EstimatorStatistics {
 
 class EstimatorHook {
  public:
-  static constexpr int kJoints = offline::kArmJoints;
-  static constexpr int kPads = offline::kArmPads;
+  static constexpr int kJoints = kArmJoints;
+  static constexpr int kPads = kArmPads;
   using Output = EstimatorOutput<double, kJoints>;
 
   /// Start-up: loads every file and builds the estimator. Throws tpf::Error naming the file and
@@ -81,8 +71,8 @@ class EstimatorHook {
   const std::string& description() const noexcept { return description_; }
 
  private:
-  offline::ArmEstimatorStep step_;
-  offline::ArmSample input_;
+  ArmEstimatorStep step_;
+  ArmSample input_;
   const Output* output_ = nullptr;
   Output empty_;
   EstimatorStatistics statistics_;

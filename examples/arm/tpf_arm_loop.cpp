@@ -4,14 +4,15 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "arm/arm_loop.hpp"
 #include "arm/realtime.hpp"
 #include "arm/report_printer.hpp"
 #include "dynamixel/ph54/chain_setup.hpp"
 #include "dynamixel/serial/serial_port.hpp"
-#include "offline/common/data_files.hpp"
 #include "tpf/common/error.hpp"
 
 namespace {
@@ -19,6 +20,12 @@ namespace {
 tpf::arm::ArmLoop* g_loop = nullptr;
 extern "C" void on_signal(int) {
   if (g_loop != nullptr) g_loop->request_stop();
+}
+
+/// A shipped data file: $TPF_DATA_DIR/name if set, else the source tree's data/name.
+std::string data_file(const std::string& name) {
+  const char* dir = std::getenv("TPF_DATA_DIR");
+  return std::string(dir != nullptr && *dir != '\0' ? dir : TPF_ARM_DATA_DIR) + "/" + name;
 }
 
 }  // namespace
@@ -29,14 +36,17 @@ int main(int argc, char** argv) {
       "400 Hz loop of the PH54 arm with the pad board: reads the motors and pads, runs the tpf "
       "estimator (external joint torques, contact force) on every cycle, logs and reports.\n"
       "The estimator is built from a parameter file (tpf identify/diagnose), the robot and pad "
-      "layout files and friction-network weights (tpf train); defaults are the project's data/ "
-      "files for the arm4. Its input is the motor current in mA: hold the arm (--hold) or "
+      "layout files, an estimator parameter file (tpf calibrate, from a contact-free log of this "
+      "arm) and friction-network weights (tpf train); defaults are the project's data/ files for "
+      "the arm4 (data/arm4.estimator.json is calibrated on a SIMULATED log: calibrate yours). Its "
+      "input is the motor current in mA: hold the arm (--hold) or "
       "excite it (--excite) so the drives carry the load; with torque off the currents are 0."};
   arm::EstimatorFiles est;
-  est.params = offline::data_file("arm4.params.json").string();
-  est.robot = offline::data_file("arm4.robot.json").string();
-  est.pads = offline::data_file("arm4.pads.json").string();
-  est.weights = offline::data_file("weights/arm4.tcn.json").string();
+  est.params = data_file("arm4.params.json");
+  est.robot = data_file("arm4.robot.json");
+  est.pads = data_file("arm4.pads.json");
+  est.estimator = data_file("arm4.estimator.json");
+  est.weights = data_file("weights/arm4.tcn.json");
   bool no_estimator = false, hold = false;
   std::string motors_path, pads_path, log_path, note = "recorded by tpf_arm_loop";
   int baud = 4'000'000, set_baud_from = 0, priority = 80;
@@ -74,13 +84,9 @@ int main(int argc, char** argv) {
                  "friction network: an all-joints weight file, or a path whose "
                  "<stem>.joint1..4.json exist (one network per joint); 'none': no compensator")
       ->capture_default_str();
-  app.add_option("--calibration-log", est.calibration_log,
-                 "contact-free log of this arm: sensor noise and dead bands are read off it");
-  app.add_option("--effort-noise", est.effort_noise_ma,
-                 "current noise sigma [mA] for the dead bands (without --calibration-log)")
-      ->capture_default_str();
-  app.add_option("--pad-noise", est.pad_noise_kpa,
-                 "pad noise sigma [kPa] for the contact thresholds (without --calibration-log)")
+  app.add_option("--estimator", est.estimator,
+                 "estimator parameters (tpf-estimator): dead bands, noise levels, thresholds, pad "
+                 "gain; write one with `tpf calibrate --log <contact-free log of this arm>`")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 

@@ -12,6 +12,7 @@ void register_identify_command(CLI::App& app);
 void register_diagnose_command(CLI::App& app);
 void register_train_command(CLI::App& app);
 void register_evaluate_command(CLI::App& app);
+void register_calibrate_command(CLI::App& app);
 
 /// Prints a robot file's model, drives, pads and a few computed quantities (used by info and demo).
 void print_robot_summary(const std::string& robot_file);

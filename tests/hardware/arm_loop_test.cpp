@@ -192,6 +192,7 @@ TEST(ArmLoop, CycleDoesNotAllocate) {
   files.params = std::string(TPF_TEST_DATA_DIR) + "/arm4.params.json";
   files.robot = std::string(TPF_TEST_DATA_DIR) + "/arm4.robot.json";
   files.pads = std::string(TPF_TEST_DATA_DIR) + "/arm4.pads.json";
+  files.estimator = std::string(TPF_TEST_DATA_DIR) + "/arm4.estimator.json";
   files.weights = std::string(TPF_TEST_DATA_DIR) + "/weights/arm4.tcn.json";
   EstimatorHook estimator(files);
   ArmLoop loop(*rig.bus, reader, rig.ids, rig.pads.get(), nullptr, options, &estimator);

@@ -1,19 +1,21 @@
 // The loop's estimator hook without devices: cycle samples in, the core Estimator's outcome out.
 // A failed motor read or stale pads are flagged in the status, never estimated from; the cycle
-// allocates nothing; bad files are refused at start-up with the file named.
+// allocates nothing; the estimator parameter file sets the dead bands; bad files are refused at
+// start-up with the file named.
 #include "arm/estimator_hook.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <cstdio>
-#include <cstdlib>
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
-#include "offline/sim/scenario.hpp"
-#include "offline/sim/simulate.hpp"
 #include "support/allocation_counter.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/estimator_status.hpp"
 
 namespace tpf::arm {
@@ -28,6 +30,7 @@ EstimatorFiles arm4_files() {
   f.params = data("arm4.params.json");
   f.robot = data("arm4.robot.json");
   f.pads = data("arm4.pads.json");
+  f.estimator = data("arm4.estimator.json");  // calibrated on a SIMULATED log
   f.weights = data("weights/arm4.tcn.json");
   f.trace_capacity = 100;
   return f;
@@ -87,17 +90,51 @@ TEST(EstimatorHook, FlagsFaultyCyclesAndDoesNotAllocate) {
   EXPECT_EQ(out.estimate(TorqueEstimator::Proprioceptive).torque.cwiseAbs().maxCoeff(), 0.0);
 }
 
-TEST(EstimatorHook, ReadsItsDeadBandsOffACalibrationLog) {
-  // A contact-free twin log (simulated, excitation: rests and moves on every joint).
-  const std::string log = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
-                          "/tpf_hook_calibration_" + std::to_string(::getpid()) + ".csv";
-  offline::simulate_to_file(offline::load_scenario(data("scenarios/excitation.json")), 11, 20.0,
-                            log);
+/// A file in the temporary folder, removed at the end of the test.
+struct TempFile {
+  explicit TempFile(const std::string& name)
+      : path(std::filesystem::temp_directory_path() /
+             (name + "." + std::to_string(::getpid()) + ".json")) {}
+  ~TempFile() { std::filesystem::remove(path); }
+  std::filesystem::path path;
+};
+
+/// The proprioceptive estimate (after its dead band, mA) of the arm at rest whose currents exceed
+/// the model's by `offset_ma` on every joint, from a hook with estimator parameter file `file`.
+JointVector<double, 4> proprioceptive_at_rest(const std::string& file, double offset_ma) {
   EstimatorFiles f = arm4_files();
-  f.calibration_log = log;
+  f.estimator = file;
   EstimatorHook hook(f);
-  EXPECT_NE(hook.description().find("dead bands from " + log), std::string::npos);
-  std::remove(log.c_str());
+  EXPECT_NE(hook.description().find("parameters " + file), std::string::npos);
+  CycleSample s = resting(0);
+  hook.update(s);
+  for (int j = 0; j < 4; ++j)
+    s.i[static_cast<std::size_t>(j)] = hook.output().effort_rigid[j] + offset_ma;
+  for (std::uint64_t n = 1; n < 40; ++n) {
+    s.cycle = n;
+    s.t = 0.0025 * static_cast<double>(n);
+    hook.update(s);
+  }
+  EXPECT_EQ(hook.output().status, kStatusOk);
+  return hook.output().estimate(TorqueEstimator::Proprioceptive).residual;
+}
+
+TEST(EstimatorHook, TheEstimatorFileSetsTheDeadBands) {
+  // The shipped file's proprioceptive dead band is 1.5·σ_nominal per joint: a 300 mA residual
+  // passes it by 300 − 1.5·σ_j where σ_j < 200 mA and not at all elsewhere.
+  const auto shipped = load_estimator_parameters<4>(data("arm4.estimator.json"));
+  const JointVector<double, 4> band = shipped.dead_band_factor * shipped.nominal_sigma;
+  const JointVector<double, 4> r = proprioceptive_at_rest(data("arm4.estimator.json"), 300.0);
+  for (int j = 0; j < 4; ++j)
+    EXPECT_NEAR(r[j], std::max(300.0 - band[j], 0.0), 1e-6) << "joint " << j + 1;
+  EXPECT_GT(r.maxCoeff(), 0.0);  // the data file has a joint with σ < 200 mA
+
+  // The same file with every σ_nominal at 1000 mA: no joint leaves its band.
+  TempFile wide("tpf_hook_wide_band");
+  auto p = shipped;
+  p.nominal_sigma.setConstant(1000.0);
+  save_estimator_parameters<4>(wide.path, p, "test: wide dead bands");
+  EXPECT_EQ(proprioceptive_at_rest(wide.path.string(), 300.0).cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(EstimatorHook, RefusesBadFilesNamingThem) {
@@ -112,6 +149,24 @@ TEST(EstimatorHook, RefusesBadFilesNamingThem) {
   f = arm4_files();
   f.weights = data("weights/none-here.json");
   EXPECT_THROW(EstimatorHook{f}, Error);
+  // An estimator parameter file with a field missing: the file and the field are named.
+  TempFile bad("tpf_hook_bad_estimator");
+  std::ifstream in(data("arm4.estimator.json"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find("\"torque_alarm_samples\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string("\"torque_alarm_samples\"").size(), "\"torque_alarm\"");
+  std::ofstream(bad.path) << text;
+  f = arm4_files();
+  f.estimator = bad.path.string();
+  try {
+    EstimatorHook hook(f);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(bad.path.string() + ": torque_alarm_samples: missing"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

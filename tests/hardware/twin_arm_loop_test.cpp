@@ -90,6 +90,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   files.params = data("arm4.params.json");
   files.robot = data("arm4.robot.json");
   files.pads = data("arm4.pads.json");
+  files.estimator = data("arm4.estimator.json");  // calibrated on a SIMULATED twin log
   files.weights = data("weights/arm4.tcn.json");
   files.trace_capacity = kCycles;
   EstimatorHook estimator(files);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "offline/training/arm_estimator.hpp"
+#include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
 
@@ -64,6 +65,11 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   auto tcn = std::make_unique<JointTcns<>>();
   for (int j = 0; j < kArmJoints; ++j)
     load_tcn_weights(files[j], tcn->network(j));
+  // The run-time loop's estimator parameters, as the demo calibrated them.
+  const auto estimator = load_estimator_parameters<kArmJoints>(o.out / "arm4.estimator.json");
+  EXPECT_EQ(estimator.nominal_sigma, r.evaluation.sigma.nominal);
+  EXPECT_EQ(estimator.fused_sigma, r.evaluation.sigma.fused);
+  EXPECT_EQ(estimator.torque_alarm_samples, r.evaluation.torque_alarm_samples);
   ASSERT_EQ(r.training.results.size(), 4u);
   for (const auto& t : r.training.results)
     EXPECT_LE(t.history.size(), 2u);

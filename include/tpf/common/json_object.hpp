@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -49,6 +50,26 @@ class Object {
     for (int i = 0; i < N; ++i) {
       check_bound(key + "[" + std::to_string(i) + "]", v[i], bound);
       out[i] = v[i];
+    }
+  }
+  /// A required array of N upper limits into `out`: each a positive number, or null for "no
+  /// limit" (+∞; JSON has no infinity).
+  template <int N>
+  void joint_limits(const std::string& key, Eigen::Matrix<double, N, 1>& out) {
+    if (!has(key)) fail(key, "missing");
+    const nlohmann::json& v = get(key);
+    if (!v.is_array() || v.size() != static_cast<std::size_t>(N))
+      fail(key, "must be an array of " + std::to_string(N) + " numbers or nulls");
+    for (int i = 0; i < N; ++i) {
+      const std::string item = key + "[" + std::to_string(i) + "]";
+      if (v[i].is_null()) {
+        out[i] = kInfinity;
+        continue;
+      }
+      if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
+        fail(item, "must be a number or null (no limit)");
+      check_bound(item, v[i].get<double>(), Bound::kPositive);
+      out[i] = v[i].get<double>();
     }
   }
   /// An array of N rows of N numbers into `out` (unchanged when absent).

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "offline/calibrate/arm_calibration.hpp"
 #include "offline/training/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/persistence_test.hpp"
@@ -54,8 +55,8 @@ std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr,
   return d;
 }
 
-/// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on a contact-free log
-/// (rows without a pad in contact; the estimator as configured in `setup`).
+}  // namespace
+
 int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
   const EstimatorTrace tr =
       trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log));
@@ -67,6 +68,8 @@ int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
       Eigen::Map<const Eigen::VectorXi>(free.data(), static_cast<Eigen::Index>(free.size())),
       kTorqueAlarmFalseAlarmRate, kTorqueAlarmMaxSamples);
 }
+
+namespace {
 
 Eigen::MatrixXd columns(const Log& log, const std::string& prefix, int count) {
   Eigen::MatrixXd m(log.rows(), count);
@@ -165,12 +168,10 @@ Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
   const Vec scale = setup.nominal.effort_per_newton_metre;
 
   say("evaluate: calibrating the dead bands on " + logs.calibration->source);
-  const auto calibration = estimator_samples<kArmJoints, kArmPads>(*logs.calibration);
-  ev.compensator_speed_limit = setup.parameters.compensator_speed_limit =
-      speed_envelope(calibration);
-  ev.sigma = calibrate_arm_sigma(setup, calibration, logs.calibration->source);
-  ev.torque_alarm_samples = setup.parameters.torque_alarm_samples =
-      calibrate_torque_alarm(setup, *logs.calibration);
+  ev.sigma = calibrate_with_compensator(setup, *logs.calibration);
+  ev.compensator_speed_limit = setup.parameters.compensator_speed_limit;
+  ev.torque_alarm_samples = setup.parameters.torque_alarm_samples;
+  ev.parameters = setup.parameters;
   const ArmParameters& p = setup.parameters;
   ev.dead_bands.proprioceptive = p.dead_band_factor * p.nominal_sigma;
   ev.dead_bands.fusion_moving = p.dead_band_factor * p.fused_sigma;

@@ -42,6 +42,12 @@ struct EvaluationLogs {
 inline constexpr double kTorqueAlarmFalseAlarmRate = 1e-3;
 inline constexpr int kTorqueAlarmMaxSamples = 80;
 
+/// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on a contact-free log
+/// (rows without a pad in contact; the estimator as configured in `setup`):
+/// persistence_for_false_alarm_rate of "the combined estimate is outside its dead band on some
+/// joint" over those rows.
+int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log);
+
 /// Per joint dead bands (effort unit) and the pad's on level.
 struct DeadBands {
   JointVector<double, kArmJoints> proprioceptive;  ///< 1.5·σ_nominal
@@ -60,6 +66,9 @@ struct TeachingErrors {
 };
 
 struct Evaluation {
+  /// The estimator parameters calibrated on the calibration log (what every estimator ran with;
+  /// save_estimator_parameters writes them for the run-time loop).
+  ArmParameters parameters;
   TransitionSigma<double, kArmJoints> sigma;
   DeadBands dead_bands;
   /// Persistence of the torque-only contact alarm (cycles), from the calibration log.

@@ -18,6 +18,7 @@
 #include "offline/sim/simulate.hpp"
 #include "offline/training/estimator_samples.hpp"
 #include "tpf/common/atomic_file.hpp"
+#include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/model/load_robot.hpp"
 
 namespace tpf::offline {
@@ -212,6 +213,9 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   logs.teaching_duration_s = o.teaching_s;
   setup.parameters = arm_estimator_parameters(estimate_sensor_noise(jobs[3].log));
   result.evaluation = evaluate(setup, logs, say);
+  // The run-time loop's estimator parameters as calibrated here (tpf_arm_loop --estimator).
+  save_estimator_parameters<kArmJoints>(o.out / "arm4.estimator.json", result.evaluation.parameters,
+                                        jobs[3].log.source + " (SIMULATED log)");
   std::vector<std::string> notes{
       "nominal model: identified and diagnosed on the training log (nominal.params.json)",
       "arm: every log is simulated on one arm, with the physical effects of " +

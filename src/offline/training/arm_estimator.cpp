@@ -2,12 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/transition_sigma.hpp"
-#include "tpf/nn/load_tcn_weights.hpp"
-#include "tpf/nn/tcn_weight_file.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -24,40 +21,9 @@ double robust_std(std::vector<double>& x) {
   return 1.4826 * *mid;
 }
 
+/// The offline tools' compensator: the network, recording the input the estimator built.
 template <typename Compensator>
-using ArmEstimator =
-    Estimator<double, kArmJoints, kArmPads, RecordingCompensator<Compensator, double, kArmJoints>>;
-
-/// The estimator with per-joint networks of `Hidden` channels loaded from s.weight_files.
-template <int Hidden>
-std::unique_ptr<ArmEstimator<JointTcns<Hidden>>> per_joint_estimator(const ArmEstimatorSetup& s) {
-  auto e = std::make_unique<ArmEstimator<JointTcns<Hidden>>>(s.nominal, s.pads, s.parameters);
-  for (int j = 0; j < kArmJoints; ++j)
-    load_tcn_weights(s.weight_files.at(static_cast<std::size_t>(j)),
-                     e->compensator().inner.network(j));
-  return e;
-}
-
-/// Builds the estimator with its compensator loaded and calls `use(estimator)`.
-template <typename Use>
-auto with_arm_estimator(const ArmEstimatorSetup& s, Use&& use) {
-  switch (s.layout) {
-    case CompensatorLayout::AllJoints: {
-      auto e = std::make_unique<ArmEstimator<AllJointsTcn>>(s.nominal, s.pads, s.parameters);
-      load_tcn_weights(s.weight_files.at(0), e->compensator().inner);
-      return use(*e);
-    }
-    case CompensatorLayout::PerJoint:
-      if (read_tcn_weight_file(s.weight_files.at(0)).hidden == kArmHidden)
-        return use(*per_joint_estimator<kArmHidden>(s));
-      return use(*per_joint_estimator<kArmJointHidden>(s));
-    case CompensatorLayout::None:
-      break;
-  }
-  auto e = std::make_unique<ArmEstimator<ZeroCompensator<double, kArmJoints>>>(s.nominal, s.pads,
-                                                                               s.parameters);
-  return use(*e);
-}
+using Recording = RecordingCompensator<Compensator, double, kArmJoints>;
 
 }  // namespace
 
@@ -81,11 +47,15 @@ SensorNoise estimate_sensor_noise(const Log& log) {
                       "too few static rows to estimate the effort noise");
     noise.effort[j] = robust_std(d) / std::sqrt(2.0);
   }
+  // A pad whose offset sits at the sensor's rail (0 kPa) reads 0 again and again: its
+  // differences there are clipped noise, not noise, and would bias σ low.
+  const double full_scale = SkinSettings<double>{}.full_scale_kpa;
+  const auto live = [full_scale](double p) { return p > 0.0 && p < full_scale; };
   std::vector<double> d;
   for (int k = 1; k <= log.pad_count(); ++k) {
     const auto p = log.col(indexed_name("p", k));
     for (Eigen::Index r = 1; r < log.rows(); ++r)
-      if (std::isfinite(p[r] - p[r - 1])) d.push_back(p[r] - p[r - 1]);
+      if (live(p[r]) && live(p[r - 1])) d.push_back(p[r] - p[r - 1]);
   }
   noise.pad_kpa = d.empty() ? 0.0 : robust_std(d) / std::sqrt(2.0);
   return noise;
@@ -105,49 +75,9 @@ ArmParameters arm_estimator_parameters(const SensorNoise& noise, double pad_gain
   return p;
 }
 
-std::filesystem::path joint_weight_path(const std::filesystem::path& path, int joint) {
-  return path.parent_path() /
-         (path.stem().string() + ".joint" + std::to_string(joint + 1) + ".json");
-}
-
-std::vector<std::string> compensator_files(const std::filesystem::path& path,
-                                           CompensatorLayout& layout) {
-  if (std::filesystem::exists(path)) {
-    const TcnWeightFile file = read_tcn_weight_file(path.string());
-    file.require_architecture(kCompensatorInputsPerJoint * kArmJoints, kArmHidden, kArmLevels, 4,
-                              kArmJoints);
-    layout = CompensatorLayout::AllJoints;
-    return {path.string()};
-  }
-  std::vector<std::string> files;
-  int hidden = 0;
-  for (int j = 0; j < kArmJoints; ++j) {
-    const auto p = joint_weight_path(path, j);
-    if (!std::filesystem::exists(p))
-      throw Error::at(path.string(), 0, "weights",
-                      "no such weight file, nor per-joint files like " + p.string());
-    const TcnWeightFile file = read_tcn_weight_file(p.string());
-    if (j == 0) hidden = is_arm_joint_hidden(file.hidden) ? file.hidden : kArmJointHidden;
-    file.require_architecture(kCompensatorInputsPerJoint, hidden, kArmLevels, 4, 1);
-    files.push_back(p.string());
-  }
-  layout = CompensatorLayout::PerJoint;
-  return files;
-}
-
 EstimatorTrace trace_arm_estimator(const ArmEstimatorSetup& setup,
                                    const std::vector<ArmSample>& samples) {
-  return with_arm_estimator(setup, [&](auto& e) { return trace_estimator(e, samples); });
-}
-
-ArmEstimatorStep make_arm_estimator_step(const ArmEstimatorSetup& setup) {
-  return with_arm_estimator(setup, [](auto& e) -> ArmEstimatorStep {
-    using E = std::decay_t<decltype(e)>;
-    auto shared = std::make_shared<E>(std::move(e));
-    return [shared](const ArmSample& s) -> const EstimatorOutput<double, kArmJoints>& {
-      return shared->update(s);
-    };
-  });
+  return with_arm_estimator<Recording>(setup, [&](auto& e) { return trace_estimator(e, samples); });
 }
 
 JointVector<double, kArmJoints> speed_envelope(const std::vector<ArmSample>& samples) {
@@ -160,7 +90,7 @@ JointVector<double, kArmJoints> speed_envelope(const std::vector<ArmSample>& sam
 TransitionSigma<double, kArmJoints> calibrate_arm_sigma(ArmEstimatorSetup& setup,
                                                         const std::vector<ArmSample>& samples,
                                                         const std::string& source) {
-  const auto sigma = with_arm_estimator(
+  const auto sigma = with_arm_estimator<Recording>(
       setup, [&](auto& e) { return calibrate_transition_sigma(e, samples, 0.07, source); });
   setup.parameters.nominal_sigma = sigma.nominal;
   setup.parameters.fused_sigma = sigma.fused;

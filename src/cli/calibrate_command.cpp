@@ -1,0 +1,91 @@
+// `tpf calibrate`: the estimator parameter file of an arm from a contact-free calibration log,
+// once, offline; the run-time loop (tpf_arm_loop --estimator) loads it at start-up.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "model_file_options.hpp"
+#include "offline/calibrate/arm_calibration.hpp"
+#include "offline/log/read_log.hpp"
+#include "tpf/estimation/estimator_parameter_file.hpp"
+
+namespace {
+
+struct CalibrateCommandOptions {
+  std::string log, params, robot, pads, weights, out;
+  double pad_gain_kpa_per_n = 1.5;
+};
+
+std::string joint_values(const tpf::JointVector<double, tpf::offline::kArmJoints>& v) {
+  std::string s;
+  char item[32];
+  for (int j = 0; j < v.size(); ++j) {
+    std::snprintf(item, sizeof item, "%s%.3g", j == 0 ? "" : " ", v[j]);
+    s += item;
+  }
+  return s;
+}
+
+void run_calibrate(const CalibrateCommandOptions& o) {
+  using namespace tpf::offline;
+  ArmEstimatorSetup setup;
+  setup.nominal = tpf::load_nominal_model<kArmJoints>(o.params, o.robot);
+  setup.pads = tpf::load_pads(o.pads, setup.nominal.model);
+  if (!o.weights.empty()) setup.weight_files = compensator_files(o.weights, setup.layout);
+  const Log log = read_log(o.log);
+  const ArmParameters p = calibrate_arm_estimator(setup, log, o.pad_gain_kpa_per_n);
+
+  const auto origin = log.meta.get("source");
+  const bool simulated = origin && origin->find("simulated") != std::string::npos;
+  std::string source = o.log + (simulated ? " (SIMULATED log)" : "") + ", nominal model " +
+                       o.params + ", compensator " + (o.weights.empty() ? "none" : o.weights);
+  tpf::save_estimator_parameters<kArmJoints>(o.out, p, source);
+  const std::string unit = setup.nominal.effort_unit;
+  std::printf("calibrate: %s%s\n", o.log.c_str(), simulated ? " (SIMULATED)" : "");
+  std::printf("  static dead band [%s]: %s\n", unit.c_str(),
+              joint_values(p.static_dead_band).c_str());
+  std::printf("  transition sigma, nominal [%s]: %s\n", unit.c_str(),
+              joint_values(p.nominal_sigma).c_str());
+  std::printf("  transition sigma, fused [%s]: %s\n", unit.c_str(),
+              joint_values(p.fused_sigma).c_str());
+  std::printf("  pad contact on/off [kPa]: %.3g / %.3g\n", p.skin.detector.on_level_kpa,
+              p.skin.detector.off_level_kpa);
+  std::printf("  compensator domain, |joint speed| up to [rad/s]: %s\n",
+              joint_values(p.compensator_speed_limit).c_str());
+  std::printf("  torque-only contact alarm: %d cycles in a row\n", p.torque_alarm_samples);
+  std::printf("calibrate: wrote %s\n", o.out.c_str());
+}
+
+}  // namespace
+
+namespace tpf::cli {
+
+void register_calibrate_command(CLI::App& app) {
+  auto o = std::make_shared<CalibrateCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "calibrate",
+      "Calibrate the run-time estimator's parameters on a contact-free log of the arm (at rest "
+      "and moving every joint, nothing touching it): sensor noise -> dead bands and pad contact "
+      "levels, transition sigma of the nominal and compensated residuals, persistence of the "
+      "torque-only contact alarm. Writes the estimator parameter file (tpf-estimator) that "
+      "tpf_arm_loop --estimator loads at start-up. Run it again when the arm, its nominal model "
+      "or its compensator changes.");
+  cmd->add_option("--log", o->log, "Contact-free calibration log (tpf CSV, effort i<j> in mA)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  add_model_file_options(cmd, o->params, o->robot, o->pads, "Nominal model (tpf-params file)");
+  cmd->add_option("--weights", o->weights,
+                  "Compensator weights the loop will run (all joints, or <stem>.joint<j>.json per "
+                  "joint); without: the fused dead band is calibrated with no compensator");
+  cmd->add_option("--pad-gain", o->pad_gain_kpa_per_n,
+                  "Pad pressure per normal force on the 25 cm^2 reference pad [kPa/N]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--out", o->out, "Estimator parameter file to write, e.g. arm4.estimator.json")
+      ->required();
+  cmd->callback([o] { run_calibrate(*o); });
+}
+
+}  // namespace tpf::cli

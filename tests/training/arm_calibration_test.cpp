@@ -1,0 +1,65 @@
+// tpf calibrate's computation (calibrate_arm_estimator) on a simulated contact-free twin log: it is
+// exactly the three calibration steps of tpf evaluate, the compensator it is given is the one
+// calibrated (fused σ below nominal σ), and its result survives the estimator parameter file.
+#include "offline/calibrate/arm_calibration.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "offline/evaluate/evaluation.hpp"
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/simulate.hpp"
+#include "offline/training/estimator_samples.hpp"
+#include "tpf/estimation/estimator_parameter_file.hpp"
+
+namespace tpf::offline {
+namespace {
+
+std::string data(const std::string& name) {
+  return std::string(TPF_TEST_DATA_DIR) + "/" + name;
+}
+
+TEST(ArmCalibration, RunsEvaluatesStepsWithTheCompensator) {
+  // 20 s of the twin's excitation (simulated): rests and moves on every joint, no contact.
+  Log log = simulate_to_log(load_scenario(data("scenarios/excitation.json")), 11, 20.0);
+  log.source = "excitation seed 11 (simulated)";
+  ArmEstimatorSetup setup;
+  setup.nominal = load_nominal_model<kArmJoints>(data("arm4.params.json"), data("arm4.robot.json"));
+  setup.pads = load_pads(data("arm4.pads.json"), setup.nominal.model);
+  setup.weight_files = compensator_files(data("weights/arm4.tcn.json"), setup.layout);
+  const ArmParameters p = calibrate_arm_estimator(setup, log, 1.5);
+
+  // The steps, one by one, as tpf evaluate runs them.
+  ArmEstimatorSetup steps = setup;
+  steps.parameters = arm_estimator_parameters(estimate_sensor_noise(log), 1.5);
+  const auto sigma =
+      calibrate_arm_sigma(steps, estimator_samples<kArmJoints, kArmPads>(log), log.source);
+  const int alarm = calibrate_torque_alarm(steps, log);
+  EXPECT_EQ(p.static_dead_band, steps.parameters.static_dead_band);
+  EXPECT_EQ(p.skin.detector.on_level_kpa, steps.parameters.skin.detector.on_level_kpa);
+  EXPECT_EQ(p.skin.force_gain, steps.parameters.skin.force_gain);
+  EXPECT_EQ(p.nominal_sigma, sigma.nominal);
+  EXPECT_EQ(p.fused_sigma, sigma.fused);
+  EXPECT_EQ(p.torque_alarm_samples, alarm);
+
+  // The compensator was used: it removes most of the transition error on every joint (measured,
+  // simulated, 60 s: fused 13–85 mA against nominal 66–339 mA).
+  for (int j = 0; j < kArmJoints; ++j)
+    EXPECT_LT(p.fused_sigma[j], 0.6 * p.nominal_sigma[j]) << "joint " << j + 1;
+  // The contact-free log has short excursions outside the bands: a single one must not alarm.
+  EXPECT_GT(p.torque_alarm_samples, 1);
+
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("tpf_arm_calibration_" + std::to_string(::getpid()) + ".json");
+  save_estimator_parameters<kArmJoints>(file, p, log.source);
+  const ArmParameters read = load_estimator_parameters<kArmJoints>(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(read.fused_sigma, p.fused_sigma);
+  EXPECT_EQ(read.static_dead_band, p.static_dead_band);
+  EXPECT_EQ(read.torque_alarm_samples, p.torque_alarm_samples);
+}
+
+}  // namespace
+}  // namespace tpf::offline
