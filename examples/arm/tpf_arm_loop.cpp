@@ -164,9 +164,10 @@ int main(int argc, char** argv) {
     std::string rt_message;
     arm::enter_realtime(priority, rt_message);
     std::printf("%s\n", rt_message.c_str());
-    // Torque on last: from here the bus watchdog (100 ms) expects the loop's reads.
-    if (excite > 0.0) dxl::ph54::set_torque(bus, id_bytes, true);
-    if (hold) dxl::ph54::hold_present_position(bus, id_bytes);
+    // Torque on last: from here the bus watchdog (100 ms) expects the loop's reads. Goal =
+    // present position first, so torque-on never jumps to a goal left from an earlier session;
+    // the excitation ramps in from that pose.
+    if (excite > 0.0 || hold) dxl::ph54::hold_present_position(bus, id_bytes);
     bus.set_timing(timing);  // in the loop: wire time + 1 ms USB turnaround + margin
     g_loop = &loop;
     std::signal(SIGINT, on_signal);

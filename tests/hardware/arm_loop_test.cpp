@@ -213,7 +213,7 @@ TEST(ArmLoop, ExcitationDrivesPositionGoalsThroughSyncWrite) {
   dxl::ph54::ChainConfig config;
   config.mode = dxl::ph54::OperatingMode::position;
   rig.chain = dxl::ph54::set_up_chain(*rig.bus, config);
-  dxl::ph54::set_torque(*rig.bus, rig.ids, true);
+  dxl::ph54::hold_present_position(*rig.bus, rig.ids);  // as tpf_arm_loop --excite does
   dxl::ph54::ChainStateReader reader(*rig.bus, rig.ids, rig.chain.fast_sync_read);
   ArmLoopOptions options;
   options.cycles = 400;  // 1 s: the ramp reaches half amplitude
