@@ -13,9 +13,9 @@ namespace {
 constexpr std::size_t kBad = 900;  // mid push of the first contact
 
 /// Runs the log with rows edited by `edit`; returns the outputs of every row.
-std::vector<ArmEstimator::Output> run(const std::function<void(std::size_t, ArmSample&)>& edit) {
-  auto est = std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), twin_parameters());
-  std::vector<ArmEstimator::Output> out;
+std::vector<TwinEstimator::Output> run(const std::function<void(std::size_t, ArmSample&)>& edit) {
+  auto est = std::make_unique<TwinEstimator>(twin_nominal(), twin_pads(), twin_parameters());
+  std::vector<TwinEstimator::Output> out;
   for (std::size_t r = 0; r < kStaticContactRows; ++r) {
     ArmSample s = static_contact_samples()[r];
     edit(r, s);
@@ -26,7 +26,7 @@ std::vector<ArmEstimator::Output> run(const std::function<void(std::size_t, ArmS
 
 /// From row `from` on, the run equals the clean one (the acceleration filter's memory of the bad
 /// rows has decayed by then: e^(−ζω·0.5 s) < 1e-27).
-void expect_back_on_clean_run(const std::vector<ArmEstimator::Output>& faulty, std::size_t from) {
+void expect_back_on_clean_run(const std::vector<TwinEstimator::Output>& faulty, std::size_t from) {
   const auto clean = run([](std::size_t, ArmSample&) {});
   for (std::size_t r = from; r < kStaticContactRows; ++r) {
     ASSERT_LT((faulty[r].static_friction - clean[r].static_friction).cwiseAbs().maxCoeff(), 1e-6)

@@ -12,7 +12,7 @@ using namespace tpf;
 using namespace tpf::test;
 
 /// Per sample: the combined external torque is outside its dead band on some joint.
-Eigen::VectorXi torque_outside_band(ArmEstimator& est, const std::vector<ArmSample>& samples) {
+Eigen::VectorXi torque_outside_band(TwinEstimator& est, const std::vector<ArmSample>& samples) {
   est.reset();
   Eigen::VectorXi e(static_cast<Eigen::Index>(samples.size()));
   for (std::size_t r = 0; r < samples.size(); ++r)
@@ -21,7 +21,7 @@ Eigen::VectorXi torque_outside_band(ArmEstimator& est, const std::vector<ArmSamp
   return e;
 }
 
-double contact_share(ArmEstimator& est, const std::vector<ArmSample>& samples) {
+double contact_share(TwinEstimator& est, const std::vector<ArmSample>& samples) {
   est.reset();
   long on = 0;
   for (const ArmSample& s : samples)
@@ -36,17 +36,17 @@ TEST(ContactAlarm, PersistenceChosenForARateOnContactFreeDataAndPadsAtOnce) {
   const auto calibration = samples_from_log(twin_log("excitation", 2, 60));
   auto p = twin_parameters();
   {
-    auto calibrating = std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), p);
+    auto calibrating = std::make_unique<TwinEstimator>(twin_nominal(), twin_pads(), p);
     const auto sigma = calibrate_transition_sigma(*calibrating, calibration);
     p.nominal_sigma = p.fused_sigma = sigma.nominal;
   }
-  auto single = std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), p);
+  auto single = std::make_unique<TwinEstimator>(twin_nominal(), twin_pads(), p);
   const Eigen::VectorXi outside = torque_outside_band(*single, calibration);
   const double rate = 1e-3;
   p.torque_alarm_samples = persistence_for_false_alarm_rate(outside, rate, 80);
   EXPECT_GT(p.torque_alarm_samples, 1);
   EXPECT_LT(p.torque_alarm_samples, 80);
-  auto persistent = std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), p);
+  auto persistent = std::make_unique<TwinEstimator>(twin_nominal(), twin_pads(), p);
   const double before = contact_share(*single, calibration);
   const double after = contact_share(*persistent, calibration);
   std::cout << "[ simulated ] contact-free excitation: torque-only alarms on " << 100 * before

@@ -21,9 +21,9 @@ Vec row_vector(const offline::Log& log, const char* prefix, Eigen::Index r) {
   return v;
 }
 
-std::unique_ptr<ArmEstimator> make_estimator(
+std::unique_ptr<TwinEstimator> make_estimator(
     const EstimatorParameters<double, kJoints>& p = twin_parameters()) {
-  return std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), p);
+  return std::make_unique<TwinEstimator>(twin_nominal(), twin_pads(), p);
 }
 
 const offline::Log& static_contacts() {

@@ -11,15 +11,15 @@ namespace {
 
 constexpr double kStuckKpa = 30.0;
 
-std::unique_ptr<ArmEstimator> make_estimator() {
-  return std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), twin_parameters());
+std::unique_ptr<TwinEstimator> make_estimator() {
+  return std::make_unique<TwinEstimator>(twin_nominal(), twin_pads(), twin_parameters());
 }
 
 /// Per row of a clean run: any contact, and the most loaded pad.
 struct CleanRun {
   std::vector<bool> contact;
   std::vector<int> pad;
-  std::vector<ArmEstimator::Output> out;
+  std::vector<TwinEstimator::Output> out;
 };
 
 const CleanRun& clean_run() {
@@ -36,7 +36,7 @@ const CleanRun& clean_run() {
   return run;
 }
 
-void expect_on_clean_run(const ArmEstimator::Output& a, const ArmEstimator::Output& clean,
+void expect_on_clean_run(const TwinEstimator::Output& a, const TwinEstimator::Output& clean,
                          std::size_t r) {
   EXPECT_LT((a.static_friction - clean.static_friction).cwiseAbs().maxCoeff(), 1e-9) << r;
   EXPECT_LT((a.external.torque - clean.external.torque).cwiseAbs().maxCoeff(), 1e-9) << r;

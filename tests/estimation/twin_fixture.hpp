@@ -19,7 +19,7 @@ namespace tpf::test {
 
 inline constexpr int kPads = 11;
 using ArmSample = EstimatorSample<double, kJoints, kPads>;
-using ArmEstimator = Estimator<double, kJoints, kPads>;
+using TwinEstimator = Estimator<double, kJoints, kPads>;
 /// Current noise of the twin's drives (sensors.current_noise_ma) with 1 mA rounding.
 inline constexpr double kCurrentNoiseMa = 6.0;
 

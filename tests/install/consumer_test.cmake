@@ -14,3 +14,4 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/consumer -B ${WORK_DIR}/build -G 
     "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}")
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/gravity_compensation ${WORK_DIR}/prefix/share/tpf/arm4.robot.json)
+run(${WORK_DIR}/build/contact_estimation ${WORK_DIR}/prefix/share/tpf)

@@ -22,19 +22,19 @@ const std::vector<ArmSample>& samples() {
   return s;
 }
 
-std::unique_ptr<ArmEstimator> make_estimator() {
-  return std::make_unique<ArmEstimator>(twin_nominal(), twin_pads(), twin_parameters());
+std::unique_ptr<TwinEstimator> make_estimator() {
+  return std::make_unique<TwinEstimator>(twin_nominal(), twin_pads(), twin_parameters());
 }
 
-bool finite(const ArmEstimator::Output& o) {
+bool finite(const TwinEstimator::Output& o) {
   return o.residual.allFinite() && o.external.torque.allFinite() && o.compensation.allFinite() &&
          o.static_friction.allFinite() && o.ddq.allFinite() && o.wrench.force_world.allFinite();
 }
 
 /// Runs rows [0, rows) through `est`, row r replaced by edit(r, sample) (which may return false
 /// to drop the row); calls check(r, output) after each fed row.
-void run(ArmEstimator& est, const std::function<bool(std::size_t, ArmSample&)>& edit,
-         const std::function<void(std::size_t, const ArmEstimator::Output&)>& check = {},
+void run(TwinEstimator& est, const std::function<bool(std::size_t, ArmSample&)>& edit,
+         const std::function<void(std::size_t, const TwinEstimator::Output&)>& check = {},
          std::size_t rows = kRows) {
   for (std::size_t r = 0; r < rows; ++r) {
     ArmSample s = samples()[r];
@@ -45,7 +45,7 @@ void run(ArmEstimator& est, const std::function<bool(std::size_t, ArmSample&)>& 
 }
 
 /// Outputs of a clean run of `rows` rows without row `skipped` (or of all rows).
-ArmEstimator::Output clean_output(std::size_t skipped = kRows, std::size_t rows = kRows) {
+TwinEstimator::Output clean_output(std::size_t skipped = kRows, std::size_t rows = kRows) {
   auto est = make_estimator();
   run(
       *est, [&](std::size_t r, ArmSample&) { return r != skipped; }, {}, rows);
@@ -56,7 +56,7 @@ ArmEstimator::Output clean_output(std::size_t skipped = kRows, std::size_t rows 
 /// memory of one sample; it keeps 39 runs cheap under the sanitizers).
 constexpr std::size_t kShortRows = kBad + 200;
 
-void expect_same(const ArmEstimator::Output& a, const ArmEstimator::Output& b) {
+void expect_same(const TwinEstimator::Output& a, const TwinEstimator::Output& b) {
   EXPECT_EQ(a.t, b.t);
   EXPECT_EQ(a.residual, b.residual);
   EXPECT_EQ(a.external.torque, b.external.torque);
@@ -70,7 +70,7 @@ TEST(EstimatorBadSamples, TheCleanTwinLogRaisesNoFlag) {
   auto est = make_estimator();
   run(
       *est, [](std::size_t, ArmSample&) { return true; },
-      [](std::size_t r, const ArmEstimator::Output& o) {
+      [](std::size_t r, const TwinEstimator::Output& o) {
         // Gaps are the twin's deliberately dropped cycles; pads in contact may be unobservable.
         EXPECT_EQ(o.status & ~(kStatusTimeGap | kStatusWrenchUnobservable), 0u) << "row " << r;
         ASSERT_TRUE(finite(o)) << "row " << r;
@@ -96,14 +96,14 @@ TEST(EstimatorBadSamples, NonFiniteValueInAnyFieldIsFlaggedSkippedAndForgotten) 
     for (const double bad : {kNaN, kInf, -kInf}) {
       SCOPED_TRACE(name + " = " + std::to_string(bad));
       auto est = make_estimator();
-      ArmEstimator::Output before;
+      TwinEstimator::Output before;
       run(
           *est,
           [&](std::size_t r, ArmSample& s) {
             if (r == kBad) before = est->output(), field(s) = bad;
             return true;
           },
-          [&](std::size_t r, const ArmEstimator::Output& o) {
+          [&](std::size_t r, const TwinEstimator::Output& o) {
             if (r != kBad) return;
             EXPECT_EQ(o.status, kStatusNonFiniteInput);
             EXPECT_EQ(o.t, before.t);
@@ -124,7 +124,7 @@ TEST(EstimatorBadSamples, TimeGoingBackwardsIsFlaggedAndSkipped) {
         if (r == kBad) s.t -= 0.5;
         return true;
       },
-      [](std::size_t r, const ArmEstimator::Output& o) {
+      [](std::size_t r, const TwinEstimator::Output& o) {
         if (r == kBad) {
           EXPECT_EQ(o.status, kStatusStaleTime);
         }
@@ -145,7 +145,7 @@ TEST(EstimatorBadSamples, BadPadPressureAndAccelerationAreFlaggedAndReplaced) {
           if (r == kBad + 1) s.has_ddq = true, s.ddq.setConstant(bad);
           return true;
         },
-        [&](std::size_t r, const ArmEstimator::Output& o) {
+        [&](std::size_t r, const TwinEstimator::Output& o) {
           if (r == kBad) {
             EXPECT_TRUE(o.status & kStatusPadDataInvalid);
           }
@@ -172,7 +172,7 @@ TEST(EstimatorBadSamples, LongGapIsFlaggedOnceAndFiltersStayFinite) {
   const std::size_t first_after = kBad + 800;  // 2 s of samples lost
   run(
       *est, [&](std::size_t r, ArmSample&) { return r < kBad || r >= first_after; },
-      [&](std::size_t r, const ArmEstimator::Output& o) {
+      [&](std::size_t r, const TwinEstimator::Output& o) {
         if (r >= first_after) {
           EXPECT_EQ(static_cast<bool>(o.status & kStatusTimeGap),
                     r == first_after || natural_gap(r))
@@ -190,7 +190,7 @@ TEST(EstimatorBadSamples, OutOfRangePositionIsFlaggedOnlyWhileOut) {
         if (r >= kBad && r < kBad + 10) s.q[1] = arm().upper[1] + 1.0;
         return true;
       },
-      [](std::size_t r, const ArmEstimator::Output& o) {
+      [](std::size_t r, const TwinEstimator::Output& o) {
         EXPECT_EQ(static_cast<bool>(o.status & kStatusPositionOutOfRange),
                   r >= kBad && r < kBad + 10)
             << "row " << r;
@@ -214,7 +214,7 @@ TEST(EstimatorBadSamples, FrozenSensorIsFlaggedAfterTheLimitAndClearsWhenLive) {
         }
         return true;
       },
-      [&](std::size_t r, const ArmEstimator::Output& o) {
+      [&](std::size_t r, const TwinEstimator::Output& o) {
         const bool frozen = r > kBad + static_cast<std::size_t>(limit) && r < end;
         EXPECT_EQ(static_cast<bool>(o.status & kStatusFrozenInput), frozen) << "row " << r;
         ASSERT_TRUE(finite(o)) << "row " << r;
@@ -236,7 +236,7 @@ TEST(EstimatorBadSamples, PadStuckHighIsFlaggedAndContactRecovers) {
         clean->update(samples()[r]);
         return true;
       },
-      [&](std::size_t r, const ArmEstimator::Output& o) {
+      [&](std::size_t r, const TwinEstimator::Output& o) {
         const bool stuck = r > kBad + static_cast<std::size_t>(limit) && r < end;
         EXPECT_EQ(static_cast<bool>(o.status & kStatusPadStuck), stuck) << "row " << r;
         if (r > end + 400) {
