@@ -45,6 +45,17 @@ void AdmittanceController::follow(const TwinVector& tau_ext, double max_pad_kpa,
   integrate(max_pad_kpa > kContactThresholdKpa ? tau_ext : TwinVector(TwinVector::Zero()), dt);
 }
 
+void AdmittanceController::goal(double since_write, TwinVector& q_goal, TwinVector& dq_goal) const {
+  q_goal = q_ref_ + since_write * dq_ref_;
+  dq_goal = dq_ref_;
+  for (int j = 0; j < kTwinJoints; ++j) {
+    if (q_goal[j] < lower_[j] || q_goal[j] > upper_[j]) {
+      q_goal[j] = std::clamp(q_goal[j], lower_[j], upper_[j]);
+      dq_goal[j] = 0.0;
+    }
+  }
+}
+
 void AdmittanceController::integrate(const TwinVector& tau, double dt) {
   const TwinVector ddq = (tau - config_.admittance_damping * dq_ref_) / config_.admittance_inertia;
   dq_ref_ = (dq_ref_ + dt * ddq).cwiseMax(-kMaxSpeed).cwiseMin(kMaxSpeed);

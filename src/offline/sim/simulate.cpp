@@ -272,8 +272,7 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     if (schedule) {
       schedule->evaluate(t, q_ref, dq_ref);
     } else if (admittance) {
-      q_ref = admittance->q_ref();
-      dq_ref = admittance->dq_ref();
+      admittance->goal(t - last_host_update, q_ref, dq_ref);  // first-order hold, see goal()
     }
     TwinVector q_drive, dq_drive;
     for (int j = 0; j < kTwinJoints; ++j) {
