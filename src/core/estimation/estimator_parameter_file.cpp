@@ -13,16 +13,16 @@
 namespace tpf {
 namespace {
 
-using Json = nlohmann::ordered_json;  // saved in the struct's order, for people
+using OrderedJson = nlohmann::ordered_json;  // saved in the struct's order, for people
 using Bound = json::Object::Bound;
 
-constexpr const char* kFormat = "tpf-estimator";
-constexpr int kVersion = 1;
-constexpr double kInf = json::Object::kInfinity;
+constexpr const char* kEstimatorFormat = "tpf-estimator";
+constexpr int kEstimatorVersion = 1;
+constexpr double kUnbounded = json::Object::kInfinity;
 constexpr int kMaxSamples = 100'000'000;
 
-Json array_json(const auto& v) {
-  Json a = Json::array();
+OrderedJson ordered_array(const auto& v) {
+  OrderedJson a = OrderedJson::array();
   for (Eigen::Index i = 0; i < v.size(); ++i)
     a.push_back(v[i]);
   return a;
@@ -33,7 +33,7 @@ const char* stop_policy_name(StopPolicy p) {
 }
 
 /// A required number > 0 (and at most `hi`).
-double positive(json::Object& o, const std::string& key, double hi = kInf) {
+double positive(json::Object& o, const std::string& key, double hi = kUnbounded) {
   const double x = o.number(key, 0.0, hi);
   if (!(x > 0.0)) o.fail(key, "must be > 0 (positive), got 0");
   return x;
@@ -77,11 +77,11 @@ SkinSettings<double> read_skin(json::Object o) {
 ContactForceSettings<double> read_wrench(json::Object o) {
   ContactForceSettings<double> s;
   s.torque_noise_nm = positive(o, "torque_noise_nm");
-  s.prior_relative = o.number("prior_relative", 0.0, kInf);
+  s.prior_relative = o.number("prior_relative", 0.0, kUnbounded);
   s.prior_floor_n = positive(o, "prior_floor_n");
-  s.shear_relative = o.number("shear_relative", 0.0, kInf);
+  s.shear_relative = o.number("shear_relative", 0.0, kUnbounded);
   s.min_inverse_condition = o.number("min_inverse_condition", 0.0, 1.0);
-  s.shear_regularisation = o.number("shear_regularisation", 0.0, kInf);
+  s.shear_regularisation = o.number("shear_regularisation", 0.0, kUnbounded);
   o.finish();
   return s;
 }
@@ -90,7 +90,7 @@ ContactForceSettings<double> read_wrench(json::Object o) {
 
 template <int N>
 EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::path& file) {
-  json::Object top = json::Object::read_document(file, kFormat, kVersion);
+  json::Object top = json::Object::read_document(file, kEstimatorFormat, kEstimatorVersion);
   const int joints = top.integer("joints", 1, 64);
   if (joints != N)
     top.fail("joints", "the file is for " + std::to_string(joints) +
@@ -121,9 +121,9 @@ EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::
 template <int N>
 void save_estimator_parameters(const std::filesystem::path& file,
                                const EstimatorParameters<double, N>& p, const std::string& source) {
-  Json j;
-  j["format"] = kFormat;
-  j["version"] = kVersion;
+  OrderedJson j;
+  j["format"] = kEstimatorFormat;
+  j["version"] = kEstimatorVersion;
   j["joints"] = N;
   if (!source.empty()) j["source"] = source;
   j["sample_period_s"] = p.sample_period_s;
@@ -153,16 +153,16 @@ void save_estimator_parameters(const std::filesystem::path& file,
                  {"shear_relative", w.shear_relative},
                  {"min_inverse_condition", w.min_inverse_condition},
                  {"shear_regularisation", w.shear_regularisation}};
-  j["nominal_sigma"] = array_json(p.nominal_sigma);
-  j["fused_sigma"] = array_json(p.fused_sigma);
+  j["nominal_sigma"] = ordered_array(p.nominal_sigma);
+  j["fused_sigma"] = ordered_array(p.fused_sigma);
   j["dead_band_factor"] = p.dead_band_factor;
   j["torque_alarm_samples"] = p.torque_alarm_samples;
-  j["static_dead_band"] = array_json(p.static_dead_band);
-  Json limits = Json::array();  // null: no limit (+∞)
+  j["static_dead_band"] = ordered_array(p.static_dead_band);
+  OrderedJson limits = OrderedJson::array();  // null: no limit (+∞)
   for (int i = 0; i < N; ++i)
     limits.push_back(std::isfinite(p.compensator_speed_limit[i])
-                         ? Json(p.compensator_speed_limit[i])
-                         : Json(nullptr));
+                         ? OrderedJson(p.compensator_speed_limit[i])
+                         : OrderedJson(nullptr));
   j["compensator_speed_limit"] = limits;
   write_file_atomically(file, j.dump(2) + "\n");
 }

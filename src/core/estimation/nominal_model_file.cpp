@@ -17,8 +17,8 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr const char* kFormat = "tpf-params";
-constexpr int kVersion = 1;
+constexpr const char* kParamsFormat = "tpf-params";
+constexpr int kParamsVersion = 1;
 
 Json array_json(const auto& v) {
   Json a = Json::array();
@@ -110,7 +110,7 @@ template <int N>
 NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
                                            const std::filesystem::path& robot_file) {
   using Bound = json::Object::Bound;
-  json::Object top = json::Object::read_document(params_file, kFormat, kVersion);
+  json::Object top = json::Object::read_document(params_file, kParamsFormat, kParamsVersion);
   const int joints = top.integer("joints", 1, 64);
   if (joints != N)
     top.fail("joints", "the file is for " + std::to_string(joints) +
@@ -192,8 +192,8 @@ void save_nominal_model(const std::filesystem::path& params_file,
                         const std::string& fit_quality_json) {
   const std::string file = params_file.string();
   Json j;
-  j["format"] = kFormat;
-  j["version"] = kVersion;
+  j["format"] = kParamsFormat;
+  j["version"] = kParamsVersion;
   j["robot"] = nominal.model.name;
   j["joints"] = N;
   if (!source.empty()) j["source"] = source;

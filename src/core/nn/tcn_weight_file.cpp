@@ -17,7 +17,7 @@
 namespace tpf {
 namespace {
 
-constexpr std::string_view kFormat = "tpf-tcn-weights";
+constexpr std::string_view kTcnFormat = "tpf-tcn-weights";
 
 std::string shape_text(const std::vector<int>& shape) {
   std::string text = "[";
@@ -150,7 +150,8 @@ TcnWeightFile read_tcn_weight_file(const std::string& path) {
   const nlohmann::json json = tpf::json::parse_file(path);
 
   const nlohmann::json& format = member(json, "format", path, "format");
-  if (format != kFormat) fail(path, "format", "expected \"tpf-tcn-weights\", got " + format.dump());
+  if (format != kTcnFormat)
+    fail(path, "format", "expected \"tpf-tcn-weights\", got " + format.dump());
   const nlohmann::json& version = member(json, "version", path, "version");
   if (version != TcnWeightFile::kVersion) {
     fail(path, "version", "unsupported version " + version.dump() + " (this build reads 1)");
@@ -199,7 +200,7 @@ TcnWeightFile read_tcn_weight_file(const std::string& path) {
 
 void write_tcn_weight_file(const std::string& path, const TcnWeightFile& file) {
   nlohmann::json json;
-  json["format"] = kFormat;
+  json["format"] = kTcnFormat;
   json["version"] = TcnWeightFile::kVersion;
   std::vector<int> dilations;
   for (int l = 0; l < file.levels; ++l)
