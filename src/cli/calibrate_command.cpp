@@ -68,8 +68,10 @@ void register_calibrate_command(CLI::App& app) {
       "calibrate",
       "Calibrate the run-time estimator's parameters on a contact-free log of the arm (at rest "
       "and moving every joint, nothing touching it): sensor noise -> dead bands and pad contact "
-      "levels, transition sigma of the nominal and compensated residuals, persistence of the "
-      "torque-only contact alarm. Writes the estimator parameter file (tpf-estimator) that "
+      "levels, the compensator's speed domain (the log's top speed per joint: faster, the "
+      "fused estimate falls back to the nominal model), transition sigma of the nominal and "
+      "compensated residuals, persistence of the torque-only contact alarm. Writes the estimator "
+      "parameter file (tpf-estimator) that "
       "tpf_arm_loop --estimator loads at start-up. Run it again when the arm, its nominal model "
       "or its compensator changes.");
   cmd->add_option("--log", o->log, "Contact-free calibration log (tpf CSV, effort i<j> in mA)")
