@@ -157,13 +157,13 @@ class Estimator {
     // network extrapolates and the nominal residual (with its band) stands.
     Vector fused_residual = out.residual - out.compensation;
     Vector fused_band = parameters_.dead_band_factor * parameters_.fused_sigma;
-    fused_sigma_now_ = moving_sigma_;
+    Vector fused_sigma = moving_sigma_;  // σ of the Fused evidence this cycle
     for (int j = 0; j < N; ++j) {
       using std::abs;
       if (!(abs(sample.dq[j]) > parameters_.compensator_speed_limit[j])) continue;
       fused_residual[j] = out.residual[j];
       fused_band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
-      fused_sigma_now_[j] = nominal_moving_sigma_[j];
+      fused_sigma[j] = nominal_moving_sigma_[j];
       status |= kStatusOutsideCompensatorDomain;
     }
     set_estimate(TorqueEstimator::Fused, dead_band(fused_residual, fused_band), all);
@@ -195,7 +195,7 @@ class Estimator {
         const bool at_rest = fixed.valid & (1u << j);
         const S r = at_rest ? tracker_.static_external()[j] : fused_residual[j];
         evidence[j] = -r / nominal_.effort_per_newton_metre[j];
-        const S s = !at_rest             ? fused_sigma_now_[j]
+        const S s = !at_rest             ? fused_sigma[j]
                     : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
                                          : static_sigma_[j];
         sigma[j] = s / nominal_.effort_per_newton_metre[j];
@@ -321,7 +321,6 @@ class Estimator {
   Vector static_sigma_ = Vector::Zero();
   Vector moving_sigma_ = Vector::Zero();
   Vector nominal_moving_sigma_ = Vector::Zero();  ///< σ_nominal (floor when uncalibrated)
-  Vector fused_sigma_now_ = Vector::Zero();       ///< this cycle's σ of the Fused evidence
   Output output_;
   bool started_ = false;
 };

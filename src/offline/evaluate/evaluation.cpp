@@ -41,18 +41,11 @@ Eigen::VectorXi any_joint_outside_band(const Eigen::MatrixXd& estimate) {
 
 /// Per row: does the modality say "contact"? Tactile: a pad; proprioceptive: any joint outside
 /// its band; fusion: the estimator's EstimatorOutput::contact — a pad, or the combined estimate
-/// outside its band for `persistence` rows in a row (the estimator's PersistenceTest, replayed on
-/// the rows it processed).
-std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr, int persistence) {
-  std::array<Eigen::VectorXi, kModalityCount> d;
-  d[0] = tr.contact.cwiseMax(0);
-  d[1] = any_joint_outside_band(tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)]);
-  const Eigen::VectorXi torque = any_joint_outside_band(combined_external(tr));
-  PersistenceTest alarm(persistence);
-  d[2] = d[0];
-  for (Eigen::Index k = 0; k < tr.rows(); ++k)
-    if (std::isfinite(tr.t[k]) && alarm.update(torque[k] != 0)) d[2][k] = 1;
-  return d;
+/// outside its band for parameters.torque_alarm_samples cycles in a row.
+std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr) {
+  return {tr.contact.cwiseMax(0),
+          any_joint_outside_band(tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)]),
+          tr.estimator_contact.cwiseMax(0)};
 }
 
 }  // namespace
@@ -88,7 +81,7 @@ void contact_metrics(const Log& log, const EstimatorTrace& tr, Evaluation& ev) {
   const Eigen::MatrixXd force = ground_truth_force(log);
   const Eigen::VectorXd gt_contact = log.col("gt_contact");
   const auto events = contact_events(gt_contact, force);
-  const auto detected = detections(tr, ev.torque_alarm_samples);
+  const auto detected = detections(tr);
   for (int m = 0; m < kModalityCount; ++m)
     ev.detection[m] = detection_stats(tr.t, events, force, detected[m]);
   // Force error: static rows with one contact on the pad the skin reports, where the arm observes

@@ -25,13 +25,14 @@ struct EstimatorTrace {
   /// Per TorqueEstimator: the external residual after its dead band, T × N; NaN where the
   /// estimator gave no estimate (StaticModelFree on moving joints).
   std::array<Eigen::MatrixXd, kTorqueEstimatorCount> estimates;
-  Eigen::MatrixXd external;      ///< T × N, EstimatorOutput::external.residual (the fusion)
-  Eigen::VectorXi state;         ///< ContactState as int
-  Eigen::VectorXi contact;       ///< skin: 1 while a pad is in contact
-  Eigen::VectorXi pad;           ///< most loaded pad in contact (0-based), −1 none
-  Eigen::VectorXd pad_force;     ///< its normal-force reading [N] (0 without contact)
-  Eigen::MatrixXd force_world;   ///< T × 3, the fused wrench's force [N], world frame
-  Eigen::VectorXi wrench_valid;  ///< 1 when the force is observable (shear included)
+  Eigen::MatrixXd external;           ///< T × N, EstimatorOutput::external.residual (the fusion)
+  Eigen::VectorXi state;              ///< ContactState as int
+  Eigen::VectorXi contact;            ///< skin: 1 while a pad is in contact
+  Eigen::VectorXi estimator_contact;  ///< EstimatorOutput::contact: a pad or the torque alarm
+  Eigen::VectorXi pad;                ///< most loaded pad in contact (0-based), −1 none
+  Eigen::VectorXd pad_force;          ///< its normal-force reading [N] (0 without contact)
+  Eigen::MatrixXd force_world;        ///< T × 3, the fused wrench's force [N], world frame
+  Eigen::VectorXi wrench_valid;       ///< 1 when the force is observable (shear included)
   /// T × 3 [N], world frame, at the same pad: the tactile-only force −F_n·n (the pad's normal
   /// reading along its inward normal, no shear) and the proprioceptive-only force (least squares
   /// of the Proprioceptive torque through the pad's contact Jacobian, no pad prior; the contact
@@ -62,6 +63,7 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
   tr.external = tr.dq;
   tr.state = Eigen::VectorXi::Constant(T, -1);
   tr.contact = tr.state;
+  tr.estimator_contact = tr.state;
   tr.pad = tr.state;
   tr.pad_force = Eigen::VectorXd::Constant(T, nan);
   tr.force_world = Eigen::MatrixXd::Constant(T, 3, nan);
@@ -96,6 +98,7 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
     tr.state[r] = static_cast<int>(out.state);
     const auto& skin = estimator.skin();
     tr.contact[r] = skin.any_contact() ? 1 : 0;
+    tr.estimator_contact[r] = out.contact ? 1 : 0;
     const int pad = skin.most_loaded();
     tr.pad[r] = pad;
     tr.pad_force[r] = pad >= 0 ? double(skin.normal_force(pad)) : 0.0;
