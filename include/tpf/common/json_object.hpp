@@ -86,6 +86,8 @@ class Object {
                                                std::size_t cols);
   /// A required whole number in [lo, hi].
   int integer(const std::string& key, int lo, int hi);
+  /// The file's "joints" count, which must be `expected` (the program's compile-time N).
+  void require_joints(int expected);
   bool boolean(const std::string& key, bool fallback);
   /// A required string.
   std::string text(const std::string& key);

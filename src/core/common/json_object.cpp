@@ -116,6 +116,13 @@ int Object::integer(const std::string& key, int lo, int hi) {
   return static_cast<int>(x);
 }
 
+void Object::require_joints(int expected) {
+  const int joints = integer("joints", 1, 64);
+  if (joints != expected)
+    fail("joints", "the file is for " + std::to_string(joints) +
+                       " joints, this program is built for " + std::to_string(expected));
+}
+
 std::string Object::text(const std::string& key) {
   if (!object_.contains(key)) fail(key, "missing");
   return text(key, "");

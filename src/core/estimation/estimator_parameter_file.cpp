@@ -91,10 +91,7 @@ ContactForceSettings<double> read_wrench(json::Object o) {
 template <int N>
 EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::path& file) {
   json::Object top = json::Object::read_document(file, kEstimatorFormat, kEstimatorVersion);
-  const int joints = top.integer("joints", 1, 64);
-  if (joints != N)
-    top.fail("joints", "the file is for " + std::to_string(joints) +
-                           " joints, this program is built for " + std::to_string(N));
+  top.require_joints(N);
   top.text("source", "");
 
   EstimatorParameters<double, N> p;

@@ -111,10 +111,7 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
                                            const std::filesystem::path& robot_file) {
   using Bound = json::Object::Bound;
   json::Object top = json::Object::read_document(params_file, kParamsFormat, kParamsVersion);
-  const int joints = top.integer("joints", 1, 64);
-  if (joints != N)
-    top.fail("joints", "the file is for " + std::to_string(joints) +
-                           " joints, this program is built for " + std::to_string(N));
+  top.require_joints(N);
   top.text("robot", "");
   top.text("source", "");
 
