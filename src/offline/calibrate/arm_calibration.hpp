@@ -21,7 +21,7 @@ ArmParameters calibrate_arm_estimator(ArmEstimatorSetup setup, const Log& log,
 ///  2. the compensator's domain: the log's speed envelope (speed_envelope);
 ///  3. σ of the nominal and compensated residuals in the static-to-kinetic transitions
 ///     (calibrate_arm_sigma): the moving dead bands 1.5·σ — returned;
-///  4. persistence of the torque-only contact alarm for a false-alarm rate of 1e-3 per cycle
+///  4. persistence of the torque-only contact alarm: no false alarm anywhere on the log
 ///     (calibrate_torque_alarm).
 TransitionSigma<double, kArmJoints> calibrate_with_compensator(ArmEstimatorSetup& setup,
                                                                const Log& log);
