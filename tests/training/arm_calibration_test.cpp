@@ -8,7 +8,7 @@
 
 #include <filesystem>
 
-#include "offline/evaluate/evaluation.hpp"
+#include "offline/calibrate/torque_alarm.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "offline/training/estimator_samples.hpp"

@@ -1,6 +1,6 @@
 #include "offline/calibrate/arm_calibration.hpp"
 
-#include "offline/evaluate/evaluation.hpp"
+#include "offline/calibrate/torque_alarm.hpp"
 #include "offline/training/estimator_samples.hpp"
 
 namespace tpf::offline {

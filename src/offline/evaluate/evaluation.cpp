@@ -6,19 +6,11 @@
 #include "offline/calibrate/arm_calibration.hpp"
 #include "offline/training/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/estimation/persistence_test.hpp"
 
 namespace tpf::offline {
 namespace {
 
 using Vec = JointVector<double, kArmJoints>;
-
-/// The combined external residual: StaticModelFree where it has an estimate, Fused elsewhere.
-Eigen::MatrixXd combined_external(const EstimatorTrace& tr) {
-  const auto& fixed = tr.estimates[static_cast<int>(TorqueEstimator::StaticModelFree)];
-  const auto& fused = tr.estimates[static_cast<int>(TorqueEstimator::Fused)];
-  return fixed.array().isFinite().select(fixed, fused);
-}
 
 /// τ̂_ext [N·m] of each modality per row (T × N): tactile J_vᵀ(−F_n·n), the proprioceptive
 /// estimate, and the estimator's fused answer (EstimatorOutput::external).
@@ -30,15 +22,6 @@ std::array<Eigen::MatrixXd, kModalityCount> external_torques(const EstimatorTrac
           tr.external * to_nm};
 }
 
-/// Per row: is the estimate outside its dead band on some joint? (0 on skipped rows.)
-Eigen::VectorXi any_joint_outside_band(const Eigen::MatrixXd& estimate) {
-  Eigen::VectorXi e = Eigen::VectorXi::Zero(estimate.rows());
-  for (Eigen::Index k = 0; k < estimate.rows(); ++k)
-    for (int j = 0; j < kArmJoints; ++j)
-      if (std::isfinite(estimate(k, j)) && estimate(k, j) != 0.0) e[k] = 1;
-  return e;
-}
-
 /// Per row: does the modality say "contact"? Tactile: a pad; proprioceptive: any joint outside
 /// its band; fusion: the estimator's EstimatorOutput::contact — a pad, or the combined estimate
 /// outside its band for parameters.torque_alarm_samples cycles in a row.
@@ -47,22 +30,6 @@ std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr)
           any_joint_outside_band(tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)]),
           tr.estimator_contact.cwiseMax(0)};
 }
-
-}  // namespace
-
-int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
-  const EstimatorTrace tr =
-      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log));
-  const Eigen::VectorXi outside = any_joint_outside_band(combined_external(tr));
-  std::vector<int> free;
-  for (Eigen::Index k = 0; k < tr.rows(); ++k)
-    if (std::isfinite(tr.t[k]) && tr.contact[k] == 0) free.push_back(outside[k]);
-  return persistence_for_false_alarm_rate(
-      Eigen::Map<const Eigen::VectorXi>(free.data(), static_cast<Eigen::Index>(free.size())),
-      kTorqueAlarmFalseAlarmRate, kTorqueAlarmMaxSamples);
-}
-
-namespace {
 
 Eigen::MatrixXd columns(const Log& log, const std::string& prefix, int count) {
   Eigen::MatrixXd m(log.rows(), count);

@@ -37,20 +37,6 @@ struct EvaluationLogs {
   double teaching_duration_s = 0.0;
 };
 
-/// False-alarm rate the torque-only contact alarm's persistence is chosen for, per contact-free
-/// row of the calibration log, and the longest persistence allowed (0.2 s at 400 Hz). Zero: the
-/// shortest persistence that raises no alarm anywhere on the contact-free calibration log (its
-/// longest out-of-band run + 1 cycle). Any positive rate is a false contact every few seconds at
-/// 400 Hz (0.1 % = 24 alarmed cycles a minute), which a controller reacting to contact cannot use.
-inline constexpr double kTorqueAlarmFalseAlarmRate = 0.0;
-inline constexpr int kTorqueAlarmMaxSamples = 80;
-
-/// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on a contact-free log
-/// (rows without a pad in contact; the estimator as configured in `setup`):
-/// persistence_for_false_alarm_rate of "the combined estimate is outside its dead band on some
-/// joint" over those rows.
-int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log);
-
 /// Per joint dead bands (effort unit) and the pad's on level.
 struct DeadBands {
   JointVector<double, kArmJoints> proprioceptive;  ///< 1.5·σ_nominal

@@ -45,6 +45,24 @@ struct EstimatorTrace {
   Eigen::Index rows() const { return t.size(); }
 };
 
+/// The combined external residual (T × N): StaticModelFree where it has an estimate (resting
+/// joints), Fused elsewhere — what the estimator's torque-only contact alarm watches.
+inline Eigen::MatrixXd combined_external(const EstimatorTrace& tr) {
+  const auto& fixed = tr.estimates[static_cast<int>(TorqueEstimator::StaticModelFree)];
+  const auto& fused = tr.estimates[static_cast<int>(TorqueEstimator::Fused)];
+  return fixed.array().isFinite().select(fixed, fused);
+}
+
+/// Per row of a T × N estimate after its dead band: is it outside the band (nonzero) on some
+/// joint? 0 on rows without an estimate (NaN).
+inline Eigen::VectorXi any_joint_outside_band(const Eigen::MatrixXd& estimate) {
+  Eigen::VectorXi e = Eigen::VectorXi::Zero(estimate.rows());
+  for (Eigen::Index k = 0; k < estimate.rows(); ++k)
+    for (Eigen::Index j = 0; j < estimate.cols(); ++j)
+      if (std::isfinite(estimate(k, j)) && estimate(k, j) != 0.0) e[k] = 1;
+  return e;
+}
+
 /// Runs `estimator` (reset first) over `samples` in order and records every row. The compensator
 /// must be a RecordingCompensator, whose last input is the row's TCN input.
 template <typename S, int N, int P, typename Inner>

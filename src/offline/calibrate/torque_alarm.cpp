@@ -1,0 +1,23 @@
+#include "offline/calibrate/torque_alarm.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "offline/training/estimator_samples.hpp"
+#include "tpf/estimation/persistence_test.hpp"
+
+namespace tpf::offline {
+
+int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
+  const EstimatorTrace tr =
+      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log));
+  const Eigen::VectorXi outside = any_joint_outside_band(combined_external(tr));
+  std::vector<int> free;
+  for (Eigen::Index k = 0; k < tr.rows(); ++k)
+    if (std::isfinite(tr.t[k]) && tr.contact[k] == 0) free.push_back(outside[k]);
+  return persistence_for_false_alarm_rate(
+      Eigen::Map<const Eigen::VectorXi>(free.data(), static_cast<Eigen::Index>(free.size())),
+      kTorqueAlarmFalseAlarmRate, kTorqueAlarmMaxSamples);
+}
+
+}  // namespace tpf::offline
