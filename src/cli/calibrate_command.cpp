@@ -70,8 +70,9 @@ void register_calibrate_command(CLI::App& app) {
       "and moving every joint, nothing touching it): sensor noise -> dead bands and pad contact "
       "levels, the compensator's speed domain (the log's top speed per joint: faster, the "
       "fused estimate falls back to the nominal model), transition sigma of the nominal and "
-      "compensated residuals, persistence of the torque-only contact alarm. Writes the estimator "
-      "parameter file (tpf-estimator) that "
+      "compensated residuals, persistence of the torque-only contact alarm (the shortest that "
+      "raises no alarm anywhere on this log: the longer and richer the log, the fewer false "
+      "alarms later). Writes the estimator parameter file (tpf-estimator) that "
       "tpf_arm_loop --estimator loads at start-up. Run it again when the arm, its nominal model "
       "or its compensator changes.");
   cmd->add_option("--log", o->log, "Contact-free calibration log (tpf CSV, effort i<j> in mA)")
