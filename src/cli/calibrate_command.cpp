@@ -54,6 +54,8 @@ void run_calibrate(const CalibrateCommandOptions& o) {
               p.skin.detector.off_level_kpa);
   std::printf("  compensator domain, |joint speed| up to [rad/s]: %s\n",
               joint_values(p.compensator_speed_limit).c_str());
+  std::printf("  compensator domain, |joint acceleration| up to [rad/s^2]: %s\n",
+              joint_values(p.compensator_acceleration_limit).c_str());
   std::printf("  torque-only contact alarm: %d cycles in a row\n", p.torque_alarm_samples);
   std::printf("calibrate: wrote %s\n", o.out.c_str());
 }
@@ -68,8 +70,9 @@ void register_calibrate_command(CLI::App& app) {
       "calibrate",
       "Calibrate the run-time estimator's parameters on a contact-free log of the arm (at rest "
       "and moving every joint, nothing touching it): sensor noise -> dead bands and pad contact "
-      "levels, the compensator's speed domain (the log's top speed per joint: faster, the "
-      "fused estimate falls back to the nominal model), transition sigma of the nominal and "
+      "levels, the compensator's domain (the log's top speed and acceleration per joint: beyond "
+      "them, and for the network's input window after, the fused estimate falls back to the "
+      "nominal model), transition sigma of the nominal and "
       "compensated residuals, persistence of the torque-only contact alarm (the shortest that "
       "raises no alarm anywhere on this log: the longer and richer the log, the fewer false "
       "alarms later). Writes the estimator parameter file (tpf-estimator) that "

@@ -1,4 +1,5 @@
-// Outside the compensator's speed domain the fused estimate is the nominal one: a network that
+// Outside the compensator's domain (speed or acceleration) the fused estimate is the nominal one,
+// for as long as the out-of-domain input stays in the network's window: a network that
 // extrapolates badly at speeds it never saw cannot raise the torque-only contact alarm, and a
 // push off the pads still can (hand-made samples on the twin's nominal model).
 #include <gtest/gtest.h>
@@ -19,6 +20,14 @@ struct ConstantCompensator {
   Output b = Output::Zero();
 };
 using DomainEstimator = Estimator<double, kJoints, kPads, ConstantCompensator>;
+
+/// The same with a memory: its output depends on its last kReceptiveField inputs, like a TCN's.
+struct ConstantCompensatorWithMemory : ConstantCompensator {
+  static constexpr int kReceptiveField = 8;
+};
+static_assert(compensator_memory<ConstantCompensator> == 1);
+static_assert(compensator_memory<ConstantCompensatorWithMemory> == 8);
+static_assert(compensator_memory<ZeroCompensator<double, kJoints>> == 1);
 
 constexpr double kNominalSigma = 100.0, kFusedSigma = 20.0;  // mA: bands 150 and 30
 constexpr double kExtrapolation = 300.0;                     // mA, the network's wrong answer
@@ -104,6 +113,35 @@ TEST(CompensatorDomain, InsideTheDomainTheCompensatorIsUsed) {
   const DomainRun r = run(0.5, 0.0, 1.0);
   EXPECT_EQ(r.outside, 0);
   EXPECT_NEAR(r.last_fused, -(kExtrapolation - 1.5 * kFusedSigma), 1e-6);
+}
+
+// A hard stop (a joint limit, an impact) drives q̈ far beyond what the network was trained on:
+// from that cycle the fused estimate of that joint is the nominal one, for the network's whole
+// input window (8 cycles here), then the network is back; the other joints keep theirs.
+TEST(CompensatorDomain, BeyondTheAccelerationDomainTheNominalEstimateHoldsForTheNetworksWindow) {
+  ConstantCompensatorWithMemory c;
+  c.b.setConstant(kExtrapolation);
+  auto p = domain_parameters(1.0);
+  p.compensator_acceleration_limit.setConstant(2.0);
+  auto est = std::make_unique<Estimator<double, kJoints, kPads, ConstantCompensatorWithMemory>>(
+      twin_nominal(), twin_pads(), p, c);
+  auto samples = turning(0.5, 0.0);
+  constexpr int kStop = 100;
+  samples[kStop].ddq[0] = 10.0;  // given q̈ (the effort is not recomputed: only the domain counts)
+  for (int k = 0; k < static_cast<int>(samples.size()); ++k) {
+    const auto& out = est->update(samples[static_cast<std::size_t>(k)]);
+    const bool outside = k >= kStop && k < kStop + 8;
+    EXPECT_EQ(bool(out.status & kStatusOutsideCompensatorDomain), outside) << "cycle " << k;
+    const auto& fused = out.estimate(TorqueEstimator::Fused).residual;
+    if (k == kStop)  // τ_res = −M·q̈ there: whatever it is, not the network's answer
+      EXPECT_EQ(fused[0], dead_band(out.residual, Vec(Vec::Constant(1.5 * kNominalSigma)))[0]);
+    else if (outside)  // d(τ_res = 0, 150): the nominal estimate, while in the network's window
+      EXPECT_EQ(fused[0], 0.0) << "cycle " << k;
+    else
+      EXPECT_NEAR(fused[0], -(kExtrapolation - 1.5 * kFusedSigma), 1e-6) << "cycle " << k;
+    if (k != kStop)  // (at kStop joint 2's τ_res carries the coupling M₂₁·q̈₁)
+      EXPECT_NEAR(fused[1], -(kExtrapolation - 1.5 * kFusedSigma), 1e-6) << "cycle " << k;
+  }
 }
 
 // The wrench weighs a joint outside the domain as the nominal estimate it falls back to: on a

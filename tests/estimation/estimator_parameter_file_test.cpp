@@ -40,7 +40,7 @@ constexpr int field_count() {
 
 // If one of these fails, a field was added: serialise it in estimator_parameter_file.cpp, then
 // set it in every_field_changed() and compare it in expect_same() below.
-static_assert(field_count<Parameters>() == 16, "EstimatorParameters changed");
+static_assert(field_count<Parameters>() == 17, "EstimatorParameters changed");
 static_assert(field_count<tpf::StaticFrictionSettings<double>>() == 4, "StaticFriction changed");
 static_assert(field_count<tpf::SkinSettings<double>>() == 3, "SkinSettings changed");
 static_assert(field_count<tpf::PadDetectorSettings<double>>() == 4, "PadDetector changed");
@@ -78,6 +78,7 @@ Parameters every_field_changed() {
   p.torque_alarm_samples = 17;
   p.static_dead_band << 19.7, 20.1, 21.9, 22.3;
   p.compensator_speed_limit << 0.78, 0.77, 0.68, 0.79;
+  p.compensator_acceleration_limit << 1.21, 2.13, 9.15, 3.18;
   return p;
 }
 
@@ -111,6 +112,7 @@ void expect_same(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.torque_alarm_samples, b.torque_alarm_samples);
   EXPECT_EQ(a.static_dead_band, b.static_dead_band);
   EXPECT_EQ(a.compensator_speed_limit, b.compensator_speed_limit);
+  EXPECT_EQ(a.compensator_acceleration_limit, b.compensator_acceleration_limit);
 }
 
 class EstimatorParameterFile : public ::testing::Test {
@@ -240,9 +242,21 @@ TEST_F(EstimatorParameterFile, RefusesUnknownAndBadFieldsNamingThem) {
             std::string::npos)
       << load_error(j);
   j = full;
-  j["version"] = 2;
-  EXPECT_NE(load_error(j).find("version: is 2; this tpf reads up to version 1"), std::string::npos)
+  j["version"] = 3;
+  EXPECT_NE(load_error(j).find("version: is 3; this tpf reads up to version 2"), std::string::npos)
       << load_error(j);
+  // A version 1 file has no acceleration limit (and may not name one): it loads without one.
+  j = full;
+  j["version"] = 1;
+  EXPECT_NE(load_error(j).find("compensator_acceleration_limit"), std::string::npos)
+      << load_error(j);
+  j.erase("compensator_acceleration_limit");
+  ASSERT_EQ(load_error(j, "v1.estimator.json"), "");
+  const Parameters v1 = tpf::load_estimator_parameters<4>(path("v1.estimator.json"));
+  EXPECT_TRUE((v1.compensator_acceleration_limit.array() ==
+               Parameters{}.compensator_acceleration_limit.array())
+                  .all());
+  EXPECT_EQ(v1.compensator_speed_limit, every_field_changed().compensator_speed_limit);
   EXPECT_THROW(tpf::load_estimator_parameters<4>(path("no-such-file.json")), tpf::Error);
 }
 

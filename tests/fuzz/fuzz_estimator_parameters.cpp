@@ -29,6 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         p.static_dead_band.allFinite() && (p.nominal_sigma.array() >= 0).all() &&
         (p.fused_sigma.array() >= 0).all() && (p.static_dead_band.array() >= 0).all() &&
         (p.compensator_speed_limit.array() > 0).all() &&
+        (p.compensator_acceleration_limit.array() > 0).all() &&
         p.skin.detector.off_level_kpa < p.skin.detector.on_level_kpa && p.torque_alarm_samples >= 1;
     if (!ok) tpf::fuzz::violation("load_estimator_parameters", "a parameter is out of its range");
     const auto first = tpf::fuzz::scratch_dir() / "first.estimator.json";

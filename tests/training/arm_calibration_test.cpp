@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <limits>
 
 #include "offline/calibrate/torque_alarm.hpp"
 #include "offline/sim/scenario.hpp"
@@ -43,6 +44,14 @@ TEST(ArmCalibration, RunsEvaluatesStepsWithTheCompensator) {
   EXPECT_EQ(p.nominal_sigma, sigma.nominal);
   EXPECT_EQ(p.fused_sigma, sigma.fused);
   EXPECT_EQ(p.torque_alarm_samples, alarm);
+  const auto samples = estimator_samples<kArmJoints, kArmPads>(log);
+  EXPECT_EQ(p.compensator_speed_limit, speed_envelope(samples));
+  EXPECT_EQ(p.compensator_acceleration_limit, acceleration_envelope(steps, samples));
+  // The twin's excitation moves every joint, but gently: the network never saw a hard stop.
+  for (int j = 0; j < kArmJoints; ++j) {
+    EXPECT_GT(p.compensator_acceleration_limit[j], 0.1) << "joint " << j + 1;
+    EXPECT_LT(p.compensator_acceleration_limit[j], 50.0) << "joint " << j + 1;
+  }
 
   // The compensator was used: it removes most of the transition error on every joint (measured,
   // simulated, 60 s: fused 13–85 mA against nominal 66–339 mA).
@@ -59,6 +68,39 @@ TEST(ArmCalibration, RunsEvaluatesStepsWithTheCompensator) {
   EXPECT_EQ(read.fused_sigma, p.fused_sigma);
   EXPECT_EQ(read.static_dead_band, p.static_dead_band);
   EXPECT_EQ(read.torque_alarm_samples, p.torque_alarm_samples);
+  EXPECT_EQ(read.compensator_acceleration_limit, p.compensator_acceleration_limit);
+}
+
+// The acceleration envelope is of the q̈ the estimator computes: the sample's own where it has
+// one (here), skipping rows the estimator skips (a NaN sample must not widen the domain).
+TEST(AccelerationEnvelope, IsTheLargestAccelerationTheEstimatorUsesPerJoint) {
+  ArmEstimatorSetup setup;
+  setup.nominal = load_nominal_model<kArmJoints>(data("arm4.params.json"), data("arm4.robot.json"));
+  setup.pads = load_pads(data("arm4.pads.json"), setup.nominal.model);
+  SensorNoise noise;
+  noise.effort.setConstant(5.0);
+  noise.pad_kpa = 0.05;
+  setup.parameters = arm_estimator_parameters(noise, 1.5);
+  std::vector<ArmSample> samples(4);
+  const double accelerations[4][kArmJoints] = {
+      {0.5, -1.0, 0.0, 2.0}, {-3.0, 0.25, 0.0, -1.5}, {1.0, 1.0, 0.0, 1.0}, {99, 99, 99, 99}};
+  for (int k = 0; k < 4; ++k) {
+    ArmSample& s = samples[static_cast<std::size_t>(k)];
+    s.t = 0.0025 * k;
+    s.q << 0.1, 0.3, 0.4, 0.1;
+    s.dq.setZero();
+    s.effort.setZero();
+    s.pressure.setZero();
+    s.has_ddq = true;
+    for (int j = 0; j < kArmJoints; ++j)
+      s.ddq[j] = accelerations[k][j];
+  }
+  samples[3].q[0] = std::numeric_limits<double>::quiet_NaN();  // skipped by the estimator
+  const auto a = acceleration_envelope(setup, samples);
+  EXPECT_DOUBLE_EQ(a[0], 3.0);
+  EXPECT_DOUBLE_EQ(a[1], 1.0);
+  EXPECT_DOUBLE_EQ(a[2], 0.0);
+  EXPECT_DOUBLE_EQ(a[3], 2.0);
 }
 
 }  // namespace

@@ -43,6 +43,16 @@ CompensatorInput<S, N> compensator_input(const JointVector<S, N>& q, const Joint
   return x;
 }
 
+/// Cycles of input history a compensator's output depends on: its receptive field
+/// (C::kReceptiveField, a TCN), 1 for a memoryless one.
+template <typename C>
+inline constexpr int compensator_memory = [] {
+  if constexpr (requires { C::kReceptiveField; })
+    return static_cast<int>(C::kReceptiveField);
+  else
+    return 1;
+}();
+
 /// No compensation: τ_TCN = 0 (the fused estimator then equals the nominal one). For tests and
 /// for running before trained weights exist.
 template <typename S, int N>

@@ -2,6 +2,7 @@
 // contact-aware state machine and the TCN into external joint torques and a contact force.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -160,7 +161,14 @@ class Estimator {
     Vector fused_sigma = moving_sigma_;  // σ of the Fused evidence this cycle
     for (int j = 0; j < N; ++j) {
       using std::abs;
-      if (!(abs(sample.dq[j]) > parameters_.compensator_speed_limit[j])) continue;
+      // The network's output depends on its whole input window: once a joint's input leaves the
+      // domain, its fused estimate stays on the nominal residual until the window has passed.
+      if (abs(sample.dq[j]) > parameters_.compensator_speed_limit[j] ||
+          abs(ddq[j]) > parameters_.compensator_acceleration_limit[j])
+        outside_domain_[j] = kCompensatorMemory;
+      else if (outside_domain_[j] > 0)
+        --outside_domain_[j];
+      if (outside_domain_[j] == 0) continue;
       fused_residual[j] = out.residual[j];
       fused_band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
       fused_sigma[j] = nominal_moving_sigma_[j];
@@ -293,6 +301,7 @@ class Estimator {
     tracker_.reset();
     torque_alarm_.reset();
     held_residual_.setZero();
+    outside_domain_.fill(0);
   }
 
   void set_estimate(TorqueEstimator which, const Vector& residual, std::uint32_t valid) noexcept {
@@ -318,6 +327,9 @@ class Estimator {
   Compensator compensator_;
   Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
   Vector held_residual_ = Vector::Zero();  ///< last torque-only estimate (StopPolicy)
+  static constexpr int kCompensatorMemory = compensator_memory<Compensator>;
+  /// Per joint: cycles until its compensator input window is back inside the domain.
+  std::array<int, N> outside_domain_{};
   Vector static_sigma_ = Vector::Zero();
   Vector moving_sigma_ = Vector::Zero();
   Vector nominal_moving_sigma_ = Vector::Zero();  ///< σ_nominal (floor when uncalibrated)

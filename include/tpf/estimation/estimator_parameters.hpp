@@ -44,6 +44,11 @@ struct EstimatorParameters {
   /// dead_band_factor·nominal_sigma (kStatusOutsideCompensatorDomain). +inf: no limit.
   JointVector<S, N> compensator_speed_limit =
       JointVector<S, N>::Constant(std::numeric_limits<S>::infinity());
+  /// The same for |q̈_j| [rad/s²] (the acceleration the compensator is given; e.g. the
+  /// calibration log's max, acceleration_envelope). A joint stopped hard (a joint limit, an
+  /// impact) drives the network far outside what it was trained on. +inf: no limit.
+  JointVector<S, N> compensator_acceleration_limit =
+      JointVector<S, N>::Constant(std::numeric_limits<S>::infinity());
   /// The torque-only contact alarm (EstimatorOutput::contact without a pad) needs the combined
   /// external torque outside its dead band on some joint for this many consecutive cycles
   /// (PersistenceTest): a contact-free arm's outliers (break-away transitions) are short, a push

@@ -23,6 +23,7 @@ class PerJointTcn {
   using Network = Tcn<NetScalar, kCompensatorInputsPerJoint, Hidden, Levels, 4, 1>;
   using Input = CompensatorInput<S, N>;
   using Output = Eigen::Matrix<S, N, 1>;
+  static constexpr int kReceptiveField = Network::kReceptiveField;
 
   /// τ_TCN,j = network_j(x_j) for every joint.
   const Output& step(const Input& x) noexcept {

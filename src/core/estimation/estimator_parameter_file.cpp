@@ -17,7 +17,7 @@ using OrderedJson = nlohmann::ordered_json;  // saved in the struct's order, for
 using Bound = json::Object::Bound;
 
 constexpr const char* kEstimatorFormat = "tpf-estimator";
-constexpr int kEstimatorVersion = 1;
+constexpr int kEstimatorVersion = 2;  // 2: compensator_acceleration_limit
 constexpr double kUnbounded = json::Object::kInfinity;
 constexpr int kMaxSamples = 100'000'000;
 
@@ -25,6 +25,14 @@ OrderedJson ordered_array(const auto& v) {
   OrderedJson a = OrderedJson::array();
   for (Eigen::Index i = 0; i < v.size(); ++i)
     a.push_back(v[i]);
+  return a;
+}
+
+// Per-joint limits, null for "no limit" (+∞; JSON has no infinity).
+OrderedJson limits_array(const auto& v) {
+  OrderedJson a = OrderedJson::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    a.push_back(std::isfinite(v[i]) ? OrderedJson(v[i]) : OrderedJson(nullptr));
   return a;
 }
 
@@ -111,6 +119,9 @@ EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::
   p.torque_alarm_samples = top.integer("torque_alarm_samples", 1, kMaxSamples);
   top.joint_vector<N>("static_dead_band", p.static_dead_band, true, Bound::kNonNegative);
   top.joint_limits<N>("compensator_speed_limit", p.compensator_speed_limit);
+  // Version 1 files predate the acceleration limit: none, as they were calibrated.
+  if (top.number("version", 0, 1e9) >= 2)
+    top.joint_limits<N>("compensator_acceleration_limit", p.compensator_acceleration_limit);
   top.finish();
   return p;
 }
@@ -155,12 +166,8 @@ void save_estimator_parameters(const std::filesystem::path& file,
   j["dead_band_factor"] = p.dead_band_factor;
   j["torque_alarm_samples"] = p.torque_alarm_samples;
   j["static_dead_band"] = ordered_array(p.static_dead_band);
-  OrderedJson limits = OrderedJson::array();  // null: no limit (+∞)
-  for (int i = 0; i < N; ++i)
-    limits.push_back(std::isfinite(p.compensator_speed_limit[i])
-                         ? OrderedJson(p.compensator_speed_limit[i])
-                         : OrderedJson(nullptr));
-  j["compensator_speed_limit"] = limits;
+  j["compensator_speed_limit"] = limits_array(p.compensator_speed_limit);
+  j["compensator_acceleration_limit"] = limits_array(p.compensator_acceleration_limit);
   write_file_atomically(file, j.dump(2) + "\n");
 }
 

@@ -16,6 +16,7 @@ TransitionSigma<double, kArmJoints> calibrate_with_compensator(ArmEstimatorSetup
                                                                const Log& log) {
   const std::vector<ArmSample> samples = estimator_samples<kArmJoints, kArmPads>(log);
   setup.parameters.compensator_speed_limit = speed_envelope(samples);
+  setup.parameters.compensator_acceleration_limit = acceleration_envelope(setup, samples);
   const TransitionSigma<double, kArmJoints> sigma = calibrate_arm_sigma(setup, samples, log.source);
   setup.parameters.torque_alarm_samples = calibrate_torque_alarm(setup, log);
   return sigma;

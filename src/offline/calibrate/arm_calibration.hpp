@@ -18,7 +18,8 @@ ArmParameters calibrate_arm_estimator(ArmEstimatorSetup setup, const Log& log,
 
 /// The steps that run the estimator with its compensator over the contact-free `log`, on
 /// setup.parameters in place (the noise-derived parameters already set):
-///  2. the compensator's domain: the log's speed envelope (speed_envelope);
+///  2. the compensator's domain: the log's speed and acceleration envelopes (speed_envelope,
+///     acceleration_envelope);
 ///  3. σ of the nominal and compensated residuals in the static-to-kinetic transitions
 ///     (calibrate_arm_sigma): the moving dead bands 1.5·σ — returned;
 ///  4. persistence of the torque-only contact alarm: no false alarm anywhere on the log

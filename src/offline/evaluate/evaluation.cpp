@@ -190,6 +190,7 @@ std::string evaluation_json(const Evaluation& ev) {
   j["sigma"] = {{"nominal", vec(ev.sigma.nominal)}, {"fused", vec(ev.sigma.fused)}};
   j["torque_alarm_samples"] = ev.torque_alarm_samples;
   j["compensator_speed_limit"] = vec(ev.compensator_speed_limit);
+  j["compensator_acceleration_limit"] = vec(ev.parameters.compensator_acceleration_limit);
   j["dead_bands"] = {{"proprioceptive", vec(ev.dead_bands.proprioceptive)},
                      {"fusion_moving", vec(ev.dead_bands.fusion_moving)},
                      {"fusion_static", vec(ev.dead_bands.fusion_static)},

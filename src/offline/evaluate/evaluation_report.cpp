@@ -130,19 +130,22 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
 
   page.heading("Dead bands");
   Table db;
-  db.header = {"joint",  "proprioceptive 1.5σ_nominal", "fusion moving 1.5σ_fused",
-               "change", "fusion static (noise band)",  "compensator's domain |q̇| ≤ [rad/s]"};
+  db.header = {"joint",         "proprioceptive 1.5σ_nominal", "fusion moving 1.5σ_fused",
+               "change",        "fusion static (noise band)",  "compensator's domain |q̇| ≤ [rad/s]",
+               "|q̈| ≤ [rad/s²]"};
   db.caption =
       "Half-widths in mA; σ calibrated on a separate contact-free log (not a test log), whose "
-      "speeds bound the compensator's domain (faster, fusion falls back to 1.5σ_nominal on the "
-      "nominal residual). Tactile-only: the pad's on level, " +
+      "speeds and accelerations bound the compensator's domain (beyond them, and for the "
+      "network's input window after, fusion falls back to 1.5σ_nominal on the nominal "
+      "residual). Tactile-only: the pad's on level, " +
       fmt(ev.dead_bands.tactile_n) + " N on the reference pad.";
   db.percent_column = 3;
   for (int j = 0; j < kArmJoints; ++j)
     db.rows.push_back(
         {joint_label(j), fmt(ev.dead_bands.proprioceptive[j]), fmt(ev.dead_bands.fusion_moving[j]),
          format_percent_change(ev.dead_bands.proprioceptive[j], ev.dead_bands.fusion_moving[j]),
-         fmt(ev.dead_bands.fusion_static[j]), fmt(ev.compensator_speed_limit[j])});
+         fmt(ev.dead_bands.fusion_static[j]), fmt(ev.compensator_speed_limit[j]),
+         fmt(ev.parameters.compensator_acceleration_limit[j])});
   page.table(db);
 
   if (ev.has_contacts) {

@@ -87,6 +87,16 @@ JointVector<double, kArmJoints> speed_envelope(const std::vector<ArmSample>& sam
   return v;
 }
 
+JointVector<double, kArmJoints> acceleration_envelope(const ArmEstimatorSetup& setup,
+                                                      const std::vector<ArmSample>& samples) {
+  const EstimatorTrace tr = trace_arm_estimator(setup, samples);
+  JointVector<double, kArmJoints> a = JointVector<double, kArmJoints>::Zero();
+  const auto ddq = tr.inputs.middleCols<kArmJoints>(2 * kArmJoints);  // compensator_input
+  for (Eigen::Index k = 0; k < tr.rows(); ++k)
+    if (ddq.row(k).allFinite()) a = a.cwiseMax(ddq.row(k).transpose().cwiseAbs());
+  return a;
+}
+
 TransitionSigma<double, kArmJoints> calibrate_arm_sigma(ArmEstimatorSetup& setup,
                                                         const std::vector<ArmSample>& samples,
                                                         const std::string& source) {

@@ -15,6 +15,7 @@ template <typename Inner, typename S, int N>
 requires FrictionCompensator<Inner, S, N>
 struct RecordingCompensator {
   using Input = CompensatorInput<S, N>;
+  static constexpr int kReceptiveField = compensator_memory<Inner>;
 
   decltype(auto) step(const Input& x) noexcept {
     last_input = x;
