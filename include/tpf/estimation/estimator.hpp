@@ -34,7 +34,8 @@ namespace tpf {
 ///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
 ///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s, τ_fric) (compensator_input; τ_fric is step 2's);
 ///  6. three estimates (TorqueEstimator), each with its dead band, and the combined one (Fused
-///     is the nominal residual on joints faster than the compensator's domain);
+///     is the nominal residual on joints outside the compensator's speed or acceleration domain,
+///     and for the network's input window after);
 ///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal;
 ///  8. contact: a pad, or the combined torque outside its band for a while (PersistenceTest).
 /// `Compensator` is tpf::Tcn<S, 5N, H, L, K, N>, PerJointTcn or ZeroCompensator<S, N> (none).
