@@ -69,7 +69,7 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   const auto estimator = load_estimator_parameters<kArmJoints>(o.out / "arm4.estimator.json");
   EXPECT_EQ(estimator.nominal_sigma, r.evaluation.sigma.nominal);
   EXPECT_EQ(estimator.fused_sigma, r.evaluation.sigma.fused);
-  EXPECT_EQ(estimator.torque_alarm_samples, r.evaluation.torque_alarm_samples);
+  EXPECT_EQ(estimator.torque_alarm_samples, r.evaluation.parameters.torque_alarm_samples);
   ASSERT_EQ(r.training.results.size(), 4u);
   for (const auto& t : r.training.results)
     EXPECT_LE(t.history.size(), 2u);

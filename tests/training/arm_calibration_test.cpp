@@ -35,18 +35,18 @@ TEST(ArmCalibration, RunsEvaluatesStepsWithTheCompensator) {
   // The steps, one by one, as tpf evaluate runs them.
   ArmEstimatorSetup steps = setup;
   steps.parameters = arm_estimator_parameters(estimate_sensor_noise(log), 1.5);
-  const auto sigma =
-      calibrate_arm_sigma(steps, estimator_samples<kArmJoints, kArmPads>(log), log.source);
-  const int alarm = calibrate_torque_alarm(steps, log);
+  const auto samples = estimator_samples<kArmJoints, kArmPads>(log);
+  const auto sigma = calibrate_arm_sigma(steps, samples, log.source);
+  const EstimatorTrace with_bands = trace_arm_estimator(steps, samples);
+  const int alarm = calibrate_torque_alarm(with_bands);
   EXPECT_EQ(p.static_dead_band, steps.parameters.static_dead_band);
   EXPECT_EQ(p.skin.detector.on_level_kpa, steps.parameters.skin.detector.on_level_kpa);
   EXPECT_EQ(p.skin.force_gain, steps.parameters.skin.force_gain);
   EXPECT_EQ(p.nominal_sigma, sigma.nominal);
   EXPECT_EQ(p.fused_sigma, sigma.fused);
   EXPECT_EQ(p.torque_alarm_samples, alarm);
-  const auto samples = estimator_samples<kArmJoints, kArmPads>(log);
   EXPECT_EQ(p.compensator_speed_limit, speed_envelope(samples));
-  EXPECT_EQ(p.compensator_acceleration_limit, acceleration_envelope(steps, samples));
+  EXPECT_EQ(p.compensator_acceleration_limit, acceleration_envelope(with_bands));
   // The twin's excitation moves every joint, but gently: the network never saw a hard stop.
   for (int j = 0; j < kArmJoints; ++j) {
     EXPECT_GT(p.compensator_acceleration_limit[j], 0.1) << "joint " << j + 1;
@@ -96,7 +96,7 @@ TEST(AccelerationEnvelope, IsTheLargestAccelerationTheEstimatorUsesPerJoint) {
       s.ddq[j] = accelerations[k][j];
   }
   samples[3].q[0] = std::numeric_limits<double>::quiet_NaN();  // skipped by the estimator
-  const auto a = acceleration_envelope(setup, samples);
+  const auto a = acceleration_envelope(trace_arm_estimator(setup, samples));
   EXPECT_DOUBLE_EQ(a[0], 3.0);
   EXPECT_DOUBLE_EQ(a[1], 1.0);
   EXPECT_DOUBLE_EQ(a[2], 0.0);

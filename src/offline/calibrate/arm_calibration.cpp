@@ -1,5 +1,7 @@
 #include "offline/calibrate/arm_calibration.hpp"
 
+#include <limits>
+
 #include "offline/calibrate/torque_alarm.hpp"
 #include "offline/training/estimator_samples.hpp"
 
@@ -15,10 +17,15 @@ ArmParameters calibrate_arm_estimator(ArmEstimatorSetup setup, const Log& log,
 TransitionSigma<double, kArmJoints> calibrate_with_compensator(ArmEstimatorSetup& setup,
                                                                const Log& log) {
   const std::vector<ArmSample> samples = estimator_samples<kArmJoints, kArmPads>(log);
-  setup.parameters.compensator_speed_limit = speed_envelope(samples);
-  setup.parameters.compensator_acceleration_limit = acceleration_envelope(setup, samples);
+  ArmParameters& p = setup.parameters;
+  p.compensator_speed_limit = speed_envelope(samples);
+  // The acceleration limit is this log's own envelope, read off the pass below: no row of the log
+  // lies beyond it, so the passes run as if it were already set.
+  p.compensator_acceleration_limit.setConstant(std::numeric_limits<double>::infinity());
   const TransitionSigma<double, kArmJoints> sigma = calibrate_arm_sigma(setup, samples, log.source);
-  setup.parameters.torque_alarm_samples = calibrate_torque_alarm(setup, log);
+  const EstimatorTrace with_bands = trace_arm_estimator(setup, samples);
+  p.compensator_acceleration_limit = acceleration_envelope(with_bands);
+  p.torque_alarm_samples = calibrate_torque_alarm(with_bands);
   return sigma;
 }
 

@@ -3,14 +3,11 @@
 #include <cmath>
 #include <vector>
 
-#include "offline/training/estimator_samples.hpp"
 #include "tpf/estimation/persistence_test.hpp"
 
 namespace tpf::offline {
 
-int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log) {
-  const EstimatorTrace tr =
-      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log));
+int calibrate_torque_alarm(const EstimatorTrace& tr) {
   const Eigen::VectorXi outside = any_joint_outside_band(combined_external(tr));
   std::vector<int> free;
   for (Eigen::Index k = 0; k < tr.rows(); ++k)

@@ -1,8 +1,7 @@
 // The persistence of the estimator's torque-only contact alarm, calibrated on a contact-free log.
 #pragma once
 
-#include "offline/log/log.hpp"
-#include "offline/training/arm_estimator.hpp"
+#include "offline/training/estimator_trace.hpp"
 
 namespace tpf::offline {
 
@@ -14,10 +13,10 @@ namespace tpf::offline {
 inline constexpr double kTorqueAlarmFalseAlarmRate = 0.0;
 inline constexpr int kTorqueAlarmMaxSamples = 80;
 
-/// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on a contact-free log
-/// (rows without a pad in contact; the estimator as configured in `setup`):
-/// persistence_for_false_alarm_rate of "the combined estimate is outside its dead band on some
-/// joint" over those rows.
-int calibrate_torque_alarm(const ArmEstimatorSetup& setup, const Log& log);
+/// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on the trace of a
+/// contact-free log (trace_arm_estimator with the calibrated bands; rows without a pad in
+/// contact): persistence_for_false_alarm_rate of "the combined estimate is outside its dead band
+/// on some joint" over those rows.
+int calibrate_torque_alarm(const EstimatorTrace& tr);
 
 }  // namespace tpf::offline

@@ -129,8 +129,6 @@ Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
 
   say("evaluate: calibrating the dead bands on " + logs.calibration->source);
   ev.sigma = calibrate_with_compensator(setup, *logs.calibration);
-  ev.compensator_speed_limit = setup.parameters.compensator_speed_limit;
-  ev.torque_alarm_samples = setup.parameters.torque_alarm_samples;
   ev.parameters = setup.parameters;
   const ArmParameters& p = setup.parameters;
   ev.dead_bands.proprioceptive = p.dead_band_factor * p.nominal_sigma;
@@ -188,8 +186,8 @@ std::string evaluation_json(const Evaluation& ev) {
   json j;
   j["simulated"] = true;
   j["sigma"] = {{"nominal", vec(ev.sigma.nominal)}, {"fused", vec(ev.sigma.fused)}};
-  j["torque_alarm_samples"] = ev.torque_alarm_samples;
-  j["compensator_speed_limit"] = vec(ev.compensator_speed_limit);
+  j["torque_alarm_samples"] = ev.parameters.torque_alarm_samples;
+  j["compensator_speed_limit"] = vec(ev.parameters.compensator_speed_limit);
   j["compensator_acceleration_limit"] = vec(ev.parameters.compensator_acceleration_limit);
   j["dead_bands"] = {{"proprioceptive", vec(ev.dead_bands.proprioceptive)},
                      {"fusion_moving", vec(ev.dead_bands.fusion_moving)},

@@ -55,15 +55,12 @@ struct TeachingErrors {
 };
 
 struct Evaluation {
-  /// The estimator parameters calibrated on the calibration log (what every estimator ran with;
+  /// The estimator parameters calibrated on the calibration log (what every estimator ran with,
+  /// the compensator's domain and the torque alarm's persistence included;
   /// save_estimator_parameters writes them for the run-time loop).
   ArmParameters parameters;
   TransitionSigma<double, kArmJoints> sigma;
   DeadBands dead_bands;
-  /// Persistence of the torque-only contact alarm (cycles), from the calibration log.
-  int torque_alarm_samples = 1;
-  /// The compensator's domain [rad/s]: the calibration log's speed envelope (speed_envelope).
-  JointVector<double, kArmJoints> compensator_speed_limit = JointVector<double, kArmJoints>::Zero();
   std::vector<ResidualRow> table;  ///< Table I on the held-out excitation logs
   Eigen::Index excitation_rows = 0;
   bool has_contacts = false, has_teaching = false;

@@ -144,7 +144,7 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
     db.rows.push_back(
         {joint_label(j), fmt(ev.dead_bands.proprioceptive[j]), fmt(ev.dead_bands.fusion_moving[j]),
          format_percent_change(ev.dead_bands.proprioceptive[j], ev.dead_bands.fusion_moving[j]),
-         fmt(ev.dead_bands.fusion_static[j]), fmt(ev.compensator_speed_limit[j]),
+         fmt(ev.dead_bands.fusion_static[j]), fmt(ev.parameters.compensator_speed_limit[j]),
          fmt(ev.parameters.compensator_acceleration_limit[j])});
   page.table(db);
 

@@ -87,9 +87,7 @@ JointVector<double, kArmJoints> speed_envelope(const std::vector<ArmSample>& sam
   return v;
 }
 
-JointVector<double, kArmJoints> acceleration_envelope(const ArmEstimatorSetup& setup,
-                                                      const std::vector<ArmSample>& samples) {
-  const EstimatorTrace tr = trace_arm_estimator(setup, samples);
+JointVector<double, kArmJoints> acceleration_envelope(const EstimatorTrace& tr) {
   JointVector<double, kArmJoints> a = JointVector<double, kArmJoints>::Zero();
   const auto ddq = tr.inputs.middleCols<kArmJoints>(2 * kArmJoints);  // compensator_input
   for (Eigen::Index k = 0; k < tr.rows(); ++k)

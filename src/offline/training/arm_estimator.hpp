@@ -64,12 +64,11 @@ EstimatorTrace trace_arm_estimator(const ArmEstimatorSetup& setup,
 /// alarm were calibrated, and, with calibration and training drawn from one scenario, trained.
 JointVector<double, kArmJoints> speed_envelope(const std::vector<ArmSample>& samples);
 
-/// The accelerations a log covers, per joint: max |q̈_j| over its rows as the estimator of `setup`
-/// computes it (the compensator's q̈ input: the sample's, or the filtered derivative of q̇)
-/// [rad/s²]. On the contact-free calibration log it bounds the compensator's domain with
-/// speed_envelope (EstimatorParameters::compensator_acceleration_limit).
-JointVector<double, kArmJoints> acceleration_envelope(const ArmEstimatorSetup& setup,
-                                                      const std::vector<ArmSample>& samples);
+/// The accelerations a log covers, per joint: max |q̈_j| over the rows of its trace
+/// (trace_arm_estimator) as the estimator computed it — the compensator's q̈ input: the sample's,
+/// or the filtered derivative of q̇ [rad/s²]. On the contact-free calibration log it bounds the
+/// compensator's domain with speed_envelope (EstimatorParameters::compensator_acceleration_limit).
+JointVector<double, kArmJoints> acceleration_envelope(const EstimatorTrace& tr);
 
 /// calibrate_transition_sigma on contact-free `samples` with the setup's compensator; the result
 /// is stored in setup.parameters (nominal_sigma, fused_sigma) and returned.
