@@ -19,6 +19,10 @@ struct Log {
   std::vector<std::string> columns;  ///< in file order
   Eigen::MatrixXd values;            ///< rows = samples, cols = columns; missing = NaN
   LogQuality quality;
+  /// A log read from several files (concatenated in time, each file its own segment): the row
+  /// where each file begins, ascending, first 0 ({0} for one file). Held-out-by-file scoring
+  /// splits here.
+  std::vector<Eigen::Index> file_starts{0};
 
   /// Index of column `name`, or -1 when absent.
   int column(std::string_view name) const;
