@@ -17,7 +17,7 @@
 #include "tpf/friction/friction_file.hpp"
 #include "tpf/model/load_robot.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
-#include "tpf/nn/per_joint_tcn.hpp"
+#include "tpf/nn/per_joint_tcn_compensator.hpp"
 #include "tpf/nn/tcn.hpp"
 
 namespace {
@@ -28,7 +28,7 @@ using BenchEstimator = tpf::Estimator<double, N, P, Tcn32>;
 /// The layout the tools ship (docs/tcn.md): one 16-channel, 4-level network per joint, evaluated
 /// in float; and the same networks in double, for the ratio.
 template <typename NetScalar>
-using JointNetworks = tpf::PerJointTcn<double, N, 16, 4, NetScalar>;
+using JointNetworks = tpf::PerJointTcnCompensator<double, N, 16, 4, NetScalar>;
 template <typename NetScalar>
 using ShippedEstimator = tpf::Estimator<double, N, P, JointNetworks<NetScalar>>;
 using PlainEstimator = tpf::Estimator<double, N, P>;  // ZeroCompensator: everything but the TCN

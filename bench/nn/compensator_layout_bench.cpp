@@ -6,9 +6,9 @@
 
 #include <memory>
 
-#include "offline/train/tcn_parameters.hpp"
+#include "offline/compensator_training/tcn_parameters.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
-#include "tpf/nn/per_joint_tcn.hpp"
+#include "tpf/nn/per_joint_tcn_compensator.hpp"
 #include "tpf/nn/tcn.hpp"
 
 namespace {
@@ -45,7 +45,7 @@ void AllJoints(benchmark::State& state) {
 
 template <typename S, int Hidden>
 void PerJoint(benchmark::State& state) {
-  auto c = std::make_unique<tpf::PerJointTcn<S, kJoints, Hidden, 4>>();
+  auto c = std::make_unique<tpf::PerJointTcnCompensator<S, kJoints, Hidden, 4>>();
   for (int j = 0; j < kJoints; ++j)
     tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j).weights());
   run<S>(state, *c);

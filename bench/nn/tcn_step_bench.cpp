@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "offline/train/tcn_parameters.hpp"
+#include "offline/compensator_training/tcn_parameters.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
 #include "tpf/nn/tcn.hpp"
 

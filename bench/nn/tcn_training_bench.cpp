@@ -3,8 +3,8 @@
 
 #include <iostream>
 
-#include "offline/train/synthetic_friction_data.hpp"
-#include "offline/train/tcn_trainer.hpp"
+#include "offline/compensator_training/synthetic_friction_data.hpp"
+#include "offline/compensator_training/tcn_trainer.hpp"
 
 namespace {
 

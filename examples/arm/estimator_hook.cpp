@@ -12,32 +12,26 @@ namespace tpf::arm {
 namespace {
 
 /// The core's estimator set-up for the arm, from the files; `description` says what was loaded.
-ArmEstimatorSetup load_setup(const EstimatorFiles& f, std::string& description) {
-  ArmEstimatorSetup setup = load_arm_estimator_setup(f);
+EstimatorSetup<kArmJoints> load_setup(const EstimatorFiles& f, std::string& description) {
+  EstimatorSetup<kArmJoints> setup = load_estimator_setup<kArmJoints>(f);
   if (setup.nominal.effort_unit != "mA")
     throw Error::at(f.params, 0, "effort_unit",
                     "is \"" + setup.nominal.effort_unit +
                         "\"; the loop measures motor currents in mA (identify on an i<j> log)");
   description = "estimator: " + f.params + ", " + std::to_string(setup.pads.size()) +
-                " pads, parameters " + f.estimator;
-  switch (setup.layout) {
-    case CompensatorLayout::PerJoint:
-      description += ", one friction network per joint (" + f.weights + ")";
-      break;
-    case CompensatorLayout::AllJoints:
-      description += ", friction network " + f.weights;
-      break;
-    case CompensatorLayout::None:
-      description += ", no friction compensator";
-      break;
-  }
+                " pads, parameters " + f.estimator + ", " + describe(setup.weights) +
+                (f.weights.empty() ? "" : " (" + f.weights + ")");
   return setup;
 }
 
 }  // namespace
 
 EstimatorHook::EstimatorHook(const EstimatorFiles& files) {
-  step_ = make_arm_estimator_step(load_setup(files, description_));
+  const EstimatorSetup<kArmJoints> setup = load_setup(files, description_);
+  if (setup.weights.layout == CompensatorLayout::None)
+    estimator_ = make_estimator<kArmJoints, kArmPads, NoCompensator>(setup);
+  else
+    estimator_ = make_estimator<kArmJoints, kArmPads, PerJointTcn<float, 16>>(setup);
   output_ = &empty_;
   trace_.reserve(files.trace_capacity);
 }
@@ -54,7 +48,7 @@ void EstimatorHook::update(const CycleSample& s) noexcept {
   for (int k = 0; k < kPads; ++k)
     input_.pressure[k] =
         s.pads_valid && static_cast<std::size_t>(k) < s.pads ? static_cast<double>(s.p[k]) : nan;
-  output_ = &step_(input_);
+  output_ = &std::visit([this](auto& e) -> const Output& { return e->update(input_); }, estimator_);
 
   EstimatorStatistics& st = statistics_;
   const Output& out = *output_;
@@ -83,14 +77,6 @@ void EstimatorHook::update(const CycleSample& s) noexcept {
     r.normal_force_n = skipped ? nan : -out.wrench.force_contact.z();
     trace_.push_back(r);
   }
-}
-
-const char* estimator_status_name(int bit) noexcept {
-  static constexpr const char* names[EstimatorStatistics::kStatusBits] = {
-      "non-finite input (skipped)", "stale time (skipped)", "time gap",
-      "position out of range",      "pad data invalid",     "wrench unobservable",
-      "acceleration estimated",     "frozen input",         "pad stuck"};
-  return bit >= 0 && bit < EstimatorStatistics::kStatusBits ? names[bit] : "unknown";
 }
 
 }  // namespace tpf::arm

@@ -1,25 +1,29 @@
 // The core Estimator in the arm loop: built at start-up from files (nominal model, pad layout,
 // estimator parameters calibrated offline by `tpf calibrate`, friction-compensator weights),
 // updated once per cycle on the real-time thread with the cycle's sample, its outcome counted for
-// the report. The assembly is the core's (tpf::load_arm_estimator_setup, make_arm_estimator_step),
-// the same the offline tools score: the loop links tpf::core only.
+// the report. The assembly is the core's (tpf::load_estimator, arm4.hpp names the types), the same
+// the offline tools score: the loop links tpf::core only.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "arm/arm4.hpp"
 #include "arm/cycle_sample.hpp"
-#include "tpf/estimation/arm4_estimator.hpp"
+#include "tpf/estimation/estimator_status.hpp"
 
 namespace tpf::arm {
 
-/// Where the estimator comes from (ArmEstimatorFiles: params, robot, pads, estimator, weights).
-/// Paths default to the project's data/ folder (tpf_arm_loop). The effort unit of the parameter
-/// file must be mA (the loop measures motor currents).
-struct EstimatorFiles : ArmEstimatorFiles {
+/// Where the estimator comes from (tpf::EstimatorFiles: params, robot, pads, estimator, weights;
+/// no weights: UncompensatedArmEstimator). Paths default to the project's data/ folder
+/// (tpf_arm_loop). The effort unit of the parameter file must be mA (the loop measures motor
+/// currents).
+struct EstimatorFiles : tpf::EstimatorFiles {
   /// Estimates kept for inspection (one per cycle, reserved at start-up; 0: none).
   std::size_t trace_capacity = 0;
 };
@@ -37,14 +41,14 @@ struct EstimateRecord {
 
 /// What the estimator did over a run.
 struct EstimatorStatistics {
-  static constexpr int kStatusBits = 9;  ///< EstimatorStatus bits 0..8
+  static constexpr int kStatusBits = kEstimatorStatusBits;
   std::uint64_t updates = 0;
   std::uint64_t clean = 0;  ///< status 0: estimated from fresh, finite data
   std::array<std::uint64_t, kStatusBits> status_bit{};  ///< cycles with bit b set
   std::uint64_t contact_cycles = 0;                     ///< a pad in contact (skin)
   std::uint64_t static_cycles = 0;                      ///< state machine not in Dynamic
   std::uint64_t non_finite_estimates = 0;  ///< clean cycles whose τ_ext was not finite (bug)
-  std::array<double, kMaxJoints> max_abs_torque_nm{};  ///< max |τ_ext| over clean cycles
+  std::array<double, kArmJoints> max_abs_torque_nm{};  ///< max |τ_ext| over clean cycles
 };
 
 class EstimatorHook {
@@ -71,16 +75,14 @@ class EstimatorHook {
   const std::string& description() const noexcept { return description_; }
 
  private:
-  ArmEstimatorStep step_;
-  ArmSample input_;
+  std::variant<std::unique_ptr<ArmEstimator>, std::unique_ptr<UncompensatedArmEstimator>>
+      estimator_;
+  ArmEstimator::Sample input_;
   const Output* output_ = nullptr;
   Output empty_;
   EstimatorStatistics statistics_;
   std::vector<EstimateRecord> trace_;
   std::string description_;
 };
-
-/// Name of EstimatorStatus bit b ("non-finite input", …), for reports.
-const char* estimator_status_name(int bit) noexcept;
 
 }  // namespace tpf::arm

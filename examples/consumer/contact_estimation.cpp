@@ -1,11 +1,11 @@
-// The estimator in a controller, with tpf::core only: the arm's estimator is assembled at start-up
-// from the files the offline tools write (nominal model: `tpf identify`; pads; estimator
-// parameters: `tpf calibrate`; compensator weights: `tpf train`), then updated once per 400 Hz
-// cycle. The "sensors" here are synthetic: the arm holds a pose for 1 s, then a hand presses the
-// forearm's top pad (index 4) with ≈ 8 N, which also loads the joints. Sensor noise is added: a
-// reading that never changes is what a frozen sensor gives, and the estimator flags it. Exits 1 if
-// the estimator misses the press or reports a contact at rest. Usage: contact_estimation <data dir,
-// e.g. data>
+// The estimator in a controller, with tpf::core only: the arm's estimator, its sizes and
+// compensator named as types, is loaded at start-up from the files the offline tools write (nominal
+// model: `tpf identify`; pads; estimator parameters: `tpf calibrate`; compensator weights: `tpf
+// train`), then updated once per 400 Hz cycle. The "sensors" here are synthetic: the arm holds a
+// pose for 1 s, then a hand presses the forearm's top pad (index 4) with ≈ 8 N, which also loads
+// the joints. Sensor noise is added: a reading that never changes is what a frozen sensor gives,
+// and the estimator flags it. Exits 1 if the estimator misses the press or reports a contact at
+// rest. Usage: contact_estimation <data dir, e.g. data>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -17,19 +17,21 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = std::string(argv[1]) + "/";
-  constexpr int kPushedPad = 4;
+  // The arm, named as types: 4 joints, 11 pads, one 16-channel float network per joint.
+  constexpr int kJoints = 4, kPads = 11, kPushedPad = 4;
+  using Compensator = tpf::PerJointTcn<float, 16>;
   try {
     // Start-up: may allocate and throw tpf::Error naming the file and field.
-    const tpf::ArmEstimatorSetup setup = tpf::load_arm_estimator_setup(
+    const auto estimator = tpf::load_estimator<kJoints, kPads, Compensator>(
         {dir + "arm4.params.json", dir + "arm4.robot.json", dir + "arm4.pads.json",
          dir + "arm4.estimator.json", dir + "weights/arm4.tcn.json"});
-    const tpf::ArmEstimatorStep estimate = tpf::make_arm_estimator_step(setup);
-    tpf::Data<double, tpf::kArmJoints> data(setup.nominal.model);
-    tpf::ArmSample sample;
+    const auto& nominal = estimator->nominal();
+    tpf::Data<double, kJoints> data(nominal.model);
+    tpf::EstimatorSample<double, kJoints, kPads> sample;
     sample.q << 0.0, 0.6, -0.9, 0.3;  // a held pose [rad]
-    tpf::JointVector<double, tpf::kArmJoints> rigid, friction;
-    tpf::predict_effort(setup.nominal, data, sample.q, sample.dq, sample.dq, rigid, friction);
-    const tpf::JointVector<double, tpf::kArmJoints> holding = rigid;  // mA at rest
+    tpf::JointVector<double, kJoints> rigid, friction;
+    tpf::predict_effort(nominal, data, sample.q, sample.dq, sample.dq, rigid, friction);
+    const tpf::JointVector<double, kJoints> holding = rigid;  // mA at rest
 
     // Per cycle: no allocation, no exception. The push lowers joints 2–3's current (τ_ext > 0
     // there) and raises the pad's pressure (1.5 kPa/N on the twin's pads).
@@ -39,16 +41,16 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 800; ++k) {
       const bool pushed = k >= 400;
       sample.t = k / 400.0;
-      for (int j = 0; j < tpf::kArmJoints; ++j)
+      for (int j = 0; j < kJoints; ++j)
         sample.effort[j] = holding[j] + current_noise(rng);
-      for (int p = 0; p < tpf::kArmPads; ++p)
+      for (int p = 0; p < kPads; ++p)
         sample.pressure[p] = pressure_noise(rng);
       if (pushed) {
         sample.effort[1] -= 900.0;
         sample.effort[2] -= 400.0;
         sample.pressure[kPushedPad] += 12.0;
       }
-      const tpf::EstimatorOutput<double, tpf::kArmJoints>& out = estimate(sample);
+      const tpf::EstimatorOutput<double, kJoints>& out = estimator->update(sample);
       if (k < 400 && out.contact) false_alarm = true;
       if (k == 799) missed = !out.contact || out.wrench.pad != kPushedPad;
       if (k % 100 == 99)

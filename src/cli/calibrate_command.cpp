@@ -6,19 +6,22 @@
 #include <string>
 
 #include "commands.hpp"
+#include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
-#include "offline/calibrate/arm_calibration.hpp"
+#include "offline/calibrate/estimator_calibration.hpp"
 #include "offline/log/read_log.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 
 namespace {
 
 struct CalibrateCommandOptions {
-  std::string log, params, robot, pads, weights, out;
+  std::string log, weights, out;
+  tpf::cli::ModelFiles model;
   double pad_gain_kpa_per_n = 1.5;
 };
 
-std::string joint_values(const tpf::JointVector<double, tpf::offline::kArmJoints>& v) {
+template <int N>
+std::string joint_values(const tpf::JointVector<double, N>& v) {
   std::string s;
   char item[32];
   for (int j = 0; j < v.size(); ++j) {
@@ -28,30 +31,38 @@ std::string joint_values(const tpf::JointVector<double, tpf::offline::kArmJoints
   return s;
 }
 
+template <int N>
 void run_calibrate(const CalibrateCommandOptions& o) {
   using namespace tpf::offline;
-  ArmEstimatorSetup setup;
-  setup.nominal = tpf::load_nominal_model<kArmJoints>(o.params, o.robot);
-  setup.pads = tpf::load_pads(o.pads, setup.nominal.model);
-  if (!o.weights.empty()) setup.weight_files = compensator_files(o.weights, setup.layout);
+  const tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, o.weights);
   const Log log = read_log(o.log);
-  const ArmParameters p = calibrate_arm_estimator(setup, log, o.pad_gain_kpa_per_n);
+  const tpf::EstimatorParameters<double, N> p =
+      calibrate_estimator<N>(setup, log, o.pad_gain_kpa_per_n);
 
   const auto origin = log.meta.get("source");
   const bool simulated = origin && origin->find("simulated") != std::string::npos;
   std::string source = o.log + (simulated ? " (SIMULATED log)" : "") + ", nominal model " +
-                       o.params + ", compensator " + (o.weights.empty() ? "none" : o.weights);
-  tpf::save_estimator_parameters<kArmJoints>(o.out, p, source);
+                       o.model.params + ", compensator " + (o.weights.empty() ? "none" : o.weights);
+  tpf::save_estimator_parameters<N>(o.out, p, source);
   const std::string unit = setup.nominal.effort_unit;
-  std::printf("calibrate: %s%s\n", o.log.c_str(), simulated ? " (SIMULATED)" : "");
+  std::printf("calibrate: %s%s, %d joints, %s, %s\n", o.log.c_str(),
+              simulated ? " (SIMULATED)" : "", N,
+              tpf::cli::describe_pads(
+                  setup.pads.size(),
+                  tpf::cli::pad_layout_file(o.model, tpf::load_robot_description(o.model.robot)))
+                  .c_str(),
+              describe(setup.weights).c_str());
   std::printf("  static dead band [%s]: %s\n", unit.c_str(),
               joint_values(p.static_dead_band).c_str());
   std::printf("  transition sigma, nominal [%s]: %s\n", unit.c_str(),
               joint_values(p.nominal_sigma).c_str());
   std::printf("  transition sigma, fused [%s]: %s\n", unit.c_str(),
               joint_values(p.fused_sigma).c_str());
-  std::printf("  pad contact on/off [kPa]: %.3g / %.3g\n", p.skin.detector.on_level_kpa,
-              p.skin.detector.off_level_kpa);
+  if (setup.pads.empty())
+    std::printf("  pad contact on/off [kPa]: no skin\n");
+  else
+    std::printf("  pad contact on/off [kPa]: %.3g / %.3g\n", p.skin.detector.on_level_kpa,
+                p.skin.detector.off_level_kpa);
   std::printf("  compensator domain, |joint speed| up to [rad/s]: %s\n",
               joint_values(p.compensator_speed_limit).c_str());
   std::printf("  compensator domain, |joint acceleration| up to [rad/s^2]: %s\n",
@@ -81,7 +92,7 @@ void register_calibrate_command(CLI::App& app) {
   cmd->add_option("--log", o->log, "Contact-free calibration log (tpf CSV, effort i<j> in mA)")
       ->required()
       ->check(CLI::ExistingFile);
-  add_model_file_options(cmd, o->params, o->robot, o->pads, "Nominal model (tpf-params file)");
+  add_model_file_options(cmd, o->model, "Nominal model (tpf-params file)");
   cmd->add_option("--weights", o->weights,
                   "Compensator weights the loop will run (all joints, or <stem>.joint<j>.json per "
                   "joint); without: the fused dead band is calibrated with no compensator");
@@ -91,7 +102,10 @@ void register_calibrate_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", o->out, "Estimator parameter file to write, e.g. arm4.estimator.json")
       ->required();
-  cmd->callback([o] { run_calibrate(*o); });
+  cmd->callback([o] {
+    with_joint_count(robot_joint_count(o->model.robot), o->model.robot,
+                     [&]<int N>() { run_calibrate<N>(*o); });
+  });
 }
 
 }  // namespace tpf::cli

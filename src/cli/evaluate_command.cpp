@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
@@ -18,7 +19,8 @@
 namespace {
 
 struct EvaluateCommandOptions {
-  std::string params, weights, robot, pads, calibration, contacts, teaching, out;
+  tpf::cli::ModelFiles model;
+  std::string weights, calibration, contacts, teaching, out;
   std::vector<std::string> excitation;
   std::string teaching_scenario;
   std::uint64_t teaching_seed = 5;
@@ -31,15 +33,13 @@ bool is_simulated(const tpf::offline::Log& log) {
   return source && source->find("simulated") != std::string::npos;
 }
 
+template <int N>
 void run_evaluate(const EvaluateCommandOptions& o) {
   using namespace tpf::offline;
   const auto say = [&](const std::string& line) {
     if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
   };
-  ArmEstimatorSetup setup;
-  setup.nominal = tpf::load_nominal_model<kArmJoints>(o.params, o.robot);
-  setup.pads = tpf::load_pads(o.pads, setup.nominal.model);
-  if (!o.weights.empty()) setup.weight_files = compensator_files(o.weights, setup.layout);
+  tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, o.weights);
 
   say("evaluate: reading logs");
   const Log calibration = read_log(o.calibration);
@@ -48,7 +48,7 @@ void run_evaluate(const EvaluateCommandOptions& o) {
     excitation.push_back(read_log(p));
   const Log contacts = o.contacts.empty() ? Log{} : read_log(o.contacts);
   const Log teaching = o.teaching.empty() ? Log{} : read_log(o.teaching);
-  setup.parameters = arm_estimator_parameters(estimate_sensor_noise(calibration));
+  setup.parameters = estimator_parameters_from_noise<N>(estimate_sensor_noise(calibration));
 
   EvaluationLogs logs;
   logs.calibration = &calibration;
@@ -69,7 +69,7 @@ void run_evaluate(const EvaluateCommandOptions& o) {
   const Evaluation ev = evaluate(setup, logs, say);
 
   std::filesystem::create_directories(o.out);
-  std::vector<std::string> notes{"nominal model: " + o.params,
+  std::vector<std::string> notes{"nominal model: " + o.model.params,
                                  "compensator: " + (o.weights.empty() ? "none" : o.weights),
                                  "calibration log (dead bands): " + o.calibration};
   for (const std::string& p : o.excitation)
@@ -95,7 +95,7 @@ void register_evaluate_command(CLI::App& app) {
       "evaluate",
       "Compare tactile-only, proprioceptive-only and fusion on held-out logs: Table I (residual "
       "per regime, nominal vs TCN), dead bands, detection latency, force error, teaching");
-  add_model_file_options(cmd, o->params, o->robot, o->pads, "Nominal model (tpf-params file)");
+  add_model_file_options(cmd, o->model, "Nominal model (tpf-params file)");
   cmd->add_option("--weights", o->weights,
                   "Compensator weights (all joints, or <stem>.joint<j>.json per joint)");
   cmd->add_option("--calibration", o->calibration,
@@ -117,7 +117,10 @@ void register_evaluate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output folder (evaluate.html, evaluation.json)")->required();
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
-  cmd->callback([o] { run_evaluate(*o); });
+  cmd->callback([o] {
+    with_joint_count(robot_joint_count(o->model.robot), o->model.robot,
+                     [&]<int N>() { run_evaluate<N>(*o); });
+  });
 }
 
 }  // namespace tpf::cli

@@ -1,15 +1,41 @@
 // `tpf info`: load a robot and print its model and a few computed quantities.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
+#include "joint_dispatch.hpp"
+#include "model_file_options.hpp"
 #include "offline/common/data_files.hpp"
 #include "tpf/core.hpp"
 
 namespace tpf::cli {
 
-void print_robot_summary(const std::string& robot_file) {
-  constexpr int kJoints = 4;
+namespace {
+
+/// A pose that loads every joint: 0, 0.6, −1.2, 0.3 rad repeating, inside the joint limits.
+template <int N>
+JointVector<double, N> sample_pose(const Model<double, N>& model) {
+  const double pattern[] = {0.0, 0.6, -1.2, 0.3};
+  JointVector<double, N> q;
+  for (int j = 0; j < N; ++j)
+    q[j] = std::clamp(pattern[j % 4], model.lower[j], model.upper[j]);
+  return q;
+}
+
+std::string joint_list(const Eigen::VectorXd& v, const char* format) {
+  std::string s;
+  char item[32];
+  for (Eigen::Index j = 0; j < v.size(); ++j) {
+    std::snprintf(item, sizeof item, format, v[j]);
+    s += (j ? " " : "") + std::string(item);
+  }
+  return s;
+}
+
+template <int kJoints>
+void print_summary(const std::string& robot_file) {
   const auto model = load_robot<double, kJoints>(robot_file);
   const RobotDescription description = load_robot_description(robot_file);
   std::printf("robot '%s' from %s: %d revolute joints\n\n", model.name.c_str(), robot_file.c_str(),
@@ -23,17 +49,18 @@ void print_robot_summary(const std::string& robot_file) {
                 model.armature(j));
   }
   Data<double, kJoints> data(model);
-  JointVector<double, kJoints> q;
-  q << 0.0, 0.6, -1.2, 0.3;
-  const auto g = compute_gravity(model, data, q);
-  const auto M = compute_mass_matrix(model, data, q);
-  std::printf("\nat q = [%.2f %.2f %.2f %.2f] rad:\n", q(0), q(1), q(2), q(3));
+  const JointVector<double, kJoints> q = sample_pose(model);
+  const JointVector<double, kJoints> g = compute_gravity(model, data, q);
+  const JointMatrix<double, kJoints> M = compute_mass_matrix(model, data, q);
+  std::printf("\nat q = [%s] rad:\n", joint_list(q, "%.2f").c_str());
   for (int j = 0; j < kJoints; ++j) {
     std::printf("  %s: gravity %8.3f N·m = %7.1f mA   M_jj %.4f kg·m² (%.0f %% armature)\n",
                 model.joint_names[j].c_str(), g(j), 1000.0 * g(j) / model.torque_constant(j),
                 M(j, j), 100.0 * model.armature(j) / M(j, j));
   }
-  if (!description.pads_file.empty()) {
+  if (description.pads_file.empty()) {
+    std::printf("\nno skin (the robot file names no pad layout)\n");
+  } else {
     const auto pads = load_pads(description.pads_file, model);
     std::printf("\n%zu skin pads (%s):\n", pads.size(), description.pads_file.c_str());
     for (const Pad& pad : pads) {
@@ -41,13 +68,19 @@ void print_robot_summary(const std::string& robot_file) {
       const Jacobian<double, kJoints> J = point_jacobian(model, data, pad.link, p);
       // torque a 10 N push along the inward normal produces at the joints
       const Vector3<double> push = -10.0 * (data.oMi[pad.link].R * pad.normal);
-      const JointVector<double, kJoints> tau = J.topRows<3>().transpose() * push;
-      std::printf(
-          "  %-16s on %s, area %4.1f cm², 10 N push -> tau = [%6.2f %6.2f %6.2f %6.2f] N·m\n",
-          pad.name.c_str(), model.link_names[pad.link].c_str(), pad.area * 1e4, tau(0), tau(1),
-          tau(2), tau(3));
+      const JointVector<double, kJoints> tau = J.template topRows<3>().transpose() * push;
+      std::printf("  %-16s on %s, area %4.1f cm², 10 N push -> tau = [%s] N·m\n", pad.name.c_str(),
+                  model.link_names[pad.link].c_str(), pad.area * 1e4,
+                  joint_list(tau, "%6.2f").c_str());
     }
   }
+}
+
+}  // namespace
+
+void print_robot_summary(const std::string& robot_file) {
+  with_joint_count(robot_joint_count(robot_file), robot_file,
+                   [&]<int N>() { print_summary<N>(robot_file); });
 }
 
 void register_info_command(CLI::App& app) {

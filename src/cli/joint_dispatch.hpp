@@ -1,37 +1,28 @@
-// Runs a command's work with the joint count N of a log, fixed at compile time (the core is
-// templated on N): one place decides which N the tools are built for.
+// Runs a command's work with the joint count N of an arm, fixed at compile time (the core is
+// templated on N): one place decides which N the tools are built for (1 … kMaxJoints).
 #pragma once
 
 #include <string>
 #include <utility>
 
 #include "tpf/common/error.hpp"
+#include "tpf/common/joint_counts.hpp"
 
 namespace tpf::cli {
 
-/// Calls `work.template operator()<N>()` with N = `joints` for N in 1..6, e.g.
+/// Calls `work.template operator()<N>()` with N = `joints`, e.g.
 ///   with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, args); });
 /// Any other count is refused with a tpf::Error naming `source`.
 template <typename Work>
 void with_joint_count(int joints, const std::string& source, Work&& work) {
-  switch (joints) {
-    case 1:
-      return std::forward<Work>(work).template operator()<1>();
-    case 2:
-      return std::forward<Work>(work).template operator()<2>();
-    case 3:
-      return std::forward<Work>(work).template operator()<3>();
-    case 4:
-      return std::forward<Work>(work).template operator()<4>();
-    case 5:
-      return std::forward<Work>(work).template operator()<5>();
-    case 6:
-      return std::forward<Work>(work).template operator()<6>();
-    default:
-      throw Error::at(
-          source, 0, "",
-          "logs of 1 to 6 joints are supported, this one has " + std::to_string(joints));
+  if (joints < 1 || joints > kMaxJoints)
+    throw Error::at(source, 0, "",
+                    "arms of 1 to " + std::to_string(kMaxJoints) +
+                        " joints are supported, this one has " + std::to_string(joints));
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    ((joints == K + 1 ? (work.template operator()<K + 1>(), true) : false) || ...);
   }
+  (std::make_integer_sequence<int, kMaxJoints>{});
 }
 
 }  // namespace tpf::cli

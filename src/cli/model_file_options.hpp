@@ -1,25 +1,67 @@
-// The files every estimator-running command is built from: --params (required), --robot and
-// --pads (defaulting to the twin arm's files in data/).
+// The files every estimator-running command is built from: --params (required), --robot
+// (defaulting to the twin arm's file in data/) and --pads (defaulting to the layout the robot file
+// names; "none" or a robot file without one: no skin).
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
 #include "offline/common/data_files.hpp"
+#include "tpf/estimation/load_estimator.hpp"
+#include "tpf/model/robot_description.hpp"
 
 namespace tpf::cli {
 
-/// Adds --params, --robot and --pads to `cmd`, writing into the given strings; --robot and --pads
-/// start at data/arm4.robot.json and data/arm4.pads.json.
-inline void add_model_file_options(CLI::App* cmd, std::string& params, std::string& robot,
-                                   std::string& pads, const std::string& params_help) {
-  robot = offline::data_file("arm4.robot.json").string();
-  pads = offline::data_file("arm4.pads.json").string();
-  cmd->add_option("--params", params, params_help)->required()->check(CLI::ExistingFile);
-  cmd->add_option("--robot", robot, "Robot file")->capture_default_str()->check(CLI::ExistingFile);
-  cmd->add_option("--pads", pads, "Pad layout file")
+struct ModelFiles {
+  std::string params;
+  std::string robot;
+  std::string pads;  ///< empty: the robot file's layout; "none": no skin
+};
+
+/// Adds --params, --robot and (when `with_pads`) --pads to `cmd`; --robot starts at
+/// data/arm4.robot.json.
+inline void add_model_file_options(CLI::App* cmd, ModelFiles& files, const std::string& params_help,
+                                   bool with_pads = true) {
+  files.robot = offline::data_file("arm4.robot.json").string();
+  cmd->add_option("--params", files.params, params_help)->required()->check(CLI::ExistingFile);
+  cmd->add_option("--robot", files.robot, "Robot file (tpf-robot: URDF, drives, pad layout)")
       ->capture_default_str()
       ->check(CLI::ExistingFile);
+  if (with_pads)
+    cmd->add_option("--pads", files.pads,
+                    "Pad layout file (default: the one the robot file names; \"none\": no skin)");
+}
+
+/// The pad layout to use: --pads, else the robot file's (empty: no skin).
+inline std::string pad_layout_file(const ModelFiles& files, const RobotDescription& robot) {
+  if (files.pads == "none") return {};
+  if (!files.pads.empty()) return files.pads;
+  return robot.pads_file.string();
+}
+
+/// "11 pads (data/arm4.pads.json)" or "no skin".
+inline std::string describe_pads(std::size_t pads, const std::string& file) {
+  return pads == 0 ? std::string("no skin") : std::to_string(pads) + " pads (" + file + ")";
+}
+
+/// The joint count of the robot file's chain (what the commands dispatch on).
+inline int robot_joint_count(const std::string& robot_file) {
+  return static_cast<int>(load_robot_description(robot_file).chain.joints.size());
+}
+
+/// An N-joint estimator set-up from the model files, without estimator parameters (the tools
+/// derive or calibrate them): nominal model, pad layout (pad_layout_file; `with_pads` false: no
+/// skin), compensator weights (`weights` empty: none).
+template <int N>
+EstimatorSetup<N> load_model_setup(const ModelFiles& files, const std::string& weights,
+                                   bool with_pads = true) {
+  EstimatorSetup<N> setup;
+  setup.nominal = load_nominal_model<N>(files.params, files.robot);
+  const std::string pads =
+      with_pads ? pad_layout_file(files, load_robot_description(files.robot)) : std::string();
+  if (!pads.empty()) setup.pads = load_pads(pads, setup.nominal.model);
+  setup.weights = find_compensator_weights(weights, N);
+  return setup;
 }
 
 }  // namespace tpf::cli

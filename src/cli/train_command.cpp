@@ -8,23 +8,22 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
+#include "offline/compensator_training/train_compensator.hpp"
 #include "offline/log/read_log.hpp"
-#include "offline/training/arm_estimator.hpp"
-#include "offline/training/estimator_samples.hpp"
-#include "offline/training/train_compensator.hpp"
+#include "offline/replay/estimator_samples.hpp"
+#include "offline/replay/replay_estimator.hpp"
 
 namespace {
 
 struct TrainCommandOptions {
   std::vector<std::string> logs;
-  std::string params;
-  std::string robot;
-  std::string pads;
+  tpf::cli::ModelFiles model;
   std::string out;
   std::string checkpoint;
   bool per_joint = false;
-  int joint_hidden = tpf::offline::kArmJointHidden;
+  int joint_hidden = tpf::offline::kPerJointHiddenSmall;
   bool quiet = false;
   double static_to_kinetic_weight =
       tpf::offline::CompensatorTrainingOptions{}.static_to_kinetic_weight;
@@ -32,18 +31,30 @@ struct TrainCommandOptions {
   tpf::offline::TcnTrainOptions tcn;
 };
 
-void run_train(TrainCommandOptions o) {
+/// The estimator's trace over each log (no compensator, no skin: the network reads no pad), with
+/// parameters from the log's own noise.
+template <int N>
+std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& o,
+                                                     Eigen::VectorXd& effort_per_newton_metre) {
   using namespace tpf::offline;
-  ArmEstimatorSetup setup;
-  setup.nominal = tpf::load_nominal_model<kArmJoints>(o.params, o.robot);
-  setup.pads = tpf::load_pads(o.pads, setup.nominal.model);
+  tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, "", false);
+  effort_per_newton_metre = setup.nominal.effort_per_newton_metre;
   std::vector<EstimatorTrace> traces;
   for (const std::string& path : o.logs) {
     if (!o.quiet) std::fprintf(stderr, "train: reading %s\n", path.c_str());
     const Log log = read_log(path);
-    setup.parameters = arm_estimator_parameters(estimate_sensor_noise(log));
-    traces.push_back(trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(log)));
+    setup.parameters = estimator_parameters_from_noise<N>(estimate_sensor_noise(log));
+    traces.push_back(replay_estimator(setup, estimator_samples<N>(log, 0)));
   }
+  return traces;
+}
+
+void run_train(TrainCommandOptions o) {
+  using namespace tpf::offline;
+  std::vector<EstimatorTrace> traces;
+  Eigen::VectorXd scale;
+  tpf::cli::with_joint_count(tpf::cli::robot_joint_count(o.model.robot), o.model.robot,
+                             [&]<int N>() { traces = trace_logs<N>(o, scale); });
   CompensatorTrainingOptions options;
   options.tcn = o.tcn;
   options.tcn.checkpoint_path = o.checkpoint;
@@ -51,7 +62,6 @@ void run_train(TrainCommandOptions o) {
   options.joint_hidden = o.joint_hidden;
   options.static_to_kinetic_weight = o.static_to_kinetic_weight;
   options.static_weight = o.static_weight;
-  const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
   const CompensatorTraining result = train_compensator(
       traces, scale, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
   for (const std::string& p : write_compensator(result, o.out))
@@ -83,8 +93,8 @@ void register_train_command(CLI::App& app) {
   cmd->add_option("--log", o->logs, "Contact-free excitation log(s)")
       ->required()
       ->check(CLI::ExistingFile);
-  add_model_file_options(cmd, o->params, o->robot, o->pads,
-                         "Nominal model (tpf-params file from identify/diagnose)");
+  add_model_file_options(cmd, o->model, "Nominal model (tpf-params file from identify/diagnose)",
+                         false);
   cmd->add_option("--out", o->out,
                   "Weight file to write (per joint: <stem>.joint<j>.json beside it)")
       ->required();

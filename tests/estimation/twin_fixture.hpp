@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "offline/log/log.hpp"
+#include "offline/replay/estimator_samples.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "support/arm_fixture.hpp"
@@ -36,29 +37,17 @@ inline const offline::Log& twin_log(const std::string& scenario, unsigned seed, 
   return it->second;
 }
 
-/// Rows of a log as estimator samples (effort = i<j> in mA, no q̈: the estimator derives it).
+/// Rows of a log as estimator samples of the fixed-size twin estimator (estimator_samples: effort
+/// = i<j> in mA, no q̈: the estimator derives it).
 inline std::vector<ArmSample> samples_from_log(const offline::Log& log) {
-  std::vector<ArmSample> samples(static_cast<std::size_t>(log.rows()));
-  const int t = log.column("t");
-  std::array<int, kJoints> q{}, dq{}, i{};
-  for (int j = 0; j < kJoints; ++j) {
-    q[j] = log.column(offline::indexed_name("q", j + 1));
-    dq[j] = log.column(offline::indexed_name("dq", j + 1));
-    i[j] = log.column(offline::indexed_name("i", j + 1));
-  }
-  std::array<int, kPads> p{};
-  for (int k = 0; k < kPads; ++k)
-    p[k] = log.column(offline::indexed_name("p", k + 1));
-  for (Eigen::Index r = 0; r < log.rows(); ++r) {
-    ArmSample& s = samples[static_cast<std::size_t>(r)];
-    s.t = log.values(r, t);
-    for (int j = 0; j < kJoints; ++j) {
-      s.q[j] = log.values(r, q[j]);
-      s.dq[j] = log.values(r, dq[j]);
-      s.effort[j] = log.values(r, i[j]);
-    }
-    for (int k = 0; k < kPads; ++k)
-      s.pressure[k] = log.values(r, p[k]);
+  const auto rows = offline::estimator_samples<kJoints>(log, kPads);
+  std::vector<ArmSample> samples(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    samples[r].t = rows[r].t;
+    samples[r].q = rows[r].q;
+    samples[r].dq = rows[r].dq;
+    samples[r].effort = rows[r].effort;
+    samples[r].pressure = rows[r].pressure;
   }
   return samples;
 }

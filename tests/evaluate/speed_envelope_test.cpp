@@ -3,14 +3,14 @@
 
 #include <limits>
 
-#include "offline/training/arm_estimator.hpp"
+#include "offline/replay/replay_estimator.hpp"
 
 namespace {
 
 using namespace tpf::offline;
 
 TEST(SpeedEnvelope, PerJointMaximumOfTheAbsoluteSpeedSkippingNonFiniteRows) {
-  std::vector<ArmSample> samples(3);
+  std::vector<ReplaySample<4>> samples(3);
   samples[0].t = 0.0;
   samples[0].dq << 0.1, -0.7, 0.0, 0.2;
   samples[1].t = 0.0025;

@@ -1,18 +1,17 @@
-// PerJointTcn: network j sees exactly joint j's inputs and its output is τ_TCN,j.
-#include "tpf/nn/per_joint_tcn.hpp"
-
+// PerJointTcnCompensator: network j sees exactly joint j's inputs and its output is τ_TCN,j.
 #include <gtest/gtest.h>
 
 #include <memory>
 
 #include "support/allocation_counter.hpp"
 #include "tcn_test_support.hpp"
+#include "tpf/nn/per_joint_tcn_compensator.hpp"
 
 namespace tpf {
 namespace {
 
 constexpr int kJoints = 3;
-using PerJoint = PerJointTcn<double, kJoints, 8, 3>;
+using PerJoint = PerJointTcnCompensator<double, kJoints, 8, 3>;
 
 TEST(PerJointTcn, EachJointRunsItsOwnNetworkOnItsOwnInputs) {
   const offline::TcnArchitecture a{kCompensatorInputsPerJoint, 8, 3, 4, 1};
@@ -54,7 +53,7 @@ TEST(PerJointTcn, EachJointRunsItsOwnNetworkOnItsOwnInputs) {
 // Float networks behind the double interface (what the tools ship): the same weights give the
 // double networks' outputs to float precision, and the step still allocates nothing.
 TEST(PerJointTcn, FloatNetworksMatchTheDoubleOnesToFloatPrecision) {
-  using FloatNetworks = PerJointTcn<double, kJoints, 8, 3, float>;
+  using FloatNetworks = PerJointTcnCompensator<double, kJoints, 8, 3, float>;
   const offline::TcnArchitecture a{kCompensatorInputsPerJoint, 8, 3, 4, 1};
   auto exact = std::make_unique<PerJoint>();
   auto rounded = std::make_unique<FloatNetworks>();

@@ -1,7 +1,7 @@
 // Backpropagation through the full-window TCN against central finite differences, every tensor.
 #include <gtest/gtest.h>
 
-#include "offline/train/tcn_window_model.hpp"
+#include "offline/compensator_training/tcn_window_model.hpp"
 #include "tcn_test_support.hpp"
 
 namespace tpf::offline {

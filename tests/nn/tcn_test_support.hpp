@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "offline/train/tcn_parameters.hpp"
+#include "offline/compensator_training/tcn_parameters.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
 
 namespace tpf::test {

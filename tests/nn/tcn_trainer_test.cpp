@@ -1,5 +1,5 @@
 // Trainer: overfits a tiny set, is deterministic, and its file loads into the core engine.
-#include "offline/train/tcn_trainer.hpp"
+#include "offline/compensator_training/tcn_trainer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <limits>
 #include <memory>
 
-#include "offline/train/synthetic_friction_data.hpp"
+#include "offline/compensator_training/synthetic_friction_data.hpp"
 #include "tcn_test_support.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"

@@ -74,7 +74,7 @@ def main():
         import torch
     except ImportError:
         print("SKIPPED: PyTorch is not installed (Debian: apt-get install python3-torch); the "
-              "parity of src/offline/train/torch/tpf_tcn.py with the core engine was not checked")
+              "parity of src/offline/compensator_training/torch/tpf_tcn.py with the core engine was not checked")
         return SKIP
     sys.path.insert(0, args.module_dir)
     from tpf_tcn import TpfTcn, export_tpf_weights, load_tpf_weights

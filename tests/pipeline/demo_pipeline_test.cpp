@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "offline/training/arm_estimator.hpp"
+#include "offline/replay/replay_estimator.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
@@ -54,22 +54,19 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   EXPECT_EQ(json.at("residual_table").size(), 15u);  // (4 joints + all) × 3 regimes
   EXPECT_GT(json.at("detection").at("tactile-only").at("events").get<int>(), 0);
 
-  // The written model and weights load into the run-time types.
-  const auto nominal = load_nominal_model<kArmJoints>(
-      o.out / "nominal.params.json", std::string(TPF_TEST_DATA_DIR) + "/arm4.robot.json");
-  EXPECT_EQ(nominal.effort_unit, "mA");
-  CompensatorLayout layout = CompensatorLayout::None;
-  const auto files = compensator_files(o.out / "tcn.json", layout);  // one network per joint
-  EXPECT_EQ(layout, CompensatorLayout::PerJoint);
-  ASSERT_EQ(files.size(), 4u);
-  auto tcn = std::make_unique<JointTcns<>>();
-  for (int j = 0; j < kArmJoints; ++j)
-    load_tcn_weights(files[j], tcn->network(j));
+  // The written files load into the run-time estimator of the arm (4 joints, 11 pads, one
+  // 16-channel network per joint), as a controller loads them.
+  const std::string data = TPF_TEST_DATA_DIR;
+  const auto estimator = load_estimator<4, 11, PerJointTcn<float, 16>>(
+      {(o.out / "nominal.params.json").string(), data + "/arm4.robot.json",
+       data + "/arm4.pads.json", (o.out / "arm4.estimator.json").string(),
+       (o.out / "tcn.json").string()});
+  EXPECT_EQ(estimator->nominal().effort_unit, "mA");
   // The run-time loop's estimator parameters, as the demo calibrated them.
-  const auto estimator = load_estimator_parameters<kArmJoints>(o.out / "arm4.estimator.json");
-  EXPECT_EQ(estimator.nominal_sigma, r.evaluation.sigma.nominal);
-  EXPECT_EQ(estimator.fused_sigma, r.evaluation.sigma.fused);
-  EXPECT_EQ(estimator.torque_alarm_samples, r.evaluation.parameters.torque_alarm_samples);
+  const auto& p = estimator->parameters();
+  EXPECT_EQ(Eigen::VectorXd(p.nominal_sigma), r.evaluation.calibration.sigma_nominal);
+  EXPECT_EQ(Eigen::VectorXd(p.fused_sigma), r.evaluation.calibration.sigma_fused);
+  EXPECT_EQ(p.torque_alarm_samples, r.evaluation.calibration.torque_alarm_samples);
   ASSERT_EQ(r.training.results.size(), 4u);
   for (const auto& t : r.training.results)
     EXPECT_LE(t.history.size(), 2u);

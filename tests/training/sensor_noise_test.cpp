@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "offline/training/arm_estimator.hpp"
+#include "offline/replay/replay_estimator.hpp"
 
 namespace {
 

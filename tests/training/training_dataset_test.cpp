@@ -1,6 +1,6 @@
 // Training features are what the run-time estimator computes; the target is effort −
 // predict_effort. Twin logs are SIMULATED.
-#include "offline/training/training_dataset.hpp"
+#include "offline/compensator_training/training_dataset.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,12 +9,12 @@
 #include <filesystem>
 #include <limits>
 
+#include "offline/compensator_training/tcn_parameters.hpp"
 #include "offline/pipeline/declared_model.hpp"
+#include "offline/replay/estimator_samples.hpp"
+#include "offline/replay/replay_estimator.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
-#include "offline/train/tcn_parameters.hpp"
-#include "offline/training/arm_estimator.hpp"
-#include "offline/training/estimator_samples.hpp"
 #include "support/arm_fixture.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
 
@@ -22,7 +22,9 @@ namespace tpf::offline {
 namespace {
 
 using test::data_path;
+constexpr int kArmJoints = 4, kArmPads = 11;
 using Vec = JointVector<double, kArmJoints>;
+using AllJointsTcn = tpf::AllJointsTcn<kAllJointsHidden>::For<double, kArmJoints>;
 
 const Log& excitation_log() {
   static const Log log = [] {
@@ -33,18 +35,20 @@ const Log& excitation_log() {
   return log;
 }
 
-ArmEstimatorSetup twin_setup() {
-  ArmEstimatorSetup s;
-  s.nominal = declared_nominal_model(data_path("arm4.robot.json"), data_path("arm4.friction.json"));
+EstimatorSetup<kArmJoints> twin_setup() {
+  EstimatorSetup<kArmJoints> s;
+  s.nominal = declared_nominal_model<kArmJoints>(data_path("arm4.robot.json"),
+                                                 data_path("arm4.friction.json"));
   s.pads = load_pads(data_path("arm4.pads.json"), s.nominal.model);
-  s.parameters = arm_estimator_parameters(estimate_sensor_noise(excitation_log()));
+  s.parameters =
+      estimator_parameters_from_noise<kArmJoints>(estimate_sensor_noise(excitation_log()));
   return s;
 }
 
 TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
-  const ArmEstimatorSetup setup = twin_setup();
-  const auto samples = estimator_samples<kArmJoints, kArmPads>(excitation_log());
-  const EstimatorTrace trace = trace_arm_estimator(setup, samples);
+  const EstimatorSetup<kArmJoints> setup = twin_setup();
+  const auto samples = estimator_samples<kArmJoints>(excitation_log(), kArmPads);
+  const EstimatorTrace trace = replay_estimator(setup, samples);
   ASSERT_EQ(trace.rows(), excitation_log().rows());
   EXPECT_EQ(trace.contact.maxCoeff(), 0) << "no pad may switch on in a contact-free log";
 
@@ -81,9 +85,9 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
 }
 
 TEST(TrainingFeatures, TargetIsTheResidualInNewtonMetresAndJointColumnsArePicked) {
-  const ArmEstimatorSetup setup = twin_setup();
+  const EstimatorSetup<kArmJoints> setup = twin_setup();
   const EstimatorTrace trace =
-      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(excitation_log()));
+      replay_estimator(setup, estimator_samples<kArmJoints>(excitation_log(), kArmPads));
   const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
   const TcnSequence all = training_sequence(trace, scale);
   ASSERT_EQ(all.inputs.cols(), 20);
@@ -153,14 +157,13 @@ TEST(TrainingFeatures, WeightFilesOfTheOldFourInputSizeAreRefusedNamingTheFile) 
   std::filesystem::create_directories(dir);
   TcnArchitecture old;
   old.inputs = 4;
-  old.hidden = kArmJointHidden;
-  old.levels = kArmLevels;
+  old.hidden = kPerJointHiddenSmall;
+  old.levels = kCompensatorLevels;
   for (int j = 0; j < kArmJoints; ++j)
     write_tcn_weight_file(joint_weight_path(dir / "old.json", j).string(),
                           to_weight_file(init_tcn_parameters(old, 1)));
-  CompensatorLayout layout = CompensatorLayout::None;
   try {
-    compensator_files(dir / "old.json", layout);
+    find_compensator_weights(dir / "old.json", kArmJoints);
     ADD_FAILURE() << "a 4-input weight file was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -172,11 +175,11 @@ TEST(TrainingFeatures, WeightFilesOfTheOldFourInputSizeAreRefusedNamingTheFile) 
   }
   // The all-joints file of the old size (16 inputs) likewise.
   old.inputs = 4 * kArmJoints;
-  old.hidden = kArmHidden;
+  old.hidden = kAllJointsHidden;
   old.outputs = kArmJoints;
   write_tcn_weight_file((dir / "all.json").string(), to_weight_file(init_tcn_parameters(old, 1)));
   try {
-    compensator_files(dir / "all.json", layout);
+    find_compensator_weights(dir / "all.json", kArmJoints);
     ADD_FAILURE() << "a 16-input all-joints file was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -192,7 +195,7 @@ TEST(TrainingFeatures, SamplesRefuseAWrongJointCount) {
   log.source = "three.csv";
   log.columns = {"t", "q1", "q2", "q3", "dq1", "dq2", "dq3", "i1", "i2", "i3"};
   log.values = Eigen::MatrixXd::Zero(2, 10);
-  EXPECT_THROW((estimator_samples<kArmJoints, kArmPads>(log)), Error);
+  EXPECT_THROW((estimator_samples<kArmJoints>(log, kArmPads)), Error);
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <type_traits>
+#include <vector>
 
 namespace tpf {
 
@@ -14,6 +16,12 @@ using NoDeduce = std::type_identity_t<T>;
 
 template <typename S, int N>
 using JointVector = Eigen::Matrix<S, N, 1>;
+
+/// Per-channel storage of a count fixed at compile time (std::array) or, with Eigen::Dynamic,
+/// chosen at start-up (std::vector: the offline tools, which read the pad count from a file).
+template <typename T, int Count>
+using ChannelArray = std::conditional_t<Count == Eigen::Dynamic, std::vector<T>,
+                                        std::array<T, std::size_t(Count < 0 ? 0 : Count)>>;
 template <typename S, int N>
 using JointMatrix = Eigen::Matrix<S, N, N>;
 template <typename S>

@@ -53,6 +53,15 @@ inline constexpr int compensator_memory = [] {
     return 1;
 }();
 
+/// The same for a compensator whose network is chosen at start-up (member receptive_field()).
+template <typename C>
+int compensator_memory_of(const C& c) noexcept {
+  if constexpr (requires { c.receptive_field(); })
+    return c.receptive_field();
+  else
+    return compensator_memory<C>;
+}
+
 /// No compensation: τ_TCN = 0 (the fused estimator then equals the nominal one). For tests and
 /// for running before trained weights exist.
 template <typename S, int N>

@@ -38,9 +38,13 @@ namespace tpf {
 ///     and for the network's input window after);
 ///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal;
 ///  8. contact: a pad, or the combined torque outside its band for a while (PersistenceTest).
-/// `Compensator` is tpf::Tcn<S, 5N, H, L, K, N>, PerJointTcn or ZeroCompensator<S, N> (none).
-/// update() allocates nothing, throws nothing and never blocks; what it could not do is in the
-/// output's status bits. The object is large with a TCN inside: keep it on the heap.
+/// `Compensator` is tpf::Tcn<S, 5N, H, L, K, N>, PerJointTcnCompensator or ZeroCompensator<S, N>
+/// (none); a controller names it by its kind (compensator_types.hpp) and builds the estimator
+/// with load_estimator. P = 0: an arm without skin (proprioception only). P = Eigen::Dynamic:
+/// the pad count of the layout, for offline tools (the samples' pressure vectors then live on the
+/// heap). With fixed N and P, update() allocates nothing, throws nothing and never blocks; what
+/// it could not do is in the output's status bits. The object is large with a TCN inside: keep
+/// it on the heap.
 template <typename S, int N, int P, typename Compensator = ZeroCompensator<S, N>>
 requires FrictionCompensator<Compensator, S, N>
 class Estimator {
@@ -77,7 +81,6 @@ class Estimator {
   /// One cycle (see the class comment). Returns the outputs; on a skipped sample (non-finite or
   /// stale) the previous outputs with this cycle's status bits.
   const Output& update(const Sample& sample) noexcept {
-    std::uint32_t status = 0;
     if (!finite(sample)) {
       output_.status = kStatusNonFiniteInput;
       return output_;
@@ -86,151 +89,22 @@ class Estimator {
       output_.status = kStatusStaleTime;
       return output_;
     }
-    S h = parameters_.sample_period_s;
-    std::uint32_t stuck = 0;
     const bool first = !started_;
-    if (started_) {
-      h = sample.t - output_.t;
-      if (h > parameters_.max_gap_factor * parameters_.sample_period_s) status |= kStatusTimeGap;
-      if (frozen_joints_.update(joint_reading(sample))) status |= kStatusFrozenInput;
-      stuck = stuck_pads_.update(off_rail(sample.pressure));
-      if (stuck) status |= kStatusPadStuck;
-    } else {
-      start(sample);
-    }
-
-    // 1. Acceleration (the filter always runs, so it is warm when q̈ goes missing).
-    const Vector& filtered = acceleration_.update(sample.dq, h);
-    Vector ddq = filtered;
-    if (sample.has_ddq) {
-      if (sample.ddq.allFinite())
-        ddq = sample.ddq;
-      else
-        status |= kStatusAccelerationEstimated;
-    }
-    for (int j = 0; j < N; ++j) {
-      if (sample.q[j] < nominal_.model.lower[j] - parameters_.position_margin_rad ||
-          sample.q[j] > nominal_.model.upper[j] + parameters_.position_margin_rad)
-        status |= kStatusPositionOutOfRange;
-    }
-
-    // 2. Nominal model (one forward kinematics: data_.oMi is at q for the wrench below).
-    Output& out = output_;
-    predict_effort(nominal_, links_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
-                   out.effort_friction);
-    out.residual = sample.effort - out.effort_rigid - out.effort_friction;
-
-    // 3. Skin. A stuck pad is disbelieved until it reads live again and its detector has
-    // released, so its phantom contact reaches neither the state machine nor the wrench.
-    if (skin_.update(sample.t, h, sample.pressure) > 0) status |= kStatusPadDataInvalid;
-    const std::uint32_t newly_ignored = stuck & ~skin_.ignored();
-    std::uint32_t ignored = skin_.ignored() | stuck;
-    for (int k = 0; k < P; ++k)
-      if (!(stuck & (1u << k)) && !skin_.detector(k).in_contact()) ignored &= ~(1u << k);
-    skin_.set_ignored(ignored);
-    if (ignored) status |= kStatusPadIgnored;
-    // A baseline frozen at the stuck pad's onset is re-taken at the remaining contacts' onset
-    // (without remaining contact the tracker simply resumes tracking).
-    if (newly_ignored && skin_.any_contact()) tracker_.refreeze(skin_.earliest_onset());
-
-    // 4. State machine, holding the last combined estimate for joints that stop in contact.
-    tracker_.update(sample.t, sample.dq, out.residual, skin_.any_contact(),
-                    skin_.earliest_new_onset(), held_residual_);
-    out.state = tracker_.state();
-    out.static_friction = tracker_.friction_estimate();
-
-    // 5. Compensator, prewarmed on the first sample with its steady input (q̈ = 0, no baseline).
-    if (first)
-      compensator_.reset(compensator_input<S, N>(sample.q, sample.dq, Vector::Zero().eval(),
-                                                 Vector::Zero().eval(), out.effort_friction));
-    out.compensation = compensator_.step(compensator_input<S, N>(
-        sample.q, sample.dq, ddq, out.static_friction, out.effort_friction));
-
-    // 6. External torque, three ways and combined.
-    constexpr std::uint32_t all = N == 32 ? ~0u : (1u << N) - 1;
-    set_estimate(
-        TorqueEstimator::Proprioceptive,
-        dead_band(out.residual, Vector(parameters_.dead_band_factor * parameters_.nominal_sigma)),
-        all);
-    set_estimate(TorqueEstimator::StaticModelFree,
-                 dead_band(tracker_.static_external(), parameters_.static_dead_band),
-                 tracker_.valid_mask());
-    // Fused: τ_res − τ_TCN, except on joints faster than the compensator's domain, where the
-    // network extrapolates and the nominal residual (with its band) stands.
-    Vector fused_residual = out.residual - out.compensation;
-    Vector fused_band = parameters_.dead_band_factor * parameters_.fused_sigma;
-    Vector fused_sigma = moving_sigma_;  // σ of the Fused evidence this cycle
-    for (int j = 0; j < N; ++j) {
-      using std::abs;
-      // The network's output depends on its whole input window: once a joint's input leaves the
-      // domain, its fused estimate stays on the nominal residual until the window has passed.
-      if (abs(sample.dq[j]) > parameters_.compensator_speed_limit[j] ||
-          abs(ddq[j]) > parameters_.compensator_acceleration_limit[j])
-        outside_domain_[j] = kCompensatorMemory;
-      else if (outside_domain_[j] > 0)
-        --outside_domain_[j];
-      if (outside_domain_[j] == 0) continue;
-      fused_residual[j] = out.residual[j];
-      fused_band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
-      fused_sigma[j] = nominal_moving_sigma_[j];
-      status |= kStatusOutsideCompensatorDomain;
-    }
-    set_estimate(TorqueEstimator::Fused, dead_band(fused_residual, fused_band), all);
-    const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
-    const ExternalTorque<S, N>& fused = out.estimate(TorqueEstimator::Fused);
-    for (int j = 0; j < N; ++j) {
-      const bool use_static = fixed.valid & (1u << j);
-      out.external.residual[j] = use_static ? fixed.residual[j] : fused.residual[j];
-      out.external.torque[j] = use_static ? fixed.torque[j] : fused.torque[j];
-    }
-    out.external.valid = all;
-    held_residual_ = out.external.residual;  // what a joint stopping next cycle holds
-    const bool torque_alarm = torque_alarm_.update((out.external.residual.array() != S(0)).any());
-
-    // 7. Contact force at the most loaded pad: the torque evidence (before any dead band: the
-    // static Δτ_res on resting joints, the fused residual on moving ones) weighted by its σ, with
-    // the pad's reading as the prior.
-    out.wrench = ContactForce<S>{};
-    const int pad = skin_.most_loaded();
-    if (pad >= 0) {
-      const PadGeometry<S>& g = skin_.geometry(pad);
-      const Vector3<S> point = pad_point_in_world(data_, g);
-      point_jacobian(nominal_.model, data_, g.link, point, jacobian_);
-      // A joint that stopped in contact took its baseline from the moving estimate it held
-      // (HoldLastEstimate), so its evidence also carries that estimate's error: σ² adds up.
-      const std::uint32_t held = tracker_.frozen_mask() & ~tracker_.onset_mask();
-      Vector evidence, sigma;
-      for (int j = 0; j < N; ++j) {
-        const bool at_rest = fixed.valid & (1u << j);
-        const S r = at_rest ? tracker_.static_external()[j] : fused_residual[j];
-        evidence[j] = -r / nominal_.effort_per_newton_metre[j];
-        const S s = !at_rest             ? fused_sigma[j]
-                    : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
-                                         : static_sigma_[j];
-        sigma[j] = s / nominal_.effort_per_newton_metre[j];
-      }
-      out.wrench =
-          estimate_contact_force(jacobian_, contact_frame_in_world(data_, g.link, g.normal),
-                                 evidence, sigma, skin_.normal_force(pad), parameters_.wrench);
-      out.wrench.pad = pad;
-      out.wrench.point_world = point;
-      if (!out.wrench.valid) status |= kStatusWrenchUnobservable;
-      // One pad touched: the fused external torque is that of the fused force, τ = J_vᵀ f̂ (both
-      // senses, consistent with a force at the pad). Several pads: four torques cannot separate
-      // the forces, so the torque estimate above stands.
-      if (skin_.contact_count() == 1 && out.wrench.force_world.allFinite()) {
-        out.external.torque = jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
-        out.external.residual = -nominal_.effort_per_newton_metre.cwiseProduct(out.external.torque);
-      }
-    }
-
-    // 8. Contact: the pads, or a torque-only alarm that persisted (contacts off the pads).
-    out.contact = skin_.any_contact() || torque_alarm;
-
-    out.ddq = ddq;
-    out.t = sample.t;
-    out.status = status;
-    return out;
+    const InputCheck input = check_input(sample);
+    const Acceleration a = acceleration(sample, input.h);  // 1
+    std::uint32_t status = input.status | a.status | range_status(sample);
+    nominal_residual(sample, a.ddq);                                              // 2
+    status |= update_skin(sample, input);                                         // 3
+    update_state_machine(sample);                                                 // 4
+    compensate(sample, a.ddq, first);                                             // 5
+    const FusedEvidence fused = estimate_external_torque(sample, a.ddq, status);  // 6
+    status |= estimate_wrench(fused);                                             // 7
+    const bool torque_alarm = torque_alarm_.update(fused.outside_band);           // 8
+    output_.contact = skin_.any_contact() || torque_alarm;
+    output_.ddq = a.ddq;
+    output_.t = sample.t;
+    output_.status = status;
+    return output_;
   }
 
   const Output& output() const noexcept { return output_; }
@@ -255,7 +129,191 @@ class Estimator {
   Compensator& compensator() noexcept { return compensator_; }
 
  private:
-  static bool finite(const Sample& s) noexcept {
+  /// What the sample's timing and readings say before any estimate: the step h, time gap, frozen
+  /// joints, stuck pads.
+  struct InputCheck {
+    S h;
+    std::uint32_t status = 0;
+    std::uint32_t stuck_pads = 0;
+  };
+  InputCheck check_input(const Sample& sample) noexcept {
+    InputCheck c{parameters_.sample_period_s};
+    if (!started_) {
+      start(sample);
+      return c;
+    }
+    c.h = sample.t - output_.t;
+    if (c.h > parameters_.max_gap_factor * parameters_.sample_period_s) c.status |= kStatusTimeGap;
+    if (frozen_joints_.update(joint_reading(sample))) c.status |= kStatusFrozenInput;
+    c.stuck_pads = stuck_pads_.update(off_rail(sample.pressure));
+    if (c.stuck_pads) c.status |= kStatusPadStuck;
+    return c;
+  }
+
+  /// 1. q̈: the sample's where it has a finite one, else the filtered derivative of q̇ (the filter
+  /// always runs, so it is warm when q̈ goes missing).
+  struct Acceleration {
+    Vector ddq;
+    std::uint32_t status = 0;
+  };
+  Acceleration acceleration(const Sample& sample, S h) noexcept {
+    const Vector& filtered = acceleration_.update(sample.dq, h);
+    if (!sample.has_ddq) return {filtered};
+    if (sample.ddq.allFinite()) return {sample.ddq};
+    return {filtered, kStatusAccelerationEstimated};
+  }
+
+  std::uint32_t range_status(const Sample& sample) const noexcept {
+    for (int j = 0; j < N; ++j)
+      if (sample.q[j] < nominal_.model.lower[j] - parameters_.position_margin_rad ||
+          sample.q[j] > nominal_.model.upper[j] + parameters_.position_margin_rad)
+        return kStatusPositionOutOfRange;
+    return 0;
+  }
+
+  /// 2. Nominal model (one forward kinematics: data_.oMi is at q for the wrench):
+  /// τ_res = τ_meas − τ_dyn − τ_fric.
+  void nominal_residual(const Sample& sample, const Vector& ddq) noexcept {
+    Output& out = output_;
+    predict_effort(nominal_, links_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
+                   out.effort_friction);
+    out.residual = sample.effort - out.effort_rigid - out.effort_friction;
+  }
+
+  /// 3. Skin. A stuck pad is disbelieved until it reads live again and its detector has
+  /// released, so its phantom contact reaches neither the state machine nor the wrench.
+  std::uint32_t update_skin(const Sample& sample, const InputCheck& input) noexcept {
+    std::uint32_t status = 0;
+    if (skin_.update(sample.t, input.h, sample.pressure) > 0) status |= kStatusPadDataInvalid;
+    const std::uint32_t stuck = input.stuck_pads;
+    const std::uint32_t newly_ignored = stuck & ~skin_.ignored();
+    std::uint32_t ignored = skin_.ignored() | stuck;
+    for (int k = 0; k < skin_.count(); ++k)
+      if (!(stuck & (1u << k)) && !skin_.detector(k).in_contact()) ignored &= ~(1u << k);
+    skin_.set_ignored(ignored);
+    if (ignored) status |= kStatusPadIgnored;
+    // A baseline frozen at the stuck pad's onset is re-taken at the remaining contacts' onset
+    // (without remaining contact the tracker simply resumes tracking).
+    if (newly_ignored && skin_.any_contact()) tracker_.refreeze(skin_.earliest_onset());
+    return status;
+  }
+
+  /// 4. State machine, holding the last combined estimate for joints that stop in contact.
+  void update_state_machine(const Sample& sample) noexcept {
+    tracker_.update(sample.t, sample.dq, output_.residual, skin_.any_contact(),
+                    skin_.earliest_new_onset(), held_residual_);
+    output_.state = tracker_.state();
+    output_.static_friction = tracker_.friction_estimate();
+  }
+
+  /// 5. Compensator, prewarmed on the first sample with its steady input (q̈ = 0, no baseline).
+  void compensate(const Sample& sample, const Vector& ddq, bool first) noexcept {
+    Output& out = output_;
+    if (first)
+      compensator_.reset(compensator_input<S, N>(sample.q, sample.dq, Vector::Zero().eval(),
+                                                 Vector::Zero().eval(), out.effort_friction));
+    out.compensation = compensator_.step(compensator_input<S, N>(
+        sample.q, sample.dq, ddq, out.static_friction, out.effort_friction));
+  }
+
+  /// The fused torque evidence of one cycle, before its dead band, and its σ per joint.
+  struct FusedEvidence {
+    Vector residual;  ///< τ_res − τ_TCN, or τ_res outside the compensator's domain
+    Vector sigma;
+    bool outside_band = false;  ///< the combined estimate is outside its dead band somewhere
+  };
+
+  /// 6. External torque three ways and combined: StaticModelFree on resting joints, Fused
+  /// elsewhere (the nominal residual and band on joints outside the compensator's domain).
+  FusedEvidence estimate_external_torque(const Sample& sample, const Vector& ddq,
+                                         std::uint32_t& status) noexcept {
+    Output& out = output_;
+    constexpr std::uint32_t all = N == 32 ? ~0u : (1u << N) - 1;
+    set_estimate(
+        TorqueEstimator::Proprioceptive,
+        dead_band(out.residual, Vector(parameters_.dead_band_factor * parameters_.nominal_sigma)),
+        all);
+    set_estimate(TorqueEstimator::StaticModelFree,
+                 dead_band(tracker_.static_external(), parameters_.static_dead_band),
+                 tracker_.valid_mask());
+    FusedEvidence fused{out.residual - out.compensation, moving_sigma_};
+    Vector fused_band = parameters_.dead_band_factor * parameters_.fused_sigma;
+    for (int j = 0; j < N; ++j) {
+      if (!outside_compensator_domain(j, sample.dq[j], ddq[j])) continue;
+      fused.residual[j] = out.residual[j];
+      fused_band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
+      fused.sigma[j] = nominal_moving_sigma_[j];
+      status |= kStatusOutsideCompensatorDomain;
+    }
+    set_estimate(TorqueEstimator::Fused, dead_band(fused.residual, fused_band), all);
+    const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
+    const ExternalTorque<S, N>& moving = out.estimate(TorqueEstimator::Fused);
+    for (int j = 0; j < N; ++j) {
+      const bool use_static = fixed.valid & (1u << j);
+      out.external.residual[j] = use_static ? fixed.residual[j] : moving.residual[j];
+      out.external.torque[j] = use_static ? fixed.torque[j] : moving.torque[j];
+    }
+    out.external.valid = all;
+    held_residual_ = out.external.residual;  // what a joint stopping next cycle holds
+    fused.outside_band = (out.external.residual.array() != S(0)).any();
+    return fused;
+  }
+
+  /// Whether joint j's compensator input is outside the domain now or was within the network's
+  /// input window: its output depends on the whole window.
+  bool outside_compensator_domain(int j, S dq, S ddq) noexcept {
+    using std::abs;
+    if (abs(dq) > parameters_.compensator_speed_limit[j] ||
+        abs(ddq) > parameters_.compensator_acceleration_limit[j])
+      outside_domain_[j] = compensator_memory_of(compensator_);
+    else if (outside_domain_[j] > 0)
+      --outside_domain_[j];
+    return outside_domain_[j] > 0;
+  }
+
+  /// 7. Contact force at the most loaded pad: the torque evidence (before any dead band: the
+  /// static Δτ_res on resting joints, the fused residual on moving ones) weighted by its σ, with
+  /// the pad's reading as the prior. One pad touched: the fused external torque is that of the
+  /// fused force, τ = J_vᵀ f̂ (both senses, consistent with a force at the pad); several pads:
+  /// four torques cannot separate the forces, so the torque estimate stands.
+  std::uint32_t estimate_wrench(const FusedEvidence& fused) noexcept {
+    Output& out = output_;
+    out.wrench = ContactForce<S>{};
+    const int pad = skin_.most_loaded();
+    if (pad < 0) return 0;
+    const PadGeometry<S>& g = skin_.geometry(pad);
+    const Vector3<S> point = pad_point_in_world(data_, g);
+    point_jacobian(nominal_.model, data_, g.link, point, jacobian_);
+    // A joint that stopped in contact took its baseline from the moving estimate it held
+    // (HoldLastEstimate), so its evidence also carries that estimate's error: σ² adds up.
+    const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
+    const std::uint32_t held = tracker_.frozen_mask() & ~tracker_.onset_mask();
+    Vector evidence, sigma;
+    for (int j = 0; j < N; ++j) {
+      const bool at_rest = fixed.valid & (1u << j);
+      const S r = at_rest ? tracker_.static_external()[j] : fused.residual[j];
+      evidence[j] = -r / nominal_.effort_per_newton_metre[j];
+      const S s = !at_rest             ? fused.sigma[j]
+                  : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
+                                       : static_sigma_[j];
+      sigma[j] = s / nominal_.effort_per_newton_metre[j];
+    }
+    out.wrench =
+        estimate_contact_force(jacobian_, contact_frame_in_world(data_, g.link, g.normal), evidence,
+                               sigma, skin_.normal_force(pad), parameters_.wrench);
+    out.wrench.pad = pad;
+    out.wrench.point_world = point;
+    if (skin_.contact_count() == 1 && out.wrench.force_world.allFinite()) {
+      out.external.torque = jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
+      out.external.residual = -nominal_.effort_per_newton_metre.cwiseProduct(out.external.torque);
+    }
+    return out.wrench.valid ? 0u : std::uint32_t(kStatusWrenchUnobservable);
+  }
+
+  /// Finite t, q, q̇ and effort (and, with a start-up pad count, one pressure per pad).
+  bool finite(const Sample& s) const noexcept {
+    if constexpr (P == Eigen::Dynamic)
+      if (s.pressure.size() != skin_.count()) return false;
     return std::isfinite(s.t) && s.q.allFinite() && s.dq.allFinite() && s.effort.allFinite();
   }
 
@@ -263,7 +321,7 @@ class Estimator {
   /// it never counts as a repeat — a push that saturates the sensor is not a stuck pad.
   Eigen::Matrix<S, P, 1> off_rail(const Eigen::Matrix<S, P, 1>& p) const noexcept {
     Eigen::Matrix<S, P, 1> r = p;
-    for (int k = 0; k < P; ++k)
+    for (Eigen::Index k = 0; k < p.size(); ++k)
       if (!(p[k] > S(0) && p[k] < parameters_.skin.full_scale_kpa))
         r[k] = std::numeric_limits<S>::quiet_NaN();
     return r;
@@ -295,7 +353,7 @@ class Estimator {
     stuck_pads_.reset(off_rail(sample.pressure));
     acceleration_.reset(sample.dq);
     Eigen::Matrix<S, P, 1> p = sample.pressure;
-    for (int k = 0; k < P; ++k)
+    for (Eigen::Index k = 0; k < p.size(); ++k)
       if (!std::isfinite(p[k])) p[k] = S(0);
     skin_.reset(sample.t, p);
     skin_.set_ignored(0);
@@ -328,7 +386,6 @@ class Estimator {
   Compensator compensator_;
   Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
   Vector held_residual_ = Vector::Zero();  ///< last torque-only estimate (StopPolicy)
-  static constexpr int kCompensatorMemory = compensator_memory<Compensator>;
   /// Per joint: cycles until its compensator input window is back inside the domain.
   std::array<int, N> outside_domain_{};
   Vector static_sigma_ = Vector::Zero();

@@ -35,9 +35,29 @@ enum EstimatorStatus : std::uint32_t {
   /// live and released since. Its contact reaches neither the state machine nor the wrench; a
   /// static-friction baseline its phantom onset froze is re-taken at the remaining contacts' onset.
   kStatusPadIgnored = 1u << 9,
-  /// A joint moves faster than EstimatorParameters::compensator_speed_limit (outside the speeds
-  /// the compensator was trained and calibrated on): its Fused estimate is the nominal one.
+  /// A joint is outside the compensator's domain (EstimatorParameters::compensator_speed_limit,
+  /// compensator_acceleration_limit: what it was trained and calibrated on), now or within the
+  /// network's input window: its Fused estimate is the nominal one.
   kStatusOutsideCompensatorDomain = 1u << 10,
 };
+
+/// Number of status bits (bits 0 … kEstimatorStatusBits − 1).
+inline constexpr int kEstimatorStatusBits = 11;
+
+/// Name of status bit b ("non-finite input (skipped)", …), for reports; "unknown" outside.
+constexpr const char* estimator_status_name(int bit) noexcept {
+  constexpr const char* names[kEstimatorStatusBits] = {"non-finite input (skipped)",
+                                                       "stale time (skipped)",
+                                                       "time gap",
+                                                       "position out of range",
+                                                       "pad data invalid",
+                                                       "wrench unobservable",
+                                                       "acceleration estimated",
+                                                       "frozen input",
+                                                       "pad stuck",
+                                                       "pad ignored",
+                                                       "outside compensator domain"};
+  return bit >= 0 && bit < kEstimatorStatusBits ? names[bit] : "unknown";
+}
 
 }  // namespace tpf

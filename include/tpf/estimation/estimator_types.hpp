@@ -10,14 +10,16 @@
 
 namespace tpf {
 
-/// One sample of the robot, as a row of the log format (docs/log-format.md).
+/// One sample of the robot, as a row of the log format (docs/log-format.md): N joints, P pads
+/// (0: no skin).
 template <typename S, int N, int P>
 struct EstimatorSample {
   S t = S(0);                                            ///< [s], must increase
   JointVector<S, N> q = JointVector<S, N>::Zero();       ///< [rad]
   JointVector<S, N> dq = JointVector<S, N>::Zero();      ///< [rad/s]
   JointVector<S, N> effort = JointVector<S, N>::Zero();  ///< mA or N·m (the nominal model's unit)
-  Eigen::Matrix<S, P, 1> pressure = Eigen::Matrix<S, P, 1>::Zero();  ///< pad gauge pressure [kPa]
+  /// Pad gauge pressure [kPa]; P = Eigen::Dynamic: empty until sized (the offline tools).
+  Eigen::Matrix<S, P, 1> pressure = Eigen::Matrix<S, P, 1>::Zero(P == Eigen::Dynamic ? 0 : P);
   JointVector<S, N> ddq = JointVector<S, N>::Zero();  ///< [rad/s²], used only when has_ddq
   bool has_ddq = false;
 };

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include "tpf/common/types.hpp"
+
 namespace tpf {
 
 /// Flags channels whose reading has repeated exactly for more than `limit` consecutive samples.
@@ -13,9 +15,10 @@ namespace tpf {
 /// noise on 1 mA steps) or pad pressure (0.03 kPa on 0.01 kPa ADC steps) never repeats for
 /// hundreds of samples; a stalled bus, a stuck driver buffer or a blocked pad does. NaN never
 /// equals anything, so a missing value ends a run. Per cycle: no allocation, no exception.
+/// M may be Eigen::Dynamic (≤ 32 channels, sized by reset()).
 template <typename S, int M, int C = 1>
 class RepeatedReadingDetector {
-  static_assert(M >= 0 && M <= 32, "the result is a 32-bit channel mask");
+  static_assert(M == Eigen::Dynamic || (M >= 0 && M <= 32), "the result is a 32-bit channel mask");
 
  public:
   using Reading = Eigen::Matrix<S, M, C>;
@@ -26,14 +29,17 @@ class RepeatedReadingDetector {
   /// Starts over from `reading` (no run).
   void reset(const Reading& reading) noexcept {
     last_ = reading;
-    runs_.fill(0);
+    if constexpr (M == Eigen::Dynamic)
+      runs_.assign(static_cast<std::size_t>(reading.rows()), 0);
+    else
+      runs_.fill(0);
   }
 
   /// Feeds one sample; returns the mask of channels frozen now (bit k: channel k repeated for more
   /// than `limit` samples in a row).
   std::uint32_t update(const Reading& reading) noexcept {
     std::uint32_t frozen = 0;
-    for (int k = 0; k < M; ++k) {
+    for (int k = 0; k < static_cast<int>(runs_.size()); ++k) {
       const bool same = (reading.row(k).array() == last_.row(k).array()).all();
       runs_[k] = same ? runs_[k] + 1 : 0;
       if (limit_ > 0 && runs_[k] > limit_) frozen |= 1u << k;
@@ -44,8 +50,8 @@ class RepeatedReadingDetector {
 
  private:
   int limit_;
-  Reading last_ = Reading::Zero();
-  std::array<int, M> runs_{};
+  Reading last_ = Reading::Zero(M == Eigen::Dynamic ? 0 : M, C);
+  ChannelArray<int, M> runs_{};
 };
 
 }  // namespace tpf

@@ -38,13 +38,13 @@ struct SkinSettings {
   S full_scale_kpa = S(34.474);
 };
 
-/// Pads 0..P−1 (the pad layout file's order; log column p<k> is pad k−1).
+/// Pads 0..P−1 (the pad layout file's order; log column p<k> is pad k−1). P = 0: no skin;
+/// P = Eigen::Dynamic: the layout's count, up to 32 (the offline tools).
 template <typename S, int P>
 class Skin {
-  static_assert(P <= 32, "pad masks are 32 bits wide");
+  static_assert(P == Eigen::Dynamic || (P >= 0 && P <= 32), "pad masks are 32 bits wide");
 
  public:
-  static constexpr int pads = P;
   using Pressures = Eigen::Matrix<S, P, 1>;
 
   Skin() = default;
@@ -54,12 +54,19 @@ class Skin {
   Skin(const std::vector<Pad>& layout, const SkinSettings<S>& settings, int joints,
        const std::string& source = "pad layout")
       : settings_(settings) {
-    if (static_cast<int>(layout.size()) != P) {
+    if constexpr (P == Eigen::Dynamic) {
+      if (layout.size() > 32)
+        throw Error::at(source, 0, "pads",
+                        "the layout has " + std::to_string(layout.size()) +
+                            " pads; at most 32 are supported (32-bit pad masks)");
+      geometry_.resize(layout.size());
+      detectors_.resize(layout.size());
+    } else if (static_cast<int>(layout.size()) != P) {
       throw Error::at(source, 0, "pads",
                       "the layout has " + std::to_string(layout.size()) +
                           " pads, this program is built for " + std::to_string(P));
     }
-    for (int k = 0; k < P; ++k) {
+    for (int k = 0; k < count(); ++k) {
       const Pad& pad = layout[k];
       if (pad.link < 1 || pad.link > joints)
         throw Error::at(source, 0, pad.name, "link index outside 1.." + std::to_string(joints));
@@ -71,7 +78,7 @@ class Skin {
 
   /// Starts every detector from pressures p at time t (no contact, offsets = p).
   void reset(S t, const Pressures& p) noexcept {
-    for (int k = 0; k < P; ++k)
+    for (int k = 0; k < count(); ++k)
       detectors_[k].reset(t, p[k]);
   }
 
@@ -79,7 +86,7 @@ class Skin {
   /// number of pads skipped for non-finite pressure.
   int update(S t, S h, const Pressures& p) noexcept {
     int skipped = 0;
-    for (int k = 0; k < P; ++k) {
+    for (int k = 0; k < count(); ++k) {
       if (std::isfinite(p[k]))
         detectors_[k].update(t, p[k], h);
       else
@@ -97,14 +104,14 @@ class Skin {
   /// Pad k reports contact and is not ignored.
   bool in_contact(int k) const noexcept { return !is_ignored(k) && detectors_[k].in_contact(); }
   bool any_contact() const noexcept {
-    for (int k = 0; k < P; ++k)
+    for (int k = 0; k < count(); ++k)
       if (in_contact(k)) return true;
     return false;
   }
   /// Number of pads in contact (ignored pads excluded).
   int contact_count() const noexcept {
     int n = 0;
-    for (int k = 0; k < P; ++k)
+    for (int k = 0; k < count(); ++k)
       n += in_contact(k) ? 1 : 0;
     return n;
   }
@@ -113,21 +120,21 @@ class Skin {
   /// The earliest onset time among pads that switched on at the last update; +inf if none did.
   S earliest_new_onset() const noexcept {
     S t = std::numeric_limits<S>::infinity();
-    for (int k = 0; k < P; ++k)
+    for (int k = 0; k < count(); ++k)
       if (onset(k) && detectors_[k].onset_time() < t) t = detectors_[k].onset_time();
     return t;
   }
   /// The earliest onset time among pads in contact (ignored pads excluded); +inf if none is.
   S earliest_onset() const noexcept {
     S t = std::numeric_limits<S>::infinity();
-    for (int k = 0; k < P; ++k)
+    for (int k = 0; k < count(); ++k)
       if (in_contact(k) && detectors_[k].onset_time() < t) t = detectors_[k].onset_time();
     return t;
   }
   /// The pad in contact with the largest load, or −1 when none is.
   int most_loaded() const noexcept {
     int best = -1;
-    for (int k = 0; k < P; ++k)
+    for (int k = 0; k < count(); ++k)
       if (in_contact(k) && (best < 0 || load_kpa(k) > load_kpa(best))) best = k;
     return best;
   }
@@ -137,14 +144,16 @@ class Skin {
     using std::max;
     return settings_.force_gain * max(load_kpa(k), S(0)) * S(1000) * geometry_[k].area;
   }
+  /// Number of pads (P, or the layout's count when P is Eigen::Dynamic).
+  int count() const noexcept { return static_cast<int>(geometry_.size()); }
   const PadContactDetector<S>& detector(int k) const noexcept { return detectors_[k]; }
   const PadGeometry<S>& geometry(int k) const noexcept { return geometry_[k]; }
   const SkinSettings<S>& settings() const noexcept { return settings_; }
 
  private:
   SkinSettings<S> settings_;
-  std::array<PadGeometry<S>, P> geometry_{};
-  std::array<PadContactDetector<S>, P> detectors_{};
+  ChannelArray<PadGeometry<S>, P> geometry_{};
+  ChannelArray<PadContactDetector<S>, P> detectors_{};
   std::uint32_t ignored_ = 0;
 };
 

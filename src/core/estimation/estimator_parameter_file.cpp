@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tpf/common/atomic_file.hpp"
+#include "tpf/common/joint_counts.hpp"
 #include "tpf/common/json_object.hpp"
 
 namespace tpf {
@@ -176,12 +177,7 @@ void save_estimator_parameters(const std::filesystem::path& file,
       const std::filesystem::path&);                                    \
   template void save_estimator_parameters<N>(                           \
       const std::filesystem::path&, const EstimatorParameters<double, N>&, const std::string&);
-TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE(1)
-TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE(2)
-TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE(3)
-TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE(4)
-TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE(5)
-TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE(6)
+TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE)
 #undef TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE
 
 }  // namespace tpf

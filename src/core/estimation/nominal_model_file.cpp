@@ -8,6 +8,7 @@
 
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/common/joint_counts.hpp"
 #include "tpf/common/json_object.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -261,12 +262,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
   template void save_nominal_model<N>(const std::filesystem::path&,                             \
                                       const NominalModel<double, N>&, const std::string&,       \
                                       const std::string&);
-TPF_INSTANTIATE_NOMINAL_MODEL(1)
-TPF_INSTANTIATE_NOMINAL_MODEL(2)
-TPF_INSTANTIATE_NOMINAL_MODEL(3)
-TPF_INSTANTIATE_NOMINAL_MODEL(4)
-TPF_INSTANTIATE_NOMINAL_MODEL(5)
-TPF_INSTANTIATE_NOMINAL_MODEL(6)
+TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_NOMINAL_MODEL)
 #undef TPF_INSTANTIATE_NOMINAL_MODEL
 
 }  // namespace tpf

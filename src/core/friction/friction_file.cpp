@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tpf/common/error.hpp"
+#include "tpf/common/joint_counts.hpp"
 #include "tpf/common/json_object.hpp"
 
 namespace tpf {
@@ -76,13 +77,7 @@ std::string friction_effort_unit(const std::string& path) {
 #define TPF_INSTANTIATE_FRICTION_FILE(N)                                                          \
   template StribeckParameters<double, N> load_stribeck_parameters<double, N>(const std::string&); \
   template LuGreParameters<double, N> load_lugre_parameters<double, N>(const std::string&);
-TPF_INSTANTIATE_FRICTION_FILE(1)
-TPF_INSTANTIATE_FRICTION_FILE(2)
-TPF_INSTANTIATE_FRICTION_FILE(3)
-TPF_INSTANTIATE_FRICTION_FILE(4)
-TPF_INSTANTIATE_FRICTION_FILE(5)
-TPF_INSTANTIATE_FRICTION_FILE(6)
-TPF_INSTANTIATE_FRICTION_FILE(7)
+TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_FRICTION_FILE)
 #undef TPF_INSTANTIATE_FRICTION_FILE
 
 }  // namespace tpf

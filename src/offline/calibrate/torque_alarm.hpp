@@ -1,7 +1,7 @@
 // The persistence of the estimator's torque-only contact alarm, calibrated on a contact-free log.
 #pragma once
 
-#include "offline/training/estimator_trace.hpp"
+#include "offline/replay/estimator_trace.hpp"
 
 namespace tpf::offline {
 
@@ -14,7 +14,7 @@ inline constexpr double kTorqueAlarmFalseAlarmRate = 0.0;
 inline constexpr int kTorqueAlarmMaxSamples = 80;
 
 /// The torque-only alarm's persistence for kTorqueAlarmFalseAlarmRate on the trace of a
-/// contact-free log (trace_arm_estimator with the calibrated bands; rows without a pad in
+/// contact-free log (replay_estimator with the calibrated bands; rows without a pad in
 /// contact): persistence_for_false_alarm_rate of "the combined estimate is outside its dead band
 /// on some joint" over those rows.
 int calibrate_torque_alarm(const EstimatorTrace& tr);

@@ -9,38 +9,38 @@
 namespace tpf::offline {
 namespace {
 
-using Vec = JointVector<double, kArmJoints>;
-
-/// Column indices of a simulated log row for the estimator sample.
+/// Column indices of a simulated log row for an N-joint estimator sample with `pads` pads.
+template <int N>
 struct RowLayout {
   int t = 0;
-  std::array<int, kArmJoints> q{}, dq{}, i{};
-  std::array<int, kArmPads> p{};
-  explicit RowLayout(const std::vector<std::string>& columns) {
+  std::array<int, N> q{}, dq{}, i{};
+  std::vector<int> p;
+  RowLayout(const std::vector<std::string>& columns, int pads) {
     const auto at = [&](const std::string& name) {
       for (std::size_t c = 0; c < columns.size(); ++c)
         if (columns[c] == name) return static_cast<int>(c);
       throw Error::at("simulated row", 0, name, "column missing");
     };
     t = at("t");
-    for (int j = 0; j < kArmJoints; ++j) {
+    for (int j = 0; j < N; ++j) {
       q[j] = at(indexed_name("q", j + 1));
       dq[j] = at(indexed_name("dq", j + 1));
       i[j] = at(indexed_name("i", j + 1));
     }
-    for (int k = 0; k < kArmPads; ++k)
-      p[k] = at(indexed_name("p", k + 1));
+    for (int k = 0; k < pads; ++k)
+      p.push_back(at(indexed_name("p", k + 1)));
   }
-  ArmSample sample(std::span<const double> row) const {
-    ArmSample s;
+  ReplaySample<N> sample(std::span<const double> row) const {
+    ReplaySample<N> s;
     s.t = row[t];
-    for (int j = 0; j < kArmJoints; ++j) {
+    for (int j = 0; j < N; ++j) {
       s.q[j] = row[q[j]];
       s.dq[j] = row[dq[j]];
       s.effort[j] = row[i[j]];
     }
-    for (int k = 0; k < kArmPads; ++k)
-      s.pressure[k] = row[p[k]];
+    s.pressure.resize(static_cast<Eigen::Index>(p.size()));
+    for (std::size_t k = 0; k < p.size(); ++k)
+      s.pressure[static_cast<Eigen::Index>(k)] = row[p[k]];
     return s;
   }
 };
@@ -67,12 +67,13 @@ void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& es
                          TeachingLoop& loop) {
   const Log& log = loop.log;
   const Eigen::VectorXd t = log.col("t"), contact = log.col("gt_contact");
-  Eigen::MatrixXd truth(log.rows(), kArmJoints), dq(log.rows(), kArmJoints);
-  for (int j = 0; j < kArmJoints; ++j) {
+  const auto joints = static_cast<int>(estimate.cols());
+  Eigen::MatrixXd truth(log.rows(), joints), dq(log.rows(), joints);
+  for (int j = 0; j < joints; ++j) {
     truth.col(j) = log.col(indexed_name("gt_tau_ext", j + 1));
     dq.col(j) = log.col(indexed_name("dq", j + 1));
   }
-  Vec sum = Vec::Zero();
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(joints);
   long rows = 0;
   for (Eigen::Index k = 0; k < log.rows(); ++k) {
     if (contact[k] == 0.0 || !estimate.row(k).allFinite()) continue;
@@ -86,7 +87,7 @@ void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& es
   force << log.col("gt_fx"), log.col("gt_fy"), log.col("gt_fz");
   double over = 0, under = 0;
   for (const ContactSpan& e : contact_events(contact, force)) {
-    for (int j = 0; j < kArmJoints; ++j) {
+    for (int j = 0; j < joints; ++j) {
       double peak_ideal = 0, peak = 0;
       for (Eigen::Index k = e.first; k <= e.last && t[k] - t[e.first] <= 0.5; ++k) {
         peak_ideal = std::max(peak_ideal, std::abs(ideal(k, j)));
@@ -108,7 +109,8 @@ void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& es
   loop.mean_undershoot_percent = loop.undershoots ? under / loop.undershoots : 0.0;
 }
 
-std::array<TeachingLoop, 2> closed_loop_teaching(const ArmEstimatorSetup& setup,
+template <int N>
+std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
                                                  const Scenario& scenario, std::uint64_t seed,
                                                  double duration_s) {
   if (scenario.kind != Scenario::Kind::kTeaching)
@@ -116,27 +118,34 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const ArmEstimatorSetup& setup,
   std::array<TeachingLoop, 2> loops;
   loops[0].name = "nominal, no compensator (proprioceptive)";
   loops[1].name = "fusion with the compensator";
-  const RowLayout layout(simulation_columns(kArmPads));
+  const int pads = static_cast<int>(setup.pads.size());
+  const RowLayout<N> layout(simulation_columns(pads), pads);
   for (int mode = 0; mode < 2; ++mode) {
-    const ArmEstimatorStep step = make_arm_estimator_step(setup);
-    std::vector<Vec> estimates;
-    const auto source = [&](std::span<const double> row) -> TwinVector {
-      const auto& out = step(layout.sample(row));
-      const Vec tau =
-          mode == 0 ? out.estimate(TorqueEstimator::Proprioceptive).torque : out.external.torque;
-      estimates.push_back(tau);
-      return tau;
-    };
     TeachingLoop& loop = loops[static_cast<std::size_t>(mode)];
-    loop.log = simulate_to_log(scenario, seed, duration_s, source);
+    std::vector<TwinVector> estimates;
+    with_estimator(setup, [&](auto& estimator) {
+      estimator.reset();
+      const auto source = [&](std::span<const double> row) -> TwinVector {
+        const auto& out = estimator.update(layout.sample(row));
+        const TwinVector tau =
+            mode == 0 ? out.estimate(TorqueEstimator::Proprioceptive).torque : out.external.torque;
+        estimates.push_back(tau);
+        return tau;
+      };
+      loop.log = simulate_to_log(scenario, seed, duration_s, source);
+      return 0;
+    });
     loop.log.source =
         "closed-loop teaching, " + loop.name + " (simulated, seed " + std::to_string(seed) + ")";
-    Eigen::MatrixXd estimate(loop.log.rows(), kArmJoints);
+    Eigen::MatrixXd estimate(loop.log.rows(), N);
     for (Eigen::Index k = 0; k < estimate.rows(); ++k)
       estimate.row(k) = estimates[static_cast<std::size_t>(k)].transpose();
     score_teaching_loop(scenario.teaching, estimate, loop);
   }
   return loops;
 }
+
+template std::array<TeachingLoop, 2> closed_loop_teaching<kTwinJoints>(
+    const EstimatorSetup<kTwinJoints>&, const Scenario&, std::uint64_t, double);
 
 }  // namespace tpf::offline

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "offline/log/log.hpp"
+#include "offline/replay/replay_estimator.hpp"
 #include "offline/sim/scenario.hpp"
-#include "offline/training/arm_estimator.hpp"
 
 namespace tpf::offline {
 
@@ -17,7 +17,7 @@ struct TeachingLoop {
   std::string name;
   Log log;  ///< the closed-loop recording (SIMULATED)
   /// Per joint RMSE of τ̂_ext − gt_tau_ext over the contact rows [N·m].
-  JointVector<double, kArmJoints> torque_rmse = JointVector<double, kArmJoints>::Zero();
+  Eigen::VectorXd torque_rmse;
   /// Motion onsets scored: (contact event, joint) pairs whose ideal peak speed is ≥ 0.05 rad/s.
   int onsets = 0;
   /// Mean over onsets of the peak-speed error in the first 0.5 s after the hand takes the pad,
@@ -42,7 +42,9 @@ void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& es
 /// Runs `scenario` (kind teaching) twice with the estimator of `setup` in the loop: once following
 /// the proprioceptive estimate (nominal model, dead band 1.5σ_nominal) and once the fused one
 /// (static model-free at rest, nominal + TCN moving). Same seed: the same hand.
-std::array<TeachingLoop, 2> closed_loop_teaching(const ArmEstimatorSetup& setup,
+/// Compiled for the twin's joint count.
+template <int N>
+std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
                                                  const Scenario& scenario, std::uint64_t seed,
                                                  double duration_s);
 

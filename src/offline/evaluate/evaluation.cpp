@@ -3,14 +3,15 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "offline/calibrate/arm_calibration.hpp"
-#include "offline/training/estimator_samples.hpp"
+#include "offline/calibrate/estimator_calibration.hpp"
+#include "offline/replay/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/common/joint_counts.hpp"
 
 namespace tpf::offline {
 namespace {
 
-using Vec = JointVector<double, kArmJoints>;
+using Vec = Eigen::VectorXd;
 
 /// τ̂_ext [N·m] of each modality per row (T × N): tactile J_vᵀ(−F_n·n), the proprioceptive
 /// estimate, and the estimator's fused answer (EstimatorOutput::external).
@@ -66,7 +67,8 @@ void contact_metrics(const Log& log, const EstimatorTrace& tr, Evaluation& ev) {
 }
 
 void teaching_metrics(const Log& log, const EstimatorTrace& tr, const Vec& scale, Evaluation& ev) {
-  const Eigen::MatrixXd truth = columns(log, "gt_tau_ext", kArmJoints);
+  const int joints = static_cast<int>(scale.size());
+  const Eigen::MatrixXd truth = columns(log, "gt_tau_ext", joints);
   const Eigen::VectorXd gt_contact = log.col("gt_contact");
   const auto torque = external_torques(tr, scale);
   ev.teaching_torque = torque;
@@ -75,17 +77,17 @@ void teaching_metrics(const Log& log, const EstimatorTrace& tr, const Vec& scale
   std::array<Vec, kModalityCount> sum{}, sum_onset{};
   for (auto* a : {&sum, &sum_onset})
     for (auto& v : *a)
-      v.setZero();
-  Vec onset_count = Vec::Zero();
-  Vec last_start = Vec::Constant(-1e9);
+      v.setZero(joints);
+  Vec onset_count = Vec::Zero(joints);
+  Vec last_start = Vec::Constant(joints, -1e9);
   for (Eigen::Index k = 1; k < tr.rows(); ++k) {
-    for (int j = 0; j < kArmJoints; ++j)
+    for (int j = 0; j < joints; ++j)
       if (std::abs(tr.dq(k - 1, j)) < 1e-4 && std::abs(tr.dq(k, j)) >= 1e-4)
         last_start[j] = tr.t[k];
     if (!(gt_contact[k] > 0) || !std::isfinite(tr.t[k])) continue;
     ++te.contact_rows;
     for (int m = 0; m < kModalityCount; ++m) {
-      for (int j = 0; j < kArmJoints; ++j) {
+      for (int j = 0; j < joints; ++j) {
         const double e = torque[m](k, j) - truth(k, j);
         if (!std::isfinite(e)) continue;
         sum[m][j] += e * e;
@@ -117,7 +119,24 @@ const char* modality_name(Modality m) {
   return "?";
 }
 
-Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
+/// What calibration set, per joint, for the report.
+template <int N>
+Calibration calibration_of(const EstimatorParameters<double, N>& p) {
+  Calibration c;
+  c.sigma_nominal = p.nominal_sigma;
+  c.sigma_fused = p.fused_sigma;
+  c.proprioceptive_band = p.dead_band_factor * p.nominal_sigma;
+  c.fusion_moving_band = p.dead_band_factor * p.fused_sigma;
+  c.fusion_static_band = p.static_dead_band;
+  c.compensator_speed_limit = p.compensator_speed_limit;
+  c.compensator_acceleration_limit = p.compensator_acceleration_limit;
+  c.torque_alarm_samples = p.torque_alarm_samples;
+  c.tactile_n = p.skin.force_gain * p.skin.detector.on_level_kpa * 1000.0 * 0.0025;
+  return c;
+}
+
+template <int N>
+Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
                     const std::function<void(const std::string&)>& progress) {
   const auto say = [&](const std::string& line) {
     if (progress) progress(line);
@@ -125,50 +144,61 @@ Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
   if (!logs.calibration || logs.excitation.empty())
     throw Error::at("evaluate", 0, "logs", "a calibration log and an excitation log are needed");
   Evaluation ev;
+  ev.joints = N;
+  ev.has_skin = !setup.pads.empty();
   const Vec scale = setup.nominal.effort_per_newton_metre;
+  const int pads = static_cast<int>(setup.pads.size());
 
   say("evaluate: calibrating the dead bands on " + logs.calibration->source);
-  ev.sigma = calibrate_with_compensator(setup, *logs.calibration);
-  ev.parameters = setup.parameters;
-  const ArmParameters& p = setup.parameters;
-  ev.dead_bands.proprioceptive = p.dead_band_factor * p.nominal_sigma;
-  ev.dead_bands.fusion_moving = p.dead_band_factor * p.fused_sigma;
-  ev.dead_bands.fusion_static = p.static_dead_band;
-  ev.dead_bands.tactile_n = p.skin.force_gain * p.skin.detector.on_level_kpa * 1000.0 * 0.0025;
+  calibrate_with_compensator(setup, *logs.calibration);
+  ev.calibration = calibration_of(setup.parameters);
 
   std::vector<ResidualRecording> recordings;
   for (const Log* log : logs.excitation) {
     say("evaluate: estimator over " + log->source);
-    EstimatorTrace tr = trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(*log));
+    EstimatorTrace tr = replay_estimator(setup, estimator_samples<N>(*log, pads));
     recordings.push_back({tr.t, tr.dq, tr.residual, tr.residual - tr.compensation});
     ev.excitation_rows += tr.rows();
     if (recordings.size() == 1) ev.excitation_trace = std::move(tr);
   }
   // The residuals "meet" when they differ by less than the effort noise (the static band / 3).
-  ev.table = residual_table(recordings, p.static_dead_band / 3.0);
+  ev.table = residual_table(recordings, ev.calibration.fusion_static_band / 3.0);
 
   if (logs.contacts) {
+    if (!ev.has_skin)
+      throw Error::at(logs.contacts->source, 0, "pads",
+                      "a static-contacts log scores the skin, and this arm has no pad layout");
     say("evaluate: estimator over " + logs.contacts->source);
-    ev.contacts_trace =
-        trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(*logs.contacts));
+    ev.contacts_trace = replay_estimator(setup, estimator_samples<N>(*logs.contacts, pads));
     contact_metrics(*logs.contacts, ev.contacts_trace, ev);
     ev.has_contacts = true;
   }
   if (logs.teaching) {
     say("evaluate: estimator over " + logs.teaching->source);
-    ev.teaching_trace =
-        trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(*logs.teaching));
+    ev.teaching_trace = replay_estimator(setup, estimator_samples<N>(*logs.teaching, pads));
     teaching_metrics(*logs.teaching, ev.teaching_trace, scale, ev);
     ev.has_teaching = true;
   }
   if (logs.teaching_scenario) {
     say("evaluate: closed-loop teaching, the admittance controller following each estimator");
-    ev.closed_loop = closed_loop_teaching(setup, *logs.teaching_scenario, logs.teaching_seed,
-                                          logs.teaching_duration_s);
-    ev.has_closed_loop = true;
+    if constexpr (N == kTwinJoints) {
+      ev.closed_loop = closed_loop_teaching(setup, *logs.teaching_scenario, logs.teaching_seed,
+                                            logs.teaching_duration_s);
+      ev.has_closed_loop = true;
+    } else {
+      throw Error::at(logs.teaching_scenario->file, 0, "robot",
+                      "closed-loop teaching simulates the twin's " + std::to_string(kTwinJoints) +
+                          "-joint arm; this estimator has " + std::to_string(N) + " joints");
+    }
   }
   return ev;
 }
+
+#define TPF_INSTANTIATE_EVALUATE(N)                                          \
+  template Evaluation evaluate<N>(EstimatorSetup<N>&, const EvaluationLogs&, \
+                                  const std::function<void(const std::string&)>&);
+TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_EVALUATE)
+#undef TPF_INSTANTIATE_EVALUATE
 
 std::string evaluation_json(const Evaluation& ev) {
   using nlohmann::json;
@@ -184,15 +214,16 @@ std::string evaluation_json(const Evaluation& ev) {
         {"count", s.count}, {"rmse", num(s.rmse)}, {"std", num(s.std)}, {"mean", num(s.mean)}};
   };
   json j;
+  const Calibration& c = ev.calibration;
   j["simulated"] = true;
-  j["sigma"] = {{"nominal", vec(ev.sigma.nominal)}, {"fused", vec(ev.sigma.fused)}};
-  j["torque_alarm_samples"] = ev.parameters.torque_alarm_samples;
-  j["compensator_speed_limit"] = vec(ev.parameters.compensator_speed_limit);
-  j["compensator_acceleration_limit"] = vec(ev.parameters.compensator_acceleration_limit);
-  j["dead_bands"] = {{"proprioceptive", vec(ev.dead_bands.proprioceptive)},
-                     {"fusion_moving", vec(ev.dead_bands.fusion_moving)},
-                     {"fusion_static", vec(ev.dead_bands.fusion_static)},
-                     {"tactile_n", num(ev.dead_bands.tactile_n)}};
+  j["sigma"] = {{"nominal", vec(c.sigma_nominal)}, {"fused", vec(c.sigma_fused)}};
+  j["torque_alarm_samples"] = c.torque_alarm_samples;
+  j["compensator_speed_limit"] = vec(c.compensator_speed_limit);
+  j["compensator_acceleration_limit"] = vec(c.compensator_acceleration_limit);
+  j["dead_bands"] = {{"proprioceptive", vec(c.proprioceptive_band)},
+                     {"fusion_moving", vec(c.fusion_moving_band)},
+                     {"fusion_static", vec(c.fusion_static_band)},
+                     {"tactile_n", ev.has_skin ? num(c.tactile_n) : json("no skin")}};
   json rows = json::array();
   for (const ResidualRow& r : ev.table)
     rows.push_back(

@@ -12,7 +12,7 @@
 #include "offline/evaluate/force_error.hpp"
 #include "offline/evaluate/residual_table.hpp"
 #include "offline/log/log.hpp"
-#include "offline/training/arm_estimator.hpp"
+#include "offline/replay/replay_estimator.hpp"
 #include "tpf/estimation/transition_sigma.hpp"
 
 namespace tpf::offline {
@@ -37,11 +37,15 @@ struct EvaluationLogs {
   double teaching_duration_s = 0.0;
 };
 
-/// Per joint dead bands (effort unit) and the pad's on level.
-struct DeadBands {
-  JointVector<double, kArmJoints> proprioceptive;  ///< 1.5·σ_nominal
-  JointVector<double, kArmJoints> fusion_moving;   ///< 1.5·σ_fused
-  JointVector<double, kArmJoints> fusion_static;   ///< the model-free static band
+/// What the calibration log set, per joint (N entries each).
+struct Calibration {
+  Eigen::VectorXd sigma_nominal, sigma_fused;      ///< transition σ (effort unit)
+  Eigen::VectorXd proprioceptive_band;             ///< 1.5·σ_nominal
+  Eigen::VectorXd fusion_moving_band;              ///< 1.5·σ_fused
+  Eigen::VectorXd fusion_static_band;              ///< the model-free static band
+  Eigen::VectorXd compensator_speed_limit;         ///< the compensator's domain [rad/s]
+  Eigen::VectorXd compensator_acceleration_limit;  ///< [rad/s²]
+  int torque_alarm_samples = 0;                    ///< persistence of the torque-only contact alarm
   double tactile_n = 0.0;  ///< pad on level as a force on the reference pad [N]
 };
 
@@ -50,17 +54,15 @@ struct DeadBands {
 /// after a joint starts moving (motion onset).
 struct TeachingErrors {
   std::size_t contact_rows = 0, onset_rows = 0;
-  std::array<JointVector<double, kArmJoints>, kModalityCount> rmse{};
-  std::array<JointVector<double, kArmJoints>, kModalityCount> onset_rmse{};
+  std::array<Eigen::VectorXd, kModalityCount> rmse{};
+  std::array<Eigen::VectorXd, kModalityCount> onset_rmse{};
 };
 
 struct Evaluation {
-  /// The estimator parameters calibrated on the calibration log (what every estimator ran with,
-  /// the compensator's domain and the torque alarm's persistence included;
-  /// save_estimator_parameters writes them for the run-time loop).
-  ArmParameters parameters;
-  TransitionSigma<double, kArmJoints> sigma;
-  DeadBands dead_bands;
+  int joints = 0;
+  bool has_skin = false;  ///< the estimator has pads (else the tactile rows say "no skin")
+  /// What every estimator ran with, calibrated on the calibration log.
+  Calibration calibration;
   std::vector<ResidualRow> table;  ///< Table I on the held-out excitation logs
   Eigen::Index excitation_rows = 0;
   bool has_contacts = false, has_teaching = false;
@@ -76,9 +78,12 @@ struct Evaluation {
   Eigen::MatrixXd teaching_truth;
 };
 
-/// Runs the estimator of `setup` (its σ calibrated here on logs.calibration) over every log and
-/// computes all metrics. `progress` receives one line per stage. Throws tpf::Error on bad logs.
-Evaluation evaluate(ArmEstimatorSetup setup, const EvaluationLogs& logs,
+/// Runs the estimator of `setup` over every log and computes all metrics; its parameters are
+/// calibrated here on logs.calibration and left in setup.parameters (save_estimator_parameters
+/// writes them for the run-time loop). `progress` receives one line per stage. Throws tpf::Error
+/// on bad logs. Compiled for N = 1 … kMaxJoints.
+template <int N>
+Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
                     const std::function<void(const std::string&)>& progress = {});
 
 /// The evaluation as JSON text (every number of the report).

@@ -10,6 +10,11 @@
 namespace tpf::offline {
 namespace {
 
+/// The joint the single-joint figures show: joint 2 (the shoulder, most loaded) when there is one.
+int focus_joint(const Evaluation& ev) {
+  return ev.joints > 1 ? 1 : 0;
+}
+
 std::string joint_label(int j) {
   return j < 0 ? "all" : std::to_string(j + 1);
 }
@@ -65,11 +70,11 @@ std::string fmt(double x, int digits = 3) {
 std::vector<HistogramSeries> error_distributions(const Evaluation& ev, Regime regime) {
   const EstimatorTrace& tr = ev.excitation_trace;
   std::vector<double> a, b;
-  for (int j = 0; j < kArmJoints; ++j) {
+  for (int j = 0; j < ev.joints; ++j) {
     const Eigen::VectorXd nominal = tr.residual.col(j);
     const Eigen::VectorXd comp = tr.residual.col(j) - tr.compensation.col(j);
     const auto labels = label_regimes(tr.t, tr.dq.col(j), {}, &nominal, &comp,
-                                      ev.dead_bands.fusion_static[j] / 3.0);
+                                      ev.calibration.fusion_static_band[j] / 3.0);
     for (Eigen::Index k = 0; k < tr.rows(); ++k) {
       if (labels[static_cast<std::size_t>(k)] != regime) continue;
       a.push_back(nominal[k]);
@@ -122,13 +127,15 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
   page.figure(histogram({"Error distribution, static-to-kinetic", "residual [mA]", "share [%]"},
                         error_distributions(ev, Regime::StaticToKinetic)),
               "Static-to-kinetic samples of all joints, first held-out log.");
-  page.figure(line_plot({"Joint 2 current residual around motion onsets", "time from onset [s]",
-                         "residual [mA]"},
-                        onset_series(ev.excitation_trace, 1, 3)),
+  page.figure(line_plot({"Joint " + std::to_string(focus_joint(ev) + 1) +
+                             " current residual around motion onsets",
+                         "time from onset [s]", "residual [mA]"},
+                        onset_series(ev.excitation_trace, focus_joint(ev), 3)),
               "Like the original's figure: the nominal model's residual jumps at break-away; the "
               "TCN-compensated one stays near zero.");
 
   page.heading("Dead bands");
+  const Calibration& c = ev.calibration;
   Table db;
   db.header = {"joint",         "proprioceptive 1.5σ_nominal", "fusion moving 1.5σ_fused",
                "change",        "fusion static (noise band)",  "compensator's domain |q̇| ≤ [rad/s]",
@@ -138,14 +145,14 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
       "speeds and accelerations bound the compensator's domain (beyond them, and for the "
       "network's input window after, fusion falls back to 1.5σ_nominal on the nominal "
       "residual). Tactile-only: the pad's on level, " +
-      fmt(ev.dead_bands.tactile_n) + " N on the reference pad.";
+      (ev.has_skin ? fmt(ev.calibration.tactile_n) + " N on the reference pad."
+                   : std::string("no skin."));
   db.percent_column = 3;
-  for (int j = 0; j < kArmJoints; ++j)
-    db.rows.push_back(
-        {joint_label(j), fmt(ev.dead_bands.proprioceptive[j]), fmt(ev.dead_bands.fusion_moving[j]),
-         format_percent_change(ev.dead_bands.proprioceptive[j], ev.dead_bands.fusion_moving[j]),
-         fmt(ev.dead_bands.fusion_static[j]), fmt(ev.parameters.compensator_speed_limit[j]),
-         fmt(ev.parameters.compensator_acceleration_limit[j])});
+  for (int j = 0; j < ev.joints; ++j)
+    db.rows.push_back({joint_label(j), fmt(c.proprioceptive_band[j]), fmt(c.fusion_moving_band[j]),
+                       format_percent_change(c.proprioceptive_band[j], c.fusion_moving_band[j]),
+                       fmt(c.fusion_static_band[j]), fmt(c.compensator_speed_limit[j]),
+                       fmt(c.compensator_acceleration_limit[j])});
   page.table(db);
 
   if (ev.has_contacts) {
@@ -189,8 +196,11 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
   if (ev.has_teaching) {
     page.heading("Kinesthetic teaching (external torque while a hand guides the arm)");
     Table tt;
-    tt.header = {"estimator",   "joint 1", "joint 2", "joint 3", "joint 4",
-                 "at onset j1", "j2",      "j3",      "j4"};
+    tt.header = {"estimator"};
+    for (int j = 0; j < ev.joints; ++j)
+      tt.header.push_back("joint " + std::to_string(j + 1));
+    for (int j = 0; j < ev.joints; ++j)
+      tt.header.push_back((j == 0 ? "at onset j" : "j") + std::to_string(j + 1));
     tt.caption = "RMSE of τ̂_ext − gt_tau_ext [N·m] over the contact rows (" +
                  std::to_string(ev.teaching.contact_rows) +
                  ") and over the first 0.3 s after a "
@@ -199,35 +209,33 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
                  "a closed loop through them.";
     for (int m = 0; m < kModalityCount; ++m) {
       std::vector<std::string> row{modality_name(static_cast<Modality>(m))};
-      for (int j = 0; j < kArmJoints; ++j)
-        row.push_back(fmt(ev.teaching.rmse[m][j]));
-      for (int j = 0; j < kArmJoints; ++j)
-        row.push_back(fmt(ev.teaching.onset_rmse[m][j]));
+      const bool answers = ev.has_skin || static_cast<Modality>(m) != Modality::Tactile;
+      for (int j = 0; j < ev.joints; ++j)
+        row.push_back(answers ? fmt(ev.teaching.rmse[m][j]) : "no skin");
+      for (int j = 0; j < ev.joints; ++j)
+        row.push_back(answers ? fmt(ev.teaching.onset_rmse[m][j]) : "no skin");
       tt.rows.push_back(row);
     }
     page.table(tt);
     const EstimatorTrace& tr = ev.teaching_trace;
     const Eigen::Index n = std::min<Eigen::Index>(tr.rows(), 8000);  // the first 20 s
-    std::vector<Series> s{{"ground truth", tr.t.head(n), ev.teaching_truth.col(1).head(n), ""}};
+    const int f = focus_joint(ev);
+    std::vector<Series> s{{"ground truth", tr.t.head(n), ev.teaching_truth.col(f).head(n), ""}};
     for (int m = 0; m < kModalityCount; ++m)
       s.push_back({modality_name(static_cast<Modality>(m)), tr.t.head(n),
-                   ev.teaching_torque[m].col(1).head(n), ""});
-    page.figure(line_plot({"Teaching, joint 2: external torque", "t [s]", "τ_ext [N·m]"}, s),
+                   ev.teaching_torque[m].col(f).head(n), ""});
+    page.figure(line_plot({"Teaching, joint " + std::to_string(f + 1) + ": external torque",
+                           "t [s]", "τ_ext [N·m]"},
+                          s),
                 "The hand drags the arm; each estimator replayed on the recording.");
   }
   if (ev.has_closed_loop) {
     page.heading("Kinesthetic teaching in closed loop");
     Table ct;
-    ct.header = {"admittance follows",
-                 "onsets",
-                 "overshoots",
-                 "mean overshoot [%]",
-                 "undershoots",
-                 "mean undershoot [%]",
-                 "τ RMSE j1",
-                 "j2",
-                 "j3",
-                 "j4"};
+    ct.header = {"admittance follows", "onsets",      "overshoots",
+                 "mean overshoot [%]", "undershoots", "mean undershoot [%]"};
+    for (int j = 0; j < ev.joints; ++j)
+      ct.header.push_back((j == 0 ? "τ RMSE j" : "j") + std::to_string(j + 1));
     ct.caption =
         "The twin's admittance controller (M_a q̈ + D_a q̇ = τ̂_ext) driven by each "
         "estimator inside the simulation, same hand (same seed). Peak joint speed in the "
@@ -240,7 +248,7 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
                                    fmt(l.mean_overshoot_percent),
                                    std::to_string(l.undershoots),
                                    fmt(l.mean_undershoot_percent)};
-      for (int j = 0; j < kArmJoints; ++j)
+      for (int j = 0; j < ev.joints; ++j)
         row.push_back(fmt(l.torque_rmse[j]));
       ct.rows.push_back(row);
     }
@@ -248,9 +256,14 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
     std::vector<Series> s;
     for (const TeachingLoop& l : ev.closed_loop) {
       const Eigen::Index n = std::min<Eigen::Index>(l.log.rows(), 8000);
-      s.push_back({"q̇2, " + l.name, l.log.col("t").head(n), l.log.col("dq2").head(n), ""});
+      const std::string dq = indexed_name("dq", focus_joint(ev) + 1);
+      s.push_back({"q̇" + std::to_string(focus_joint(ev) + 1) + ", " + l.name,
+                   l.log.col("t").head(n), l.log.col(dq).head(n), ""});
     }
-    page.figure(line_plot({"Closed-loop teaching, joint 2 velocity", "t [s]", "q̇ [rad/s]"}, s),
+    page.figure(line_plot({"Closed-loop teaching, joint " + std::to_string(focus_joint(ev) + 1) +
+                               " velocity",
+                           "t [s]", "q̇ [rad/s]"},
+                          s),
                 "The same hand guiding the arm; the admittance follows each estimator.");
   }
   return page;

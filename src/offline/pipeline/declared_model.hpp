@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "offline/training/arm_estimator.hpp"
+#include "offline/replay/replay_estimator.hpp"
 
 namespace tpf::offline {
 
@@ -12,8 +12,10 @@ namespace tpf::offline {
 /// parameters) and the memoryless Stribeck + load friction of the friction file, in the effort
 /// unit `effort_prefix` ("i": mA via 1000/K_t, "tau": N·m). It is the starting point of
 /// identification, and what the pipeline uses when no identified tpf-params file is given.
-ArmNominal declared_nominal_model(const std::filesystem::path& robot_file,
-                                  const std::filesystem::path& friction_file,
-                                  const std::string& effort_prefix = "i");
+/// Compiled for N = 1 … kMaxJoints.
+template <int N>
+NominalModel<double, N> declared_nominal_model(const std::filesystem::path& robot_file,
+                                               const std::filesystem::path& friction_file,
+                                               const std::string& effort_prefix = "i");
 
 }  // namespace tpf::offline

@@ -13,10 +13,10 @@
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/replay/estimator_samples.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"
-#include "offline/training/estimator_samples.hpp"
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -141,37 +141,39 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   // 2. Identify the declared model on the training log.
   say("[2/5] identify: declared model (base parameters, armature, Stribeck + load friction) on "
       "the training log");
-  const auto model = load_robot<double, kArmJoints>(data_file("arm4.robot.json"));
+  const auto model = load_robot<double, kTwinJoints>(data_file("arm4.robot.json"));
   IdentifyOptions identify_options;
   identify_options.progress = say;
-  const Identification<kArmJoints> identified = identify(training_log, model, identify_options);
-  save_nominal_model<kArmJoints>(o.out / "identified.params.json", identified.nominal,
-                                 training_log.source);
+  const Identification<kTwinJoints> identified = identify(training_log, model, identify_options);
+  save_nominal_model<kTwinJoints>(o.out / "identified.params.json", identified.nominal,
+                                  training_log.source);
 
   // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
   say("[3/5] diagnose: candidate effects on the training log's held-out blocks");
   DiagnoseOptions diagnose_options;
   diagnose_options.progress = say;
-  const Diagnosis<kArmJoints> diagnosis = diagnose(training_log, model, diagnose_options);
+  const Diagnosis<kTwinJoints> diagnosis = diagnose(training_log, model, diagnose_options);
   for (const std::string& f : diagnosis.findings)
     say("diagnose: " + f);
-  save_nominal_model<kArmJoints>(o.out / "nominal.params.json", diagnosis.nominal,
-                                 training_log.source);
+  save_nominal_model<kTwinJoints>(o.out / "nominal.params.json", diagnosis.nominal,
+                                  training_log.source);
   write_diagnosis_report(diagnosis, o.out / "diagnose.html");
   AtomicFile diagnosis_file(o.out / "diagnosis.json");
   diagnosis_file.write(diagnosis_json(diagnosis));
   diagnosis_file.commit();
   result.findings = diagnosis.findings;
-  ArmEstimatorSetup setup;
+  EstimatorSetup<kTwinJoints> setup;
   setup.nominal = diagnosis.nominal;
   setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
+  const int pads = static_cast<int>(setup.pads.size());
 
   // 4. Train.
   say("[4/5] train: estimator features on the training log, then the TCN (" +
       std::to_string(o.training_epochs) + " epochs per network at most)");
-  setup.parameters = arm_estimator_parameters(estimate_sensor_noise(training_log));
+  setup.parameters =
+      estimator_parameters_from_noise<kTwinJoints>(estimate_sensor_noise(training_log));
   const std::vector<EstimatorTrace> traces{
-      trace_arm_estimator(setup, estimator_samples<kArmJoints, kArmPads>(training_log))};
+      replay_estimator(setup, estimator_samples<kTwinJoints>(training_log, pads))};
   CompensatorTrainingOptions training;
   training.per_joint = o.per_joint;
   training.joint_hidden = o.joint_hidden;
@@ -195,8 +197,8 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
         }
       });
   const auto weights = o.out / "tcn.json";
-  setup.weight_files = write_compensator(result.training, weights);
-  setup.layout = result.training.layout;
+  write_compensator(result.training, weights);
+  setup.weights = find_compensator_weights(weights, kTwinJoints);
 
   // 5. Evaluate.
   say("[5/5] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
@@ -211,11 +213,12 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   logs.teaching_scenario = &teaching;
   logs.teaching_seed = o.teaching_seed;
   logs.teaching_duration_s = o.teaching_s;
-  setup.parameters = arm_estimator_parameters(estimate_sensor_noise(jobs[3].log));
+  setup.parameters =
+      estimator_parameters_from_noise<kTwinJoints>(estimate_sensor_noise(jobs[3].log));
   result.evaluation = evaluate(setup, logs, say);
   // The run-time loop's estimator parameters as calibrated here (tpf_arm_loop --estimator).
-  save_estimator_parameters<kArmJoints>(o.out / "arm4.estimator.json", result.evaluation.parameters,
-                                        jobs[3].log.source + " (SIMULATED log)");
+  save_estimator_parameters<kTwinJoints>(o.out / "arm4.estimator.json", setup.parameters,
+                                         jobs[3].log.source + " (SIMULATED log)");
   std::vector<std::string> notes{
       "nominal model: identified and diagnosed on the training log (nominal.params.json)",
       "arm: every log is simulated on one arm, with the physical effects of " +

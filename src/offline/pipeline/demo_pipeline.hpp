@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "offline/compensator_training/train_compensator.hpp"
 #include "offline/evaluate/evaluation.hpp"
-#include "offline/training/train_compensator.hpp"
 
 namespace tpf::offline {
 
@@ -36,7 +36,7 @@ struct DemoOptions {
   /// One network per joint (the default: measured better than one network for all joints on
   /// held-out twin data, docs/evaluation.md); false: one network for all joints.
   bool per_joint = true;
-  int joint_hidden = kArmJointHidden;  ///< hidden channels of a per-joint network
+  int joint_hidden = kPerJointHiddenSmall;  ///< hidden channels of a per-joint network
   /// Cut-off of the trainer's zero-phase low/high split of the target [Hz].
   double split_cutoff_hz = 2.0;
   int threads = 2;

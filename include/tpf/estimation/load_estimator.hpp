@@ -1,0 +1,65 @@
+// The estimator of any arm, built at start-up from the files the offline tools write: a
+// controller names the arm's joint count, pad count and compensator as types and loads the rest,
+//   auto est = tpf::load_estimator<7, 0, tpf::PerJointTcn<float, 16>>(files);
+//   const auto& out = est->update(sample);   // per cycle
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tpf/estimation/compensator_types.hpp"
+#include "tpf/estimation/compensator_weight_files.hpp"
+#include "tpf/estimation/estimator.hpp"
+#include "tpf/estimation/estimator_parameters.hpp"
+#include "tpf/estimation/nominal_model.hpp"
+#include "tpf/skin/pad_layout.hpp"
+
+namespace tpf {
+
+/// The files of an estimator.
+struct EstimatorFiles {
+  std::string params;     ///< nominal model (tpf-params, `tpf identify` / `tpf diagnose`)
+  std::string robot;      ///< robot file the parameters were identified for
+  std::string pads;       ///< pad layout (tpf-pads); empty: no skin
+  std::string estimator;  ///< estimator parameters (tpf-estimator, `tpf calibrate`)
+  /// Compensator weights (find_compensator_weights); empty: no compensator.
+  std::string weights;
+};
+
+/// Everything an N-joint estimator is built from, loaded.
+template <int N>
+struct EstimatorSetup {
+  NominalModel<double, N> nominal;
+  std::vector<Pad> pads;
+  EstimatorParameters<double, N> parameters;
+  CompensatorWeightFiles weights;
+};
+
+/// Start-up: loads every file of `files` (core loaders only). Throws tpf::Error naming the file
+/// and field on bad input, and when the robot has another joint count than N. Compiled for
+/// N = 1 … kMaxJoints.
+template <int N>
+EstimatorSetup<N> load_estimator_setup(const EstimatorFiles& files);
+
+/// The estimator of an N-joint arm with P pads (0: no skin) and the compensator `Kind`
+/// (NoCompensator, PerJointTcn<NetScalar, Hidden>, AllJointsTcn<Hidden>).
+template <int N, int P, typename Kind = NoCompensator, typename S = double>
+using EstimatorOf = Estimator<S, N, P, typename Kind::template For<S, N>>;
+
+/// Start-up: the estimator of `setup` on the heap, its compensator's weights loaded. Throws
+/// tpf::Error when the pad layout does not have P pads or the weight files are not of `Kind`.
+template <int N, int P, typename Kind = NoCompensator>
+std::unique_ptr<EstimatorOf<N, P, Kind>> make_estimator(const EstimatorSetup<N>& setup) {
+  auto e = std::make_unique<EstimatorOf<N, P, Kind>>(setup.nominal, setup.pads, setup.parameters);
+  Kind::template load<double, N>(e->compensator(), setup.weights);
+  return e;
+}
+
+/// Start-up: load_estimator_setup, then make_estimator.
+template <int N, int P, typename Kind = NoCompensator>
+std::unique_ptr<EstimatorOf<N, P, Kind>> load_estimator(const EstimatorFiles& files) {
+  return make_estimator<N, P, Kind>(load_estimator_setup<N>(files));
+}
+
+}  // namespace tpf

@@ -1,0 +1,56 @@
+// One streaming TCN per joint behind the estimator's compensator interface (named by its kind,
+// tpf::PerJointTcn<NetScalar, Hidden>, in compensator_types.hpp).
+#pragma once
+
+#include <array>
+
+#include "tpf/estimation/compensator.hpp"
+#include "tpf/nn/tcn.hpp"
+
+namespace tpf {
+
+/// N independent networks Tcn<NetScalar, 5, Hidden, Levels, 4, 1>; network j sees only joint j's
+/// inputs [q_j, q̇_j, q̈_j, τ̂_fric,s,j, τ_fric,nom,j] (picked from x = compensator_input(...) at j,
+/// N + j, …, 4N + j) and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step.
+/// Large: keep on the heap (inside the estimator).
+///
+/// The estimator's scalar S and the networks' NetScalar may differ: with NetScalar = float the
+/// inputs are rounded to float on the way in and the outputs widened on the way out, which halves
+/// the network step (twice the SIMD width) at a relative error of ≈ 1e-6 of the output
+/// (docs/tcn.md, "Precision").
+template <typename S, int N, int Hidden, int Levels, typename NetScalar = S>
+class PerJointTcnCompensator {
+ public:
+  using Network = Tcn<NetScalar, kCompensatorInputsPerJoint, Hidden, Levels, 4, 1>;
+  using Input = CompensatorInput<S, N>;
+  using Output = Eigen::Matrix<S, N, 1>;
+  static constexpr int kReceptiveField = Network::kReceptiveField;
+
+  /// τ_TCN,j = network_j(x_j) for every joint.
+  const Output& step(const Input& x) noexcept {
+    for (int j = 0; j < N; ++j)
+      output_[j] = static_cast<S>(networks_[j].step(joint_input(x, j))[0]);
+    return output_;
+  }
+  /// Prewarms every network with its part of the steady input x̄.
+  void reset(const Input& x) noexcept {
+    for (int j = 0; j < N; ++j)
+      networks_[j].reset(joint_input(x, j));
+  }
+
+  Network& network(int j) noexcept { return networks_[j]; }
+
+  /// x_j = [x_j, x_{N+j}, …, x_{4N+j}] (channel c of joint j is x_{cN+j}), in the networks'
+  /// scalar.
+  static typename Network::Input joint_input(const Input& x, int j) noexcept {
+    using JointInput = Eigen::Matrix<S, kCompensatorInputsPerJoint, 1>;
+    return Eigen::Map<const JointInput, Eigen::Unaligned, Eigen::InnerStride<N>>(x.data() + j)
+        .template cast<NetScalar>();
+  }
+
+ private:
+  std::array<Network, N> networks_{};
+  Output output_ = Output::Zero();
+};
+
+}  // namespace tpf

@@ -1,0 +1,59 @@
+#include "tpf/estimation/compensator_weight_files.hpp"
+
+#include "tpf/common/error.hpp"
+#include "tpf/estimation/compensator.hpp"
+#include "tpf/nn/tcn_weight_file.hpp"
+
+namespace tpf {
+namespace {
+
+constexpr int kLevels = 4;  // the compensator networks of `tpf train` (compensator_types.hpp)
+constexpr int kKernel = 4;
+
+}  // namespace
+
+std::filesystem::path joint_weight_path(const std::filesystem::path& path, int joint) {
+  return path.parent_path() /
+         (path.stem().string() + ".joint" + std::to_string(joint + 1) + ".json");
+}
+
+CompensatorWeightFiles find_compensator_weights(const std::filesystem::path& path, int joints) {
+  CompensatorWeightFiles w;
+  w.source = path.string();
+  if (path.empty()) return w;
+  if (std::filesystem::exists(path)) {
+    const TcnWeightFile file = read_tcn_weight_file(path.string());
+    file.require_architecture(kCompensatorInputsPerJoint * joints, file.hidden, kLevels, kKernel,
+                              joints);
+    w.layout = CompensatorLayout::AllJoints;
+    w.hidden = file.hidden;
+    w.files = {path.string()};
+    return w;
+  }
+  for (int j = 0; j < joints; ++j) {
+    const auto p = joint_weight_path(path, j);
+    if (!std::filesystem::exists(p))
+      throw Error::at(path.string(), 0, "weights",
+                      "no such weight file, nor per-joint files like " + p.string());
+    const TcnWeightFile file = read_tcn_weight_file(p.string());
+    if (j == 0) w.hidden = file.hidden;
+    file.require_architecture(kCompensatorInputsPerJoint, w.hidden, kLevels, kKernel, 1);
+    w.files.push_back(p.string());
+  }
+  w.layout = CompensatorLayout::PerJoint;
+  return w;
+}
+
+std::string describe(const CompensatorWeightFiles& w) {
+  switch (w.layout) {
+    case CompensatorLayout::PerJoint:
+      return "per-joint networks of " + std::to_string(w.hidden) + " channels";
+    case CompensatorLayout::AllJoints:
+      return "one network of " + std::to_string(w.hidden) + " channels";
+    case CompensatorLayout::None:
+      break;
+  }
+  return "no friction compensator";
+}
+
+}  // namespace tpf

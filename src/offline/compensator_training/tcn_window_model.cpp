@@ -1,0 +1,133 @@
+#include "offline/compensator_training/tcn_window_model.hpp"
+
+namespace tpf::offline {
+namespace {
+
+/// [W_0 … W_{K−1}] of block `b` into `out` (C_out × K·C_in).
+template <typename S, typename Matrix>
+void stack_taps(const BasicTcnBlockParameters<S>& b, Matrix& out) {
+  const Eigen::Index in = b.taps[0].cols();
+  out.resize(b.taps[0].rows(), in * static_cast<Eigen::Index>(b.taps.size()));
+  for (std::size_t j = 0; j < b.taps.size(); ++j)
+    out.middleCols(j * in, in) = b.taps[j];
+}
+
+}  // namespace
+
+template <typename S>
+void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>& inputs,
+                        BasicTcnWindowWorkspace<S>& ws) {
+  const TcnArchitecture& a = p.architecture;
+  ws.activations.resize(a.levels + 1);
+  ws.stacked_inputs.resize(a.levels);
+  ws.activations[0] = inputs;
+  for (int l = 0; l < a.levels; ++l) {
+    const BasicTcnBlockParameters<S>& b = p.blocks[l];
+    const auto& x = ws.activations[l];
+    const int d = a.dilation(l);
+    const Eigen::Index in = x.rows(), t_out = x.cols() - (a.kernel - 1) * d;
+    auto& stack = ws.stacked_inputs[l];
+    stack.resize(a.kernel * in, t_out);
+    for (int j = 0; j < a.kernel; ++j) {
+      stack.middleRows(j * in, in) = x.middleCols((a.kernel - 1 - j) * d, t_out);
+    }
+    auto& z = ws.activations[l + 1];
+    if (b.projection.size() > 0) {
+      z.noalias() = b.projection * x.rightCols(t_out);
+    } else {
+      z = x.rightCols(t_out);
+    }
+    z.colwise() += b.bias;
+    stack_taps(b, ws.stacked_weights);
+    z.noalias() += ws.stacked_weights * stack;
+    z = z.cwiseMax(S(0));
+  }
+  const auto& last = ws.activations[a.levels];
+  ws.low.noalias() = p.low_weight * last;
+  ws.low.colwise() += p.low_bias;
+  ws.high.noalias() = p.high_weight * last;
+  ws.high.colwise() += p.high_bias;
+}
+
+template <typename S>
+double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>& inputs,
+                       const TcnWindowMatrix<S>& target_low, const TcnWindowMatrix<S>& target_high,
+                       double weight_low, double weight_high, BasicTcnWindowWorkspace<S>& ws,
+                       std::type_identity_t<BasicTcnParameters<S>>* gradient,
+                       const TcnWindowMatrix<S>* sample_scale) {
+  tcn_window_forward(p, inputs, ws);
+  // Scaled residuals s⊙(y − target) become ∂L/∂low and ∂L/∂high in place (times 2·w·s).
+  ws.low -= target_low;
+  ws.high -= target_high;
+  if (sample_scale != nullptr) {
+    ws.low.array() *= sample_scale->array();
+    ws.high.array() *= sample_scale->array();
+  }
+  const double loss = weight_low * static_cast<double>(ws.low.squaredNorm()) +
+                      weight_high * static_cast<double>(ws.high.squaredNorm());
+  if (gradient == nullptr) return loss;
+  ws.low *= static_cast<S>(2.0 * weight_low);
+  ws.high *= static_cast<S>(2.0 * weight_high);
+  if (sample_scale != nullptr) {
+    ws.low.array() *= sample_scale->array();
+    ws.high.array() *= sample_scale->array();
+  }
+
+  const TcnArchitecture& a = p.architecture;
+  BasicTcnParameters<S>& g = *gradient;
+  const auto& last = ws.activations[a.levels];
+  g.low_weight.noalias() += ws.low * last.transpose();
+  g.low_bias += ws.low.rowwise().sum();
+  g.high_weight.noalias() += ws.high * last.transpose();
+  g.high_bias += ws.high.rowwise().sum();
+  ws.upstream.noalias() = p.low_weight.transpose() * ws.low;
+  ws.upstream.noalias() += p.high_weight.transpose() * ws.high;
+
+  for (int l = a.levels - 1; l >= 0; --l) {
+    const BasicTcnBlockParameters<S>& b = p.blocks[l];
+    BasicTcnBlockParameters<S>& gb = g.blocks[l];
+    const auto& x = ws.activations[l];
+    const int d = a.dilation(l);
+    const Eigen::Index t_out = ws.upstream.cols();
+    // ∂L/∂z = ∂L/∂y ⊙ [y > 0].
+    ws.upstream = (ws.activations[l + 1].array() > S(0)).select(ws.upstream, S(0));
+    const auto& dz = ws.upstream;
+    gb.bias += dz.rowwise().sum();
+    const Eigen::Index in = x.rows();
+    ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
+    for (int j = 0; j < a.kernel; ++j)
+      gb.taps[j] += ws.stacked_gradient.middleCols(j * in, in);
+    if (b.projection.size() > 0) gb.projection.noalias() += dz * x.rightCols(t_out).transpose();
+    if (l == 0) break;
+
+    stack_taps(b, ws.stacked_weights);
+    ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
+    ws.downstream.setZero(x.rows(), x.cols());
+    for (int j = 0; j < a.kernel; ++j) {
+      ws.downstream.middleCols((a.kernel - 1 - j) * d, t_out) +=
+          ws.stacked_gradient.middleRows(j * in, in);
+    }
+    if (b.projection.size() > 0) {
+      ws.downstream.rightCols(t_out).noalias() += b.projection.transpose() * dz;
+    } else {
+      ws.downstream.rightCols(t_out) += dz;
+    }
+    ws.upstream.swap(ws.downstream);
+  }
+  return loss;
+}
+
+template void tcn_window_forward(const BasicTcnParameters<double>&, const TcnWindowMatrix<double>&,
+                                 BasicTcnWindowWorkspace<double>&);
+template void tcn_window_forward(const BasicTcnParameters<float>&, const TcnWindowMatrix<float>&,
+                                 BasicTcnWindowWorkspace<float>&);
+template double tcn_window_loss(const BasicTcnParameters<double>&, const TcnWindowMatrix<double>&,
+                                const TcnWindowMatrix<double>&, const TcnWindowMatrix<double>&,
+                                double, double, BasicTcnWindowWorkspace<double>&,
+                                BasicTcnParameters<double>*, const TcnWindowMatrix<double>*);
+template double tcn_window_loss(const BasicTcnParameters<float>&, const TcnWindowMatrix<float>&,
+                                const TcnWindowMatrix<float>&, const TcnWindowMatrix<float>&,
+                                double, double, BasicTcnWindowWorkspace<float>&,
+                                BasicTcnParameters<float>*, const TcnWindowMatrix<float>*);
+
+}  // namespace tpf::offline

@@ -1,0 +1,85 @@
+#include "offline/compensator_training/train_compensator.hpp"
+
+#include <chrono>
+
+#include "offline/compensator_training/tcn_parameters.hpp"
+#include "offline/compensator_training/baseline_start.hpp"
+#include "offline/compensator_training/training_dataset.hpp"
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+
+CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
+                                      const Eigen::VectorXd& effort_per_newton_metre,
+                                      const CompensatorTrainingOptions& options,
+                                      const TcnProgressCallback& progress) {
+  if (options.per_joint && options.joint_hidden != kPerJointHiddenSmall &&
+      options.joint_hidden != kPerJointHiddenLarge)
+    throw Error::at("compensator training", 0, "joint_hidden",
+                    std::to_string(options.joint_hidden) +
+                        " channels; per-joint networks are compiled for " +
+                        std::to_string(kPerJointHiddenSmall) + " or " +
+                        std::to_string(kPerJointHiddenLarge));
+  if (traces.empty()) throw Error("compensator training: no log to train on");
+  const int joints = static_cast<int>(traces.front().dq.cols());
+  const auto start = std::chrono::steady_clock::now();
+  CompensatorTraining out;
+  out.layout = options.per_joint ? CompensatorLayout::PerJoint : CompensatorLayout::AllJoints;
+  const int networks = options.per_joint ? joints : 1;
+  for (int net = 0; net < networks; ++net) {
+    const int joint = options.per_joint ? net : -1;
+    TcnDataset dataset;
+    TcnTrainOptions o = options.tcn;
+    for (const EstimatorTrace& trace : traces) {
+      TcnSequence sequence = training_sequence(trace, effort_per_newton_metre, joint);
+      sequence.weight = regime_weights(trace, joint, options.static_weight,
+                                       options.static_to_kinetic_weight, options.regimes);
+      dataset.sequences.push_back(std::move(sequence));
+    }
+    o.architecture.inputs = kCompensatorInputsPerJoint * (options.per_joint ? 1 : joints);
+    o.architecture.outputs = options.per_joint ? 1 : joints;
+    o.architecture.hidden = options.per_joint ? options.joint_hidden : kAllJointsHidden;
+    o.architecture.levels = kCompensatorLevels;
+    o.architecture.kernel = kCompensatorKernel;
+    if (o.max_seconds > 0) o.max_seconds /= networks;
+    if (!o.checkpoint_path.empty() && options.per_joint)
+      o.checkpoint_path = joint_weight_path(o.checkpoint_path, joint).string();
+    TcnTrainer trainer(dataset, o);
+    out.training_windows += trainer.training_windows();
+    out.validation_windows += trainer.validation_windows();
+    const Eigen::VectorXd scale = options.per_joint
+                                      ? Eigen::VectorXd::Constant(1, effort_per_newton_metre[joint])
+                                      : effort_per_newton_metre;
+    Eigen::VectorXi baseline(o.architecture.outputs);
+    for (int k = 0; k < o.architecture.outputs; ++k)
+      baseline[k] = options.per_joint ? 3 : 3 * joints + k;
+    TcnTrainResult result =
+        options.start_from_baseline
+            ? trainer.train(baseline_start(o.architecture, o.seed, trainer.input_mean(),
+                                           trainer.input_std(), baseline, scale),
+                            progress)
+            : trainer.train(progress);
+    TcnParameters best = result.best;
+    scale_tcn_outputs(best, scale);
+    out.files.push_back(to_weight_file(best));
+    out.results.push_back(std::move(result));
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+std::vector<std::string> write_compensator(const CompensatorTraining& training,
+                                           const std::filesystem::path& path) {
+  std::vector<std::string> written;
+  for (std::size_t k = 0; k < training.files.size(); ++k) {
+    const auto p = training.layout == CompensatorLayout::PerJoint
+                       ? joint_weight_path(path, static_cast<int>(k))
+                       : path;
+    if (!p.parent_path().empty()) std::filesystem::create_directories(p.parent_path());
+    write_tcn_weight_file(p.string(), training.files[k]);
+    written.push_back(p.string());
+  }
+  return written;
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,57 @@
+// Training the arm's friction compensator from contact-free logs: estimator traces → TCN dataset
+// → TcnTrainer → weight files in the effort unit.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "offline/regimes/regime.hpp"
+#include "offline/compensator_training/tcn_trainer.hpp"
+#include "offline/replay/replay_estimator.hpp"
+#include "tpf/nn/tcn_weight_file.hpp"
+
+namespace tpf::offline {
+
+struct CompensatorTrainingOptions {
+  /// Trainer options; the architecture is set from the layout (inputs, outputs, hidden, levels =
+  /// the networks the tools are compiled for, replay_estimator.hpp). max_seconds is the whole
+  /// safety net.
+  TcnTrainOptions tcn;
+  bool per_joint = false;  ///< one network per joint instead of one for all joints
+  /// Hidden channels of a per-joint network: kPerJointHiddenSmall or kPerJointHiddenLarge (the
+  /// all-joints network has kAllJointsHidden).
+  int joint_hidden = kPerJointHiddenSmall;
+  /// Start from baseline_start (the network predicts τ̂_fric,s) instead of a random network.
+  bool start_from_baseline = true;
+  /// Per-sample loss weights by regime (regime_weights): break-away and rest count this many
+  /// times a moving sample.
+  double static_to_kinetic_weight = 10.0;
+  double static_weight = 3.0;
+  /// Labelling of the regimes for the weights (the static-to-kinetic window after |q̇| crosses
+  /// static_velocity lasts fallback_transition_s).
+  RegimeOptions regimes;
+};
+
+struct CompensatorTraining {
+  CompensatorLayout layout = CompensatorLayout::AllJoints;
+  std::vector<TcnWeightFile> files;     ///< one, or one per joint; heads in the effort unit
+  std::vector<TcnTrainResult> results;  ///< per network
+  std::size_t training_windows = 0, validation_windows = 0;
+  double seconds = 0.0;  ///< wall-clock training time
+};
+
+/// Trains on the traces of contact-free logs (training_sequence of each, weighted by
+/// regime_weights), with the trainer's zero-phase split, Adam, held-out blocks and early stopping;
+/// per joint, each network gets max_epochs and max_seconds/N. The joint count N is the traces'.
+/// The best parameters are scaled to the effort unit (scale_tcn_outputs).
+CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
+                                      const Eigen::VectorXd& effort_per_newton_metre,
+                                      const CompensatorTrainingOptions& options,
+                                      const TcnProgressCallback& progress = {});
+
+/// Writes the weight files: `path` (all joints) or joint_weight_path(path, j) (per joint).
+/// Returns the paths written.
+std::vector<std::string> write_compensator(const CompensatorTraining& training,
+                                           const std::filesystem::path& path);
+
+}  // namespace tpf::offline

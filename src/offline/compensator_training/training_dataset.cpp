@@ -1,0 +1,57 @@
+#include "offline/compensator_training/training_dataset.hpp"
+
+#include <cmath>
+
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+
+TcnSequence training_sequence(const EstimatorTrace& trace,
+                              const Eigen::VectorXd& effort_per_newton_metre, int joint) {
+  const Eigen::Index n = trace.residual.cols();
+  constexpr int channels = kCompensatorInputsPerJoint;
+  if (trace.inputs.cols() != channels * n || effort_per_newton_metre.size() != n || joint >= n)
+    throw Error::at("estimator trace", 0, "columns",
+                    "inputs, residual and effort scale sizes disagree");
+  TcnSequence s;
+  if (joint < 0) {
+    s.inputs = trace.inputs;
+    s.residual = trace.residual * effort_per_newton_metre.cwiseInverse().asDiagonal();
+    return s;
+  }
+  s.inputs.resize(trace.rows(), channels);
+  for (int c = 0; c < channels; ++c)
+    s.inputs.col(c) = trace.inputs.col(c * n + joint);
+  s.residual = trace.residual.col(joint) / effort_per_newton_metre[joint];
+  return s;
+}
+
+Eigen::MatrixXd regime_weights(const EstimatorTrace& trace, int joint, double static_weight,
+                               double static_to_kinetic_weight, const RegimeOptions& regimes) {
+  const Eigen::Index n = trace.dq.cols();
+  if (joint >= n || trace.t.size() != trace.dq.rows())
+    throw Error::at("estimator trace", 0, "columns", "joint or row counts disagree");
+  const int first = joint < 0 ? 0 : joint;
+  const int count = joint < 0 ? static_cast<int>(n) : 1;
+  Eigen::MatrixXd w = Eigen::MatrixXd::Ones(trace.rows(), count);
+  for (int c = 0; c < count; ++c) {
+    const std::vector<Regime> labels = label_regimes(trace.t, trace.dq.col(first + c), regimes);
+    for (Eigen::Index k = 0; k < trace.rows(); ++k) {
+      const Regime g = labels[static_cast<std::size_t>(k)];
+      if (g == Regime::StaticToKinetic) w(k, c) = static_to_kinetic_weight;
+      if (g == Regime::Static) w(k, c) = static_weight;
+    }
+  }
+  return w;
+}
+
+void scale_tcn_outputs(TcnParameters& p, const Eigen::VectorXd& scale) {
+  if (scale.size() != p.low_weight.rows())
+    throw Error::at("tcn parameters", 0, "outputs", "scale has the wrong size");
+  p.low_weight = scale.asDiagonal() * p.low_weight;
+  p.high_weight = scale.asDiagonal() * p.high_weight;
+  p.low_bias = p.low_bias.cwiseProduct(scale);
+  p.high_bias = p.high_bias.cwiseProduct(scale);
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,86 @@
+// The run-time estimator as the offline tools replay it over a log, for any arm: N joints
+// (compiled for 1 … kMaxJoints), the pad count of the layout (0: no skin), and the compensator
+// the weight files hold (none, one network for all joints, or one per joint) — the same core
+// Estimator a controller builds with load_estimator, only with the pad count chosen at start-up.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "offline/log/log.hpp"
+#include "offline/replay/any_compensator.hpp"
+#include "offline/replay/estimator_samples.hpp"
+#include "offline/replay/estimator_trace.hpp"
+#include "offline/replay/recording_compensator.hpp"
+#include "tpf/common/error.hpp"
+#include "tpf/estimation/load_estimator.hpp"
+#include "tpf/estimation/transition_sigma.hpp"
+
+namespace tpf::offline {
+
+/// The estimator the offline tools replay: N joints, the layout's pads (any count), the
+/// compensator the weight files hold (AnyCompensator), recording the input it was given.
+template <int N>
+using ReplayEstimator =
+    Estimator<double, N, Eigen::Dynamic, RecordingCompensator<AnyCompensator<N>, double, N>>;
+
+/// Start-up: builds the estimator of `setup` on the heap (its compensator's weights loaded) and
+/// returns use(estimator). Throws tpf::Error naming a weight file of a kind the tools are not
+/// compiled for.
+template <int N, typename Use>
+auto with_estimator(const EstimatorSetup<N>& s, Use&& use) {
+  auto e = std::make_unique<ReplayEstimator<N>>(s.nominal, s.pads, s.parameters);
+  e->compensator().inner.load(s.weights);
+  return use(*e);
+}
+
+/// Sensor noise the parameters are derived from.
+struct SensorNoise {
+  Eigen::VectorXd effort;  ///< per joint, effort unit
+  double pad_kpa = 0.0;    ///< raw pad pressure noise [kPa]
+};
+
+/// Noise read off a log: per joint, the robust std of the first difference of the effort over
+/// consecutive static rows (|q̇_j| < 1e-4 rad/s), divided by √2, σ = 1.4826·MAD(Δe)/√2; the pads'
+/// likewise over all pairs of rows of every pad column where both readings are off the sensor's
+/// rails (0, full scale: clipped readings repeat and would bias σ low; contacts are rare and slow
+/// against the noise); 0 without pads.
+/// Throws tpf::Error naming the log when a joint never rests.
+SensorNoise estimate_sensor_noise(const Log& log);
+
+/// Parameters from the noise: static dead band 3σ·√(1 + 1/5) (static_dead_band_from_noise with
+/// the tracker's 12.5 ms = 5-sample window), pad hysteresis levels from the pad noise
+/// (detector_settings_from_noise, 12-bit ADC step 0.0105 kPa), pad force gain for
+/// `pad_gain_kpa_per_n` on the 25 cm² reference pad. The transition σ stay 0 until calibrated.
+template <int N>
+EstimatorParameters<double, N> estimator_parameters_from_noise(const SensorNoise& noise,
+                                                               double pad_gain_kpa_per_n = 1.5);
+
+/// Runs the estimator of `setup` over `samples` (trace_estimator).
+template <int N>
+EstimatorTrace replay_estimator(const EstimatorSetup<N>& setup,
+                                const std::vector<ReplaySample<N>>& samples);
+
+/// The speeds a log covers, per joint: max |q̇_j| over its finite samples [rad/s] (0 when none).
+/// Run on the contact-free calibration log it bounds the compensator's domain
+/// (EstimatorParameters::compensator_speed_limit): the speeds over which its σ and the torque
+/// alarm were calibrated, and, with calibration and training drawn from one scenario, trained.
+template <int N>
+JointVector<double, N> speed_envelope(const std::vector<ReplaySample<N>>& samples);
+
+/// The accelerations a log covers, per joint: max |q̈_j| over the rows of its trace
+/// (replay_estimator) as the estimator computed it — the compensator's q̈ input: the sample's,
+/// or the filtered derivative of q̇ [rad/s²]. On the contact-free calibration log it bounds the
+/// compensator's domain with speed_envelope (EstimatorParameters::compensator_acceleration_limit).
+template <int N>
+JointVector<double, N> acceleration_envelope(const EstimatorTrace& tr);
+
+/// calibrate_transition_sigma on contact-free `samples` with the setup's compensator; the result
+/// is stored in setup.parameters (nominal_sigma, fused_sigma) and returned.
+template <int N>
+TransitionSigma<double, N> calibrate_sigma(EstimatorSetup<N>& setup,
+                                           const std::vector<ReplaySample<N>>& samples,
+                                           const std::string& source);
+
+}  // namespace tpf::offline
