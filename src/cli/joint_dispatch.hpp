@@ -9,7 +9,7 @@
 
 namespace tpf::cli {
 
-/// Calls `work.template operator()<N>()` with N = `joints` for N in 1..6, e.g.
+/// Calls `work.template operator()<N>()` with N = `joints` for N in 1..7, e.g.
 ///   with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, args); });
 /// Any other count is refused with a tpf::Error naming `source`.
 template <typename Work>
@@ -27,10 +27,12 @@ void with_joint_count(int joints, const std::string& source, Work&& work) {
       return std::forward<Work>(work).template operator()<5>();
     case 6:
       return std::forward<Work>(work).template operator()<6>();
+    case 7:
+      return std::forward<Work>(work).template operator()<7>();
     default:
       throw Error::at(
           source, 0, "",
-          "logs of 1 to 6 joints are supported, this one has " + std::to_string(joints));
+          "logs of 1 to 7 joints are supported, this one has " + std::to_string(joints));
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "offline/log/gzip.hpp"
 #include "offline/log/log_text.hpp"
 #include "tpf/common/error.hpp"
 
@@ -28,6 +29,10 @@ void format_rows(const Eigen::MatrixXd& values, Eigen::Index begin, Eigen::Index
 
 LogWriter::LogWriter(std::filesystem::path path, LogMetadata meta, std::vector<std::string> columns)
     : file_(std::move(path)), columns_(std::move(columns)) {
+  if (has_gzip_suffix(file_.path().string()))
+    throw Error::at(file_.path().string(), 0, "",
+                    "a streaming log cannot be written gzip-compressed: write .csv and gzip it "
+                    "after (every tool reads .csv.gz)");
   buffer_ = log_text::prelude(meta, columns_, file_.path().string());
   const auto t = std::find(columns_.begin(), columns_.end(), "t");
   if (t != columns_.end()) t_index_ = static_cast<int>(t - columns_.begin());
@@ -84,8 +89,17 @@ void write_log(const std::filesystem::path& path, const Log& log) {
         throw Error::at(path.string(), 0, "t",
                         "row " + std::to_string(r + 1) + " does not increase");
 
+  // A path ending in ".gz" gets the same text gzip-compressed (formatted in memory first).
+  const bool compress = has_gzip_suffix(path.string());
+  std::string text;
   AtomicFile file(path);
-  file.write(log_text::prelude(log.meta, log.columns, path.string()));
+  const auto emit = [&](std::string_view piece) {
+    if (compress)
+      text.append(piece);
+    else
+      file.write(piece);
+  };
+  emit(log_text::prelude(log.meta, log.columns, path.string()));
   // Two threads format alternate blocks of rows; the main thread writes them in order.
   constexpr Eigen::Index kBlock = 32768;
   std::string first, second;
@@ -100,9 +114,10 @@ void write_log(const std::filesystem::path& path, const Log& log) {
       format_rows(log.values, begin, middle, first);
       second.clear();
     }
-    file.write(first);
-    file.write(second);
+    emit(first);
+    emit(second);
   }
+  if (compress) file.write(gzip(text));
   file.commit();
 }
 
