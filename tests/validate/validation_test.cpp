@@ -120,9 +120,22 @@ TEST(Validate, ScoresAHeldOutLogExactly) {
   // friction: √((100·0.05² + 300·(0.4² + 0.05²)) / 400) = √0.1225 = 0.35 N·m.
   ASSERT_EQ(v.sensor.size(), 1u);
   EXPECT_EQ(v.sensor[0].samples, 400u);
-  EXPECT_NEAR(v.sensor[0].estimates[0], kSensorNoise, 1e-9);
-  EXPECT_NEAR(v.sensor[0].kt_only, 0.35, 1e-9);
-  EXPECT_NEAR(v.sensor[0].maker, kMakerOffset, 1e-9);
+  const SensorScore& sensor = v.sensor[0];
+  EXPECT_NEAR(sensor.estimates[0].valid.rmse, kSensorNoise, 1e-9);
+  EXPECT_NEAR(sensor.kt_only.valid.rmse, 0.35, 1e-9);
+  EXPECT_NEAR(sensor.maker.valid.rmse, kMakerOffset, 1e-9);
+  // Per regime: at rest K_t only is the sensor error alone, moving it carries 0.4 N·m friction.
+  EXPECT_NEAR(sensor.kt_only[Regime::Static].rmse, kSensorNoise, 1e-9);
+  double sum = 0.0;
+  int moving = 0;
+  for (int k = 0; k < 400; ++k)
+    if (samples.regimes[0][static_cast<std::size_t>(k)] == Regime::Moving) {
+      sum += std::pow(0.4 + (k % 4 < 2 ? kSensorNoise : -kSensorNoise), 2);
+      ++moving;
+    }
+  EXPECT_GT(moving, 250);
+  EXPECT_NEAR(sensor.kt_only[Regime::Moving].rmse, std::sqrt(sum / moving), 1e-9);
+  EXPECT_NEAR(sensor.estimates[0][Regime::Moving].rmse, kSensorNoise, 1e-9);
   ASSERT_EQ(v.sensor_notes.size(), 1u);
   EXPECT_NE(v.sensor_notes[0].find("b.csv.gz: flat"), std::string::npos) << v.sensor_notes[0];
   EXPECT_NE(validation_text(v).find("0.350"), std::string::npos) << validation_text(v);

@@ -13,10 +13,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double rms(double sum_squares, std::size_t n) {
-  return n == 0 ? kNaN : std::sqrt(sum_squares / static_cast<double>(n));
-}
-
 /// Identified armature of each joint: the base value of regressor column "Ia<j>" when that
 /// column is a base column of its own (0 otherwise).
 template <int N>
@@ -120,12 +116,10 @@ Validation score_estimates(const Log& log, const JointSamples& samples,
   const auto sensors = torque_sensor_columns(log, joints);
   v.sensor_notes = torque_sensor_report(log, joints);
   for (int j = 0; j < joints; ++j) {
-    SensorScore score;
-    score.estimates.assign(estimates.size(), 0.0);
     const int sensor = log.column(indexed_name("tau_sensor", j + 1));
     const int maker = log.column(indexed_name("tau_maker", j + 1));
-    double kt = 0.0, mk = 0.0;
-    std::vector<double> est(estimates.size(), 0.0);
+    Eigen::VectorXd kt = Eigen::VectorXd::Constant(log.rows(), kNaN), mk = kt;
+    std::vector<Eigen::VectorXd> est(estimates.size(), kt);
     for (std::size_t f = 0; f < log.file_count(); ++f) {
       if (!sensor_usable(sensors, f, j)) continue;
       const auto [begin, end] = log.file_rows(f);
@@ -133,17 +127,19 @@ Validation score_estimates(const Log& log, const JointSamples& samples,
         const double tau_sensor = log.values(k, sensor);
         if (!samples.valid[static_cast<std::size_t>(k)] || std::isnan(tau_sensor)) continue;
         const double drive = samples.effort(k, j) / effort_per_newton_metre[j];
-        ++score.samples;
-        kt += std::pow(drive - tau_sensor, 2);
-        mk += maker >= 0 ? std::pow(log.values(k, maker) - tau_sensor, 2) : kNaN;
+        kt[k] = drive - tau_sensor;
+        if (maker >= 0) mk[k] = log.values(k, maker) - tau_sensor;
         for (std::size_t e = 0; e < estimates.size(); ++e)
-          est[e] += std::pow(drive - estimates[e].drive_loss(k, j) - tau_sensor, 2);
+          est[e][k] = drive - estimates[e].drive_loss(k, j) - tau_sensor;
       }
     }
-    score.kt_only = rms(kt, score.samples);
-    score.maker = rms(mk, score.samples);
-    for (std::size_t e = 0; e < estimates.size(); ++e)
-      score.estimates[e] = rms(est[e], score.samples);
+    const std::vector<Regime>& labels = samples.regimes[static_cast<std::size_t>(j)];
+    SensorScore score;
+    score.kt_only = regime_stats(kt, labels);
+    score.maker = regime_stats(mk, labels);
+    for (const Eigen::VectorXd& r : est)
+      score.estimates.push_back(regime_stats(r, labels));
+    score.samples = score.kt_only.valid.count;
     v.sensor.push_back(score);
   }
   return v;
@@ -185,15 +181,28 @@ std::string validation_text(const Validation& v) {
       text += line;
       continue;
     }
-    std::snprintf(line, sizeof line, "  %5d %9zu %19.3f %9.3f", j + 1, s.samples, s.maker,
-                  s.kt_only);
+    std::snprintf(line, sizeof line, "  %5d %9zu %19.3f %9.3f", j + 1, s.samples,
+                  s.maker.valid.rmse, s.kt_only.valid.rmse);
     text += line;
     for (std::size_t e = 0; e < s.estimates.size(); ++e) {
       std::snprintf(line, sizeof line, " %*.3f", static_cast<int>(v.estimate_names[e].size()) + 7,
-                    s.estimates[e]);
+                    s.estimates[e].valid.rmse);
       text += line;
     }
     text += "\n";
+  }
+  text += "the same per regime [N*m]    static  static-to-kinetic   moving\n";
+  for (int j = 0; j < joints; ++j) {
+    const SensorScore& s = v.sensor[static_cast<std::size_t>(j)];
+    if (s.samples == 0) continue;
+    const auto row = [&](const std::string& name, const RegimeStats& r) {
+      std::snprintf(line, sizeof line, "  joint %d %-18s %9.3f %18.3f %8.3f\n", j + 1, name.c_str(),
+                    regime_rmse(r, 0), regime_rmse(r, 1), regime_rmse(r, 2));
+      text += line;
+    };
+    row("Kt only", s.kt_only);
+    for (std::size_t e = 0; e < s.estimates.size(); ++e)
+      row("Kt - " + v.estimate_names[e], s.estimates[e]);
   }
   return text;
 }
@@ -220,9 +229,16 @@ std::string validation_json(const Validation& v) {
     j["estimates"].push_back(est);
   }
   for (const SensorScore& s : v.sensor) {
-    json row{{"samples", s.samples}, {"maker", number(s.maker)}, {"kt_only", number(s.kt_only)}};
+    const auto by_regime = [&](const RegimeStats& r) {
+      json out;
+      for (int c = 0; c < 4; ++c)
+        out[kRegimeColumns[c]] = number(regime_rmse(r, c));
+      return out;
+    };
+    json row{
+        {"samples", s.samples}, {"maker", by_regime(s.maker)}, {"kt_only", by_regime(s.kt_only)}};
     for (std::size_t e = 0; e < s.estimates.size(); ++e)
-      row["estimates"].push_back(number(s.estimates[e]));
+      row["estimates"].push_back(by_regime(s.estimates[e]));
     j["sensor_rmse_newton_metre"].push_back(row);
   }
   return j.dump(2);

@@ -25,13 +25,13 @@ struct EffortEstimate {
   Eigen::MatrixXd drive_loss;
 };
 
-/// RMSE of the current-based joint torque against the torque sensor of one joint, N·m, over the
-/// samples where the sensor varies in its file (torque_sensor.hpp) and the sample is valid.
+/// The current-based joint torque against the torque sensor of one joint, N·m, per regime, over
+/// the samples where the sensor varies in its file (torque_sensor.hpp) and the sample is valid.
 struct SensorScore {
   std::size_t samples = 0;
-  double maker = 0.0;    ///< tau_maker − τ_sensor (the drive maker's own estimate; NaN: absent)
-  double kt_only = 0.0;  ///< K_t·i − τ_sensor
-  std::vector<double> estimates;  ///< per EffortEstimate: K_t·i − d − τ_sensor
+  RegimeStats maker;    ///< tau_maker − τ_sensor (the drive maker's own estimate; NaN: absent)
+  RegimeStats kt_only;  ///< K_t·i − τ_sensor
+  std::vector<RegimeStats> estimates;  ///< per EffortEstimate: K_t·i − d − τ_sensor
 };
 
 /// The validation of some estimates on one (possibly several-file) log.
