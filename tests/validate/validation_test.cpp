@@ -136,6 +136,10 @@ TEST(Validate, ScoresAHeldOutLogExactly) {
   EXPECT_GT(moving, 250);
   EXPECT_NEAR(sensor.kt_only[Regime::Moving].rmse, std::sqrt(sum / moving), 1e-9);
   EXPECT_NEAR(sensor.estimates[0][Regime::Moving].rmse, kSensorNoise, 1e-9);
+  ASSERT_EQ(sensor.by_file.size(), 2u);
+  EXPECT_NEAR(sensor.by_file[0][1], 0.35, 1e-9);
+  EXPECT_NEAR(sensor.by_file[0][2], kSensorNoise, 1e-9);
+  EXPECT_TRUE(std::isnan(sensor.by_file[1][1]));  // flat sensor: not scored
   ASSERT_EQ(v.sensor_notes.size(), 1u);
   EXPECT_NE(v.sensor_notes[0].find("b.csv.gz: flat"), std::string::npos) << v.sensor_notes[0];
   EXPECT_NE(validation_text(v).find("0.350"), std::string::npos) << validation_text(v);

@@ -29,7 +29,7 @@ std::string joint_ranges(const std::vector<int>& joints) {
     while (k + 1 < joints.size() && joints[k + 1] == joints[k] + 1)
       ++k;
     text.append(text.empty() ? "" : ", ").append(std::to_string(joints[i]));
-    if (k > i) text += "-" + std::to_string(joints[k]);
+    if (k > i) text.append("-").append(std::to_string(joints[k]));
     i = k + 1;
   }
   return text;

@@ -88,6 +88,8 @@ Validation score_estimates(const Log& log, const JointSamples& samples,
   Validation v;
   v.effort_unit = samples.effort_unit;
   v.simulated = samples.simulated;
+  for (std::size_t f = 0; f < log.file_count(); ++f)
+    v.files.push_back(log.file_path(f));
   for (const EffortEstimate& e : estimates) {
     v.estimate_names.push_back(e.name);
     const Eigen::MatrixXd residual = samples.effort - e.effort;
@@ -140,6 +142,17 @@ Validation score_estimates(const Log& log, const JointSamples& samples,
     for (const Eigen::VectorXd& r : est)
       score.estimates.push_back(regime_stats(r, labels));
     score.samples = score.kt_only.valid.count;
+    for (std::size_t f = 0; f < log.file_count(); ++f) {
+      const auto [begin, end] = log.file_rows(f);
+      const std::vector<Regime> file_labels(labels.begin() + begin, labels.begin() + end);
+      const auto rmse = [&](const Eigen::VectorXd& r) {
+        return regime_stats(r.segment(begin, end - begin), file_labels).valid.rmse;
+      };
+      std::vector<double> row{rmse(mk), rmse(kt)};
+      for (const Eigen::VectorXd& r : est)
+        row.push_back(rmse(r));
+      score.by_file.push_back(row);
+    }
     v.sensor.push_back(score);
   }
   return v;
@@ -204,6 +217,25 @@ std::string validation_text(const Validation& v) {
     for (std::size_t e = 0; e < s.estimates.size(); ++e)
       row("Kt - " + v.estimate_names[e], s.estimates[e]);
   }
+  if (v.files.size() < 2) return text;
+  text += "the same per file, all regimes [N*m]: Kt only";
+  for (const std::string& name : v.estimate_names)
+    text.append(" | Kt - ").append(name);
+  text += "\n";
+  for (std::size_t f = 0; f < v.files.size(); ++f) {
+    text.append("  ").append(v.files[f]).append("\n");
+    for (int j = 0; j < joints; ++j) {
+      const std::vector<double>& r = v.sensor[static_cast<std::size_t>(j)].by_file[f];
+      if (std::isnan(r[1])) continue;
+      std::snprintf(line, sizeof line, "    joint %d %8.3f", j + 1, r[1]);
+      text += line;
+      for (std::size_t c = 2; c < r.size(); ++c) {
+        std::snprintf(line, sizeof line, " | %8.3f", r[c]);
+        text += line;
+      }
+      text += "\n";
+    }
+  }
   return text;
 }
 
@@ -212,6 +244,7 @@ std::string validation_json(const Validation& v) {
   const auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
   json j;
   j["effort_unit"] = v.effort_unit;
+  j["files"] = v.files;
   j["simulated"] = v.simulated;
   j["notes"] = v.notes;
   j["sensor_notes"] = v.sensor_notes;
@@ -239,6 +272,14 @@ std::string validation_json(const Validation& v) {
         {"samples", s.samples}, {"maker", by_regime(s.maker)}, {"kt_only", by_regime(s.kt_only)}};
     for (std::size_t e = 0; e < s.estimates.size(); ++e)
       row["estimates"].push_back(by_regime(s.estimates[e]));
+    for (std::size_t f = 0; f < s.by_file.size(); ++f) {
+      json file{{"file", v.files[f]},
+                {"maker", number(s.by_file[f][0])},
+                {"kt_only", number(s.by_file[f][1])}};
+      for (std::size_t c = 2; c < s.by_file[f].size(); ++c)
+        file["estimates"].push_back(number(s.by_file[f][c]));
+      row["by_file"].push_back(file);
+    }
     j["sensor_rmse_newton_metre"].push_back(row);
   }
   return j.dump(2);

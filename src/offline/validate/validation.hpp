@@ -32,6 +32,9 @@ struct SensorScore {
   RegimeStats maker;    ///< tau_maker − τ_sensor (the drive maker's own estimate; NaN: absent)
   RegimeStats kt_only;  ///< K_t·i − τ_sensor
   std::vector<RegimeStats> estimates;  ///< per EffortEstimate: K_t·i − d − τ_sensor
+  /// [file]: RMSE over all regimes of that file, {maker, Kt only, estimates...} (NaN where the
+  /// file's sensor is not usable).
+  std::vector<std::vector<double>> by_file;
 };
 
 /// The validation of some estimates on one (possibly several-file) log.
@@ -39,6 +42,7 @@ struct Validation {
   std::string effort_unit;  ///< of the log
   bool simulated = false;
   std::vector<std::string> estimate_names;
+  std::vector<std::string> files;  ///< the log's file paths (Log::file_path)
   /// [estimate][joint]: effort − predicted effort per regime (all samples are held out).
   std::vector<std::vector<RegimeStats>> effort;
   /// [estimate][file][joint]: the same over all regimes of each file.
