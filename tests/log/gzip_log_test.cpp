@@ -65,7 +65,34 @@ TEST(GzipLog, WriteLogCompressesAGzPath) {
       << "the same text the plain writer writes";
   write_log(dir / "c.csv.gz", plain);
   EXPECT_EQ(read_text(dir / "c.csv.gz"), bytes);  // deterministic bytes
-  EXPECT_THROW(LogWriter(dir / "d.csv.gz", {}, {"t"}), Error);
+}
+
+TEST(GzipLog, StreamingWriterCompressesAsTheRowsCome) {
+  TempDir dir("gz_stream");
+  write_text(dir / "a.csv", small_log_text());
+  const Log plain = read_log(dir / "a.csv");
+  write_log(dir / "plain.csv", plain);
+  {
+    LogWriter writer(dir / "s.csv.gz", plain.meta, plain.columns);
+    std::vector<double> row(static_cast<std::size_t>(plain.values.cols()));
+    for (Eigen::Index r = 0; r < plain.rows(); ++r) {
+      for (Eigen::Index c = 0; c < plain.values.cols(); ++c)
+        row[static_cast<std::size_t>(c)] = plain.values(r, c);
+      writer.write_row(row);
+    }
+    writer.close();
+  }
+  const std::string bytes = read_text(dir / "s.csv.gz");
+  EXPECT_TRUE(is_gzip(bytes));
+  EXPECT_TRUE(gunzip(bytes, "s") == read_text(dir / "plain.csv"));
+  // Pieces through GzipStream are one member with the whole text.
+  GzipStream stream;
+  const std::string text = read_text(dir / "plain.csv");
+  std::string packed;
+  for (std::size_t at = 0; at < text.size(); at += 1000)
+    packed.append(stream.write(std::string_view(text).substr(at, 1000)));
+  packed.append(stream.finish());
+  EXPECT_TRUE(gunzip(packed, "pieces") == text);
 }
 
 TEST(GzipLog, CorruptOrTruncatedDataNamesTheFile) {

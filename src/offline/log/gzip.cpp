@@ -77,33 +77,58 @@ std::string gunzip(std::string_view compressed, std::string_view file) {
   return out;
 }
 
-std::string gzip(std::string_view text) {
+struct GzipStream::State {
   z_stream stream{};
-  if (deflateInit2(&stream, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+};
+
+GzipStream::GzipStream() : state_(new State) {
+  if (deflateInit2(&state_->stream, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+    delete state_;
     throw Error("gzip: cannot initialise zlib");
-  std::string out;
-  out.resize(deflateBound(&stream, static_cast<uLong>(std::min(text.size(), kChunk))) + 64);
-  std::size_t produced = 0, consumed = 0;
-  int code = Z_OK;
-  while (code != Z_STREAM_END) {
-    if (out.size() - produced < (1 << 16)) out.resize(2 * out.size());
+  }
+}
+
+GzipStream::~GzipStream() {
+  deflateEnd(&state_->stream);
+  delete state_;
+}
+
+std::string_view GzipStream::write(std::string_view text) {
+  return run(text, false);
+}
+
+std::string_view GzipStream::finish() {
+  return run({}, true);
+}
+
+std::string_view GzipStream::run(std::string_view text, bool last) {
+  z_stream& stream = state_->stream;
+  out_.clear();
+  std::size_t consumed = 0;
+  while (true) {
     const std::size_t in = std::min(text.size() - consumed, kChunk);
-    const std::size_t room = std::min(out.size() - produced, kChunk);
+    const bool final_piece = last && consumed + in == text.size();
+    std::size_t produced = out_.size();
+    out_.resize(produced + std::max<std::size_t>(deflateBound(&stream, in), 1 << 16));
     stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data() + consumed));
     stream.avail_in = static_cast<uInt>(in);
-    stream.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
-    stream.avail_out = static_cast<uInt>(room);
-    const bool last = consumed + in == text.size();
-    code = deflate(&stream, last ? Z_FINISH : Z_NO_FLUSH);
+    stream.next_out = reinterpret_cast<Bytef*>(out_.data() + produced);
+    stream.avail_out = static_cast<uInt>(std::min(out_.size() - produced, kChunk));
+    const uInt room = stream.avail_out;
+    const int code = deflate(&stream, final_piece ? Z_FINISH : Z_NO_FLUSH);
+    if (code == Z_STREAM_ERROR) throw Error("gzip: zlib failed to compress");
     consumed += in - stream.avail_in;
     produced += room - stream.avail_out;
-    if (code == Z_STREAM_ERROR) {
-      deflateEnd(&stream);
-      throw Error("gzip: zlib failed to compress");
-    }
+    out_.resize(produced);
+    if (final_piece ? code == Z_STREAM_END : consumed == text.size() && stream.avail_out > 0)
+      return out_;
   }
-  deflateEnd(&stream);
-  out.resize(produced);
+}
+
+std::string gzip(std::string_view text) {
+  GzipStream stream;
+  std::string out(stream.write(text));
+  out.append(stream.finish());
   return out;
 }
 

@@ -29,10 +29,7 @@ void format_rows(const Eigen::MatrixXd& values, Eigen::Index begin, Eigen::Index
 
 LogWriter::LogWriter(std::filesystem::path path, LogMetadata meta, std::vector<std::string> columns)
     : file_(std::move(path)), columns_(std::move(columns)) {
-  if (has_gzip_suffix(file_.path().string()))
-    throw Error::at(file_.path().string(), 0, "",
-                    "a streaming log cannot be written gzip-compressed: write .csv and gzip it "
-                    "after (every tool reads .csv.gz)");
+  if (has_gzip_suffix(file_.path().string())) gzip_ = std::make_unique<GzipStream>();
   buffer_ = log_text::prelude(meta, columns_, file_.path().string());
   const auto t = std::find(columns_.begin(), columns_.end(), "t");
   if (t != columns_.end()) t_index_ = static_cast<int>(t - columns_.begin());
@@ -63,13 +60,14 @@ void LogWriter::write_row(std::span<const double> row) {
 }
 
 void LogWriter::flush() {
-  file_.write(buffer_);
+  file_.write(gzip_ ? gzip_->write(buffer_) : std::string_view(buffer_));
   buffer_.clear();
 }
 
 void LogWriter::close() {
   if (file_.committed()) return;
   flush();
+  if (gzip_) file_.write(gzip_->finish());
   file_.commit();
 }
 
@@ -89,16 +87,11 @@ void write_log(const std::filesystem::path& path, const Log& log) {
         throw Error::at(path.string(), 0, "t",
                         "row " + std::to_string(r + 1) + " does not increase");
 
-  // A path ending in ".gz" gets the same text gzip-compressed (formatted in memory first).
-  const bool compress = has_gzip_suffix(path.string());
-  std::string text;
+  // A path ending in ".gz" gets the same text gzip-compressed.
+  std::unique_ptr<GzipStream> gzip;
+  if (has_gzip_suffix(path.string())) gzip = std::make_unique<GzipStream>();
   AtomicFile file(path);
-  const auto emit = [&](std::string_view piece) {
-    if (compress)
-      text.append(piece);
-    else
-      file.write(piece);
-  };
+  const auto emit = [&](std::string_view piece) { file.write(gzip ? gzip->write(piece) : piece); };
   emit(log_text::prelude(log.meta, log.columns, path.string()));
   // Two threads format alternate blocks of rows; the main thread writes them in order.
   constexpr Eigen::Index kBlock = 32768;
@@ -117,7 +110,7 @@ void write_log(const std::filesystem::path& path, const Log& log) {
     emit(first);
     emit(second);
   }
-  if (compress) file.write(gzip(text));
+  if (gzip) file.write(gzip->finish());
   file.commit();
 }
 

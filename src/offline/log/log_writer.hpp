@@ -3,10 +3,12 @@
 
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "offline/log/gzip.hpp"
 #include "offline/log/log.hpp"
 #include "offline/log/log_metadata.hpp"
 #include "tpf/common/atomic_file.hpp"
@@ -16,8 +18,8 @@ namespace tpf::offline {
 /// Streaming writer. Rows go to a temporary file beside `path`; close() renames it into place,
 /// so a crashed or abandoned recording never leaves a half-written log under `path`.
 /// Numbers are written in shortest round-trip form (write → read gives the same doubles);
-/// NaN is written as 'nan'. Metadata starts with '# tpf-log: 1'. A ".gz" path is refused (gzip
-/// the closed file; write_log compresses).
+/// NaN is written as 'nan'. Metadata starts with '# tpf-log: 1'. A path ending in ".gz" is
+/// written gzip-compressed as the rows come.
 class LogWriter {
  public:
   /// Throws tpf::Error when the file cannot be created or a column name is invalid.
@@ -39,6 +41,7 @@ class LogWriter {
   void flush();
 
   AtomicFile file_;
+  std::unique_ptr<GzipStream> gzip_;  ///< set for a ".gz" path
   std::vector<std::string> columns_;
   std::string buffer_;
   int t_index_ = -1;
