@@ -41,8 +41,11 @@ void run(const tpf::offline::Log& log, const ValidateArgs& a) {
               samples.simulated ? "SIMULATED" : "held out by log");
   std::printf("  %s; %zu samples skipped for a missing value\n",
               log.quality.summary(log.columns).c_str(), samples.invalid_count);
-  for (const std::string& n : notes)
-    std::printf("note: %s\n", n.c_str());
+  bool sensor = false;
+  for (const SensorScore& score : v.sensor)
+    sensor = sensor || score.samples > 0;
+  for (const std::string& n : notes)  // the armature matters only against a sensor
+    if (sensor || n.find("armature") == std::string::npos) std::printf("note: %s\n", n.c_str());
   std::printf("%s", validation_text(v).c_str());
   if (!a.json.empty()) {
     tpf::write_file_atomically(a.json, validation_json(v) + "\n");
