@@ -143,10 +143,12 @@ Validation score_estimates(const Log& log, const JointSamples& samples,
       score.estimates.push_back(regime_stats(r, labels));
     score.samples = score.kt_only.valid.count;
     for (std::size_t f = 0; f < log.file_count(); ++f) {
-      const auto [begin, end] = log.file_rows(f);
-      const std::vector<Regime> file_labels(labels.begin() + begin, labels.begin() + end);
+      const auto rows = log.file_rows(f);  // not a structured binding: lambdas capture it
+      const std::vector<Regime> file_labels(labels.begin() + rows.first,
+                                            labels.begin() + rows.second);
       const auto rmse = [&](const Eigen::VectorXd& r) {
-        return regime_stats(r.segment(begin, end - begin), file_labels).valid.rmse;
+        return regime_stats(r.segment(rows.first, rows.second - rows.first), file_labels)
+            .valid.rmse;
       };
       std::vector<double> row{rmse(mk), rmse(kt)};
       for (const Eigen::VectorXd& r : est)
