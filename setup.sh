@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev liburdfdom-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
-  nlohmann-json3-dev libceres-dev
+  nlohmann-json3-dev libceres-dev zlib1g-dev
   liborocos-kdl-dev libkdl-parser-dev   # peer for tests and benchmarks only
   clang libclang-rt-14-dev              # fuzzers and sanitizer build (reliability)
 )

@@ -5,19 +5,22 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
+#include "offline/log/read_logs.hpp"
+#include "offline/log/torque_sensor.hpp"
 #include "tpf/common/atomic_file.hpp"
-#include "offline/log/read_log.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
 
 namespace {
 
 struct DiagnoseArgs {
-  std::string log, robot, report, json, params;
+  std::vector<std::string> logs;
+  std::string robot, report, json, params;
   double static_velocity = 1e-4, min_improvement = 0.10;
   bool quiet = false;
 };
@@ -54,7 +57,7 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
     std::printf("wrote %s\n", a.json.c_str());
   }
   if (!a.params.empty()) {
-    tpf::save_nominal_model<N>(a.params, d.nominal, a.log, "");
+    tpf::save_nominal_model<N>(a.params, d.nominal, log.source, "");
     std::printf("wrote %s\n", a.params.c_str());
   }
 }
@@ -71,7 +74,10 @@ void register_diagnose_command(CLI::App& app) {
       "Fit the declared model, find which candidate physical effect (load-dependent friction, "
       "ripple, payload, temperature, spring, delay, coupling) explains the residual on held-out "
       "data, add it, refit and report before/after");
-  cmd->add_option("--log", a->log, "Log (tpf CSV)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--log", a->logs,
+                  "Log(s) (tpf CSV or .csv.gz); several are read as one, each file its own segment")
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("--robot", a->robot, "Robot file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--report", a->report, "HTML report to write");
   cmd->add_option("--json", a->json, "The same numbers as JSON");
@@ -83,7 +89,13 @@ void register_diagnose_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
-    const offline::Log log = offline::read_log(a->log);
+    std::vector<std::string> notes;
+    const offline::Log log = offline::read_logs(a->logs, &notes);
+    for (const std::string& n : notes)
+      std::printf("note: %s\n", n.c_str());
+    if (log.file_count() > 1) std::printf("%s\n", log.quality.summary(log.columns).c_str());
+    for (const std::string& line : offline::torque_sensor_report(log, log.joint_count()))
+      if (line.find("none") == std::string::npos) std::printf("%s\n", line.c_str());
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
   });
 }

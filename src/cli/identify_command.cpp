@@ -5,18 +5,21 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/identify/identify.hpp"
-#include "offline/log/read_log.hpp"
+#include "offline/log/read_logs.hpp"
+#include "offline/log/torque_sensor.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
 
 namespace {
 
 struct IdentifyArgs {
-  std::string log, robot, out;
+  std::vector<std::string> logs;
+  std::string robot, out;
   double static_velocity = 1e-4;
   bool no_load_friction = false, quiet = false;
 };
@@ -34,8 +37,8 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   const auto id = identify<N>(log, model, options);
   const auto& s = id.samples;
   std::printf("%s%s: %ld samples (%zu skipped for a missing value), effort in %s\n",
-              s.simulated ? "SIMULATED log " : "log ", a.log.c_str(), static_cast<long>(s.size()),
-              s.invalid_count, s.effort_unit.c_str());
+              s.simulated ? "SIMULATED log " : "log ", log.source.c_str(),
+              static_cast<long>(s.size()), s.invalid_count, s.effort_unit.c_str());
   std::printf("held-out residual RMSE [%s]     static  static-to-kinetic   moving      all\n",
               s.effort_unit.c_str());
   nlohmann::json fit;
@@ -55,7 +58,7 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   fit["consistent"] = id.consistency.consistent();
   fit["problems"] = id.consistency.problems;
   fit["simulated"] = s.simulated;
-  tpf::save_nominal_model<N>(a.out, id.nominal, a.log, fit.dump());
+  tpf::save_nominal_model<N>(a.out, id.nominal, log.source, fit.dump());
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("wrote %s (%.1f s)\n", a.out.c_str(), wall);
@@ -72,7 +75,9 @@ void register_identify_command(CLI::App& app) {
       "identify",
       "Identify rigid-body base parameters (with armature) and Stribeck + load-dependent friction "
       "from a log by weighted least squares and Ceres; validate on held-out blocks");
-  cmd->add_option("--log", a->log, "Log (tpf CSV; i<j> in mA or tau<j> in N·m)")
+  cmd->add_option("--log", a->logs,
+                  "Log(s) (tpf CSV or .csv.gz; i<j> in mA or tau<j> in N·m); several are read as "
+                  "one, each file its own segment")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--robot", a->robot, "Robot file, e.g. data/arm4.robot.json")
@@ -84,7 +89,13 @@ void register_identify_command(CLI::App& app) {
   cmd->add_flag("--no-load-friction", a->no_load_friction, "Keep α_c = α_v = 0");
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
-    const offline::Log log = offline::read_log(a->log);
+    std::vector<std::string> notes;
+    const offline::Log log = offline::read_logs(a->logs, &notes);
+    for (const std::string& n : notes)
+      std::printf("note: %s\n", n.c_str());
+    if (log.file_count() > 1) std::printf("%s\n", log.quality.summary(log.columns).c_str());
+    for (const std::string& line : offline::torque_sensor_report(log, log.joint_count()))
+      if (line.find("none") == std::string::npos) std::printf("%s\n", line.c_str());
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
   });
 }

@@ -374,5 +374,6 @@ template Diagnosis<3> diagnose<3>(const Log&, const Model<double, 3>&, const Dia
 template Diagnosis<4> diagnose<4>(const Log&, const Model<double, 4>&, const DiagnoseOptions&);
 template Diagnosis<5> diagnose<5>(const Log&, const Model<double, 5>&, const DiagnoseOptions&);
 template Diagnosis<6> diagnose<6>(const Log&, const Model<double, 6>&, const DiagnoseOptions&);
+template Diagnosis<7> diagnose<7>(const Log&, const Model<double, 7>&, const DiagnoseOptions&);
 
 }  // namespace tpf::offline

@@ -309,5 +309,6 @@ template class EffectDesign<3>;
 template class EffectDesign<4>;
 template class EffectDesign<5>;
 template class EffectDesign<6>;
+template class EffectDesign<7>;
 
 }  // namespace tpf::offline

@@ -29,8 +29,11 @@ Eigen::VectorXd solve_normal_equations(const Eigen::MatrixXd& A, const Eigen::Ve
   for (Eigen::Index a = 0; a < m; ++a)
     d[a] = A(a, a) > 0 ? 1.0 / std::sqrt(A(a, a)) : 0.0;
   const Eigen::MatrixXd As = d.asDiagonal() * A * d.asDiagonal();
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(As);
+  // The threshold must be set before compute(): Eigen sizes Z by the rank found at compute time,
+  // and a later, smaller threshold makes solve() read Z beyond it (uninitialised memory).
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(As.rows(), As.cols());
   cod.setThreshold(1e-11);
+  cod.compute(As);
   return d.asDiagonal() * cod.solve(Eigen::VectorXd(d.asDiagonal() * b));
 }
 

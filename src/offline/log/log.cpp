@@ -45,6 +45,24 @@ Eigen::Ref<Eigen::VectorXd> Log::col(std::string_view name) {
   return values.col(c);
 }
 
+std::pair<Eigen::Index, Eigen::Index> Log::file_rows(std::size_t f) const {
+  const Eigen::Index begin = file_starts.at(f);
+  const Eigen::Index end = f + 1 < file_starts.size() ? file_starts[f + 1] : rows();
+  return {begin, end};
+}
+
+std::string Log::file_path(std::size_t f) const {
+  const auto files = meta.get("files");
+  if (!files || file_starts.size() < 2) return source;
+  std::size_t start = 0;
+  for (std::size_t k = 0; k < f; ++k) {
+    start = files->find("; ", start);
+    if (start == std::string::npos) return source;
+    start += 2;
+  }
+  return files->substr(start, files->find("; ", start) - start);
+}
+
 int Log::joint_count() const {
   int n = 0;
   for (const auto& name : columns)

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "offline/log/log_metadata.hpp"
@@ -32,6 +33,12 @@ struct Log {
   Eigen::Ref<Eigen::VectorXd> col(std::string_view name);
   /// Number of samples.
   Eigen::Index rows() const { return values.rows(); }
+  /// Number of files the log was read from (file_starts.size()).
+  std::size_t file_count() const { return file_starts.size(); }
+  /// Rows [first, second) of file f.
+  std::pair<Eigen::Index, Eigen::Index> file_rows(std::size_t f) const;
+  /// Path of file f: from the 'files' metadata that read_logs writes, else `source`.
+  std::string file_path(std::size_t f) const;
 
   /// N, the largest j with q<j> present (0 when there is none). Throws tpf::Error naming the
   /// first missing column when any of q1..qN, dq1..dqN is absent.

@@ -10,10 +10,14 @@ std::size_t LogQuality::missing_total() const {
 }
 
 std::string LogQuality::summary(const std::vector<std::string>& columns) const {
-  char head[160];
-  std::snprintf(head, sizeof head, "%zu rows, %.1f s at %g Hz; %zu gap%s; ", rows, duration_s,
+  char head[200];
+  std::string text;
+  if (files > 1) text = std::to_string(files) + " files, ";
+  std::snprintf(head, sizeof head, "%zu rows, %.1f s at %g Hz; %zu gap%s", rows, duration_s,
                 rate_hz, gaps, gaps == 1 ? "" : "s");
-  std::string text = head;
+  text += head;
+  if (seams > 0) text += " (" + std::to_string(seams) + " between files)";
+  text += "; ";
   const std::size_t missing = missing_total();
   if (missing == 0) return text + "no missing values";
   text += std::to_string(missing) + " missing value" + (missing == 1 ? "" : "s");

@@ -16,12 +16,15 @@ struct LogQuality {
   std::size_t gaps = 0;                         ///< number of gaps
   std::vector<std::size_t> gap_rows;            ///< row index of the first sample after each gap
   double rate_hz = 0.0;     ///< rate used for gap detection (metadata, else median of dt)
-  double duration_s = 0.0;  ///< t.back() − t.front()
+  double duration_s = 0.0;  ///< t.back() − t.front() (several files: the sum of theirs)
+  std::size_t files = 1;    ///< files the log was read from (read_logs)
+  std::size_t seams = 0;    ///< of the gaps, those between two files (files − 1)
 
   /// Total number of missing values over all columns.
   std::size_t missing_total() const;
   /// One or two lines for the terminal, e.g.
-  /// "1440000 rows, 3600.0 s at 400 Hz; 12 gaps; 3 missing values (q2: 1, p3: 2)".
+  /// "1440000 rows, 3600.0 s at 400 Hz; 12 gaps; 3 missing values (q2: 1, p3: 2)"; a log of
+  /// several files begins "3 files, " and counts the seams: "4 gaps (2 between files)".
   /// `columns` names the entries of missing_per_column (pass Log::columns); may be empty.
   std::string summary(const std::vector<std::string>& columns) const;
   /// Same without column names.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "offline/log/gzip.hpp"
 #include "offline/log/log_text.hpp"
 #include "tpf/common/error.hpp"
 
@@ -28,6 +29,7 @@ void format_rows(const Eigen::MatrixXd& values, Eigen::Index begin, Eigen::Index
 
 LogWriter::LogWriter(std::filesystem::path path, LogMetadata meta, std::vector<std::string> columns)
     : file_(std::move(path)), columns_(std::move(columns)) {
+  if (has_gzip_suffix(file_.path().string())) gzip_ = std::make_unique<GzipStream>();
   buffer_ = log_text::prelude(meta, columns_, file_.path().string());
   const auto t = std::find(columns_.begin(), columns_.end(), "t");
   if (t != columns_.end()) t_index_ = static_cast<int>(t - columns_.begin());
@@ -58,13 +60,14 @@ void LogWriter::write_row(std::span<const double> row) {
 }
 
 void LogWriter::flush() {
-  file_.write(buffer_);
+  file_.write(gzip_ ? gzip_->write(buffer_) : std::string_view(buffer_));
   buffer_.clear();
 }
 
 void LogWriter::close() {
   if (file_.committed()) return;
   flush();
+  if (gzip_) file_.write(gzip_->finish());
   file_.commit();
 }
 
@@ -84,8 +87,12 @@ void write_log(const std::filesystem::path& path, const Log& log) {
         throw Error::at(path.string(), 0, "t",
                         "row " + std::to_string(r + 1) + " does not increase");
 
+  // A path ending in ".gz" gets the same text gzip-compressed.
+  std::unique_ptr<GzipStream> gzip;
+  if (has_gzip_suffix(path.string())) gzip = std::make_unique<GzipStream>();
   AtomicFile file(path);
-  file.write(log_text::prelude(log.meta, log.columns, path.string()));
+  const auto emit = [&](std::string_view piece) { file.write(gzip ? gzip->write(piece) : piece); };
+  emit(log_text::prelude(log.meta, log.columns, path.string()));
   // Two threads format alternate blocks of rows; the main thread writes them in order.
   constexpr Eigen::Index kBlock = 32768;
   std::string first, second;
@@ -100,9 +107,10 @@ void write_log(const std::filesystem::path& path, const Log& log) {
       format_rows(log.values, begin, middle, first);
       second.clear();
     }
-    file.write(first);
-    file.write(second);
+    emit(first);
+    emit(second);
   }
+  if (gzip) file.write(gzip->finish());
   file.commit();
 }
 

@@ -3,20 +3,23 @@
 
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "tpf/common/atomic_file.hpp"
+#include "offline/log/gzip.hpp"
 #include "offline/log/log.hpp"
 #include "offline/log/log_metadata.hpp"
+#include "tpf/common/atomic_file.hpp"
 
 namespace tpf::offline {
 
 /// Streaming writer. Rows go to a temporary file beside `path`; close() renames it into place,
 /// so a crashed or abandoned recording never leaves a half-written log under `path`.
 /// Numbers are written in shortest round-trip form (write → read gives the same doubles);
-/// NaN is written as 'nan'. Metadata starts with '# tpf-log: 1'.
+/// NaN is written as 'nan'. Metadata starts with '# tpf-log: 1'. A path ending in ".gz" is
+/// written gzip-compressed as the rows come.
 class LogWriter {
  public:
   /// Throws tpf::Error when the file cannot be created or a column name is invalid.
@@ -38,6 +41,7 @@ class LogWriter {
   void flush();
 
   AtomicFile file_;
+  std::unique_ptr<GzipStream> gzip_;  ///< set for a ".gz" path
   std::vector<std::string> columns_;
   std::string buffer_;
   int t_index_ = -1;
@@ -46,7 +50,8 @@ class LogWriter {
 };
 
 /// Writes `log` (metadata, columns, values) to `path` atomically (temporary + rename). Formats in
-/// parallel on two threads. Throws tpf::Error on I/O failure, invalid names or infinite values.
+/// parallel on two threads; a path ending in ".gz" is written gzip-compressed. Throws tpf::Error on
+/// I/O failure, invalid names or infinite values.
 void write_log(const std::filesystem::path& path, const Log& log);
 
 }  // namespace tpf::offline

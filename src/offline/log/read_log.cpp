@@ -13,6 +13,7 @@
 #include <set>
 #include <thread>
 
+#include "offline/log/gzip.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
 
@@ -23,12 +24,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Below this many bytes of data the second thread costs more than it saves.
 constexpr std::size_t kParallelBytes = 256 << 10;
 
-struct FileBytes {
-  std::unique_ptr<char[]> data;
-  std::size_t size = 0;
-};
-
-FileBytes read_whole_file(const std::filesystem::path& path) {
+/// The whole file as text (gunzipped when it starts with the gzip magic), with a '\n' sentinel
+/// after the last byte so that every scan stops at a line end.
+std::string read_whole_file(const std::filesystem::path& path) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                        &std::fclose);
   if (!file)
@@ -36,10 +34,15 @@ FileBytes read_whole_file(const std::filesystem::path& path) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw Error::at(path.string(), 0, "", "cannot read size: " + ec.message());
-  FileBytes bytes{std::unique_ptr<char[]>(new char[size + 1]), static_cast<std::size_t>(size)};
-  if (std::fread(bytes.data.get(), 1, bytes.size, file.get()) != bytes.size)
+  std::string bytes;
+  bytes.resize(static_cast<std::size_t>(size) + 1);
+  if (std::fread(bytes.data(), 1, size, file.get()) != size)
     throw Error::at(path.string(), 0, "", "read failed (file changed while reading?)");
-  bytes.data[bytes.size] = '\n';  // sentinel: every scan stops at a line end
+  bytes.back() = '\n';
+  if (is_gzip(bytes)) {
+    bytes = gunzip(std::string_view(bytes).substr(0, size), path.string());
+    bytes.push_back('\n');
+  }
   return bytes;
 }
 
@@ -87,14 +90,15 @@ std::size_t count_fields(const char* begin, const char* end) {
 }
 
 /// Parses lines in [begin, end) (each ending in '\n', except possibly the last) into rows
-/// first_row.. of `values`. Stops at the first malformed line. Never throws.
+/// first_row.. of `values`: field c goes to column target[c] of `values`, or is skipped unparsed
+/// when target[c] < 0 (its count still checked). Stops at the first malformed line. Never throws.
 void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool ends_mid_line,
-                 Eigen::MatrixXd& values, ChunkResult& result) {
+                 const std::vector<int>& target, Eigen::MatrixXd& values, ChunkResult& result) {
   try {
-    const std::size_t columns = static_cast<std::size_t>(values.cols());
+    const std::size_t columns = target.size();
     const std::size_t rows = static_cast<std::size_t>(values.rows());
     double* const data = values.data();
-    result.missing.assign(columns, 0);
+    result.missing.assign(static_cast<std::size_t>(values.cols()), 0);
     std::size_t row = first_row;
     const char* p = begin;
     while (p < end) {
@@ -110,7 +114,10 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
           ++field;
         double value = kNaN;
         const char* after = field;
-        if (field < content_end && *field != ',') {
+        if (target[c] < 0) {
+          after = static_cast<const char*>(std::memchr(field, ',', content_end - field));
+          if (after == nullptr) after = content_end;
+        } else if (field < content_end && *field != ',') {
           const char* number = (*field == '+') ? field + 1 : field;
           const auto [ptr, ec] = std::from_chars(number, content_end, value);
           after = ptr;
@@ -130,11 +137,13 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
             return;
           }
         }
-        if (std::isnan(value)) {
-          value = kNaN;
-          ++result.missing[c];
+        if (target[c] >= 0) {
+          if (std::isnan(value)) {
+            value = kNaN;
+            ++result.missing[static_cast<std::size_t>(target[c])];
+          }
+          data[static_cast<std::size_t>(target[c]) * rows + row] = value;
         }
-        data[c * rows + row] = value;
         const bool last = c + 1 == columns;
         if (!last && after >= content_end) {
           const std::size_t found = count_fields(p, content_end);
@@ -166,19 +175,20 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
 
 }  // namespace
 
-Log read_log(const std::filesystem::path& path) {
+CsvTable read_csv_table(const std::filesystem::path& path,
+                        const std::vector<std::string>* keep_columns) {
   const std::string file = path.string();
-  const FileBytes bytes = read_whole_file(path);
-  const std::string_view text(bytes.data.get(), bytes.size);
+  const std::string bytes = read_whole_file(path);
+  const std::string_view text(bytes.data(), bytes.size() - 1);  // without the sentinel
 
-  Log log;
+  CsvTable table;
+  Log& log = table.log;
   log.source = file;
 
   // Metadata lines, then the header.
   std::size_t pos =
       text.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // UTF-8 byte-order mark (spreadsheets)
   long line_no = 0;
-  long version_line = 0, rate_line = 0;
   std::string_view header;
   bool have_header = false;
   while (pos < text.size()) {
@@ -192,54 +202,48 @@ Log read_log(const std::filesystem::path& path) {
     }
     const std::string_view body = trim(line.substr(1));
     const std::size_t colon = body.find(':');
+    table.metadata_lines.push_back(line_no);
     if (colon == std::string_view::npos) {
       log.meta.entries.emplace_back(std::string(), std::string(body));
       continue;
     }
-    const std::string key(trim(body.substr(0, colon)));
-    if (key == "tpf-log") version_line = line_no;
-    if (key == "rate_hz") rate_line = line_no;
-    log.meta.entries.emplace_back(key, std::string(trim(body.substr(colon + 1))));
+    log.meta.entries.emplace_back(std::string(trim(body.substr(0, colon))),
+                                  std::string(trim(body.substr(colon + 1))));
   }
   if (!have_header)
     throw Error::at(
         file, 0, "",
         text.empty() ? "the file is empty (no header line)" : "no header line after the metadata");
-  try {
-    const int version = log.meta.version();
-    if (version > 1)
-      throw Error::at(file, version_line, "tpf-log",
-                      concat({"version ", std::to_string(version),
-                              " is newer than this reader understands (1); update tpf"}));
-  } catch (const Error& e) {
-    if (version_line > 0 && std::string_view(e.what()).substr(0, file.size()) == file) throw;
-    throw Error::at(file, version_line, "tpf-log", "not a version number");
-  }
-  try {
-    static_cast<void>(log.meta.rate_hz());
-  } catch (const Error&) {
-    throw Error::at(file, rate_line, "rate_hz",
-                    concat({"'", *log.meta.get("rate_hz"), "' is not a positive number"}));
-  }
 
-  // Header: names, unique, non-empty, with t.
-  const long header_line = line_no;
+  // Header: names, unique, non-empty (a name in double quotes loses them).
+  table.header_line = line_no;
+  std::vector<std::string> names;
   {
     std::set<std::string_view> seen;
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = std::min(header.find(',', start), header.size());
-      const std::string_view name = trim(header.substr(start, comma - start));
-      const std::string where = "column " + std::to_string(log.columns.size() + 1);
-      if (name.empty()) throw Error::at(file, header_line, where, "empty column name");
+      std::string_view name = trim(header.substr(start, comma - start));
+      if (name.size() >= 2 && name.front() == '"' && name.back() == '"')
+        name = trim(name.substr(1, name.size() - 2));
+      const std::string where = "column " + std::to_string(names.size() + 1);
+      if (name.empty()) throw Error::at(file, table.header_line, where, "empty column name");
       if (!seen.insert(name).second)
-        throw Error::at(file, header_line, std::string(name), "column name appears twice");
-      log.columns.emplace_back(name);
+        throw Error::at(file, table.header_line, std::string(name), "column name appears twice");
+      names.emplace_back(name);
       if (comma == header.size()) break;
       start = comma + 1;
     }
   }
-  if (!log.has("t")) throw Error::at(file, header_line, "t", "the required time column is missing");
+  std::vector<int> target(names.size(), -1);
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    const bool keep =
+        keep_columns == nullptr ||
+        std::find(keep_columns->begin(), keep_columns->end(), names[c]) != keep_columns->end();
+    if (!keep) continue;
+    target[c] = static_cast<int>(log.columns.size());
+    log.columns.push_back(names[c]);
+  }
 
   // Data region: drop trailing blank lines; a last line without '\n' may be cut off.
   const char* const data_begin = text.data() + std::min(pos, text.size());
@@ -251,7 +255,7 @@ Log read_log(const std::filesystem::path& path) {
   const std::size_t rows =
       data_end > data_begin ? 1 + static_cast<std::size_t>(std::count(data_begin, data_end, '\n'))
                             : 0;
-  const long first_data_line = header_line + 1;
+  table.first_data_line = table.header_line + 1;
   const std::size_t columns = log.columns.size();
   log.values.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(columns));
 
@@ -266,26 +270,62 @@ Log read_log(const std::filesystem::path& path) {
   }
   ChunkResult first, second;
   if (split < data_end) {
-    std::thread helper(
-        [&] { parse_chunk(split, data_end, second_first_row, ends_mid_line, log.values, second); });
-    parse_chunk(data_begin, split, 0, false, log.values, first);
+    std::thread helper([&] {
+      parse_chunk(split, data_end, second_first_row, ends_mid_line, target, log.values, second);
+    });
+    parse_chunk(data_begin, split, 0, false, target, log.values, first);
     helper.join();
   } else {
-    parse_chunk(data_begin, data_end, 0, ends_mid_line, log.values, first);
+    parse_chunk(data_begin, data_end, 0, ends_mid_line, target, log.values, first);
     second.missing.assign(columns, 0);
   }
   for (const ChunkResult* chunk : {&first, &second})
     if (chunk->exception) std::rethrow_exception(chunk->exception);
   const ParseError& error = first.error.row <= second.error.row ? first.error : second.error;
   if (!error.message.empty())
-    throw Error::at(file, first_data_line + static_cast<long>(error.row),
-                    error.column >= 0 ? log.columns[static_cast<std::size_t>(error.column)] : "",
+    throw Error::at(file, table.first_data_line + static_cast<long>(error.row),
+                    error.column >= 0 ? names[static_cast<std::size_t>(error.column)] : "",
                     error.message);
+  log.quality.rows = rows;
+  log.quality.missing_per_column.resize(columns);
+  for (std::size_t c = 0; c < columns; ++c)
+    log.quality.missing_per_column[c] = first.missing[c] + second.missing[c];
+  return table;
+}
+
+Log read_log(const std::filesystem::path& path) {
+  CsvTable table = read_csv_table(path);
+  Log& log = table.log;
+  const std::string& file = log.source;
+  const auto line_of = [&](std::string_view key) {
+    for (std::size_t e = 0; e < log.meta.entries.size(); ++e)
+      if (log.meta.entries[e].first == key) return table.metadata_lines[e];
+    return 0L;
+  };
+  const long version_line = line_of("tpf-log");
+  try {
+    const int version = log.meta.version();
+    if (version > 1)
+      throw Error::at(file, version_line, "tpf-log",
+                      concat({"version ", std::to_string(version),
+                              " is newer than this reader understands (1); update tpf"}));
+  } catch (const Error& e) {
+    if (version_line > 0 && std::string_view(e.what()).substr(0, file.size()) == file) throw;
+    throw Error::at(file, version_line, "tpf-log", "not a version number");
+  }
+  try {
+    static_cast<void>(log.meta.rate_hz());
+  } catch (const Error&) {
+    throw Error::at(file, line_of("rate_hz"), "rate_hz",
+                    concat({"'", *log.meta.get("rate_hz"), "' is not a positive number"}));
+  }
+  if (!log.has("t"))
+    throw Error::at(file, table.header_line, "t", "the required time column is missing");
 
   // Time: present on every line and increasing.
   const Eigen::VectorXd t = log.col("t");
   for (Eigen::Index r = 0; r < t.size(); ++r) {
-    const long line = first_data_line + static_cast<long>(r);
+    const long line = table.first_data_line + static_cast<long>(r);
     if (std::isnan(t[r])) throw Error::at(file, line, "t", "the sample time is missing");
     if (r > 0 && !(t[r] > t[r - 1])) {
       char message[160];
@@ -295,15 +335,11 @@ Log read_log(const std::filesystem::path& path) {
     }
   }
 
-  // Quality: missing values and gaps (dt > 1.5 / rate).
+  // Quality: gaps (dt > 1.5 / rate).
   LogQuality& quality = log.quality;
-  quality.rows = rows;
-  quality.missing_per_column.resize(columns);
-  for (std::size_t c = 0; c < columns; ++c)
-    quality.missing_per_column[c] = first.missing[c] + second.missing[c];
   const double rate = log.meta.rate_hz();
   quality.rate_hz = std::isnan(rate) ? 1.0 / median_step(t) : rate;
-  if (rows > 1) {
+  if (t.size() > 1) {
     quality.duration_s = t[t.size() - 1] - t[0];
     const double gap_step = 1.5 / quality.rate_hz;
     for (Eigen::Index r = 1; r < t.size(); ++r)
@@ -312,7 +348,7 @@ Log read_log(const std::filesystem::path& path) {
     quality.rate_hz = std::isnan(rate) ? 0.0 : rate;
   }
   quality.gaps = quality.gap_rows.size();
-  return log;
+  return std::move(table.log);
 }
 
 }  // namespace tpf::offline

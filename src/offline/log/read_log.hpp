@@ -1,20 +1,39 @@
-// Reading tpf logs (docs/log-format.md; implementation notes in docs/log-format-notes.md).
+// Reading tpf logs (docs/log-format.md; implementation notes in docs/log-format-notes.md), and
+// the plain numeric CSV tables `tpf import` brings in.
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "offline/log/log.hpp"
 
 namespace tpf::offline {
 
 /// Reads a tpf log: '#' metadata, a header line, then comma-separated decimal numbers.
+/// - a file that starts with the gzip magic (.csv.gz) is decompressed first;
 /// - column order is free; unknown columns are kept; a 't' column is required;
 /// - an empty field or 'nan' is a missing value: NaN in `values`, counted in `quality`;
 /// - gaps (dt > 1.5 / rate, rate from 'rate_hz' or else the median dt) are counted in `quality`;
 /// - errors name file, line and column: a 'tpf-log' major version > 1, a wrong field count, text
 ///   where a number belongs, an infinite value, a line cut off at the end of the file, a missing
-///   or non-increasing t.
+///   or non-increasing t, corrupt or truncated gzip data.
 /// Reads the file with one read and parses it on two threads.
 Log read_log(const std::filesystem::path& path);
+
+/// A numeric CSV file as read_csv_table found it, with the line numbers errors need.
+struct CsvTable {
+  Log log;  ///< source, '#' metadata, the kept columns in file order, values, missing counts
+  std::vector<long> metadata_lines;  ///< line of each log.meta entry
+  long header_line = 0;
+  long first_data_line = 0;  ///< line of row 0; row r is on line first_data_line + r
+};
+
+/// The table layer of read_log, with no requirement on column names or time: '#' lines before
+/// the header, the header, then numbers (gzip as read_log). Only the columns named in
+/// `keep_columns` are parsed and kept (all when null); the others are skipped unparsed, so they
+/// may hold text, but every line still needs the header's field count. Errors as read_log's.
+CsvTable read_csv_table(const std::filesystem::path& path,
+                        const std::vector<std::string>* keep_columns = nullptr);
 
 }  // namespace tpf::offline

@@ -1,0 +1,91 @@
+// `tpf validate`: a saved parameter file applied to other logs (held out by log): effort RMSE per
+// joint and regime in the log's unit, and current-based joint torque against the torque sensor.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "joint_dispatch.hpp"
+#include "offline/identify/joint_samples.hpp"
+#include "offline/log/read_logs.hpp"
+#include "offline/validate/validation.hpp"
+#include "tpf/common/atomic_file.hpp"
+#include "tpf/estimation/nominal_model.hpp"
+
+namespace {
+
+struct ValidateArgs {
+  std::string params, robot, json;
+  std::vector<std::string> logs;
+  double static_velocity = 1e-4;
+};
+
+template <int N>
+void run(const tpf::offline::Log& log, const ValidateArgs& a) {
+  using namespace tpf::offline;
+  const auto nominal = tpf::load_nominal_model<N>(a.params, a.robot);
+  SampleOptions options;
+  options.regimes.static_velocity = a.static_velocity;
+  const JointSamples samples = extract_joint_samples(log, options);
+  if (samples.effort_unit != nominal.effort_unit)
+    throw tpf::Error(a.params + ": the model predicts " + nominal.effort_unit + ", the log " +
+                     log.source + " holds " + samples.effort_unit);
+  std::vector<std::string> notes;
+  // One column per estimate; the compensator (--weights) becomes one more here.
+  const std::vector<EffortEstimate> estimates{nominal_estimate<N>(nominal, samples, notes)};
+  Validation v = score_estimates(log, samples, estimates, nominal.effort_per_newton_metre);
+  v.notes = notes;
+  std::printf("validate: %s on %s (%s)\n", a.params.c_str(), log.source.c_str(),
+              samples.simulated ? "SIMULATED" : "held out by log");
+  std::printf("  %s; %zu samples skipped for a missing value\n",
+              log.quality.summary(log.columns).c_str(), samples.invalid_count);
+  bool sensor = false;
+  for (const SensorScore& score : v.sensor)
+    sensor = sensor || score.samples > 0;
+  for (const std::string& n : notes)  // the armature matters only against a sensor
+    if (sensor || n.find("armature") == std::string::npos) std::printf("note: %s\n", n.c_str());
+  std::printf("%s", validation_text(v).c_str());
+  if (!a.json.empty()) {
+    tpf::write_file_atomically(a.json, validation_json(v) + "\n");
+    std::printf("wrote %s\n", a.json.c_str());
+  }
+}
+
+}  // namespace
+
+namespace tpf::cli {
+
+void register_validate_command(CLI::App& app) {
+  auto a = std::make_shared<ValidateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "validate",
+      "Apply a saved parameter file to other logs (held out by log: none of them was fitted on) "
+      "and print the effort RMSE per joint and regime in the log's unit, and, where the log has "
+      "a joint torque sensor (tau_sensor<j>), the RMSE of the current-based joint torque "
+      "Kt*i - friction - armature*q'' against it (Kt only and the maker's tau_maker<j> beside)");
+  cmd->add_option("--params", a->params, "Parameter file (tpf-params) from identify/diagnose")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--robot", a->robot, "Robot file the parameters were identified for")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--log", a->logs,
+                  "Held-out log(s) (.csv or .csv.gz); several are scored "
+                  "together, each its own segment")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--json", a->json, "The same numbers as JSON");
+  cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
+      ->capture_default_str();
+  cmd->callback([a] {
+    std::vector<std::string> notes;
+    const offline::Log log = offline::read_logs(a->logs, &notes);
+    for (const std::string& n : notes)
+      std::printf("note: %s\n", n.c_str());
+    with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
+  });
+}
+
+}  // namespace tpf::cli

@@ -1,0 +1,43 @@
+// `tpf import`: a foreign CSV (plain or .gz) → a tpf log, driven by an ImportMap.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "offline/log/import_map.hpp"
+#include "offline/log/log.hpp"
+
+namespace tpf::offline {
+
+/// What the import found in the file's time stamps and did about them (docs/log-format.md,
+/// "Importing"). Nothing is dropped or changed without being counted here.
+struct ImportReport {
+  std::size_t rows_read = 0;
+  std::size_t rows_written = 0;
+  std::size_t not_increasing = 0;  ///< rows dropped: time equal to or before the kept row before
+  long first_not_increasing_line = 0;
+  double nominal_step_s = 0.0;      ///< 1 / rate_hz of the map, else the median step
+  std::size_t irregular_steps = 0;  ///< kept steps off the nominal one by more than 10 %
+  std::size_t gap_steps = 0;        ///< of those, steps > 1.5 × nominal (gaps tools split at)
+  double largest_step_s = 0.0;
+  long largest_step_line = 0;        ///< line of the row after the largest step
+  bool made_regular = false;         ///< rule "regular": t rewritten as k / rate_hz
+  double regular_max_shift_s = 0.0;  ///< largest |t_recorded − t_regular| (rule "regular")
+
+  /// Lines for the terminal, e.g. "time: 1942 rows, step 0.001 s: 0 irregular steps".
+  std::vector<std::string> lines() const;
+};
+
+/// Reads `csv` (only the columns the map names; others may hold text) and builds the tpf log:
+/// t [s], then per tpf joint k the map's families in the log format's units (q1..qN, dq1..dqN,
+/// i<k> in mA or tau<k> in N·m, tau_sensor<k>, tau_maker<k>, temp<k>), metadata from the map,
+/// rate_hz, and where it came from. Time rule: rows whose time does not increase are dropped and
+/// counted; steps are kept as recorded (rule "keep": a step > 1.5 nominal stays a gap) or
+/// rewritten on the regular grid (rule "regular"); `report` says how many of each.
+/// Throws tpf::Error naming the file, line and column: a column of the map missing from the
+/// header, a missing time, text in a mapped column, a wrong field count, corrupt gzip.
+Log import_log(const std::filesystem::path& csv, const ImportMap& map, ImportReport& report);
+
+}  // namespace tpf::offline

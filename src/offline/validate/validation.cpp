@@ -1,0 +1,302 @@
+#include "offline/validate/validation.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "offline/log/torque_sensor.hpp"
+#include "tpf/common/error.hpp"
+
+namespace tpf::offline {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Identified armature of each joint: the base value of regressor column "Ia<j>" when that
+/// column is a base column of its own (0 otherwise).
+template <int N>
+JointVector<double, N> identified_armature(const NominalModel<double, N>& nominal,
+                                           std::vector<std::string>& notes) {
+  JointVector<double, N> armature = JointVector<double, N>::Zero();
+  std::vector<bool> found(N, false);
+  for (int i = 0; i < nominal.base_count; ++i) {
+    const int c = nominal.base_columns[static_cast<std::size_t>(i)];
+    if (c >= 10 * N && c < 11 * N) {
+      armature[c - 10 * N] = nominal.base_values[i];
+      found[static_cast<std::size_t>(c - 10 * N)] = true;
+    }
+  }
+  for (int j = 0; j < N; ++j)
+    if (!found[static_cast<std::size_t>(j)])
+      notes.push_back("joint " + std::to_string(j + 1) +
+                      ": the armature is grouped with a link inertia in the base parameters; "
+                      "the drive loss against the torque sensor leaves I_a·q̈ out");
+  return armature;
+}
+
+const char* const kRegimeColumns[] = {"static", "static-to-kinetic", "moving", "all"};
+
+double regime_rmse(const RegimeStats& s, int column) {
+  return column == 3 ? s.valid.rmse : s.by_regime[static_cast<std::size_t>(column)].rmse;
+}
+
+}  // namespace
+
+template <int N>
+EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const JointSamples& samples,
+                                std::vector<std::string>& notes) {
+  if (nominal.added.effort_lead_s != 0.0)
+    throw Error(
+        "the parameter file holds effort_lead_s (the delay effect), which validate does "
+        "not evaluate");
+  const bool thermal = nominal.added.thermal_viscous.any();
+  const bool has_temperature = samples.temperature.cols() == N;
+  if (thermal && !has_temperature)
+    notes.push_back("the model's thermal friction is left out: the log has no temp<j> columns");
+  const JointVector<double, N> armature = identified_armature(nominal, notes);
+  const NominalLinks<double, N> links = nominal_links(nominal);
+  Data<double, N> data;
+  EffortEstimate e;
+  e.name = "nominal model";
+  e.effort.setConstant(samples.size(), N, kNaN);
+  e.drive_loss.setConstant(samples.size(), N, kNaN);
+  JointVector<double, N> rigid, friction;
+  for (Eigen::Index k = 0; k < samples.size(); ++k) {
+    if (!samples.valid[static_cast<std::size_t>(k)]) continue;
+    const JointVector<double, N> q = samples.q.row(k).transpose();
+    const JointVector<double, N> dq = samples.dq.row(k).transpose();
+    const JointVector<double, N> ddq = samples.ddq.row(k).transpose();
+    predict_effort(nominal, links, data, q, dq, ddq, rigid, friction);
+    if (thermal && has_temperature)
+      friction += thermal_friction(nominal, dq, samples.temperature.row(k).transpose());
+    e.effort.row(k) = (rigid + friction).transpose();
+    e.drive_loss.row(k) =
+        (friction.cwiseQuotient(nominal.effort_per_newton_metre) + armature.cwiseProduct(ddq))
+            .transpose();
+  }
+  return e;
+}
+
+Validation score_estimates(const Log& log, const JointSamples& samples,
+                           const std::vector<EffortEstimate>& estimates,
+                           const Eigen::VectorXd& effort_per_newton_metre) {
+  const int joints = samples.joints();
+  if (log.rows() != samples.size())
+    throw Error(log.source + ": the samples are not this log's (" + std::to_string(samples.size()) +
+                " for " + std::to_string(log.rows()) + " rows)");
+  Validation v;
+  v.effort_unit = samples.effort_unit;
+  v.simulated = samples.simulated;
+  for (std::size_t f = 0; f < log.file_count(); ++f)
+    v.files.push_back(log.file_path(f));
+  for (const EffortEstimate& e : estimates) {
+    v.estimate_names.push_back(e.name);
+    const Eigen::MatrixXd residual = samples.effort - e.effort;
+    std::vector<RegimeStats> per_joint;
+    for (int j = 0; j < joints; ++j)
+      per_joint.push_back(
+          regime_stats(residual.col(j), samples.regimes[static_cast<std::size_t>(j)]));
+    v.effort.push_back(per_joint);
+    std::vector<std::vector<ResidualStats>> per_file;
+    for (std::size_t f = 0; f < log.file_count(); ++f) {
+      const auto [begin, end] = log.file_rows(f);
+      std::vector<ResidualStats> files;
+      for (int j = 0; j < joints; ++j) {
+        const Eigen::VectorXd r = residual.col(j).segment(begin, end - begin);
+        const std::vector<Regime> labels(
+            samples.regimes[static_cast<std::size_t>(j)].begin() + begin,
+            samples.regimes[static_cast<std::size_t>(j)].begin() + end);
+        files.push_back(regime_stats(r, labels).valid);
+      }
+      per_file.push_back(files);
+    }
+    v.effort_by_file.push_back(per_file);
+  }
+
+  // Against the torque sensor: K_t·i − d − τ_sensor on valid samples of files where it varies.
+  const auto sensors = torque_sensor_columns(log, joints);
+  v.sensor_notes = torque_sensor_report(log, joints);
+  for (int j = 0; j < joints; ++j) {
+    const int sensor = log.column(indexed_name("tau_sensor", j + 1));
+    const int maker = log.column(indexed_name("tau_maker", j + 1));
+    Eigen::VectorXd kt = Eigen::VectorXd::Constant(log.rows(), kNaN), mk = kt;
+    std::vector<Eigen::VectorXd> est(estimates.size(), kt);
+    for (std::size_t f = 0; f < log.file_count(); ++f) {
+      if (!sensor_usable(sensors, f, j)) continue;
+      const auto [begin, end] = log.file_rows(f);
+      for (Eigen::Index k = begin; k < end; ++k) {
+        const double tau_sensor = log.values(k, sensor);
+        if (!samples.valid[static_cast<std::size_t>(k)] || std::isnan(tau_sensor)) continue;
+        const double drive = samples.effort(k, j) / effort_per_newton_metre[j];
+        kt[k] = drive - tau_sensor;
+        if (maker >= 0) mk[k] = log.values(k, maker) - tau_sensor;
+        for (std::size_t e = 0; e < estimates.size(); ++e)
+          est[e][k] = drive - estimates[e].drive_loss(k, j) - tau_sensor;
+      }
+    }
+    const std::vector<Regime>& labels = samples.regimes[static_cast<std::size_t>(j)];
+    SensorScore score;
+    score.kt_only = regime_stats(kt, labels);
+    score.maker = regime_stats(mk, labels);
+    for (const Eigen::VectorXd& r : est)
+      score.estimates.push_back(regime_stats(r, labels));
+    score.samples = score.kt_only.valid.count;
+    for (std::size_t f = 0; f < log.file_count(); ++f) {
+      const auto rows = log.file_rows(f);  // not a structured binding: lambdas capture it
+      const std::vector<Regime> file_labels(labels.begin() + rows.first,
+                                            labels.begin() + rows.second);
+      const auto rmse = [&](const Eigen::VectorXd& r) {
+        return regime_stats(r.segment(rows.first, rows.second - rows.first), file_labels)
+            .valid.rmse;
+      };
+      std::vector<double> row{rmse(mk), rmse(kt)};
+      for (const Eigen::VectorXd& r : est)
+        row.push_back(rmse(r));
+      score.by_file.push_back(row);
+    }
+    v.sensor.push_back(score);
+  }
+  return v;
+}
+
+std::string validation_text(const Validation& v) {
+  std::string text;
+  char line[256];
+  const int joints = v.sensor.empty() ? 0 : static_cast<int>(v.sensor.size());
+  for (std::size_t e = 0; e < v.estimate_names.size(); ++e) {
+    std::snprintf(line, sizeof line,
+                  "%sheld-out RMSE of effort - %s [%s]   static  static-to-kinetic   moving      "
+                  "all\n",
+                  v.simulated ? "SIMULATED " : "", v.estimate_names[e].c_str(),
+                  v.effort_unit.c_str());
+    text += line;
+    for (int j = 0; j < joints; ++j) {
+      const RegimeStats& s = v.effort[e][static_cast<std::size_t>(j)];
+      std::snprintf(line, sizeof line, "  joint %d %35.3f %18.3f %8.3f %8.3f\n", j + 1,
+                    regime_rmse(s, 0), regime_rmse(s, 1), regime_rmse(s, 2), regime_rmse(s, 3));
+      text += line;
+    }
+  }
+  for (const std::string& n : v.sensor_notes)
+    text += n + "\n";
+  bool any_sensor = false;
+  for (const SensorScore& s : v.sensor)
+    any_sensor = any_sensor || s.samples > 0;
+  if (!any_sensor) return text;
+  text += "current-based joint torque against the torque sensor, RMSE [N*m]\n";
+  text += "  joint   samples   maker (tau_maker)   Kt only";
+  for (const std::string& name : v.estimate_names)
+    text += "   Kt - " + name;
+  text += "\n";
+  for (int j = 0; j < joints; ++j) {
+    const SensorScore& s = v.sensor[static_cast<std::size_t>(j)];
+    if (s.samples == 0) {
+      std::snprintf(line, sizeof line, "  %5d   no usable sensor\n", j + 1);
+      text += line;
+      continue;
+    }
+    std::snprintf(line, sizeof line, "  %5d %9zu %19.3f %9.3f", j + 1, s.samples,
+                  s.maker.valid.rmse, s.kt_only.valid.rmse);
+    text += line;
+    for (std::size_t e = 0; e < s.estimates.size(); ++e) {
+      std::snprintf(line, sizeof line, " %*.3f", static_cast<int>(v.estimate_names[e].size()) + 7,
+                    s.estimates[e].valid.rmse);
+      text += line;
+    }
+    text += "\n";
+  }
+  text += "the same per regime [N*m]    static  static-to-kinetic   moving\n";
+  for (int j = 0; j < joints; ++j) {
+    const SensorScore& s = v.sensor[static_cast<std::size_t>(j)];
+    if (s.samples == 0) continue;
+    const auto row = [&](const std::string& name, const RegimeStats& r) {
+      std::snprintf(line, sizeof line, "  joint %d %-18s %9.3f %18.3f %8.3f\n", j + 1, name.c_str(),
+                    regime_rmse(r, 0), regime_rmse(r, 1), regime_rmse(r, 2));
+      text += line;
+    };
+    row("Kt only", s.kt_only);
+    for (std::size_t e = 0; e < s.estimates.size(); ++e)
+      row("Kt - " + v.estimate_names[e], s.estimates[e]);
+  }
+  if (v.files.size() < 2) return text;
+  text += "the same per file, all regimes [N*m]: Kt only";
+  for (const std::string& name : v.estimate_names)
+    text.append(" | Kt - ").append(name);
+  text += "\n";
+  for (std::size_t f = 0; f < v.files.size(); ++f) {
+    text.append("  ").append(v.files[f]).append("\n");
+    for (int j = 0; j < joints; ++j) {
+      const std::vector<double>& r = v.sensor[static_cast<std::size_t>(j)].by_file[f];
+      if (std::isnan(r[1])) continue;
+      std::snprintf(line, sizeof line, "    joint %d %8.3f", j + 1, r[1]);
+      text += line;
+      for (std::size_t c = 2; c < r.size(); ++c) {
+        std::snprintf(line, sizeof line, " | %8.3f", r[c]);
+        text += line;
+      }
+      text += "\n";
+    }
+  }
+  return text;
+}
+
+std::string validation_json(const Validation& v) {
+  using nlohmann::json;
+  const auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+  json j;
+  j["effort_unit"] = v.effort_unit;
+  j["files"] = v.files;
+  j["simulated"] = v.simulated;
+  j["notes"] = v.notes;
+  j["sensor_notes"] = v.sensor_notes;
+  for (std::size_t e = 0; e < v.estimate_names.size(); ++e) {
+    json est;
+    est["name"] = v.estimate_names[e];
+    for (std::size_t k = 0; k < v.effort[e].size(); ++k) {
+      json row;
+      for (int c = 0; c < 4; ++c)
+        row[kRegimeColumns[c]] = number(regime_rmse(v.effort[e][k], c));
+      for (std::size_t f = 0; f < v.effort_by_file[e].size(); ++f)
+        row["by_file"].push_back(number(v.effort_by_file[e][f][k].rmse));
+      est["effort_rmse"].push_back(row);
+    }
+    j["estimates"].push_back(est);
+  }
+  for (const SensorScore& s : v.sensor) {
+    const auto by_regime = [&](const RegimeStats& r) {
+      json out;
+      for (int c = 0; c < 4; ++c)
+        out[kRegimeColumns[c]] = number(regime_rmse(r, c));
+      return out;
+    };
+    json row{
+        {"samples", s.samples}, {"maker", by_regime(s.maker)}, {"kt_only", by_regime(s.kt_only)}};
+    for (std::size_t e = 0; e < s.estimates.size(); ++e)
+      row["estimates"].push_back(by_regime(s.estimates[e]));
+    for (std::size_t f = 0; f < s.by_file.size(); ++f) {
+      json file{{"file", v.files[f]},
+                {"maker", number(s.by_file[f][0])},
+                {"kt_only", number(s.by_file[f][1])}};
+      for (std::size_t c = 2; c < s.by_file[f].size(); ++c)
+        file["estimates"].push_back(number(s.by_file[f][c]));
+      row["by_file"].push_back(file);
+    }
+    j["sensor_rmse_newton_metre"].push_back(row);
+  }
+  return j.dump(2);
+}
+
+#define TPF_INSTANTIATE_VALIDATION(N)                                                              \
+  template EffortEstimate nominal_estimate<N>(const NominalModel<double, N>&, const JointSamples&, \
+                                              std::vector<std::string>&);
+TPF_INSTANTIATE_VALIDATION(1)
+TPF_INSTANTIATE_VALIDATION(2)
+TPF_INSTANTIATE_VALIDATION(3)
+TPF_INSTANTIATE_VALIDATION(4)
+TPF_INSTANTIATE_VALIDATION(5)
+TPF_INSTANTIATE_VALIDATION(6)
+TPF_INSTANTIATE_VALIDATION(7)
+#undef TPF_INSTANTIATE_VALIDATION
+
+}  // namespace tpf::offline

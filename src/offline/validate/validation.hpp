@@ -1,0 +1,76 @@
+// `tpf validate`: a saved model applied to other logs (held out by log), scored per joint and
+// regime in the log's effort unit, and against the joint torque sensor where there is one.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "offline/identify/joint_samples.hpp"
+#include "offline/log/log.hpp"
+#include "offline/regimes/regime_stats.hpp"
+#include "tpf/estimation/nominal_model.hpp"
+
+namespace tpf::offline {
+
+/// One column of the validation table: what an estimator predicts on every sample of the log.
+/// (The nominal model is one; a compensated model is another, built the same way.)
+struct EffortEstimate {
+  std::string name;  ///< e.g. "nominal model"
+  /// Predicted effort in the log's unit (samples × joints; NaN where not predicted).
+  Eigen::MatrixXd effort;
+  /// The part of the drive torque the joint torque sensor does not see, N·m: the gear's friction
+  /// and the rotor's inertia, d = friction(q̇, |G(q)|, T) + I_a·q̈ (samples × joints).
+  Eigen::MatrixXd drive_loss;
+};
+
+/// The current-based joint torque against the torque sensor of one joint, N·m, per regime, over
+/// the samples where the sensor varies in its file (torque_sensor.hpp) and the sample is valid.
+struct SensorScore {
+  std::size_t samples = 0;
+  RegimeStats maker;    ///< tau_maker − τ_sensor (the drive maker's own estimate; NaN: absent)
+  RegimeStats kt_only;  ///< K_t·i − τ_sensor
+  std::vector<RegimeStats> estimates;  ///< per EffortEstimate: K_t·i − d − τ_sensor
+  /// [file]: RMSE over all regimes of that file, {maker, Kt only, estimates...} (NaN where the
+  /// file's sensor is not usable).
+  std::vector<std::vector<double>> by_file;
+};
+
+/// The validation of some estimates on one (possibly several-file) log.
+struct Validation {
+  std::string effort_unit;  ///< of the log
+  bool simulated = false;
+  std::vector<std::string> estimate_names;
+  std::vector<std::string> files;  ///< the log's file paths (Log::file_path)
+  /// [estimate][joint]: effort − predicted effort per regime (all samples are held out).
+  std::vector<std::vector<RegimeStats>> effort;
+  /// [estimate][file][joint]: the same over all regimes of each file.
+  std::vector<std::vector<std::vector<ResidualStats>>> effort_by_file;
+  std::vector<SensorScore> sensor;  ///< [joint]; samples = 0 where no file has a usable sensor
+  std::vector<std::string> sensor_notes;  ///< torque_sensor_report lines
+  std::vector<std::string> notes;         ///< what was not evaluated and why
+};
+
+/// The nominal model's estimate on `samples`: effort = rigid + friction (+ thermal friction when
+/// the log has temperatures), drive_loss = (friction + thermal) / effort_per_newton_metre +
+/// I_a·q̈ with I_a the identified base parameter of column "Ia<j>" (0, and a note, where the
+/// identification grouped it with a link inertia). Throws tpf::Error naming the effect when the
+/// parameter file holds one this evaluation does not reproduce (effort_lead_s ≠ 0).
+template <int N>
+EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const JointSamples& samples,
+                                std::vector<std::string>& notes);
+
+/// Scores `estimates` on `samples` of `log` (every sample is held out): effort residual per
+/// joint and regime, per file, and against tau_sensor<j>, the effort converted to N·m by
+/// effort / effort_per_newton_metre (K_t·i for a log in mA).
+Validation score_estimates(const Log& log, const JointSamples& samples,
+                           const std::vector<EffortEstimate>& estimates,
+                           const Eigen::VectorXd& effort_per_newton_metre);
+
+/// The plain-text table validate prints.
+std::string validation_text(const Validation& v);
+/// The same numbers as JSON text.
+std::string validation_json(const Validation& v);
+
+}  // namespace tpf::offline
