@@ -12,12 +12,13 @@
 #include "offline/log/read_logs.hpp"
 #include "offline/validate/validation.hpp"
 #include "tpf/common/atomic_file.hpp"
+#include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 
 namespace {
 
 struct ValidateArgs {
-  std::string params, robot, json;
+  std::string params, robot, json, weights, estimator;
   std::vector<std::string> logs;
   double static_velocity = 1e-4;
 };
@@ -34,7 +35,14 @@ void run(const tpf::offline::Log& log, const ValidateArgs& a) {
                      log.source + " holds " + samples.effort_unit);
   std::vector<std::string> notes;
   // One column per estimate; the compensator (--weights) becomes one more here.
-  const std::vector<EffortEstimate> estimates{nominal_estimate<N>(nominal, samples, notes)};
+  std::vector<EffortEstimate> estimates{nominal_estimate<N>(nominal, samples, notes)};
+  if (!a.weights.empty()) {
+    tpf::EstimatorSetup<N> setup;
+    setup.nominal = nominal;
+    if (!a.estimator.empty()) setup.parameters = tpf::load_estimator_parameters<N>(a.estimator);
+    setup.weights = tpf::find_compensator_weights(a.weights, N);
+    estimates.push_back(compensated_estimate<N>(setup, log, estimates.front()));
+  }
   Validation v = score_estimates(log, samples, estimates, nominal.effort_per_newton_metre);
   v.notes = notes;
   std::printf("validate: %s on %s (%s)\n", a.params.c_str(), log.source.c_str(),
@@ -75,6 +83,13 @@ void register_validate_command(CLI::App& app) {
                   "Held-out log(s) (.csv or .csv.gz); several are scored "
                   "together, each its own segment")
       ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--weights", a->weights,
+                  "Friction compensator (tpf train: one file, or <stem>.joint<j>.json per joint): "
+                  "adds the column 'with the compensator'");
+  cmd->add_option("--estimator", a->estimator,
+                  "Estimator parameter file (tpf calibrate) the compensator runs with (default: "
+                  "the defaults; only the static-friction tracker and the q'' filter matter here)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--json", a->json, "The same numbers as JSON");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "offline/log/torque_sensor.hpp"
+#include "offline/replay/replay_estimator.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
@@ -75,6 +76,19 @@ EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const Jo
         (friction.cwiseQuotient(nominal.effort_per_newton_metre) + armature.cwiseProduct(ddq))
             .transpose();
   }
+  return e;
+}
+
+template <int N>
+EffortEstimate compensated_estimate(const EstimatorSetup<N>& setup, const Log& log,
+                                    const EffortEstimate& nominal) {
+  const EstimatorTrace trace = replay_estimator(setup, estimator_samples<N>(log, 0));
+  EffortEstimate e;
+  e.name = "with the compensator";
+  e.effort = nominal.effort + trace.compensation;
+  e.drive_loss =
+      nominal.drive_loss +
+      trace.compensation * setup.nominal.effort_per_newton_metre.cwiseInverse().asDiagonal();
   return e;
 }
 
@@ -289,7 +303,9 @@ std::string validation_json(const Validation& v) {
 
 #define TPF_INSTANTIATE_VALIDATION(N)                                                              \
   template EffortEstimate nominal_estimate<N>(const NominalModel<double, N>&, const JointSamples&, \
-                                              std::vector<std::string>&);
+                                              std::vector<std::string>&);            \
+  template EffortEstimate compensated_estimate<N>(const EstimatorSetup<N>&, const Log&,             \
+                                                  const EffortEstimate&);
 TPF_INSTANTIATE_VALIDATION(1)
 TPF_INSTANTIATE_VALIDATION(2)
 TPF_INSTANTIATE_VALIDATION(3)

@@ -10,6 +10,7 @@
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime_stats.hpp"
+#include "tpf/estimation/load_estimator.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 
 namespace tpf::offline {
@@ -60,6 +61,15 @@ struct Validation {
 template <int N>
 EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const JointSamples& samples,
                                 std::vector<std::string>& notes);
+
+/// The nominal model with the friction compensator as the run-time estimator runs it (the setup's
+/// estimator over `log`, no skin): effort = nominal.effort + τ_TCN, drive_loss = nominal.drive_loss
+/// + τ_TCN / effort_per_newton_metre (the network learns what the nominal model leaves of the
+/// drive's effort on contact-free logs). The compensator's output on every row the estimator
+/// took (NaN where it skipped one); its domain is not applied.
+template <int N>
+EffortEstimate compensated_estimate(const EstimatorSetup<N>& setup, const Log& log,
+                                    const EffortEstimate& nominal);
 
 /// Scores `estimates` on `samples` of `log` (every sample is held out): effort residual per
 /// joint and regime, per file, and against tau_sensor<j>, the effort converted to N·m by
