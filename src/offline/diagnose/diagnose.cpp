@@ -279,18 +279,21 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   std::vector<int> in_model;
   for (std::size_t g = 0; g < out.groups.size(); ++g)
     if (out.groups[g].declared) in_model.push_back(static_cast<int>(g));
+  // A column with (numerically) nothing in it on the training rows, e.g. |G_k| of a joint whose
+  // axis is vertical (rounding noise of 1e-16), is left out: its coefficient would be anything.
+  auto alive = [&](int col) { return A(col, col) > 1e-20 * A(P + 1, P + 1); };
   auto model_columns = [&](int except) {
     std::vector<int> c;
     for (int g : in_model)
       if (g != except)
         for (int col : out.groups[g].columns)
-          if (A(col, col) > 0) c.push_back(col);
+          if (alive(col)) c.push_back(col);
     return c;
   };
   auto energetic = [&](const FeatureGroup& group) {
     std::vector<int> c;
     for (int col : group.columns)
-      if (A(col, col) > 0) c.push_back(col);
+      if (alive(col)) c.push_back(col);
     return c;
   };
   for (int round = 1; round <= options.max_effects; ++round) {
@@ -313,10 +316,10 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
             for (int c : other.columns)
               if (std::find(reference.begin(), reference.end(), c) == reference.end()) {
                 reference.push_back(c);
-                if (A(c, c) > 0) reference_model.push_back(c);
+                if (alive(c)) reference_model.push_back(c);
               }
       std::vector<int> trial_columns = reference;
-      trial_columns.insert(trial_columns.end(), group.columns.begin(), group.columns.end());
+      trial_columns.insert(trial_columns.end(), own.begin(), own.end());
       const Eigen::VectorXd trial_theta = fit_columns(grams, trial_columns, selection);
       const RegimeTable now = heldout_table(grams, reference.size() == columns.size()
                                                        ? theta
@@ -424,23 +427,39 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
         claim.standard_errors.push_back(std::sqrt(std::max(cov(i, i), 0.0)));
       }
     }
+    // Written only when the run time evaluates it and its coefficients mean something: one that
+    // cannot be told from the declared model (the spring k = 217 beside mx = 18.8) is
+    // reported, not written.
     const FeatureKind kind = out.groups[best].kind;
-    claim.written = kind != FeatureKind::Delay && kind != FeatureKind::Thermal;
+    bool beside_declared = false;
+    for (int g : claim.groups)
+      beside_declared = beside_declared || out.groups[g].declared;
+    claim.written = kind != FeatureKind::Delay && kind != FeatureKind::Thermal && !beside_declared;
     out.claims.push_back(std::move(claim));
   }
-  (void)P;
   theta = with_held_friction(theta, columns);
   out.after = heldout_table(grams, theta);
+  // The model written: the selected effects without those not written, refitted (so that the
+  // declared parameters are not the ones fitted beside an effect that is left out).
+  std::vector<int> written_columns = design.declared_columns();
+  for (std::size_t e = 0; e < out.claims.size(); ++e)
+    if (out.claims[e].written)
+      for (int c : energetic(out.groups[out.selected[e]]))
+        written_columns.push_back(c);
+  const Eigen::VectorXd theta_selected = theta;
+  theta = with_held_friction(fit_columns(grams, written_columns, selection), written_columns);
 
   // 4. Residual after, the effect terms, and the extended nominal model.
   say("diagnose: pass 4/4: refit with the selected effects");
   // One pass for the declared and the extended model, each selected effect's term and the
   // non-friction part.
-  std::vector<Eigen::VectorXd> thetas{theta, theta_before};
-  for (int g : out.selected) {
+  std::vector<Eigen::VectorXd> thetas{theta_selected, theta_before};
+  for (std::size_t e = 0; e < out.selected.size(); ++e) {
+    // A written effect's term as the written model holds it; the others as selected.
+    const Eigen::VectorXd& from = out.claims[e].written ? theta : theta_selected;
     Eigen::VectorXd part = Eigen::VectorXd::Zero(design.features());
-    for (int c : out.groups[g].columns)
-      part[c] = theta[c];
+    for (int c : out.groups[out.selected[e]].columns)
+      part[c] = from[c];
     thetas.push_back(part);
   }
   // The rigid part the friction curves are fitted against: everything written outside the
@@ -639,11 +658,15 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
               coefficients +
               "); a log with more range of motion, both directions and rests tells them apart.";
     }
-    if (!c.written)
+    if (!c.written && (g.kind == FeatureKind::Delay || g.kind == FeatureKind::Thermal))
       text +=
           " Not written to the parameter file: the run-time nominal model cannot evaluate it "
           "(it keeps no past samples / has no temperature input); the 'written' table "
           "leaves it out.";
+    else if (!c.written)
+      text +=
+          " Not written to the parameter file: it cannot be told from the declared model, "
+          "so its coefficients mean nothing there; the written model is refitted without it.";
     out.findings.push_back(text);
   }
   // A regime the written model does worse in than the declared one, explained.
