@@ -40,12 +40,23 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   for (const auto& n : d.notes)
     std::printf("note: %s\n", n.c_str());
   const char* names[4] = {"static", "static-to-kinetic", "moving", "all"};
-  std::printf("held-out RMSE [%s] before -> after\n", d.samples.effort_unit.c_str());
+  std::printf(
+      "held-out RMSE [%s] before -> after: the selection's linear fit (friction held at "
+      "rest) | the written model (--params: friction curve, run-time effects only)\n",
+      d.samples.effort_unit.c_str());
+  const Regime regimes[4] = {Regime::Static, Regime::StaticToKinetic, Regime::Moving,
+                             Regime::Invalid};
   for (int j = 0; j < N; ++j)
-    for (int r = 0; r < 4; ++r)
-      std::printf("  joint %d %-18s %10.3f -> %10.3f  (%+.1f %%)\n", j + 1, names[r],
-                  d.before[j][r].rmse(), d.after[j][r].rmse(),
-                  percent_change(d.before[j][r].rmse(), d.after[j][r].rmse()));
+    for (int r = 0; r < 4; ++r) {
+      const auto& wb = d.written_before[j];
+      const auto& wa = d.written_after[j];
+      const double b = r < 3 ? wb[regimes[r]].rmse : wb.valid.rmse;
+      const double w = r < 3 ? wa[regimes[r]].rmse : wa.valid.rmse;
+      std::printf("  joint %d %-18s %10.3f -> %10.3f  (%+.1f %%) | %10.3f -> %10.3f  (%+.1f %%)\n",
+                  j + 1, names[r], d.before[j][r].rmse(), d.after[j][r].rmse(),
+                  percent_change(d.before[j][r].rmse(), d.after[j][r].rmse()), b, w,
+                  percent_change(b, w));
+    }
   if (!a.report.empty()) {
     write_diagnosis_report(d, a.report);
     std::printf("wrote %s\n", a.report.c_str());

@@ -55,6 +55,9 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
               id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
   for (const auto& p : id.consistency.problems)
     std::printf("  problem: %s\n", p.c_str());
+  for (const auto& n : id.friction_notes)
+    std::printf("  friction: %s\n", n.c_str());
+  fit["friction_notes"] = id.friction_notes;
   fit["consistent"] = id.consistency.consistent();
   fit["problems"] = id.consistency.problems;
   fit["simulated"] = s.simulated;

@@ -48,7 +48,7 @@ TEST(NominalModel, RigidPartOfTheTrueModelEqualsRneaInEffortUnits) {
 TEST(NominalModel, AddedEffectsEnterTheRigidPart) {
   Nominal nominal = twin_nominal();
   nominal.added.spring_stiffness[1] = 40.0;
-  nominal.added.spring_offset[1] = -5.0;
+  nominal.added.offset[1] = -5.0;
   nominal.added.ripple_count = 1;
   nominal.added.ripple[0] = {2, 12.0, false, 30.0, -10.0};
   nominal.added.coupling_velocity(0, 1) = 7.0;
@@ -63,9 +63,30 @@ TEST(NominalModel, AddedEffectsEnterTheRigidPart) {
   EXPECT_NEAR(d[2], 30.0 * std::sin(12.0 * 0.3) - 10.0 * std::cos(12.0 * 0.3), 1e-9);
   EXPECT_NEAR(d[3], 0.0, 1e-12);
   EXPECT_EQ(friction, friction0);
-  nominal.added.thermal_viscous[3] = 0.5;
-  nominal.added.reference_temperature = 30.0;
-  EXPECT_NEAR(thermal_friction(nominal, dq, Vec::Constant(40.0))[3], 0.5 * 10.0 * 0.2, 1e-12);
+}
+
+TEST(NominalModel, AsymmetricAndNeighbourLoadFrictionEnterTheFriction) {
+  Nominal nominal = twin_nominal();
+  nominal.friction.coulomb_asymmetry[0] = 3.0;
+  nominal.friction.viscous_asymmetry[1] = 2.0;
+  nominal.friction.neighbour_load_coulomb(2, 1) = 0.5;
+  nominal.friction.neighbour_load_viscous(3, 1) = 0.25;
+  ArmData data, reference;
+  const Vec q(0.1, 0.2, 0.3, 0.4), ddq = Vec::Zero();
+  const double g2 = std::abs(compute_gravity(arm(), reference, q)[1]);
+  ASSERT_GT(g2, 0.1);
+  for (const double direction : {1.0, -1.0}) {
+    const Vec dq = direction * Vec(0.5, -0.5, 0.3, 0.2);
+    Vec rigid, friction, rigid0, friction0;
+    predict_effort(nominal, data, q, dq, ddq, rigid, friction);
+    predict_effort(twin_nominal(), data, q, dq, ddq, rigid0, friction0);
+    const Vec d = friction - friction0;
+    EXPECT_NEAR(d[0], 3.0, 1e-9);  // a_c·|sgn q̇|: the same push either way
+    EXPECT_NEAR(d[1], 2.0 * 0.5, 1e-9);
+    EXPECT_NEAR(d[2], 0.5 * g2 * direction, 1e-9);
+    EXPECT_NEAR(d[3], 0.25 * g2 * 0.2 * direction, 1e-9);
+    EXPECT_EQ(rigid, rigid0);
+  }
 }
 
 TEST(NominalModel, PredictionIsAllocationFree) {
@@ -87,7 +108,10 @@ TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   nominal.added.ripple_count = 1;
   nominal.added.ripple[0] = {3, 50.0, true, 1.0, 2.0};
   nominal.added.coupling_acceleration(2, 0) = 0.25;
-  nominal.added.effort_lead_s = 0.005;
+  nominal.added.offset[0] = -2.0;
+  nominal.friction.coulomb_asymmetry[1] = 0.5 * nominal.friction.coulomb[1];
+  nominal.friction.neighbour_load_coulomb(0, 1) = 0.3;
+  nominal.friction.neighbour_load_viscous(2, 3) = 0.1;
   const auto path = temp_path("roundtrip.json");
   save_nominal_model<kJoints>(path, nominal, "test", R"({"rmse": [1, 2, 3, 4]})");
   const Nominal loaded = load_nominal_model<kJoints>(path, data_path("arm4.robot.json"));
@@ -96,7 +120,7 @@ TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   EXPECT_EQ(loaded.base_count, nominal.base_count);
   EXPECT_EQ(loaded.added.ripple_count, 1);
   EXPECT_TRUE(loaded.added.ripple[0].motor_side);
-  EXPECT_DOUBLE_EQ(loaded.added.effort_lead_s, 0.005);
+  EXPECT_EQ(loaded.friction.neighbour_load_coulomb, nominal.friction.neighbour_load_coulomb);
   ArmData data;
   RandomStates states(5);
   for (int s = 0; s < 10; ++s) {
@@ -155,6 +179,23 @@ TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
   EXPECT_NE(with([](nlohmann::json& j) { j["format"] = "tpf-robot"; }).find("format"),
             std::string::npos);
   EXPECT_NE(with([](nlohmann::json& j) { j["colour"] = 1; }).find("colour: unknown key"),
+            std::string::npos);
+  // Effects the run time cannot evaluate are refused by name, not silently ignored.
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["added_effects"]["thermal_viscous"] = {0, 0, 0.1, 0};
+            })
+                .find("added_effects.thermal_viscous: temperature-dependent friction is not "
+                      "evaluated"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["added_effects"]["effort_lead_s"] = 0.01;
+            }).find("added_effects.effort_lead_s: a delay"),
+            std::string::npos);
+  EXPECT_EQ(with([](nlohmann::json& j) { j["added_effects"]["effort_lead_s"] = 0.0; }), "");
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["friction"]["neighbour_load_coulomb"] = {
+                  {1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+            }).find("the diagonal must be zero"),
             std::string::npos);
   EXPECT_NE(load_error("{\"format\": \"tpf-params\",\n oops").find("bad.json:2"),
             std::string::npos);

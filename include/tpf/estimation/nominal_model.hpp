@@ -37,25 +37,20 @@ struct RippleTerm {
 };
 
 /// Effects that `tpf diagnose` found and added to the declared model, all memoryless functions of
-/// (q, q̇, q̈) and optionally temperature, so that the run time can evaluate them. Zero = absent.
-/// (An unmodelled payload is folded into the base parameters; load-dependent friction into
-/// StribeckParameters::load_coulomb / load_viscous.)
+/// (q, q̇, q̈), so that the run time evaluates them (added_effort). Zero = absent. An unmodelled
+/// payload is folded into the base parameters; load-dependent, direction-asymmetric and
+/// neighbour-load friction into StribeckParameters. Effects the run time cannot evaluate
+/// (temperature-dependent friction: no temperature input; a delay: no past samples) are reported
+/// by diagnosis, not written, and a parameter file holding them is refused.
 template <typename S, int N>
 struct AddedEffects {
   static constexpr int kMaxRippleTerms = 16;
   int ripple_count = 0;
   std::array<RippleTerm<S>, kMaxRippleTerms> ripple{};
-  JointVector<S, N> spring_stiffness = JointVector<S, N>::Zero();  ///< k: τ_j += k_j·q_j + c_j
-  JointVector<S, N> spring_offset = JointVector<S, N>::Zero();     ///< c (effort unit)
+  JointVector<S, N> spring_stiffness = JointVector<S, N>::Zero();  ///< k: τ_j += k_j·q_j
+  JointVector<S, N> offset = JointVector<S, N>::Zero();            ///< c: τ_j += c_j (effort unit)
   JointMatrix<S, N> coupling_velocity = JointMatrix<S, N>::Zero();  ///< τ += C_v·q̇, zero diagonal
   JointMatrix<S, N> coupling_acceleration = JointMatrix<S, N>::Zero();  ///< τ += C_a·q̈, zero diag.
-  /// Temperature-dependent viscous friction: τ_j += β_j·(T_j − T_ref)·q̇_j (needs temp<j>).
-  JointVector<S, N> thermal_viscous = JointVector<S, N>::Zero();
-  S reference_temperature = S(25);  ///< T_ref, °C
-  /// The effort leads the motion by this much [s] (the drive's torque lags its reported current):
-  /// effort(t) ≈ prediction(t + effort_lead_s) ≈ prediction(t) + effort_lead_s·d(prediction)/dt.
-  /// Negative when the effort lags. A run-time estimator keeps the few samples this needs.
-  S effort_lead_s = S(0);
 };
 
 /// The identified model: the rigid body in base parameters, the friction, the unit conversion and
@@ -91,7 +86,7 @@ JointVector<S, N> rigid_body_torque(const NominalModel<S, N>& nominal, Data<S, N
   return tau;
 }
 
-/// Effort of the added memoryless effects (ripple, spring, coupling), effort unit:
+/// Effort of the added memoryless effects (ripple, spring, offset, coupling), effort unit:
 /// τ_j = Σ ripple_j(θ) + k_j q_j + c_j + Σ_k (C_v,jk q̇_k + C_a,jk q̈_k). Allocation-free.
 template <typename S, int N>
 JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
@@ -100,8 +95,8 @@ JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
                                const NoDeduce<JointVector<S, N>>& ddq) {
   using std::cos, std::sin;
   const AddedEffects<S, N>& a = nominal.added;
-  JointVector<S, N> tau = a.spring_stiffness.cwiseProduct(q) + a.spring_offset +
-                          a.coupling_velocity * dq + a.coupling_acceleration * ddq;
+  JointVector<S, N> tau = a.spring_stiffness.cwiseProduct(q) + a.offset + a.coupling_velocity * dq +
+                          a.coupling_acceleration * ddq;
   for (int i = 0; i < a.ripple_count; ++i) {
     const RippleTerm<S>& r = a.ripple[i];
     const S theta = r.motor_side ? nominal.model.gear_ratio[r.joint] * q[r.joint] : q[r.joint];
@@ -120,7 +115,7 @@ template <typename S, int N>
 struct NominalLinks {
   LinkParameters<S, N> rigid;
   LinkParameters<S, N> load;
-  bool load_dependent = false;  ///< some α_c or α_v ≠ 0: G(q) of `load` is needed
+  bool load_dependent = false;  ///< some α or neighbour-load β, γ ≠ 0: G(q) of `load` is needed
 };
 
 /// NominalLinks of `nominal` (see there). Allocation-free; columns outside 0..13N−1 are ignored.
@@ -136,15 +131,17 @@ NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
   links.load = link_parameters<S, N>(dynamic_parameters(
       nominal.model, JointVector<S, N>::Zero().eval(), JointVector<S, N>::Zero().eval()));
   links.load_dependent = (nominal.friction.load_coulomb.array() != S(0)).any() ||
-                         (nominal.friction.load_viscous.array() != S(0)).any();
+                         (nominal.friction.load_viscous.array() != S(0)).any() ||
+                         has_neighbour_load(nominal.friction);
   return links;
 }
 
 /// Predicted effort in the log's effort unit, split in two:
 ///   rigid    = diag(effort_per_newton_metre)·Y_b(q,q̇,q̈)·π_b + added(q,q̇,q̈)
-///              (rigid body incl. armature, plus ripple, spring and coupling when added),
-///   friction = [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇) + (b + α_v|G|)·q̇,
-///              G = G(q) of nominal.model [N·m], sgn(0) = 0: at rest the friction is not
+///              (rigid body incl. armature, plus ripple, spring, offset and coupling when added),
+///   friction = stribeck_friction(nominal.friction, q̇, |G(q)|): Stribeck + viscous with load
+///              dependence, direction asymmetry and neighbour load (see StribeckParameters),
+///              G = G(q) of nominal.model [N·m], sgn(0) = 0: at rest the sliding friction is not
 ///              predicted (it is whatever the drive settled at; the estimator's FSM handles it).
 /// The per-cycle form: one forward kinematics (left in data.liMi / data.oMi at q), Y_b·π_b by
 /// Newton–Euler on the link form `links` = nominal_links(nominal) (equal to the regressor form to
@@ -191,18 +188,6 @@ void predict_effort_by_regressor(const NominalModel<S, N>& nominal, Data<S, N>& 
   friction = stribeck_friction(nominal.friction, dq, abs_gravity);
 }
 
-/// Temperature-dependent part of the friction, effort unit: τ_j = β_j·(T_j − T_ref)·q̇_j, T in °C
-/// (zero unless diagnosis added it). Add it to predict_effort's friction when temp<j> is logged.
-template <typename S, int N>
-JointVector<S, N> thermal_friction(const NominalModel<S, N>& nominal,
-                                   const NoDeduce<JointVector<S, N>>& dq,
-                                   const NoDeduce<JointVector<S, N>>& temperature) {
-  const AddedEffects<S, N>& a = nominal.added;
-  return a.thermal_viscous
-      .cwiseProduct(temperature - JointVector<S, N>::Constant(a.reference_temperature))
-      .cwiseProduct(dq);
-}
-
 /// Name of standard regressor column c (0-based) of an N-joint arm: per link k (1..N) "m<k>",
 /// "mx<k>", "my<k>", "mz<k>", "Ixx<k>", "Ixy<k>", "Ixz<k>", "Iyy<k>", "Iyz<k>", "Izz<k>"
 /// (first moments and inertia about the link origin), then "Ia<j>" (armature), "fc<j>"
@@ -225,7 +210,8 @@ JointVector<double, N> effort_scale(const Model<double, N>& model, const std::st
 /// Loads a parameter file (JSON, "format": "tpf-params", "version": 1) written by `tpf identify`
 /// / `tpf diagnose`, with the robot file it was identified for. Start-up code: throws tpf::Error
 /// "file: field: reason" on a missing/unknown field, a wrong size, a joint count that differs
-/// from N, an unknown base parameter name or a non-finite or out-of-range value.
+/// from N, an unknown base parameter name, a non-finite or out-of-range value, or an effect the
+/// run time cannot evaluate (non-zero thermal_viscous or effort_lead_s, named in the message).
 template <int N>
 NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
                                            const std::filesystem::path& robot_file);

@@ -13,10 +13,15 @@
 namespace tpf {
 
 /// Per joint parameters of  τ_f(q̇) = [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇)
-///                                     + (b + α_v|G|)·q̇.
+///                                     + (b + α_v|G|)·q̇ + a_c·|sgn(q̇)| + a_v·|q̇|
+///                                     + Σ_k≠j (β_jk·sgn(q̇) + γ_jk·q̇)·|G_k|.
 /// The load terms scale with |G_j(q)|, the gravity torque of the joint, a proxy for the load on
 /// the transmission; α_c = α_v = 0 gives the plain Stribeck + viscous curve. The break-away
 /// excess (τ_s − τ_c) is load-independent, so each load term is linear in its coefficient.
+/// The direction asymmetry a_c, a_v makes the sliding level τ_c + a_c moving forward and
+/// τ_c − a_c backward (viscous b ± a_v). The neighbour-load terms β, γ (zero diagonal) let joint
+/// j's friction grow with the gravity load |G_k| of another joint k (a shared bearing or belt);
+/// only the whole-arm form (JointVector abs_gravity) evaluates them.
 template <typename S, int N>
 struct StribeckParameters {
   JointVector<S, N> coulomb = JointVector<S, N>::Zero();            ///< τ_c ≥ 0
@@ -26,7 +31,18 @@ struct StribeckParameters {
   JointVector<S, N> viscous = JointVector<S, N>::Zero();                    ///< b ≥ 0, per rad/s
   JointVector<S, N> load_coulomb = JointVector<S, N>::Zero();  ///< α_c ≥ 0, per unit |G|
   JointVector<S, N> load_viscous = JointVector<S, N>::Zero();  ///< α_v ≥ 0, per unit |G|·rad/s
+  JointVector<S, N> coulomb_asymmetry = JointVector<S, N>::Zero();       ///< a_c, |a_c| ≤ τ_c
+  JointVector<S, N> viscous_asymmetry = JointVector<S, N>::Zero();       ///< a_v, per rad/s
+  JointMatrix<S, N> neighbour_load_coulomb = JointMatrix<S, N>::Zero();  ///< β, zero diagonal
+  JointMatrix<S, N> neighbour_load_viscous = JointMatrix<S, N>::Zero();  ///< γ, zero diagonal
 };
+
+/// True when some neighbour-load coefficient is non-zero (G(q) of every joint is then needed).
+template <typename S, int N>
+bool has_neighbour_load(const StribeckParameters<S, N>& p) {
+  return (p.neighbour_load_coulomb.array() != S(0)).any() ||
+         (p.neighbour_load_viscous.array() != S(0)).any();
+}
 
 /// Default smoothing velocity ε of the smooth form, rad/s: ten steps of the PH54 velocity
 /// resolution (0.01 rev/min = 1.05e-3 rad/s), so measurement noise at rest does not flip the sign.
@@ -49,11 +65,24 @@ S viscous_coefficient(const StribeckParameters<S, N>& p, int j, S abs_gravity) {
   return p.viscous[j] + p.load_viscous[j] * abs_gravity;
 }
 
-/// Friction of joint j: τ_f = g_j(q̇)·sgn(q̇) + (b + α_v|G|)·q̇, with sgn(0) = 0.
+/// Friction of joint j without the neighbour-load terms: τ_f = g_j(q̇)·sgn(q̇) + (b + α_v|G|)·q̇
+/// + a_c·|sgn(q̇)| + a_v·|q̇|, with sgn(0) = 0.
 template <typename S, int N>
 S stribeck_friction(const StribeckParameters<S, N>& p, int j, S dq, S abs_gravity = S(0)) {
+  using std::abs;
   const S sign = dq > S(0) ? S(1) : (dq < S(0) ? S(-1) : S(0));
-  return stribeck_level(p, j, dq, abs_gravity) * sign + viscous_coefficient(p, j, abs_gravity) * dq;
+  return stribeck_level(p, j, dq, abs_gravity) * sign +
+         viscous_coefficient(p, j, abs_gravity) * dq + p.coulomb_asymmetry[j] * abs(sign) +
+         p.viscous_asymmetry[j] * abs(dq);
+}
+
+/// Neighbour-load part of joint j's friction: Σ_k≠j (β_jk·sgn(q̇_j) + γ_jk·q̇_j)·|G_k|.
+template <typename S, int N>
+S neighbour_load_friction(const StribeckParameters<S, N>& p, int j, S dq,
+                          const JointVector<S, N>& abs_gravity) {
+  const S sign = dq > S(0) ? S(1) : (dq < S(0) ? S(-1) : S(0));
+  return p.neighbour_load_coulomb.row(j).dot(abs_gravity) * sign +
+         p.neighbour_load_viscous.row(j).dot(abs_gravity) * dq;
 }
 
 /// Friction of every joint, no load: τ_f,j = g_j(q̇_j)·sgn(q̇_j) + b_j·q̇_j.
@@ -66,20 +95,22 @@ JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p,
   return tau;
 }
 
-/// Load-dependent friction of every joint, |G_j(q)| passed in `abs_gravity`:
-/// τ_f,j = [τ_c + α_c|G_j| + (τ_s − τ_c)·exp(−|q̇_j/q̇_s|^δ)]·sgn(q̇_j) + (b + α_v|G_j|)·q̇_j.
+/// Load-dependent friction of every joint, |G_j(q)| passed in `abs_gravity`: the per-joint
+/// form above plus the neighbour-load terms (see StribeckParameters).
 template <typename S, int N>
 JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p, const JointVector<S, N>& dq,
                                     const JointVector<S, N>& abs_gravity) {
   JointVector<S, N> tau;
   for (int j = 0; j < N; ++j)
-    tau[j] = stribeck_friction(p, j, dq[j], abs_gravity[j]);
+    tau[j] = stribeck_friction(p, j, dq[j], abs_gravity[j]) +
+             neighbour_load_friction(p, j, dq[j], abs_gravity);
   return tau;
 }
 
 /// Smooth form for gradient-based fitting: sgn(q̇) is replaced by tanh(q̇/ε), which makes τ_f
 /// continuous and differentiable at q̇ = 0 (τ_f(0) = 0) and equal to the sharp form within a
-/// factor tanh(|q̇|/ε) ≥ 0.995 once |q̇| ≥ 3ε.
+/// factor tanh(|q̇|/ε) ≥ 0.995 once |q̇| ≥ 3ε. The symmetric curve only: the direction
+/// asymmetry and the neighbour-load terms are not part of it.
 template <typename S, int N>
 JointVector<S, N> smooth_stribeck_friction(const StribeckParameters<S, N>& p,
                                            const JointVector<S, N>& dq,

@@ -150,18 +150,42 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
   f.joint_vector<N>("viscous", p.viscous, true);
   f.joint_vector<N>("load_coulomb", p.load_coulomb, false);
   f.joint_vector<N>("load_viscous", p.load_viscous, false);
+  f.joint_vector<N>("coulomb_asymmetry", p.coulomb_asymmetry, false);
+  f.joint_vector<N>("viscous_asymmetry", p.viscous_asymmetry, false);
+  f.joint_matrix<N>("neighbour_load_coulomb", p.neighbour_load_coulomb);
+  f.joint_matrix<N>("neighbour_load_viscous", p.neighbour_load_viscous);
+  for (int j = 0; j < N; ++j) {
+    if (p.neighbour_load_coulomb(j, j) != 0.0 || p.neighbour_load_viscous(j, j) != 0.0)
+      f.fail("neighbour_load_coulomb",
+             "the diagonal must be zero (a joint's own load is load_coulomb / load_viscous)");
+    if (std::abs(p.coulomb_asymmetry[j]) > p.coulomb[j])
+      f.fail("coulomb_asymmetry[" + std::to_string(j) + "]",
+             "must not exceed coulomb in magnitude (friction would push the motion)");
+  }
   f.finish();
 
   json::Object a = top.child("added_effects");
   AddedEffects<double, N>& e = nominal.added;
   a.joint_vector<N>("spring_stiffness", e.spring_stiffness, false);
-  a.joint_vector<N>("spring_offset", e.spring_offset, false);
+  a.joint_vector<N>("offset", e.offset, false);
+  // Files of the 4-DoF demo name the offset "spring_offset" (the spring's k·q + offset).
+  JointVector<double, N> spring_offset = JointVector<double, N>::Zero();
+  a.joint_vector<N>("spring_offset", spring_offset, false);
+  e.offset += spring_offset;
   a.joint_matrix<N>("coupling_velocity", e.coupling_velocity);
   a.joint_matrix<N>("coupling_acceleration", e.coupling_acceleration);
-  a.joint_vector<N>("thermal_viscous", e.thermal_viscous, false);
-  e.reference_temperature =
-      a.number("reference_temperature", e.reference_temperature, -273.15, 1e4);
-  e.effort_lead_s = a.number("effort_lead_s", e.effort_lead_s, -1.0, 1.0);
+  // Effects the run time cannot evaluate: accepted only when absent (zero).
+  JointVector<double, N> thermal = JointVector<double, N>::Zero();
+  a.joint_vector<N>("thermal_viscous", thermal, false);
+  a.number("reference_temperature", 25.0, -273.15, 1e4);
+  if (thermal.any())
+    a.fail("thermal_viscous",
+           "temperature-dependent friction is not evaluated by the run-time nominal model (it "
+           "has no temperature input); set it to 0 or remove it to use the file without it");
+  if (a.number("effort_lead_s", 0.0, -1.0, 1.0) != 0.0)
+    a.fail("effort_lead_s",
+           "a delay between effort and motion is not evaluated by the run-time nominal model "
+           "(it keeps no past samples); set it to 0 or remove it to use the file without it");
   std::vector<json::Object> ripple = a.children("ripple");
   if (ripple.size() > AddedEffects<double, N>::kMaxRippleTerms)
     a.fail("ripple", "must be an array of at most " +
@@ -222,7 +246,11 @@ void save_nominal_model(const std::filesystem::path& params_file,
                    {"stribeck_exponent", array_json(p.stribeck_exponent)},
                    {"viscous", array_json(p.viscous)},
                    {"load_coulomb", array_json(p.load_coulomb)},
-                   {"load_viscous", array_json(p.load_viscous)}};
+                   {"load_viscous", array_json(p.load_viscous)},
+                   {"coulomb_asymmetry", array_json(p.coulomb_asymmetry)},
+                   {"viscous_asymmetry", array_json(p.viscous_asymmetry)},
+                   {"neighbour_load_coulomb", matrix_to_json<N>(p.neighbour_load_coulomb)},
+                   {"neighbour_load_viscous", matrix_to_json<N>(p.neighbour_load_viscous)}};
 
   const AddedEffects<double, N>& e = nominal.added;
   Json ripple = Json::array();
@@ -234,12 +262,9 @@ void save_nominal_model(const std::filesystem::path& params_file,
                       {"cos", e.ripple[i].cos_amplitude}});
   j["added_effects"] = {{"ripple", ripple},
                         {"spring_stiffness", array_json(e.spring_stiffness)},
-                        {"spring_offset", array_json(e.spring_offset)},
+                        {"offset", array_json(e.offset)},
                         {"coupling_velocity", matrix_to_json<N>(e.coupling_velocity)},
-                        {"coupling_acceleration", matrix_to_json<N>(e.coupling_acceleration)},
-                        {"thermal_viscous", array_json(e.thermal_viscous)},
-                        {"reference_temperature", e.reference_temperature},
-                        {"effort_lead_s", e.effort_lead_s}};
+                        {"coupling_acceleration", matrix_to_json<N>(e.coupling_acceleration)}};
   if (!fit_quality_json.empty()) {
     try {
       j["fit"] = Json::parse(fit_quality_json);

@@ -8,6 +8,7 @@
 
 #include "offline/identify/effect_design.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/regimes/regime_stats.hpp"
 
 namespace tpf::offline {
 
@@ -18,7 +19,27 @@ struct DiagnoseOptions {
   /// n·ln(SSE_new/SSE_old) + k·ln n, decreases).
   double min_improvement = 0.10;
   int max_effects = 6;
+  /// Identifiability: a candidate whose columns keep less than this share (sin² of the smallest
+  /// principal angle) after projecting out the model's columns is indistinguishable from it …
+  double min_distinct_share = 0.05;
+  /// … and two candidates whose parts outside the model are this collinear (cos² of the
+  /// smallest principal angle) are indistinguishable from each other: "ambiguous between".
+  double max_shared_share = 0.9;
+  /// A claimed coefficient must be this many standard errors from zero (Wald statistic per
+  /// column, standard errors inflated for the residual's autocorrelation).
+  double min_standard_errors = 3.0;
   ProgressLine progress;
+};
+
+/// One claim of a diagnosis: an effect added to the model, named, or "ambiguous" between
+/// candidates (or a candidate and the declared model) the data cannot tell apart.
+struct Claim {
+  std::vector<int> groups;  ///< indices into Diagnosis::groups; [0] is the one added to the model
+  std::vector<double> improvements;  ///< held-out improvement of each (alone on the same model)
+  std::vector<double> coefficients, standard_errors;  ///< of groups[0]'s columns
+  double distinct_share = 1.0;  ///< sin² of groups[0] against the model it was added to
+  bool written = true;          ///< in the parameter file (the run time evaluates it)
+  bool ambiguous() const { return groups.size() > 1; }
 };
 
 /// Held-out residual per joint: static, static-to-kinetic, moving, all.
@@ -28,9 +49,11 @@ using RegimeTable = std::vector<std::array<ResidualSums, 4>>;
 struct CandidateTrial {
   std::string key, title;
   int joint = -1;
-  int round = 0;             ///< selection round (1 = tried on the declared model)
-  double improvement = 0.0;  ///< fraction of held-out SSE removed on the joints it acts on
-  double bic_change = 0.0;   ///< held-out BIC change (negative favours the candidate)
+  int round = 0;                ///< selection round (1 = tried on the declared model)
+  double improvement = 0.0;     ///< fraction of held-out SSE removed on the joints it acts on
+  double bic_change = 0.0;      ///< held-out BIC change (negative favours the candidate)
+  double wald = 0.0;            ///< min over columns of |θ|/SE (SE inflated for autocorrelation)
+  double distinct_share = 1.0;  ///< sin² of the smallest angle to the model's columns
   bool selected = false;
 };
 
@@ -51,9 +74,15 @@ struct Diagnosis {
   JointSamples samples;
   std::vector<FeatureGroup> groups;  ///< the whole library (declared + candidates)
   std::vector<int> selected;         ///< indices into groups, in selection order
+  std::vector<Claim> claims;         ///< one per selected group, same order
   std::vector<CandidateTrial> trials;
-  RegimeTable before, after;    ///< held-out
-  Eigen::VectorXd noise_floor;  ///< per joint: effort noise at rest (std of Δeffort/√2)
+  RegimeTable before, after;  ///< held-out, the linear fit the selection scores (held friction)
+  /// Held-out, the models as `--params` writes them (predict_effort of the declared model as
+  /// identify fits it, and of `nominal`: friction curves, no held friction at rest, no effect the
+  /// run time cannot evaluate).
+  std::vector<RegimeStats> written_before, written_after;
+  Eigen::MatrixXd residual_written;  ///< effort − predict_effort(nominal), per sample and joint
+  Eigen::VectorXd noise_floor;       ///< per joint: effort noise at rest (std of Δeffort/√2)
   Eigen::MatrixXd residual_before, residual_after;  ///< per sample and joint
   std::vector<Eigen::MatrixXd> effect_terms;        ///< per selected group: its fitted effort term
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left

@@ -1,7 +1,9 @@
 #include "offline/diagnose/diagnosis_report.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "offline/regimes/regime.hpp"
 #include "offline/regimes/regime_stats.hpp"
 #include "offline/report/bar_chart.hpp"
 #include "offline/report/html_report.hpp"
@@ -57,6 +59,8 @@ std::string diagnosis_json(const Diagnosis<N>& d) {
                       {"round", t.round},
                       {"heldout_improvement_percent", 100 * t.improvement},
                       {"bic_change", t.bic_change},
+                      {"standard_errors_from_zero", t.wald},
+                      {"share_outside_model", t.distinct_share},
                       {"selected", t.selected}});
   j["trials"] = trials;
   nlohmann::json selected = nlohmann::json::array();
@@ -65,6 +69,34 @@ std::string diagnosis_json(const Diagnosis<N>& d) {
                         {"title", d.groups[g].title},
                         {"joint", d.groups[g].joint + 1}});
   j["selected"] = selected;
+  nlohmann::json claims = nlohmann::json::array();
+  for (const Claim& claim : d.claims) {
+    nlohmann::json names = nlohmann::json::array();
+    for (std::size_t i = 0; i < claim.groups.size(); ++i)
+      names.push_back(
+          {{"effect", d.groups[claim.groups[i]].key},
+           {"joint", d.groups[claim.groups[i]].joint + 1},
+           {"title", d.groups[claim.groups[i]].title},
+           {"heldout_improvement_percent", std::isfinite(claim.improvements[i])
+                                               ? nlohmann::json(100 * claim.improvements[i])
+                                               : nlohmann::json(nullptr)}});
+    claims.push_back({{"ambiguous", claim.ambiguous()},
+                      {"candidates", names},
+                      {"coefficients", claim.coefficients},
+                      {"standard_errors", claim.standard_errors},
+                      {"share_outside_model", claim.distinct_share},
+                      {"written", claim.written}});
+  }
+  j["claims"] = claims;
+  nlohmann::json written = nlohmann::json::array();
+  for (int jt = 0; jt < N; ++jt) {
+    nlohmann::json row;
+    for (Regime r : {Regime::Static, Regime::StaticToKinetic, Regime::Moving})
+      row[std::string(regime_name(r))] = {{"before", d.written_before[jt][r].rmse},
+                                          {"after", d.written_after[jt][r].rmse}};
+    written.push_back(row);
+  }
+  j["written_model_heldout_rmse"] = written;
   const CadPayloadCheck& c = d.cad_payload;
   j["payload_against_robot_file"] = {{"claimed", c.claimed},
                                      {"heldout_improvement_percent", 100 * c.improvement},

@@ -92,9 +92,12 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
       if (has_temperature_)
         add_group(K::Thermal, "thermal", "temperature-dependent friction, " + joint_name(j), j,
                   {"beta_v" + n});
-      add_group(K::Spring, "spring",
-                "joint spring or cable torque (k·q + offset), " + joint_name(j), j,
-                {"k" + n, "offset" + n});
+      add_group(K::Offset, "offset", "constant offset, " + joint_name(j), j, {"offset" + n});
+      add_group(K::Asymmetry, "asymmetric_friction",
+                "direction-asymmetric friction (Coulomb, viscous), " + joint_name(j), j,
+                {"asym_c" + n, "asym_v" + n});
+      add_group(K::Spring, "spring", "joint spring or cable torque (k·q), " + joint_name(j), j,
+                {"k" + n});
       if (candidates_.prediction_rate.cols() == N)
         add_group(K::Delay, "delay", "delay between effort and motion, " + joint_name(j), j,
                   {"lead_s" + n});
@@ -107,8 +110,20 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
           }
         add_group(K::Coupling, "coupling", "coupling from other joints' motion, " + joint_name(j),
                   j, coupling);
+        std::vector<std::string> neighbour;
+        for (int k = 0; k < N; ++k)
+          if (k != j) {
+            neighbour.push_back("beta" + n + "_" + std::to_string(k + 1));
+            neighbour.push_back("gamma" + n + "_" + std::to_string(k + 1));
+          }
+        add_group(K::NeighbourLoad, "neighbour_load_friction",
+                  "friction growing with the other joints' load |G_k|, " + joint_name(j), j,
+                  neighbour);
       }
     }
+    if (candidates_.prediction_rate.cols() == N && N > 1)
+      add_group(K::Delay, "delay", "delay between effort and motion, every joint (one lead)", -1,
+                {"lead_s"});
   }
   local_.assign(N, {});
   joint_groups_.assign(N, {});
@@ -181,7 +196,20 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
           break;
         case K::Spring:
           *out++ = q[j];
+          break;
+        case K::Offset:
           *out++ = 1.0;
+          break;
+        case K::Asymmetry:
+          *out++ = std::abs(sign);
+          *out++ = std::abs(dq[j]);
+          break;
+        case K::NeighbourLoad:
+          for (int o = 0; o < N; ++o)
+            if (o != j) {
+              *out++ = candidates_.abs_gravity(k, o) * sign;
+              *out++ = candidates_.abs_gravity(k, o) * dq[j];
+            }
           break;
         case K::Delay: {
           const double rate = candidates_.prediction_rate(k, j);

@@ -25,16 +25,20 @@ enum class FeatureKind {
   Thermal,
   Spring,
   Delay,
-  Coupling
+  Coupling,
+  Offset,
+  Asymmetry,
+  NeighbourLoad
 };
 
 /// One named family of columns. Per-joint families act on that joint's effort only.
 struct FeatureGroup {
   FeatureKind kind = FeatureKind::Rigid;
   std::string key;    ///< rigid, friction, load_friction, ripple, ripple_motor, payload, thermal,
-                      ///< spring, delay, coupling
+                      ///< spring, delay, coupling, offset, asymmetric_friction,
+                      ///< neighbour_load_friction
   std::string title;  ///< e.g. "load-dependent friction, joint 2"
-  int joint = -1;     ///< 0-based; −1 = every joint's effort
+  int joint = -1;     ///< 0-based; −1 = every joint's effort (payload; delay of every joint)
   bool declared = false;
   std::vector<int> columns;  ///< global feature indices
   std::vector<std::string> column_names;
@@ -43,7 +47,8 @@ struct FeatureGroup {
 /// What the candidate library needs from a first fit of the declared model.
 struct CandidateInputs {
   bool enabled = false;
-  Eigen::VectorXd ripple_cycles;        ///< per joint: periods per output revolution, 0 = none
+  Eigen::VectorXd ripple_cycles;  ///< per joint: periods per output revolution, 0 = none (also
+                                  ///< when the motion covers less than one period)
   Eigen::VectorXd ripple_motor_cycles;  ///< per joint: periods per motor revolution, 0 = none
   Eigen::MatrixXd prediction_rate;  ///< d(declared prediction)/dt per sample and joint, or empty
   Eigen::MatrixXd abs_gravity;      ///< |G_j(q)| per sample and joint [N·m] (gravity_load)
@@ -57,8 +62,11 @@ struct CandidateInputs {
 ///   declared: Y_b(q,q̇,q̈)·e_j | s, q̇_j, h
 ///   load_friction: |G|s, |G|q̇_j, |G|h        ripple: sin(nq_j), cos(nq_j)
 ///   ripple_motor: sin(n r_j q_j), cos(n r_j q_j)   payload: Y(j, link N)·e_j (10 columns)
-///   thermal: (T_j − T_ref)q̇_j    spring: q_j, 1
-///   delay: d(rigid-body prediction_j)/dt (coefficient = the effort's lead over the motion, s)
+///   thermal: (T_j − T_ref)q̇_j    spring: q_j    offset: 1
+///   asymmetric_friction: |s|, |q̇_j| (level τ_c ± a_c and viscous b ± a_v by direction)
+///   neighbour_load_friction: |G_k|s, |G_k|q̇_j for every k ≠ j
+///   delay: d(rigid-body prediction_j)/dt (coefficient = the effort's lead over the motion, s),
+///          one group per joint and one for every joint at once (one shared lead)
 ///   coupling: q̇_k, q̈_k for every k ≠ j
 template <int N>
 class EffectDesign {

@@ -1,7 +1,9 @@
 #include "offline/identify/identify.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "offline/identify/effect_design.hpp"
@@ -30,7 +32,6 @@ template <int N>
 Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
   const Eigen::Index n = s.size();
   Eigen::MatrixXd residual(n, N);
-  const bool thermal = s.temperature.cols() == N && nominal.added.thermal_viscous.any();
   auto work = [&](Eigen::Index begin, Eigen::Index end) {
     Data<double, N> data;
     JointVector<double, N> rigid, friction;
@@ -41,7 +42,6 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const J
       }
       const JointVector<double, N> q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
       predict_effort(nominal, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
-      if (thermal) friction += thermal_friction(nominal, dq, s.temperature.row(k).transpose());
       residual.row(k) = s.effort.row(k) - (rigid + friction).transpose();
     }
   };
@@ -95,20 +95,46 @@ ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
 }
 
 template <int N>
-StribeckParameters<double, N> fit_friction_curves(const JointSamples& s,
-                                                  const Eigen::MatrixXd& rigid_prediction,
-                                                  const Eigen::MatrixXd& abs_gravity,
-                                                  const StribeckParameters<double, N>& linear,
-                                                  bool fit_load, int samples_per_joint,
-                                                  const Eigen::VectorXd& robust_scale) {
-  StribeckParameters<double, N> out = linear;
+FrictionCurves<N> fit_friction_curves(const JointSamples& s,
+                                      const Eigen::MatrixXd& rigid_prediction,
+                                      const Eigen::MatrixXd& abs_gravity,
+                                      const StribeckParameters<double, N>& linear, bool fit_load,
+                                      int samples_per_joint) {
+  FrictionCurves<N> out;
+  out.parameters = linear;
+  out.heldout_rms_curve = Eigen::VectorXd::Constant(N, std::nan(""));
+  out.heldout_rms_linear = out.heldout_rms_curve;
+  StribeckParameters<double, N> clamped = linear;  // what the linear fit can write
+  for (int j = 0; j < N; ++j) {
+    clamped.coulomb[j] = clamped.static_friction[j] = std::max(linear.coulomb[j], 0.0);
+    clamped.viscous[j] = std::max(linear.viscous[j], 0.0);
+    clamped.load_coulomb[j] = std::max(linear.load_coulomb[j], 0.0);
+    clamped.load_viscous[j] = std::max(linear.load_viscous[j], 0.0);
+    clamped.coulomb_asymmetry[j] =
+        std::clamp(linear.coulomb_asymmetry[j], -clamped.coulomb[j], clamped.coulomb[j]);
+  }
+  std::vector<std::vector<std::string>> notes(N);
   auto fit_joint = [&](int j) {
-    std::vector<Eigen::Index> rows;
+    std::vector<Eigen::Index> rows, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
-      if (s.valid[k] && !s.heldout[k] && s.regimes[j][k] != Regime::Static &&
-          s.regimes[j][k] != Regime::Invalid)
-        rows.push_back(k);
-    if (rows.size() < 50) return;  // too little motion: keep the linear values
+      if (s.valid[k] && s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid)
+        (s.heldout[k] ? heldout : rows).push_back(k);
+    // Friction target without the held terms (asymmetry, neighbour load), and the linear curve.
+    auto target_at = [&](Eigen::Index k) {
+      const JointVector<double, N> abs_g = abs_gravity.row(k).transpose();
+      const double dq = s.dq(k, j);
+      const double held = clamped.coulomb_asymmetry[j] * (dq != 0.0) +
+                          clamped.viscous_asymmetry[j] * std::abs(dq) +
+                          neighbour_load_friction(clamped, j, dq, abs_g);
+      return s.effort(k, j) - rigid_prediction(k, j) - held;
+    };
+    if (rows.size() < 50) {
+      out.parameters.coulomb[j] = out.parameters.static_friction[j] = clamped.coulomb[j];
+      out.parameters.viscous[j] = clamped.viscous[j];
+      notes[j].push_back("joint " + std::to_string(j + 1) + ": fewer than 50 moving samples, " +
+                         "the linear Coulomb + viscous fit is kept");
+      return;
+    }
     const std::size_t stride =
         std::max<std::size_t>(1, rows.size() / static_cast<std::size_t>(samples_per_joint));
     const Eigen::Index m = static_cast<Eigen::Index>((rows.size() + stride - 1) / stride);
@@ -117,27 +143,72 @@ StribeckParameters<double, N> fit_friction_curves(const JointSamples& s,
       const Eigen::Index k = rows[static_cast<std::size_t>(i) * stride];
       dq[i] = s.dq(k, j);
       abs_g[i] = abs_gravity(k, j);
-      target[i] = s.effort(k, j) - rigid_prediction(k, j);
+      target[i] = target_at(k);
     }
     JointStribeck start;
-    start.coulomb = linear.coulomb[j];
-    start.viscous = linear.viscous[j];
-    start.load_coulomb = linear.load_coulomb[j];
-    start.load_viscous = linear.load_viscous[j];
-    const JointStribeck fit = fit_stribeck(dq, abs_g, target, start, fit_load, robust_scale[j]);
-    out.coulomb[j] = fit.coulomb;
-    out.static_friction[j] = fit.static_friction;
-    out.stribeck_velocity[j] = fit.stribeck_velocity;
-    out.stribeck_exponent[j] = fit.stribeck_exponent;
-    out.viscous[j] = fit.viscous;
-    out.load_coulomb[j] = fit.load_coulomb;
-    out.load_viscous[j] = fit.load_viscous;
+    start.coulomb = clamped.coulomb[j];
+    start.viscous = clamped.viscous[j];
+    start.load_coulomb = clamped.load_coulomb[j];
+    start.load_viscous = clamped.load_viscous[j];
+    const StribeckFit fit = fit_stribeck(dq, abs_g, target, start, fit_load);
+    StribeckParameters<double, N> curve = clamped;
+    curve.coulomb[j] = fit.curve.coulomb;
+    curve.static_friction[j] = fit.curve.static_friction;
+    curve.stribeck_velocity[j] = fit.curve.stribeck_velocity;
+    curve.stribeck_exponent[j] = fit.curve.stribeck_exponent;
+    curve.viscous[j] = fit.curve.viscous;
+    curve.load_coulomb[j] = fit.curve.load_coulomb;
+    curve.load_viscous[j] = fit.curve.load_viscous;
+    // Held-out comparison with the linear fit on the same samples.
+    double sse_curve = 0, sse_linear = 0;
+    // The symmetric part of a curve (the asymmetry is held, the same in both).
+    auto symmetric = [&](const StribeckParameters<double, N>& p, Eigen::Index k) {
+      const double v = s.dq(k, j);
+      return stribeck_friction(p, j, v, abs_gravity(k, j)) - p.coulomb_asymmetry[j] * (v != 0.0) -
+             p.viscous_asymmetry[j] * std::abs(v);
+    };
+    for (Eigen::Index k : heldout) {
+      const double t = target_at(k);
+      sse_curve += std::pow(t - symmetric(curve, k), 2);
+      sse_linear += std::pow(t - symmetric(clamped, k), 2);
+    }
+    const std::string joint = "joint " + std::to_string(j + 1) + ": ";
+    if (!heldout.empty()) {
+      out.heldout_rms_curve[j] = std::sqrt(sse_curve / static_cast<double>(heldout.size()));
+      out.heldout_rms_linear[j] = std::sqrt(sse_linear / static_cast<double>(heldout.size()));
+    }
+    if (!heldout.empty() && sse_curve > sse_linear) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "the Stribeck curve's held-out RMS (%.4g) is above the linear Coulomb + "
+                    "viscous fit's (%.4g) on the same samples: the linear fit is written",
+                    out.heldout_rms_curve[j], out.heldout_rms_linear[j]);
+      notes[j].push_back(joint + text);
+      out.parameters.coulomb[j] = out.parameters.static_friction[j] = clamped.coulomb[j];
+      out.parameters.viscous[j] = clamped.viscous[j];
+      out.parameters.load_coulomb[j] = clamped.load_coulomb[j];
+      out.parameters.load_viscous[j] = clamped.load_viscous[j];
+      return;
+    }
+    for (const std::string& b : fit.at_bound)
+      notes[j].push_back(joint + "Stribeck fit: " + b);
+    out.parameters.coulomb[j] = curve.coulomb[j];
+    out.parameters.static_friction[j] = curve.static_friction[j];
+    out.parameters.stribeck_velocity[j] = curve.stribeck_velocity[j];
+    out.parameters.stribeck_exponent[j] = curve.stribeck_exponent[j];
+    out.parameters.viscous[j] = curve.viscous[j];
+    out.parameters.load_coulomb[j] = curve.load_coulomb[j];
+    out.parameters.load_viscous[j] = curve.load_viscous[j];
+    out.parameters.coulomb_asymmetry[j] =
+        std::clamp(clamped.coulomb_asymmetry[j], -curve.coulomb[j], curve.coulomb[j]);
   };
   // Joints are independent problems: half of them on a helper thread (same result as serial).
   parallel_halves(N, [&](Eigen::Index begin, Eigen::Index end) {
     for (Eigen::Index j = begin; j < end; ++j)
       fit_joint(static_cast<int>(j));
   });
+  for (const auto& n : notes)
+    out.notes.insert(out.notes.end(), n.begin(), n.end());
   return out;
 }
 
@@ -202,8 +273,10 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   say("identify: pass 2/3: rigid-body prediction, friction curves (Ceres)");
   const Eigen::MatrixXd rigid = design.predict(s, rigid_theta);
   const Eigen::MatrixXd load = gravity_load(model, s);
-  nominal.friction = fit_friction_curves<N>(s, rigid, load, linear, options.fit_load_friction,
-                                            options.friction_samples_per_joint, sigma);
+  FrictionCurves<N> curves = fit_friction_curves<N>(
+      s, rigid, load, linear, options.fit_load_friction, options.friction_samples_per_joint);
+  nominal.friction = curves.parameters;
+  out.friction_notes = std::move(curves.notes);
 
   say("identify: pass 3/3: validation on held-out blocks");
   // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has
@@ -221,11 +294,22 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.heldout = split_regime_stats(s, out.residual, true);
   out.training = split_regime_stats(s, out.residual, false);
   out.consistency = check_consistency(nominal);
+  if (!(out.consistency.min_mass_eigenvalue > 0) && s.ddq.cwiseAbs().maxCoeff() == 0.0)
+    out.consistency.problems.push_back(
+        "every acceleration of the log is zero (its ddq<j> columns?): the inertias are not "
+        "excited, so M(q) cannot be identified; drop the ddq<j> columns to let the tools derive "
+        "them from dq<j>, or log a motion that accelerates");
   for (int j = 0; j < N; ++j)
-    if (linear.coulomb[j] < 0 || linear.viscous[j] < 0)
-      out.consistency.problems.push_back(
-          "joint " + std::to_string(j + 1) +
-          ": the linear fit gave negative Coulomb or viscous friction (too little motion?)");
+    if (linear.coulomb[j] < 0 || linear.viscous[j] < 0) {
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "joint %d: the linear least squares gave Coulomb %.4g and viscous %.4g %s: "
+                    "friction cannot push the motion, so the effort does not follow sgn(q̇) and "
+                    "q̇ as the model has them (an offset, a direction asymmetry or a delay can do "
+                    "this: run tpf diagnose); the curve is fitted from 0",
+                    j + 1, linear.coulomb[j], linear.viscous[j], s.effort_unit.c_str());
+      out.consistency.problems.push_back(text);
+    }
   return out;
 }
 
@@ -235,9 +319,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&); \
   template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,    \
                                                const JointSamples&);              \
-  template StribeckParameters<double, N> fit_friction_curves<N>(                  \
+  template FrictionCurves<N> fit_friction_curves<N>(                              \
       const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,        \
-      const StribeckParameters<double, N>&, bool, int, const Eigen::VectorXd&);
+      const StribeckParameters<double, N>&, bool, int);
 TPF_INSTANTIATE_IDENTIFY(1)
 TPF_INSTANTIATE_IDENTIFY(2)
 TPF_INSTANTIATE_IDENTIFY(3)

@@ -41,6 +41,15 @@ struct Identification {
   std::vector<RegimeStats> training;  ///< per joint, on the training blocks
   Eigen::VectorXd joint_weights;      ///< 1/σ_j² of the weighted least squares
   ConsistencyCheck consistency;
+  std::vector<std::string> friction_notes;  ///< bounds that bind, curve vs linear (FrictionCurves)
+};
+
+/// The friction curves of every joint and how they compare with the linear fit they start from.
+template <int N>
+struct FrictionCurves {
+  StribeckParameters<double, N> parameters;
+  Eigen::VectorXd heldout_rms_curve, heldout_rms_linear;  ///< per joint, friction target
+  std::vector<std::string> notes;  ///< per joint: parameters at a bound, linear kept, …
 };
 
 /// Identifies the model of the N-joint arm described by `model` (the robot file) from `log`:
@@ -59,7 +68,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
 template <int N>
 ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal);
 
-/// effort − (rigid + friction + thermal) of `nominal` on every sample (NaN where invalid).
+/// effort − (rigid + friction) of `nominal` on every sample (NaN where invalid).
 template <int N>
 Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal,
                                  const JointSamples& samples);
@@ -68,15 +77,18 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal,
 std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
                                             const Eigen::MatrixXd& residual, bool heldout);
 
-/// Fits the Stribeck + load curve of every joint (Ceres; joints on two threads, deterministic)
-/// on the friction target effort − rigid_prediction of the moving training samples, with the
-/// load |G_j(q)| of `abs_gravity` (gravity_load); `linear` gives the start values.
+/// Fits the Stribeck + load curve of every joint (Ceres, plain least squares; joints on two
+/// threads, deterministic) on the friction target effort − rigid_prediction of the non-static
+/// training samples, with the load |G_j(q)| of `abs_gravity` (gravity_load). `linear` is the
+/// linear fit (τ_c = τ_s, b, α, and the direction asymmetry and neighbour load, which are held:
+/// they are subtracted from the target and kept). On the held-out non-static samples the curve
+/// must do at least as well as `linear` (its Coulomb and viscous clamped at ≥ 0): where it does
+/// not, the linear fit is kept and a note says so; parameters that end at a bound are noted.
 template <int N>
-StribeckParameters<double, N> fit_friction_curves(const JointSamples& samples,
-                                                  const Eigen::MatrixXd& rigid_prediction,
-                                                  const Eigen::MatrixXd& abs_gravity,
-                                                  const StribeckParameters<double, N>& linear,
-                                                  bool fit_load, int samples_per_joint,
-                                                  const Eigen::VectorXd& robust_scale);
+FrictionCurves<N> fit_friction_curves(const JointSamples& samples,
+                                      const Eigen::MatrixXd& rigid_prediction,
+                                      const Eigen::MatrixXd& abs_gravity,
+                                      const StribeckParameters<double, N>& linear, bool fit_load,
+                                      int samples_per_joint);
 
 }  // namespace tpf::offline

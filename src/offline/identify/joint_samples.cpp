@@ -55,12 +55,19 @@ JointSamples extract_joint_samples(const Log& log, const SampleOptions& options)
   for (int j = 0; j < n_joints; ++j)
     s.regimes[j] = label_regimes(s.t, s.dq.col(j), options.regimes);
 
-  // Held-out split by interleaved time blocks.
+  // Held-out split: the last file of a several-file log (fit on the others), else interleaved
+  // time blocks.
   s.heldout.assign(n, 0);
-  const double t0 = s.t[0];
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const long block = static_cast<long>(std::floor((s.t[k] - t0) / options.block_s));
-    s.heldout[k] = (block % options.heldout_every) == options.heldout_every - 1;
+  if (log.file_starts.size() > 1 && log.file_starts.back() > 0 && log.file_starts.back() < n) {
+    s.heldout_file = static_cast<int>(log.file_starts.size());
+    for (Eigen::Index k = log.file_starts.back(); k < n; ++k)
+      s.heldout[k] = 1;
+  } else {
+    const double t0 = s.t[0];
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const long block = static_cast<long>(std::floor((s.t[k] - t0) / options.block_s));
+      s.heldout[k] = (block % options.heldout_every) == options.heldout_every - 1;
+    }
   }
 
   // Sign of the last motion, reset at gaps and NaNs (a new segment starts unknown).

@@ -14,8 +14,10 @@ namespace tpf::offline {
 struct SampleOptions {
   RegimeOptions regimes;                 ///< static threshold etc. (label_regimes)
   double acceleration_cutoff_hz = 15.0;  ///< derive_acceleration when the log has no ddq<j>
-  double block_s = 5.0;                  ///< held-out split: interleaved blocks of this length …
-  int heldout_every = 4;                 ///< … every heldout_every-th block is held out (25 %)
+  /// Held-out split of a one-file log: interleaved blocks of this length, every heldout_every-th
+  /// held out (25 %). A several-file log (Log::file_starts) holds out its last file instead.
+  double block_s = 5.0;
+  int heldout_every = 4;
 };
 
 /// Samples × joints matrices of one log (column j = joint j+1). Effort in the log's unit.
@@ -28,7 +30,8 @@ struct JointSamples {
   Eigen::MatrixXd temperature;               ///< temp<j> in °C; 0 columns when the log has none
   std::vector<std::vector<Regime>> regimes;  ///< [joint][sample], from label_regimes
   std::vector<char> valid;                   ///< every joint's q, dq, ddq, effort (and temp) finite
-  std::vector<char> heldout;                 ///< the sample belongs to a held-out block
+  std::vector<char> heldout;  ///< the sample belongs to a held-out block (or the held-out file)
+  int heldout_file = 0;       ///< 1-based file held out of a several-file log, 0 = blocks
   /// Sign of the last motion of each joint (|q̇| ≥ threshold): +1, −1, 0 before any motion or
   /// after a gap. Held through rests: a stopped geared joint keeps the friction it stopped with.
   Eigen::MatrixXd held_sign;

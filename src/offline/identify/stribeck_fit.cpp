@@ -24,9 +24,8 @@ struct StribeckResidual {
 
 }  // namespace
 
-JointStribeck fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                           const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load,
-                           double robust_scale) {
+StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
+                         const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load) {
   double x[7] = {std::max(start.coulomb, 0.0),
                  std::max(start.coulomb, 0.0) * 1.3,
                  std::clamp(start.stribeck_velocity, 2e-3, 1.0),
@@ -38,7 +37,7 @@ JointStribeck fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs
   for (Eigen::Index k = 0; k < dq.size(); ++k) {
     auto* cost = new ceres::AutoDiffCostFunction<StribeckResidual, 1, 7>(
         new StribeckResidual{dq[k], abs_gravity[k], target[k]});
-    problem.AddResidualBlock(cost, new ceres::CauchyLoss(std::max(robust_scale, 1e-9)), x);
+    problem.AddResidualBlock(cost, nullptr, x);
   }
   const double lower[7] = {0, 0, 1e-3, 0.3, 0, 0, 0};
   const double upper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
@@ -56,7 +55,19 @@ JointStribeck fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
-  return {x[0], x[1], x[2], x[3], x[4], x[5], x[6]};
+  StribeckFit fit{{x[0], x[1], x[2], x[3], x[4], x[5], x[6]}, {}};
+  static const char* kName[7] = {"τ_c", "τ_s", "q̇_s", "δ", "b", "α_c", "α_v"};
+  for (int i = 0; i < 7; ++i) {
+    if (!fit_load && i >= 5) continue;
+    const double scale = std::max({std::abs(lower[i]), std::abs(x[i]), 1e-12});
+    if (std::abs(x[i] - lower[i]) <= 1e-6 * scale)
+      fit.at_bound.push_back(std::string(kName[i]) + " at its lower bound " +
+                             std::to_string(lower[i]).substr(0, 5));
+    else if (upper[i] < 1e12 && std::abs(x[i] - upper[i]) <= 1e-6 * scale)
+      fit.at_bound.push_back(std::string(kName[i]) + " at its upper bound " +
+                             std::to_string(upper[i]).substr(0, 5));
+  }
+  return fit;
 }
 
 }  // namespace tpf::offline

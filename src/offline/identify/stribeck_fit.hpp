@@ -2,6 +2,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 namespace tpf::offline {
 
@@ -11,14 +13,20 @@ struct JointStribeck {
   double viscous = 0, load_coulomb = 0, load_viscous = 0;
 };
 
+/// The fitted curve and the names of the parameters that ended at a bound ("τ_s at its lower
+/// bound 0", …): a bound that binds means the curve could not take the shape the data asked for.
+struct StribeckFit {
+  JointStribeck curve;
+  std::vector<std::string> at_bound;
+};
+
 /// Fits, on moving samples (|q̇| ≥ threshold, so sgn(q̇) is defined),
 ///   f = [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇) + (b + α_v|G|)·q̇
 /// to the friction target f (effort minus the rigid-body prediction), with τ_c, τ_s, b, α ≥ 0,
 /// q̇_s ∈ [1e-3, 2] rad/s, δ ∈ [0.3, 4]; the load terms are held at zero unless `fit_load`.
-/// `start` holds the linear fit (τ_c, b, α). Cauchy loss at `robust_scale` (the effort noise
-/// level) keeps stuck or bumped samples from pulling the curve.
-JointStribeck fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                           const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load,
-                           double robust_scale);
+/// `start` holds the linear fit (τ_c, b, α). Plain least squares (the loss the held-out RMS
+/// judges): a robust loss would trade RMS for outliers no test log has shown.
+StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
+                         const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load);
 
 }  // namespace tpf::offline

@@ -1,0 +1,161 @@
+#include "planar_arm_generator.hpp"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace tpf::test {
+namespace {
+
+// ds/dt of the motion's progress: 1 while moving, 0 during a stop, raised-cosine ramps between.
+struct StopGate {
+  struct Stop {
+    double begin, end;  // the gate is 0 on [begin + ramp, end], ramps on either side
+  };
+  std::vector<Stop> stops;
+  double ramp = 0.25;
+
+  StopGate(std::mt19937_64& rng, double duration, bool enabled) {
+    if (!enabled) return;
+    std::uniform_real_distribution<double> moving(3.0, 7.0), still(0.5, 2.0);
+    for (double t = moving(rng); t < duration; t += moving(rng)) {
+      const double length = still(rng);
+      stops.push_back({t, t + ramp + length});
+      t += 2 * ramp + length;
+    }
+  }
+  // Gate value and its time derivative at t.
+  std::pair<double, double> operator()(double t) const {
+    for (const Stop& s : stops) {
+      if (t < s.begin) break;
+      if (t < s.begin + ramp) {
+        const double a = M_PI * (t - s.begin) / ramp;
+        return {0.5 * (1 + std::cos(a)), -0.5 * M_PI / ramp * std::sin(a)};
+      }
+      if (t < s.end) return {0.0, 0.0};
+      if (t < s.end + ramp) {
+        const double a = M_PI * (t - s.end) / ramp;
+        return {0.5 * (1 - std::cos(a)), 0.5 * M_PI / ramp * std::sin(a)};
+      }
+    }
+    return {1.0, 0.0};
+  }
+};
+
+// One joint's path of the progress s: centre + amplitude·(0.65 sin(w1 s + p1) + 0.35 sin(w2 s +
+// p2)).
+struct JointPath {
+  double centre, amplitude, w1, w2, p1, p2;
+  double at(double s) const {
+    return centre + amplitude * (0.65 * std::sin(w1 * s + p1) + 0.35 * std::sin(w2 * s + p2));
+  }
+  double d1(double s) const {
+    return amplitude * (0.65 * w1 * std::cos(w1 * s + p1) + 0.35 * w2 * std::cos(w2 * s + p2));
+  }
+  double d2(double s) const {
+    return -amplitude *
+           (0.65 * w1 * w1 * std::sin(w1 * s + p1) + 0.35 * w2 * w2 * std::sin(w2 * s + p2));
+  }
+};
+
+double quantise(double value, double quantum) {
+  return quantum > 0 ? quantum * std::round(value / quantum) : value;
+}
+
+}  // namespace
+
+Eigen::Vector2d PlanarArm::gravity(const Eigen::Vector2d& q) const {
+  // Axes along y, gravity along −z: a point r along a link at absolute angle a sits at height
+  // −r·sin(a); G = ∂V/∂q with V = Σ m g z.
+  const double a1 = q[0], a2 = q[0] + q[1];
+  const double g2 = -g * m2 * c2 * std::cos(a2);
+  return {-g * (m1 * c1 + m2 * L1) * std::cos(a1) + g2, g2};
+}
+
+Eigen::Vector2d PlanarArm::inverse_dynamics(const Eigen::Vector2d& q, const Eigen::Vector2d& dq,
+                                            const Eigen::Vector2d& ddq) const {
+  const double c = std::cos(q[1]), s = std::sin(q[1]);
+  const double m11 = I1 + m1 * c1 * c1 + I2 + m2 * (L1 * L1 + c2 * c2 + 2 * L1 * c2 * c) + armature;
+  const double m12 = I2 + m2 * (c2 * c2 + L1 * c2 * c);
+  const double m22 = I2 + m2 * c2 * c2 + armature;
+  const double h = m2 * L1 * c2 * s;
+  Eigen::Vector2d tau;
+  tau[0] = m11 * ddq[0] + m12 * ddq[1] - h * (2 * dq[0] * dq[1] + dq[1] * dq[1]);
+  tau[1] = m12 * ddq[0] + m22 * ddq[1] + h * dq[0] * dq[0];
+  return tau + gravity(q);
+}
+
+std::string planar_robot_file() {
+  return std::string(TPF_TEST_SOURCE_DIR) + "/planar2/planar2.robot.json";
+}
+
+offline::Log generate_planar_log(const PlanarArmPlant& p) {
+  std::mt19937_64 rng(p.seed);
+  std::uniform_real_distribution<double> frequency(0.5, 1.3), phase(0.0, 2 * M_PI);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  const PlanarArm arm;
+  const double dt = 1.0 / p.rate_hz;
+  const int lag = static_cast<int>(std::lround(p.delay_s * p.rate_hz));
+  const int n = static_cast<int>(p.duration_s * p.rate_hz);
+  const int total = n + lag;
+  const StopGate gate(rng, total * dt, p.random_stops);
+  JointPath path[2];
+  for (int j = 0; j < 2; ++j)
+    path[j] = {p.centre[j], p.amplitude[j], frequency(rng), frequency(rng), phase(rng), phase(rng)};
+
+  std::vector<Eigen::Vector2d> q(total), dq(total), tau(total);
+  Eigen::Vector2d bristle = Eigen::Vector2d::Zero();  // Dahl deflection, rad
+  double progress = 0.0;
+  for (int k = 0; k < total; ++k) {
+    const double t = k * dt;
+    if (k > 0) {  // trapezoid in 20 sub-steps: s(t) = ∫ gate
+      constexpr int kSub = 20;
+      for (int i = 0; i < kSub; ++i) {
+        const double a = t - dt + i * dt / kSub;
+        progress += 0.5 * (gate(a).first + gate(a + dt / kSub).first) * dt / kSub;
+      }
+    }
+    const auto [speed, speed_rate] = gate(t);
+    Eigen::Vector2d ddq;
+    for (int j = 0; j < 2; ++j) {
+      q[k][j] = path[j].at(progress);
+      dq[k][j] = path[j].d1(progress) * speed;
+      ddq[j] = path[j].d2(progress) * speed * speed + path[j].d1(progress) * speed_rate;
+    }
+    Eigen::Vector2d effort = arm.inverse_dynamics(q[k], dq[k], ddq);
+    const Eigen::Vector2d load = arm.gravity(q[k]).cwiseAbs();
+    for (int j = 0; j < 2; ++j) {
+      const double v = dq[k][j];
+      double level = v >= 0 ? p.coulomb_positive[j] : p.coulomb_negative[j];
+      if (j == 0) level += p.neighbour_load * load[1];
+      if (v != 0.0) {  // exact step of ż = v − σ0|v|z/level at constant v
+        const double steady = (v > 0 ? 1.0 : -1.0) * level / p.bristle_stiffness[j];
+        bristle[j] = steady + (bristle[j] - steady) *
+                                  std::exp(-p.bristle_stiffness[j] * std::abs(v) * dt / level);
+      }
+      effort[j] += p.bristle_stiffness[j] * bristle[j] + p.viscous[j] * v + p.offset[j] +
+                   p.spring_stiffness[j] * (q[k][j] - p.spring_neutral[j]) +
+                   p.ripple_amplitude[j] * std::sin(p.ripple_cycles[j] * q[k][j]);
+    }
+    tau[k] = effort;
+  }
+
+  offline::Log log;
+  log.source = "planar2-generator-seed" + std::to_string(p.seed);
+  log.meta.set("source", "independent test generator (tests/generator), not the twin");
+  log.columns = {"t", "q1", "q2", "dq1", "dq2", "tau1", "tau2"};
+  log.values.resize(n, 7);
+  for (int k = 0; k < n; ++k) {
+    const int motion = k + lag;  // the effort logged now is the one of `lag` samples ago
+    log.values(k, 0) = k * dt;
+    for (int j = 0; j < 2; ++j) {
+      log.values(k, 1 + j) = quantise(q[motion][j], p.position_quantum);
+      log.values(k, 3 + j) =
+          quantise(dq[motion][j] + p.velocity_noise * unit(rng), p.velocity_quantum);
+      log.values(k, 5 + j) = quantise(tau[k][j] + p.effort_noise * unit(rng), p.effort_quantum);
+    }
+  }
+  return log;
+}
+
+}  // namespace tpf::test

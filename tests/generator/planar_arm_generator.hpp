@@ -1,0 +1,69 @@
+// An independent log generator for testing diagnosis on data the twin did not make: a two-link
+// planar arm in a vertical plane (planar2/), its closed-form Lagrangian dynamics written here
+// (not tpf's RNEA, not src/offline/sim), a prescribed motion with random stops, friction with
+// memory (a Dahl bristle per joint with direction-dependent levels), planted effects, noise and
+// quantisation. Writes a tpf Log in memory (t, q<j>, dq<j>, tau<j> in N·m; no ddq: the tools
+// derive it).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+
+#include "offline/log/log.hpp"
+
+namespace tpf::test {
+
+/// What the generator plants. Every effect is off (zero) by default.
+struct PlanarArmPlant {
+  std::uint64_t seed = 1;
+  double duration_s = 60.0;
+  double rate_hz = 100.0;
+  Eigen::Vector2d centre{0.3, 0.5};     ///< rad, middle of each joint's motion
+  Eigen::Vector2d amplitude{1.2, 1.4};  ///< rad, half the range of motion
+  bool random_stops = true;             ///< the motion pauses 0.5–2 s every few seconds
+
+  // Friction (Dahl bristle with a direction-dependent sliding level; memory at reversals/rests).
+  Eigen::Vector2d coulomb_positive{0.40, 0.25};  ///< N·m, sliding level for q̇ > 0
+  Eigen::Vector2d coulomb_negative{0.40, 0.25};  ///< N·m, for q̇ < 0
+  Eigen::Vector2d viscous{0.30, 0.20};           ///< N·m·s/rad
+  Eigen::Vector2d bristle_stiffness{400, 300};   ///< N·m/rad
+  double neighbour_load = 0.0;  ///< joint 1's sliding level grows by this × |G_2(q)| [1]
+
+  // Planted effects.
+  Eigen::Vector2d offset{0, 0};            ///< N·m, constant
+  Eigen::Vector2d spring_stiffness{0, 0};  ///< N·m/rad, τ += k (q − q0)
+  Eigen::Vector2d spring_neutral{0, 0};    ///< q0, rad
+  Eigen::Vector2d ripple_amplitude{0, 0};  ///< N·m, τ += a·sin(n q)
+  Eigen::Vector2d ripple_cycles{8, 8};     ///< n, periods per revolution
+  double delay_s = 0.0;                    ///< the logged effort lags the motion on every joint
+
+  // Sensors.
+  double effort_noise = 0.02;        ///< N·m, std
+  double effort_quantum = 0.005;     ///< N·m
+  double velocity_noise = 0.0006;    ///< rad/s, std
+  double velocity_quantum = 0.004;   ///< rad/s (a stopped joint reads exactly 0)
+  double position_quantum = 3.8e-4;  ///< rad (14-bit encoder on the output)
+};
+
+/// The generator's arm (must match planar2/planar2.urdf and planar2.robot.json).
+struct PlanarArm {
+  double m1 = 2.0, c1 = 0.2, L1 = 0.4, I1 = 0.03;
+  double m2 = 1.2, c2 = 0.15, I2 = 0.012;
+  double armature = 1e-5 * 100 * 100;  ///< rotor inertia × gear ratio², kg·m²
+  double g = 9.81;
+
+  /// Rigid-body torque (incl. armature) the drives must produce, closed form.
+  Eigen::Vector2d inverse_dynamics(const Eigen::Vector2d& q, const Eigen::Vector2d& dq,
+                                   const Eigen::Vector2d& ddq) const;
+  /// Gravity torque G(q) the drives must produce to hold the arm.
+  Eigen::Vector2d gravity(const Eigen::Vector2d& q) const;
+};
+
+/// Path of planar2.robot.json.
+std::string planar_robot_file();
+
+/// Generates the log of `plant`.
+offline::Log generate_planar_log(const PlanarArmPlant& plant);
+
+}  // namespace tpf::test
