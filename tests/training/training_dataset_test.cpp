@@ -62,7 +62,7 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
   double t_prev = std::numeric_limits<double>::quiet_NaN();
   int moving_rows = 0, static_rows = 0;
   for (std::size_t k = 0; k < samples.size(); ++k) {
-    const ArmSample& s = samples[k];
+    const ReplaySample<kArmJoints>& s = samples[k];
     const auto r = static_cast<Eigen::Index>(k);
     if (k == 0) filter.reset(s.dq);
     const double h = k == 0 ? setup.parameters.sample_period_s : s.t - t_prev;
