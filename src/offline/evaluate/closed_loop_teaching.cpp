@@ -116,7 +116,7 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const ArmEstimatorSetup& setup,
   std::array<TeachingLoop, 2> loops;
   loops[0].name = "nominal, no compensator (proprioceptive)";
   loops[1].name = "fusion with the compensator";
-  const RowLayout layout(simulation_columns(kArmPads));
+  const RowLayout layout(simulation_columns(scenario));
   for (int mode = 0; mode < 2; ++mode) {
     const ArmEstimatorStep step = make_arm_estimator_step(setup);
     std::vector<Vec> estimates;
