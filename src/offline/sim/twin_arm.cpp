@@ -107,7 +107,8 @@ class FixedArm final : public TwinArm::Impl {
     return jacobian * Vec(dq);
   }
   TwinVector solve_spd(const TwinMatrix& a, const TwinVector& b) const override {
-    return JointMatrix<double, N>(a).ldlt().solve(Vec(b));
+    const Vec x = JointMatrix<double, N>(a).ldlt().solve(Vec(b));  // solved at size N, then copied
+    return x;
   }
 
  private:
