@@ -25,7 +25,8 @@
 namespace {
 
 using namespace tpf::offline;
-constexpr int N = kTwinJoints;
+constexpr int N = 4;  // the realism check runs on the arm4 (data/arm4.robot.json)
+using Vec = tpf::JointVector<double, N>;
 constexpr double kRestVelocity = 1e-4;    // rad/s, the original work's static threshold
 constexpr double kMovingVelocity = 1e-3;  // rad/s, a sample that clearly moves
 
@@ -79,13 +80,13 @@ int main(int argc, char** argv) {
   const Eigen::Index rows = log.rows();
   Eigen::MatrixXd residual(rows, N);
   for (Eigen::Index k = 0; k < rows; ++k) {
-    TwinVector q, dq;
+    Vec q, dq;
     for (int j = 0; j < N; ++j) {
       q[j] = log.col(indexed_name("q", j + 1))(k);
       dq[j] = log.col(indexed_name("dq", j + 1))(k);
     }
-    const TwinVector tau =
-        tpf::rnea(model, data, q, dq, TwinVector::Zero()) + tpf::stribeck_friction(nominal, dq);
+    const Vec tau =
+        tpf::rnea(model, data, q, dq, Vec::Zero()) + tpf::stribeck_friction(nominal, dq);
     for (int j = 0; j < N; ++j)
       residual(k, j) =
           log.col(indexed_name("i", j + 1))(k) - tau[j] / model.torque_constant[j] * 1000.0;

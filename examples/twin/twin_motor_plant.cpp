@@ -8,12 +8,11 @@
 #include "offline/sim/random.hpp"
 #include "offline/sim/sensor_quantisation.hpp"
 #include "offline/sim/twin_arm.hpp"
+#include "offline/sim/twin_friction.hpp"
 #include "offline/sim/twin_plant.hpp"
-#include "tpf/friction/friction_file.hpp"
 
 namespace tpf::dxl::emu {
 
-using offline::kTwinJoints;
 using offline::TwinVector;
 
 namespace {
@@ -24,8 +23,8 @@ struct TwinMotorPlant::Twin {
   offline::Scenario scenario;
   offline::TwinArm arm;
   offline::TwinPlant plant;
-  std::vector<offline::Ph54Drive> drives;   // one per joint (joint j uses entry j of drive j)
-  TwinVector current = TwinVector::Zero();  // motor current, A
+  std::vector<offline::Ph54Drive> drives;  // one per joint (joint j uses entry j of drive j)
+  TwinVector current;                      // motor current, A
   offline::PadSensors pads;
   offline::ContactScript contacts;
   offline::Random noise;
@@ -34,11 +33,12 @@ struct TwinMotorPlant::Twin {
   Twin(const offline::Scenario& s, offline::Random& root)
       : scenario(s),
         arm(s),
-        plant(arm, load_lugre_parameters<double, kTwinJoints>(s.friction_file), s.effects,
+        plant(arm, offline::load_twin_friction(s.friction_file, arm.joints()), s.effects,
               1.0 / s.inner_rate_hz),
-        drives(kTwinJoints, offline::Ph54Drive(s.drive, arm.mass_matrix(s.initial_q).diagonal(),
-                                               arm.torque_constant(), arm.current_limit(),
-                                               arm.velocity_limit())),
+        drives(
+            static_cast<std::size_t>(arm.joints()),
+            offline::Ph54Drive(s.drive, arm.mass_matrix(s.initial_q).diagonal(),
+                               arm.torque_constant(), arm.current_limit(), arm.velocity_limit())),
         pads(s.pads, arm.pad_count(), root.split()),
         noise(root.split()),
         pad_force(static_cast<std::size_t>(arm.pad_count()), 0.0),
@@ -52,7 +52,11 @@ TwinMotorPlant::TwinMotorPlant(const offline::Scenario& scenario, TwinMotorPlant
   twin_ = std::make_unique<Twin>(scenario, root);
   h_ = 1.0 / scenario.inner_rate_hz;
   pad_every_ = std::max(1L, std::lround(scenario.inner_rate_hz / kPadRateHz));
-  twin_->plant.reset(scenario.initial_q, TwinVector::Zero());
+  const int joints = twin_->arm.joints();
+  twin_->current.setZero(joints);
+  twin_->plant.reset(scenario.initial_q, TwinVector::Zero(joints));
+  was_enabled_.assign(static_cast<std::size_t>(joints), false);
+  state_.assign(static_cast<std::size_t>(joints), MotorState{});
   if (scenario.kind == offline::Scenario::Kind::kStaticContacts) {
     const TwinVector& lower = twin_->arm.lower();
     const TwinVector& upper = twin_->arm.upper();
@@ -63,8 +67,8 @@ TwinMotorPlant::TwinMotorPlant(const offline::Scenario& scenario, TwinMotorPlant
   }
   pad_kpa_.assign(static_cast<std::size_t>(twin_->arm.pad_count()), 0.0f);
   truth_.reserve(options_.truth_capacity);
-  for (int j = 0; j < kTwinJoints; ++j)
-    state_[j].position_rad = scenario.initial_q[j];
+  for (int j = 0; j < joints; ++j)
+    state_[static_cast<std::size_t>(j)].position_rad = scenario.initial_q[j];
 }
 
 TwinMotorPlant::~TwinMotorPlant() = default;
@@ -100,6 +104,7 @@ void TwinMotorPlant::inner_step(std::span<const MotorGoal> goals) {
   TwinTruth truth;
   truth.t = t_;
   truth.q = q;
+  truth.tau_ext.setZero(q.size());
   const offline::ContactSample c = w.contacts.at(t_);
   std::fill(w.pad_force.begin(), w.pad_force.end(), 0.0);
   if (c.pad >= 0) {
@@ -124,13 +129,13 @@ void TwinMotorPlant::inner_step(std::span<const MotorGoal> goals) {
   if (powered_) {  // until then the arm rests at the initial pose, supported
     motor_current(goals);
     const TwinVector tau_motor = w.arm.torque_constant().cwiseProduct(w.current);
-    w.plant.step(tau_motor + truth.tau_ext, TwinVector::Ones());
+    w.plant.step(tau_motor + truth.tau_ext, TwinVector::Ones(w.arm.joints()));
     stop_at_limits();
   }
   t_ += h_;
   ++steps_;
 
-  for (int j = 0; j < kTwinJoints; ++j) {
+  for (int j = 0; j < w.arm.joints(); ++j) {
     state_[j].position_rad = w.plant.q()[j];
     state_[j].velocity_rad_s = w.plant.dq()[j];
     state_[j].current_A =
@@ -142,14 +147,15 @@ void TwinMotorPlant::motor_current(std::span<const MotorGoal> goals) {
   Twin& w = *twin_;
   const TwinVector& q = w.plant.q();
   const TwinVector& dq = w.plant.dq();
-  TwinVector q_meas, dq_meas;  // what the drive's encoder reports
-  for (int j = 0; j < kTwinJoints; ++j) {
+  TwinVector q_meas(q.size()), dq_meas(q.size());  // what the drive's encoder reports
+  for (int j = 0; j < w.arm.joints(); ++j) {
     q_meas[j] = offline::quantise_position(q[j]);
     dq_meas[j] = offline::quantise_velocity(dq[j]);
   }
   const double lag = 1.0 - std::exp(-h_ / std::max(w.scenario.drive.current_time_constant, 1e-9));
-  for (int j = 0; j < kTwinJoints; ++j) {
-    const MotorGoal g = static_cast<std::size_t>(j) < goals.size() ? goals[j] : MotorGoal{};
+  for (int j = 0; j < w.arm.joints(); ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    const MotorGoal g = k < goals.size() ? goals[k] : MotorGoal{};
     if (!g.torque_enabled) {
       w.current[j] = 0.0;
     } else if (g.mode == ph54::OperatingMode::current) {
@@ -157,8 +163,8 @@ void TwinMotorPlant::motor_current(std::span<const MotorGoal> goals) {
       w.current[j] += lag * (std::clamp(g.current_A, -limit, limit) - w.current[j]);
     } else {
       // Switched on: the cascade starts from rest (integrator 0), as the PH54 does.
-      if (!was_enabled_[j]) w.drives[j].reset(TwinVector::Zero());
-      TwinVector q_ref = q_meas, dq_ref = TwinVector::Zero();
+      if (!was_enabled_[j]) w.drives[j].reset(TwinVector::Zero(w.arm.joints()));
+      TwinVector q_ref = q_meas, dq_ref = TwinVector::Zero(w.arm.joints());
       if (g.mode == ph54::OperatingMode::velocity)
         dq_ref[j] = g.velocity_rad_s;
       else
@@ -173,7 +179,7 @@ void TwinMotorPlant::stop_at_limits() {
   Twin& w = *twin_;
   TwinVector q = w.plant.q(), dq = w.plant.dq();
   bool hit = false;
-  for (int j = 0; j < kTwinJoints; ++j) {
+  for (int j = 0; j < w.arm.joints(); ++j) {
     if (q[j] < w.arm.lower()[j] && dq[j] < 0.0) {
       q[j] = w.arm.lower()[j];
       dq[j] = 0.0;

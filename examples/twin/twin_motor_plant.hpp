@@ -35,11 +35,11 @@ struct TwinMotorPlantOptions {
 
 /// The twin's truth at one inner step (what a log's gt_* columns hold).
 struct TwinTruth {
-  double t = 0.0;  ///< s of simulated time since the plant was built
-  offline::TwinVector q = offline::TwinVector::Zero();        ///< rad
-  offline::TwinVector tau_ext = offline::TwinVector::Zero();  ///< N·m, environment on the robot
-  int pad = -1;                                               ///< pad pushed (0-based), −1: none
-  double normal_force_n = 0.0;                                ///< push into that pad, N
+  double t = 0.0;               ///< s of simulated time since the plant was built
+  offline::TwinVector q;        ///< rad
+  offline::TwinVector tau_ext;  ///< N·m, environment on the robot
+  int pad = -1;                 ///< pad pushed (0-based), −1: none
+  double normal_force_n = 0.0;  ///< push into that pad, N
 };
 
 class TwinMotorPlant final : public MotorPlant {
@@ -54,7 +54,7 @@ class TwinMotorPlant final : public MotorPlant {
   /// Replaces the pushes (times in simulated seconds since the plant was built).
   void set_contacts(offline::ContactScript contacts);
 
-  std::size_t joints() const override { return offline::kTwinJoints; }
+  std::size_t joints() const override { return state_.size(); }
   /// Advances by dt in inner steps of 1/inner_rate_hz (the remainder carries over).
   void step(double dt, std::span<const MotorGoal> goals) override;
   MotorState state(std::size_t k) const override { return state_[k]; }
@@ -79,9 +79,9 @@ class TwinMotorPlant final : public MotorPlant {
   TwinMotorPlantOptions options_;
   double h_ = 0.0, t_ = 0.0, pending_ = 0.0;
   long steps_ = 0, pad_every_ = 1;
-  bool powered_ = false;  ///< the host has switched torque on at least once
-  std::array<bool, offline::kTwinJoints> was_enabled_{};
-  std::array<MotorState, offline::kTwinJoints> state_{};
+  bool powered_ = false;           ///< the host has switched torque on at least once
+  std::vector<bool> was_enabled_;  ///< per joint
+  std::vector<MotorState> state_;  ///< per joint
   std::vector<TwinTruth> truth_;
   mutable std::mutex pads_mutex_;
   std::vector<float> pad_kpa_;

@@ -14,6 +14,7 @@ namespace {
 
 struct SimulateOptions {
   std::string scenario;
+  std::string robot;
   std::uint64_t seed = 1;
   double duration = 0.0;
   std::string out;
@@ -21,7 +22,7 @@ struct SimulateOptions {
 };
 
 void run_simulate(const SimulateOptions& o) {
-  const auto scenario = tpf::offline::load_scenario(o.scenario);
+  const auto scenario = tpf::offline::load_scenario(o.scenario, o.robot);
   const double duration = o.duration > 0 ? o.duration : scenario.duration_s;
   const auto start = std::chrono::steady_clock::now();
   tpf::offline::ProgressSink progress;
@@ -36,8 +37,12 @@ void run_simulate(const SimulateOptions& o) {
   }
   const auto summary = tpf::offline::simulate_to_file(scenario, o.seed, duration, o.out, progress);
   if (!o.quiet)
-    std::fprintf(stderr, "\nsimulate: wrote %zu rows (%zu cycles dropped on purpose) to %s\n",
-                 summary.rows, summary.dropped_rows, o.out.c_str());
+    std::fprintf(stderr,
+                 "\nsimulate: %s, %d joints, %s: wrote %zu rows (%zu cycles dropped on purpose) to "
+                 "%s\n",
+                 scenario.robot_file.c_str(), scenario.joints,
+                 scenario.pads_file.empty() ? "no skin" : scenario.pads_file.c_str(), summary.rows,
+                 summary.dropped_rows, o.out.c_str());
 }
 
 }  // namespace
@@ -49,11 +54,17 @@ void register_simulate_command(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand(
       "simulate",
-      "Run the digital twin (arm, PH54 drives, friction with memory, sensors, pads, contacts) on "
-      "a scenario and write a simulated log with gt_* ground truth");
+      "Run the digital twin (arm of 1-7 joints, drive cascades, friction with memory, sensors, "
+      "pads, contacts) on a scenario and write a simulated log with gt_* ground truth");
   cmd->add_option("--scenario", options->scenario,
-                  "Scenario file, e.g. data/scenarios/excitation.json")
+                  "Scenario file, e.g. data/scenarios/excitation.json; it names its robot "
+                  "(\"robot\", default data/arm4.robot.json)")
       ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--robot", options->robot,
+                  "Robot file to simulate instead of the scenario's, e.g. data/bench1.robot.json "
+                  "(its pads and friction file come with it; the scenario's per-joint vectors "
+                  "must then fit its joint count or be left out)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--seed", options->seed, "Random seed; the same seed gives the same log")
       ->capture_default_str();

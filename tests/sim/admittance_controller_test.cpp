@@ -13,27 +13,30 @@
 
 namespace {
 
+constexpr int kArm4Joints = 4;  // data/arm4.robot.json
+
 using namespace tpf::offline;
 
 constexpr double kHostPeriod = 0.0025;  // s
 
 AdmittanceController pushed_controller(const TwinVector& upper) {
   TeachingConfig config;
-  AdmittanceController c(config, tpf::StribeckParameters<double, kTwinJoints>{}, TwinVector::Zero(),
-                         TwinVector::Constant(-3.0), upper);
-  const TwinVector tau(2.0, -1.0, 0.5, 0.0);  // N·m
+  AdmittanceController c(config, TwinFriction{std::vector<JointFriction>(kArm4Joints)},
+                         TwinVector::Zero(kArm4Joints), TwinVector::Constant(kArm4Joints, -3.0),
+                         upper);
+  const TwinVector tau = twin_vector({2.0, -1.0, 0.5, 0.0});  // N·m
   for (int k = 0; k < 40; ++k)
     c.follow(tau, /*max_pad_kpa=*/2.0, kHostPeriod);
   return c;
 }
 
 TEST(AdmittanceController, GoalMovesWithTheCommandedVelocityBetweenWrites) {
-  const AdmittanceController c = pushed_controller(TwinVector::Constant(3.0));
+  const AdmittanceController c = pushed_controller(TwinVector::Constant(kArm4Joints, 3.0));
   ASSERT_GT(std::abs(c.dq_ref()[0]), 0.05) << "the push must move joint 1";
   TwinVector q, dq;
   for (const double s : {0.0, 0.0005, 0.0013, 0.0025}) {
     c.goal(s, q, dq);
-    for (int j = 0; j < kTwinJoints; ++j) {
+    for (int j = 0; j < kArm4Joints; ++j) {
       EXPECT_NEAR(q[j], c.q_ref()[j] + c.dq_ref()[j] * s, 1e-15) << "s " << s << " joint " << j;
       EXPECT_EQ(dq[j], c.dq_ref()[j]);
     }
@@ -45,9 +48,9 @@ TEST(AdmittanceController, GoalMovesWithTheCommandedVelocityBetweenWrites) {
 }
 
 TEST(AdmittanceController, GoalStopsAtTheJointLimit) {
-  const AdmittanceController free = pushed_controller(TwinVector::Constant(3.0));
+  const AdmittanceController free = pushed_controller(TwinVector::Constant(kArm4Joints, 3.0));
   // Joint 1 moves up; put its limit just beyond the last write.
-  TwinVector upper = TwinVector::Constant(3.0);
+  TwinVector upper = TwinVector::Constant(kArm4Joints, 3.0);
   upper[0] = free.q_ref()[0] + 0.5 * free.dq_ref()[0] * kHostPeriod;
   ASSERT_GT(free.dq_ref()[0], 0.0);
   const AdmittanceController c = pushed_controller(upper);

@@ -10,11 +10,13 @@
 
 namespace {
 
+constexpr int kArm4Joints = 4;  // data/arm4.robot.json
+
 using namespace tpf::offline;
 
 TEST(MinJerkSchedule, EndpointsPeakSpeedAndDerivative) {
-  MinJerkSchedule s(TwinVector::Zero());
-  for (int j = 0; j < kTwinJoints; ++j) {
+  MinJerkSchedule s(TwinVector::Zero(kArm4Joints));
+  for (int j = 0; j < kArm4Joints; ++j) {
     s.append(j, 0.0, 1.0);
     s.append(j, 0.5 * (j + 1), 2.0);
   }
@@ -22,7 +24,7 @@ TEST(MinJerkSchedule, EndpointsPeakSpeedAndDerivative) {
   s.evaluate(0.5, q, dq);
   EXPECT_TRUE(q.isZero(0.0));
   s.evaluate(2.0, q, dq);  // middle of the move: half way, peak speed 1.875·Δ/T
-  for (int j = 0; j < kTwinJoints; ++j) {
+  for (int j = 0; j < kArm4Joints; ++j) {
     EXPECT_NEAR(q[j], 0.25 * (j + 1), 1e-12);
     EXPECT_NEAR(dq[j], 1.875 * 0.5 * (j + 1) / 2.0, 1e-12);
   }
@@ -39,15 +41,18 @@ TEST(MinJerkSchedule, EndpointsPeakSpeedAndDerivative) {
 
 TEST(ExcitationSchedule, StaysInRangeAndStartsMotionInBothDirections) {
   ExcitationConfig c;
+  c.lower = twin_vector({-2.5, -1.2, -1.6, -2.0});
+  c.upper = twin_vector({2.5, 1.2, 1.2, 2.0});
   Random rng(3);
   const TwinVector lower = c.lower, upper = c.upper;
-  MinJerkSchedule s = make_excitation_schedule(c, TwinVector::Zero(), lower, upper, 120.0, rng);
+  MinJerkSchedule s =
+      make_excitation_schedule(c, TwinVector::Zero(kArm4Joints), lower, upper, 120.0, rng);
   TwinVector q, dq;
-  int onsets_pos[kTwinJoints] = {}, onsets_neg[kTwinJoints] = {};
-  TwinVector previous = TwinVector::Zero();
+  int onsets_pos[kArm4Joints] = {}, onsets_neg[kArm4Joints] = {};
+  TwinVector previous = TwinVector::Zero(kArm4Joints);
   for (int k = 0; k < 120 * 400; ++k) {
     s.evaluate(k / 400.0, q, dq);
-    for (int j = 0; j < kTwinJoints; ++j) {
+    for (int j = 0; j < kArm4Joints; ++j) {
       EXPECT_GE(q[j], lower[j] - 1e-12);
       EXPECT_LE(q[j], upper[j] + 1e-12);
       if (previous[j] == 0.0 && dq[j] > 0) ++onsets_pos[j];
@@ -55,7 +60,7 @@ TEST(ExcitationSchedule, StaysInRangeAndStartsMotionInBothDirections) {
     }
     previous = dq;
   }
-  for (int j = 0; j < kTwinJoints; ++j) {
+  for (int j = 0; j < kArm4Joints; ++j) {
     EXPECT_GE(onsets_pos[j], 5) << "joint " << j;
     EXPECT_GE(onsets_neg[j], 5) << "joint " << j;
   }

@@ -47,7 +47,8 @@ struct RobotDescription {
   ChainDescription chain;
   std::vector<DriveDescription> drives;  ///< in chain order.
   Vector3<double> gravity{0, 0, -9.81};
-  std::filesystem::path pads_file;  ///< empty if the robot has no skin.
+  std::filesystem::path pads_file;      ///< empty if the robot has no skin.
+  std::filesystem::path friction_file;  ///< the twin's true friction; empty if none is named.
 };
 
 /// Reads a URDF and extracts the serial chain of revolute (or continuous) joints from its root.

@@ -19,6 +19,7 @@ RobotDescription load_robot_description(const std::filesystem::path& robot_file)
   robot.chain.robot_name = top.text("name", robot.chain.robot_name);
   if (top.has("gravity")) robot.gravity = top.vector3("gravity");
   if (top.has("pads")) robot.pads_file = folder / top.text("pads");
+  if (top.has("friction")) robot.friction_file = folder / top.text("friction");
 
   std::vector<json::Object> joints = top.children("joints");
   if (joints.size() != robot.chain.joints.size()) {

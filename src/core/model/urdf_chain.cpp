@@ -202,7 +202,10 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
     cj.axis = {j.axis.x, j.axis.y, j.axis.z};
     if (cj.axis.norm() < 1e-9) throw Error::at(file, 0, "joint '" + j.name + "'", "axis is zero");
     cj.axis.normalize();
-    if (j.type == urdf::Joint::CONTINUOUS || !j.limits) {
+    // A revolute joint whose <limit> gives neither lower nor upper (urdfdom reads both as 0, as in
+    // Kinova's description) turns without end stops, like a continuous one.
+    if (j.type == urdf::Joint::CONTINUOUS || !j.limits ||
+        (j.limits->lower == 0.0 && j.limits->upper == 0.0)) {
       cj.lower = -std::numeric_limits<double>::infinity();
       cj.upper = std::numeric_limits<double>::infinity();
     } else {

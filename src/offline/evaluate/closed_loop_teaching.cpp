@@ -5,6 +5,7 @@
 #include "offline/evaluate/contact_detection.hpp"
 #include "offline/sim/simulate.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/common/joint_counts.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -119,7 +120,7 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
   loops[0].name = "nominal, no compensator (proprioceptive)";
   loops[1].name = "fusion with the compensator";
   const int pads = static_cast<int>(setup.pads.size());
-  const RowLayout<N> layout(simulation_columns(pads), pads);
+  const RowLayout<N> layout(simulation_columns(scenario), pads);
   for (int mode = 0; mode < 2; ++mode) {
     TeachingLoop& loop = loops[static_cast<std::size_t>(mode)];
     std::vector<TwinVector> estimates;
@@ -145,7 +146,11 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
   return loops;
 }
 
-template std::array<TeachingLoop, 2> closed_loop_teaching<kTwinJoints>(
-    const EstimatorSetup<kTwinJoints>&, const Scenario&, std::uint64_t, double);
+#define TPF_INSTANTIATE_CLOSED_LOOP_TEACHING(N)                                               \
+  template std::array<TeachingLoop, 2> closed_loop_teaching<N>(const EstimatorSetup<N>&,        \
+                                                               const Scenario&, std::uint64_t, \
+                                                               double);
+TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_CLOSED_LOOP_TEACHING)
+#undef TPF_INSTANTIATE_CLOSED_LOOP_TEACHING
 
 }  // namespace tpf::offline

@@ -181,15 +181,9 @@ Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
   }
   if (logs.teaching_scenario) {
     say("evaluate: closed-loop teaching, the admittance controller following each estimator");
-    if constexpr (N == kTwinJoints) {
-      ev.closed_loop = closed_loop_teaching(setup, *logs.teaching_scenario, logs.teaching_seed,
-                                            logs.teaching_duration_s);
-      ev.has_closed_loop = true;
-    } else {
-      throw Error::at(logs.teaching_scenario->file, 0, "robot",
-                      "closed-loop teaching simulates the twin's " + std::to_string(kTwinJoints) +
-                          "-joint arm; this estimator has " + std::to_string(N) + " joints");
-    }
+    ev.closed_loop = closed_loop_teaching(setup, *logs.teaching_scenario, logs.teaching_seed,
+                                          logs.teaching_duration_s);
+    ev.has_closed_loop = true;
   }
   return ev;
 }

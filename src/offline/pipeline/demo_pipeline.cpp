@@ -22,6 +22,9 @@
 #include "tpf/model/load_robot.hpp"
 
 namespace tpf::offline {
+
+/// The demo runs the twin of the project's 4-joint arm (data/arm4.*).
+constexpr int kDemoJoints = 4;
 namespace {
 
 struct SimulationJob {
@@ -141,28 +144,28 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   // 2. Identify the declared model on the training log.
   say("[2/5] identify: declared model (base parameters, armature, Stribeck + load friction) on "
       "the training log");
-  const auto model = load_robot<double, kTwinJoints>(data_file("arm4.robot.json"));
+  const auto model = load_robot<double, kDemoJoints>(data_file("arm4.robot.json"));
   IdentifyOptions identify_options;
   identify_options.progress = say;
-  const Identification<kTwinJoints> identified = identify(training_log, model, identify_options);
-  save_nominal_model<kTwinJoints>(o.out / "identified.params.json", identified.nominal,
+  const Identification<kDemoJoints> identified = identify(training_log, model, identify_options);
+  save_nominal_model<kDemoJoints>(o.out / "identified.params.json", identified.nominal,
                                   training_log.source);
 
   // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
   say("[3/5] diagnose: candidate effects on the training log's held-out blocks");
   DiagnoseOptions diagnose_options;
   diagnose_options.progress = say;
-  const Diagnosis<kTwinJoints> diagnosis = diagnose(training_log, model, diagnose_options);
+  const Diagnosis<kDemoJoints> diagnosis = diagnose(training_log, model, diagnose_options);
   for (const std::string& f : diagnosis.findings)
     say("diagnose: " + f);
-  save_nominal_model<kTwinJoints>(o.out / "nominal.params.json", diagnosis.nominal,
+  save_nominal_model<kDemoJoints>(o.out / "nominal.params.json", diagnosis.nominal,
                                   training_log.source);
   write_diagnosis_report(diagnosis, o.out / "diagnose.html");
   AtomicFile diagnosis_file(o.out / "diagnosis.json");
   diagnosis_file.write(diagnosis_json(diagnosis));
   diagnosis_file.commit();
   result.findings = diagnosis.findings;
-  EstimatorSetup<kTwinJoints> setup;
+  EstimatorSetup<kDemoJoints> setup;
   setup.nominal = diagnosis.nominal;
   setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
   const int pads = static_cast<int>(setup.pads.size());
@@ -171,9 +174,9 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   say("[4/5] train: estimator features on the training log, then the TCN (" +
       std::to_string(o.training_epochs) + " epochs per network at most)");
   setup.parameters =
-      estimator_parameters_from_noise<kTwinJoints>(estimate_sensor_noise(training_log));
+      estimator_parameters_from_noise<kDemoJoints>(estimate_sensor_noise(training_log));
   const std::vector<EstimatorTrace> traces{
-      replay_estimator(setup, estimator_samples<kTwinJoints>(training_log, pads))};
+      replay_estimator(setup, estimator_samples<kDemoJoints>(training_log, pads))};
   CompensatorTrainingOptions training;
   training.per_joint = o.per_joint;
   training.joint_hidden = o.joint_hidden;
@@ -198,7 +201,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
       });
   const auto weights = o.out / "tcn.json";
   write_compensator(result.training, weights);
-  setup.weights = find_compensator_weights(weights, kTwinJoints);
+  setup.weights = find_compensator_weights(weights, kDemoJoints);
 
   // 5. Evaluate.
   say("[5/5] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
@@ -214,10 +217,10 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   logs.teaching_seed = o.teaching_seed;
   logs.teaching_duration_s = o.teaching_s;
   setup.parameters =
-      estimator_parameters_from_noise<kTwinJoints>(estimate_sensor_noise(jobs[3].log));
+      estimator_parameters_from_noise<kDemoJoints>(estimate_sensor_noise(jobs[3].log));
   result.evaluation = evaluate(setup, logs, say);
   // The run-time loop's estimator parameters as calibrated here (tpf_arm_loop --estimator).
-  save_estimator_parameters<kTwinJoints>(o.out / "arm4.estimator.json", setup.parameters,
+  save_estimator_parameters<kDemoJoints>(o.out / "arm4.estimator.json", setup.parameters,
                                          jobs[3].log.source + " (SIMULATED log)");
   std::vector<std::string> notes{
       "nominal model: identified and diagnosed on the training log (nominal.params.json)",

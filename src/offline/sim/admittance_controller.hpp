@@ -10,14 +10,15 @@
 
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/twin_arm.hpp"
-#include "tpf/friction/stribeck.hpp"
+#include "offline/sim/twin_friction.hpp"
 
 namespace tpf::offline {
 
 class AdmittanceController {
  public:
-  AdmittanceController(const TeachingConfig& config,
-                       const StribeckParameters<double, kTwinJoints>& nominal_friction,
+  /// `nominal_friction`'s Stribeck curves (its load terms are dropped) and the vectors have one
+  /// entry per joint.
+  AdmittanceController(const TeachingConfig& config, const TwinFriction& nominal_friction,
                        const TwinVector& start, const TwinVector& lower, const TwinVector& upper);
 
   /// One host cycle with the measurements (q rad, q̇ rad/s, i mA), the largest pad reading (kPa).
@@ -42,11 +43,13 @@ class AdmittanceController {
  private:
   /// M_a·q̈_a + D_a·q̇_a = τ, q_ref += q̇_a·Δt inside the joint range.
   void integrate(const TwinVector& tau, double dt);
+  /// F_nom(q̇) of every joint: the smooth memoryless Stribeck curve without load terms.
+  TwinVector nominal_friction(const TwinVector& dq) const;
 
   TeachingConfig config_;
-  StribeckParameters<double, kTwinJoints> friction_;
+  TwinFriction friction_;
   TwinVector lower_, upper_;
-  TwinVector q_ref_, dq_ref_ = TwinVector::Zero(), baseline_ = TwinVector::Zero();
+  TwinVector q_ref_, dq_ref_, baseline_;
   bool baseline_ready_ = false;
 };
 

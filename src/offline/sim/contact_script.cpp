@@ -40,7 +40,7 @@ StaticContactPlan make_static_contact_plan(const ContactConfig& c, const TwinVec
   bool first = true;
   while (t < duration) {
     if (!first) {
-      for (int j = 0; j < kTwinJoints; ++j)
+      for (int j = 0; j < start.size(); ++j)
         plan.poses.append(j, rng.uniform(lower[j], upper[j]), c.pose_move_s);
       t += c.pose_move_s;
     }
@@ -63,7 +63,7 @@ StaticContactPlan make_static_contact_plan(const ContactConfig& c, const TwinVec
       hold += e.t_off - (t + hold);
     }
     hold += 0.5;
-    for (int j = 0; j < kTwinJoints; ++j)
+    for (int j = 0; j < start.size(); ++j)
       plan.poses.append(j, plan.poses.end_position(j), hold);
     t += hold;
   }

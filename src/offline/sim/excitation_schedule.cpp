@@ -10,7 +10,7 @@ MinJerkSchedule make_excitation_schedule(const ExcitationConfig& c, const TwinVe
                                          double duration, Random& rng) {
   MinJerkSchedule schedule(start);
   constexpr double kMinMoveTime = 0.15;  // s
-  for (int j = 0; j < kTwinJoints; ++j) {
+  for (int j = 0; j < start.size(); ++j) {
     while (schedule.end_time(j) < duration) {
       const double q0 = schedule.end_position(j);
       schedule.append(j, q0, rng.uniform(c.rest_min_s, c.rest_max_s));

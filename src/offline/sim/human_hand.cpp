@@ -19,8 +19,8 @@ void HumanHand::start_stroke(const TwinArm& arm, double t, const TwinVector& q) 
     if (arm.pad_frame(q, k).link >= 2) candidates.push_back(k);
   if (candidates.empty()) return;
   pad_ = candidates[rng_.index(static_cast<int>(candidates.size()))];
-  TwinVector goal_q;
-  for (int j = 0; j < kTwinJoints; ++j)
+  TwinVector goal_q(q.size());
+  for (int j = 0; j < q.size(); ++j)
     goal_q[j] = rng_.uniform(lower_[j], upper_[j]);
   start_ = arm.pad_frame(q, pad_).centre;
   target_ = arm.pad_frame(goal_q, pad_).centre;
@@ -48,7 +48,7 @@ HandForce HumanHand::update(const TwinArm& arm, double t, const TwinVector& q,
   const double travelled = std::min(length, config_.goal_speed * (t - stroke_start_));
   const Vector3<double> goal =
       length > 0 ? Vector3<double>(start_ + path * (travelled / length)) : start_;
-  const Vector3<double> velocity = pad.linear_jacobian * dq;
+  const Vector3<double> velocity = arm.pad_velocity(pad, dq);
   Vector3<double> f =
       config_.hand_stiffness * (goal - pad.centre) - config_.hand_damping * velocity;
   const Vector3<double> n = pad.rotation.col(2);

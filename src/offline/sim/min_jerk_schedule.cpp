@@ -5,15 +5,18 @@
 namespace tpf::offline {
 
 void MinJerkSchedule::append(int j, double q1, double duration) {
-  segments_[j].push_back({end_t_[j], end_t_[j] + duration, end_q_[j], q1});
-  end_t_[j] += duration;
+  const auto k = static_cast<std::size_t>(j);
+  segments_[k].push_back({end_t_[k], end_t_[k] + duration, end_q_[j], q1});
+  end_t_[k] += duration;
   end_q_[j] = q1;
 }
 
 void MinJerkSchedule::evaluate(double t, TwinVector& q, TwinVector& dq) {
-  for (int j = 0; j < kTwinJoints; ++j) {
-    const auto& segs = segments_[j];
-    std::size_t& c = cursor_[j];
+  q.resize(end_q_.size());
+  dq.resize(end_q_.size());
+  for (int j = 0; j < end_q_.size(); ++j) {
+    const auto& segs = segments_[static_cast<std::size_t>(j)];
+    std::size_t& c = cursor_[static_cast<std::size_t>(j)];
     while (c < segs.size() && t >= segs[c].t1)
       ++c;
     if (c >= segs.size()) {

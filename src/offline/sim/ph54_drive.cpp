@@ -11,13 +11,15 @@ Ph54Drive::Ph54Drive(const DriveConfig& config, const TwinVector& inertia,
                      const TwinVector& velocity_limit)
     : config_(config), current_limit_(current_limit), velocity_limit_(velocity_limit) {
   constexpr double two_pi = 2.0 * std::numbers::pi;
-  kp_.setConstant(two_pi * config.position_bandwidth_hz);
+  kp_.setConstant(inertia.size(), two_pi * config.position_bandwidth_hz);
   kv_ = (two_pi * config.velocity_bandwidth_hz) * inertia.cwiseQuotient(torque_constant);
   ki_ = (two_pi * config.integral_corner_hz) * kv_;
+  integral_.setZero(inertia.size());
+  current_.setZero(inertia.size());
 }
 
 void Ph54Drive::reset(const TwinVector& current) {
-  integral_ = config_.enabled ? current : TwinVector::Zero();
+  integral_ = config_.enabled ? current : TwinVector(TwinVector::Zero(current.size()));
   current_ = integral_;
 }
 
@@ -29,7 +31,7 @@ const TwinVector& Ph54Drive::update(const TwinVector& q_ref, const TwinVector& d
   }
   const double lag =
       config_.current_time_constant > 0 ? 1.0 - std::exp(-dt / config_.current_time_constant) : 1.0;
-  for (int j = 0; j < kTwinJoints; ++j) {
+  for (int j = 0; j < current_.size(); ++j) {
     double v_cmd = config_.velocity_feedforward * dq_ref[j] + kp_[j] * (q_ref[j] - q[j]);
     v_cmd = std::clamp(v_cmd, -velocity_limit_[j], velocity_limit_[j]);
     const double error = v_cmd - dq[j];

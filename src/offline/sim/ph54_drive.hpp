@@ -7,6 +7,8 @@
 //   i_cmd = K_v·(v_cmd − q̇) + ∫ K_i·(v_cmd − q̇) dt,   clamped to ±current limit
 //   τ_i·di/dt = i_cmd − i
 // Gains from bandwidths: K_p = 2π f_p; K_v = 2π f_v·J/K_t; K_i = 2π f_i·K_v. Currents in A.
+// The cascade is the PH54's; the twin runs it for any robot, with each joint's inertia, torque
+// constant and current limit from the robot file.
 #pragma once
 
 #include "offline/sim/scenario.hpp"
@@ -36,8 +38,7 @@ class Ph54Drive {
  private:
   DriveConfig config_;
   TwinVector kp_, kv_, ki_, current_limit_, velocity_limit_;
-  TwinVector integral_ = TwinVector::Zero();
-  TwinVector current_ = TwinVector::Zero();
+  TwinVector integral_, current_;
 };
 
 }  // namespace tpf::offline

@@ -5,20 +5,23 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numbers>
 
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_object.hpp"
+#include "tpf/model/robot_description.hpp"
 
 namespace tpf::offline {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// A per-joint vector: exactly one value per joint of the robot (`fallback` has that size).
 TwinVector vector_of(json::Object& o, const std::string& key, const TwinVector& fallback, double lo,
                      double hi) {
-  const auto v =
-      o.numbers(key, {fallback.data(), fallback.data() + kTwinJoints}, lo, hi, kTwinJoints);
-  return TwinVector(v[0], v[1], v[2], v[3]);
+  const auto n = static_cast<std::size_t>(fallback.size());
+  const auto v = o.numbers(key, {fallback.data(), fallback.data() + n}, lo, hi, n);
+  return TwinVector::Map(v.data(), fallback.size());
 }
 
 // Reads lo/hi keys of a range and checks lo <= hi.
@@ -29,10 +32,11 @@ void range(json::Object& o, const std::string& lo_key, const std::string& hi_key
   if (lo > hi) o.fail(hi_key, "must not be smaller than " + lo_key);
 }
 
+// The file `key` names (relative to the scenario's folder), or `fallback` when absent.
 std::string resolve(json::Object& o, const std::string& key, const std::filesystem::path& dir,
-                    const std::string& default_name) {
+                    const std::string& fallback) {
   const std::string value = o.text(key, "");
-  if (value.empty()) return (std::filesystem::path(TPF_DATA_DIR) / default_name).string();
+  if (value.empty()) return fallback;
   std::filesystem::path p(value);
   if (p.is_relative()) p = dir / p;
   if (!std::filesystem::exists(p)) o.fail(key, "file not found: " + p.string());
@@ -119,11 +123,15 @@ void read_effects(json::Object o, EffectsConfig& e) {
   {
     json::Object c = o.child("coupling");
     e.coupling.enabled = c.boolean("enabled", e.coupling.enabled);
-    const auto m = c.numbers("matrix", std::vector<double>(kTwinJoints * kTwinJoints, 0.0), -0.5,
-                             0.5, kTwinJoints * kTwinJoints);
-    for (int r = 0; r < kTwinJoints; ++r)
-      for (int k = 0; k < kTwinJoints; ++k)
-        e.coupling.matrix(r, k) = m[r * kTwinJoints + k];
+    const auto n = static_cast<int>(e.coupling.matrix.rows());
+    std::vector<double> fallback(static_cast<std::size_t>(n * n));
+    for (int r = 0; r < n; ++r)
+      for (int k = 0; k < n; ++k)
+        fallback[static_cast<std::size_t>(r * n + k)] = e.coupling.matrix(r, k);
+    const auto m = c.numbers("matrix", fallback, -0.5, 0.5, fallback.size());
+    for (int r = 0; r < n; ++r)
+      for (int k = 0; k < n; ++k)
+        e.coupling.matrix(r, k) = m[static_cast<std::size_t>(r * n + k)];
     c.finish();
   }
   o.finish();
@@ -135,7 +143,7 @@ void read_excitation(json::Object o, ExcitationConfig& x) {
   range(o, "speed_min", "speed_max", x.speed_min, x.speed_max, 1e-3, 3.0);
   x.lower = vector_of(o, "lower_rad", x.lower, -3.2, 3.2);
   x.upper = vector_of(o, "upper_rad", x.upper, -3.2, 3.2);
-  for (int j = 0; j < kTwinJoints; ++j)
+  for (int j = 0; j < x.lower.size(); ++j)
     if (x.upper[j] - x.lower[j] < x.move_max_rad)
       o.fail("upper_rad[" + std::to_string(j) + "]",
              "range narrower than move_max_rad; widen it or shorten the moves");
@@ -181,10 +189,41 @@ std::string to_string(Scenario::Kind kind) {
   return "excitation";
 }
 
-Scenario load_scenario(const std::string& path) {
+Scenario default_scenario(const std::string& robot_file) {
+  const RobotDescription robot = load_robot_description(robot_file);
+  const int n = static_cast<int>(robot.chain.joints.size());
+  if (n < 1 || n > kTwinMaxJoints)
+    throw Error::at(robot_file, 0, "joints",
+                    "the twin simulates 1 to " + std::to_string(kTwinMaxJoints) +
+                        " revolute joints; this robot has " + std::to_string(n));
+  Scenario s;
+  s.robot_file = robot_file;
+  s.joints = n;
+  s.pads_file = robot.pads_file.empty() ? "" : robot.pads_file.lexically_normal().string();
+  s.friction_file = robot.friction_file.lexically_normal().string();
+  s.initial_q = TwinVector::Zero(n);
+  auto& e = s.effects;
+  e.ripple.amplitude = TwinVector::Zero(n);
+  e.ripple.cycles_per_rev = TwinVector::Constant(n, 12.0);
+  e.ripple.phase = TwinVector::Zero(n);
+  e.spring.stiffness = TwinVector::Zero(n);
+  e.spring.neutral = TwinVector::Zero(n);
+  e.coupling.matrix = TwinMatrix::Zero(n, n);
+  s.excitation.lower = TwinVector::Constant(n, -std::numbers::pi);
+  s.excitation.upper = TwinVector::Constant(n, std::numbers::pi);
+  return s;
+}
+
+Scenario load_scenario(const std::string& path, const std::string& robot_file) {
   json::Object o = json::Object::read_file(path);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  Scenario s;
+  const std::string robot =
+      robot_file.empty()
+          ? resolve(o, "robot", dir,
+                    (std::filesystem::path(TPF_DATA_DIR) / "arm4.robot.json").string())
+          : robot_file;
+  if (!robot_file.empty()) o.text("robot", "");  // replaced: read so that finish() accepts it
+  Scenario s = default_scenario(robot);
   s.file = path;
   const std::string kind = o.choice("kind", "", {"excitation", "static-contacts", "teaching"});
   s.kind = kind == "excitation"        ? Scenario::Kind::kExcitation
@@ -197,9 +236,13 @@ Scenario load_scenario(const std::string& path) {
   const double ratio = s.inner_rate_hz / s.log_rate_hz;
   if (std::abs(ratio - std::round(ratio)) > 1e-9 || ratio < 2.0)
     o.fail("log_rate_hz", "inner_rate_hz must be an integer multiple (≥ 2) of log_rate_hz");
-  s.robot_file = resolve(o, "robot", dir, "arm4.robot.json");
-  s.pads_file = resolve(o, "pads", dir, "arm4.pads.json");
-  s.friction_file = resolve(o, "friction", dir, "arm4.friction.json");
+  s.pads_file = resolve(o, "pads", dir, s.pads_file);
+  s.friction_file = resolve(o, "friction", dir, s.friction_file);
+  if (s.friction_file.empty())
+    o.fail("friction", "no friction file: name one here or as \"friction\" in " + s.robot_file);
+  if (s.kind == Scenario::Kind::kTeaching && s.pads_file.empty())
+    o.fail("kind", "teaching needs a robot with skin pads (the hand holds a pad); " + s.robot_file +
+                       " names none");
   s.initial_q = vector_of(o, "initial_q", s.initial_q, -kInf, kInf);
   read_drive(o.child("drive"), s.drive);
   read_sensors(o.child("sensors"), s.sensors);

@@ -1,18 +1,32 @@
 // A digital-twin scenario: which robot, which physical effects, which sensors, which script.
 // Loaded from a JSON file in data/scenarios/; every key is optional except "kind", unknown keys
 // and impossible values are refused with "file: key.path: reason". docs/twin.md lists the keys.
+// Per-joint vectors have one entry per joint of the scenario's robot (1 to kTwinMaxJoints).
 #pragma once
 
+#include <initializer_list>
 #include <string>
 
 #include "tpf/common/types.hpp"
 
 namespace tpf::offline {
 
-/// The twin simulates the 4-joint arm of data/ (arm4).
-inline constexpr int kTwinJoints = 4;
-using TwinVector = JointVector<double, kTwinJoints>;
-using TwinMatrix = JointMatrix<double, kTwinJoints>;
+/// The twin simulates serial revolute arms of 1 to 7 joints. Its vectors are sized at run time
+/// (the robot file's joint count) with storage for 7 on the stack: no allocation, and the twin is
+/// compiled once; only TwinArm's rigid-body model is instantiated per joint count.
+inline constexpr int kTwinMaxJoints = 7;
+using TwinVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kTwinMaxJoints, 1>;
+using TwinMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                                 kTwinMaxJoints, kTwinMaxJoints>;
+
+/// A TwinVector from its values: twin_vector({0.0, 0.3, -0.4, 0.0}).
+inline TwinVector twin_vector(std::initializer_list<double> values) {
+  TwinVector v(static_cast<Eigen::Index>(values.size()));
+  Eigen::Index i = 0;
+  for (double x : values)
+    v[i++] = x;
+  return v;
+}
 
 /// The PH54 drive's cascade: position P → velocity PI → current (limited), gains set from
 /// bandwidths and the joint's inertia at the home pose.
@@ -54,9 +68,9 @@ struct EffectsConfig {
   bool gravity = true;
   struct Ripple {  ///< undeclared: τ = A·sin(n·q + φ), position-periodic (gear meshing)
     bool enabled = false;
-    TwinVector amplitude = TwinVector::Zero();  ///< N·m
-    TwinVector cycles_per_rev = TwinVector::Constant(12.0);
-    TwinVector phase = TwinVector::Zero();  ///< rad
+    TwinVector amplitude;       ///< N·m, default 0
+    TwinVector cycles_per_rev;  ///< default 12
+    TwinVector phase;           ///< rad, default 0
   } ripple;
   struct Payload {  ///< undeclared: point mass on the last link
     bool enabled = false;
@@ -73,8 +87,8 @@ struct EffectsConfig {
   } thermal;
   struct Spring {  ///< undeclared: τ = −k·(q − q0) (cable, spring)
     bool enabled = false;
-    TwinVector stiffness = TwinVector::Zero();  ///< N·m/rad
-    TwinVector neutral = TwinVector::Zero();    ///< rad
+    TwinVector stiffness;  ///< N·m/rad, default 0
+    TwinVector neutral;    ///< rad, default 0
   } spring;
   struct Delay {  ///< undeclared: motor torque lags the reported current
     bool enabled = false;
@@ -82,7 +96,7 @@ struct EffectsConfig {
   } delay;
   struct Coupling {  ///< undeclared: τ_applied = (I + C)·K_t·i
     bool enabled = false;
-    TwinMatrix matrix = TwinMatrix::Zero();
+    TwinMatrix matrix;  ///< N×N, default 0
   } coupling;
 };
 
@@ -92,8 +106,9 @@ struct ExcitationConfig {
   double rest_min_s = 0.4, rest_max_s = 2.5;
   double move_min_rad = 0.05, move_max_rad = 1.0;
   double speed_min = 0.05, speed_max = 0.8;  ///< peak speed, rad/s
-  TwinVector lower = TwinVector(-2.5, -1.2, -1.6, -2.0);
-  TwinVector upper = TwinVector(2.5, 1.2, 1.2, 2.0);
+  /// The range every script moves in (excitation moves, contact poses, teaching goals), rad,
+  /// intersected with the joint limits; default ±π.
+  TwinVector lower, upper;
 };
 
 /// Static contacts: the arm holds a pose while a hand pushes on one pad (normal + shear).
@@ -130,10 +145,11 @@ struct Scenario {
   double duration_s = 600.0;
   double inner_rate_hz = 2000.0;
   double log_rate_hz = 400.0;
-  std::string robot_file;     ///< absolute, default data/arm4.robot.json
-  std::string pads_file;      ///< default data/arm4.pads.json
-  std::string friction_file;  ///< default data/arm4.friction.json
-  TwinVector initial_q = TwinVector(0.0, 0.3, -0.4, 0.0);
+  std::string robot_file;     ///< default data/arm4.robot.json
+  int joints = 0;             ///< of the robot file, 1..kTwinMaxJoints
+  std::string pads_file;      ///< default: the robot file's "pads"; "" = no skin, no pad sensors
+  std::string friction_file;  ///< default: the robot file's "friction"
+  TwinVector initial_q;       ///< rad, default 0
   DriveConfig drive;
   SensorConfig sensors;
   PadSensorConfig pads;
@@ -143,9 +159,16 @@ struct Scenario {
   TeachingConfig teaching;
 };
 
+/// The scenario the keys of a file start from, for `robot_file`: every per-joint vector sized
+/// for its joint count at its default, pads and friction from the robot file. Throws tpf::Error
+/// naming the robot file when it has not 1..kTwinMaxJoints joints or names no friction file.
+Scenario default_scenario(const std::string& robot_file);
+
 /// Reads a scenario file. Relative robot/pads/friction paths resolve against the scenario's
-/// folder. Throws tpf::Error "file: key.path: reason" on an unknown key or impossible value.
-Scenario load_scenario(const std::string& path);
+/// folder. `robot_file`, when not empty, replaces the file's "robot" (tpf simulate --robot).
+/// Throws tpf::Error "file: key.path: reason" on an unknown key, an impossible value or a
+/// per-joint vector whose length is not the robot's joint count.
+Scenario load_scenario(const std::string& path, const std::string& robot_file = "");
 
 /// The scenario kind as written in files: "excitation", "static-contacts", "teaching".
 std::string to_string(Scenario::Kind kind);

@@ -17,9 +17,9 @@
 #include "offline/sim/random.hpp"
 #include "offline/sim/sensor_quantisation.hpp"
 #include "offline/sim/twin_arm.hpp"
+#include "offline/sim/twin_friction.hpp"
 #include "offline/sim/twin_plant.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/friction/friction_file.hpp"
 
 namespace tpf::offline {
 
@@ -31,7 +31,7 @@ constexpr double kLimitMargin = 0.05;  // rad kept clear of the joint limits by 
 std::string join(const TwinVector& v) {
   std::ostringstream s;
   s.precision(17);
-  for (int j = 0; j < kTwinJoints; ++j)
+  for (int j = 0; j < v.size(); ++j)
     s << (j ? "," : "") << v[j];
   return s.str();
 }
@@ -71,27 +71,54 @@ class SampleClock {
   double last_stamp_ = -1.0;
 };
 
+// Every per-joint vector of the scenario has one entry per joint of its robot (load_scenario
+// makes them so; a scenario edited in code may not).
+void check_sizes(const Scenario& s, int n) {
+  const auto check = [&](const TwinVector& v, const char* key) {
+    if (v.size() != n)
+      throw Error::at(s.file.empty() ? s.robot_file : s.file, 0, key,
+                      "has " + std::to_string(v.size()) + " values; the robot " + s.robot_file +
+                          " has " + std::to_string(n) + " joints");
+  };
+  check(s.initial_q, "initial_q");
+  check(s.effects.ripple.amplitude, "effects.ripple.amplitude_nm");
+  check(s.effects.ripple.cycles_per_rev, "effects.ripple.cycles_per_rev");
+  check(s.effects.ripple.phase, "effects.ripple.phase_rad");
+  check(s.effects.spring.stiffness, "effects.spring.stiffness_nm_per_rad");
+  check(s.effects.spring.neutral, "effects.spring.neutral_rad");
+  check(s.excitation.lower, "excitation.lower_rad");
+  check(s.excitation.upper, "excitation.upper_rad");
+  if (s.effects.coupling.matrix.rows() != n || s.effects.coupling.matrix.cols() != n)
+    throw Error::at(s.file.empty() ? s.robot_file : s.file, 0, "effects.coupling.matrix",
+                    "must be " + std::to_string(n) + "×" + std::to_string(n));
+}
+
 }  // namespace
 
-std::vector<std::string> simulation_columns(int pad_count) {
+std::vector<std::string> simulation_columns(int joints, int pad_count) {
   std::vector<std::string> c{"t"};
   for (const char* prefix : {"q", "dq", "i"})
-    for (int j = 1; j <= kTwinJoints; ++j)
+    for (int j = 1; j <= joints; ++j)
       c.push_back(indexed_name(prefix, j));
   for (int k = 1; k <= pad_count; ++k)
     c.push_back(indexed_name("p", k));
   for (const char* prefix : {"temp", "gt_fric", "gt_tau_ext", "gt_ddq"})
-    for (int j = 1; j <= kTwinJoints; ++j)
+    for (int j = 1; j <= joints; ++j)
       c.push_back(indexed_name(prefix, j));
   for (const char* name : {"gt_contact", "gt_fx", "gt_fy", "gt_fz"})
     c.push_back(name);
   return c;
 }
 
+std::vector<std::string> simulation_columns(const Scenario& scenario) {
+  return simulation_columns(scenario.joints, TwinArm(scenario).pad_count());
+}
+
 LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double duration_s) {
+  const TwinArm arm(s);
   LogMetadata m;
   m.set("tpf-log", "1");
-  m.set("robot", "arm4");
+  m.set("robot", arm.name());
   std::ostringstream rate;
   rate << s.log_rate_hz;
   m.set("rate_hz", rate.str());
@@ -102,7 +129,7 @@ LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double du
   std::ostringstream d;
   d << duration_s;
   m.set("duration_s", d.str());
-  m.set("torque_constant_nm_per_a", join(TwinArm(s).torque_constant()));
+  m.set("torque_constant_nm_per_a", join(arm.torque_constant()));
   m.set("friction_file", s.friction_file);
   m.set("note",
         "ground truth in gt_* columns; gt_fric in mA, gt_tau_ext in N*m (torque the "
@@ -127,22 +154,28 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
   Scenario nominal_scenario = scenario;
   nominal_scenario.effects.payload.enabled = false;
   const TwinArm nominal(nominal_scenario);
-  const auto friction = load_lugre_parameters<double, kTwinJoints>(scenario.friction_file);
+  const int joints = arm.joints();
+  check_sizes(scenario, joints);
+  const TwinFriction friction = load_twin_friction(scenario.friction_file, joints);
   const int pads = arm.pad_count();
+  if (scenario.kind == Scenario::Kind::kTeaching && pads == 0)
+    throw Error::at(scenario.file, 0, "kind",
+                    "teaching needs a robot with skin pads (the hand holds a pad); " +
+                        scenario.robot_file + " has none");
 
   // Script ranges: the scenario's range inside the joint limits.
   const TwinVector lower =
-      scenario.excitation.lower.cwiseMax(arm.lower() + TwinVector::Constant(kLimitMargin));
+      scenario.excitation.lower.cwiseMax(arm.lower() + TwinVector::Constant(joints, kLimitMargin));
   const TwinVector upper =
-      scenario.excitation.upper.cwiseMin(arm.upper() - TwinVector::Constant(kLimitMargin));
+      scenario.excitation.upper.cwiseMin(arm.upper() - TwinVector::Constant(joints, kLimitMargin));
 
-  for (int j = 0; j < kTwinJoints; ++j)
+  for (int j = 0; j < joints; ++j)
     if (!(lower[j] < upper[j]))
       throw Error::at(scenario.file, 0, "excitation.lower_rad[" + std::to_string(j) + "]",
                       "the range lies outside the joint limits of " + scenario.robot_file);
 
   TwinPlant plant(arm, friction, fx, h);
-  plant.reset(scenario.initial_q, TwinVector::Zero());
+  plant.reset(scenario.initial_q, TwinVector::Zero(joints));
   Ph54Drive drive(scenario.drive, arm.mass_matrix(scenario.initial_q).diagonal(),
                   arm.torque_constant(), arm.current_limit(), arm.velocity_limit());
   drive.reset(arm.gravity(scenario.initial_q).cwiseQuotient(arm.torque_constant()));
@@ -165,7 +198,7 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     }
     case Scenario::Kind::kTeaching:
       hand.emplace(scenario.teaching, lower, upper, hand_rng);
-      admittance.emplace(scenario.teaching, friction.stribeck, scenario.initial_q, lower, upper);
+      admittance.emplace(scenario.teaching, friction, scenario.initial_q, lower, upper);
       break;
   }
 
@@ -176,14 +209,15 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
   // Delay line between the drive's current and the torque it produces (undeclared effect).
   const long delay_steps = fx.delay.enabled ? std::lround(fx.delay.delay_s / h) : 0;
   std::deque<TwinVector> delay_line;
-  TwinVector temperature = TwinVector::Constant(fx.thermal.initial_c);
+  TwinVector temperature = TwinVector::Constant(joints, fx.thermal.initial_c);
   const TwinMatrix coupling =
-      TwinMatrix::Identity() + (fx.coupling.enabled ? fx.coupling.matrix : TwinMatrix::Zero());
+      TwinMatrix::Identity(joints, joints) +
+      (fx.coupling.enabled ? fx.coupling.matrix : TwinMatrix::Zero(joints, joints));
 
-  const auto columns = simulation_columns(pads);
+  const auto columns = simulation_columns(joints, pads);
   std::vector<double> row(columns.size());
   SimulationSummary summary;
-  TwinVector q_ref = scenario.initial_q, dq_ref = TwinVector::Zero();
+  TwinVector q_ref = scenario.initial_q, dq_ref = TwinVector::Zero(joints);
   double last_host_update = 0.0;
 
   for (long n = 0; n <= total_steps; ++n) {
@@ -208,7 +242,7 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
       force = f.force_world;
       area = f.area_cm2;
     }
-    TwinVector tau_ext = TwinVector::Zero();
+    TwinVector tau_ext = TwinVector::Zero(joints);
     if (contact_pad >= 0) {
       const PadFrame frame = arm.pad_frame(q, contact_pad);
       tau_ext = frame.linear_jacobian.transpose() * force;
@@ -223,8 +257,8 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     // The host's cycle: what the drives and the pad board report.
     if (n == clock.next_step()) {
       const double stamp = clock.stamp(t);
-      TwinVector q_meas, dq_meas, i_meas;
-      for (int j = 0; j < kTwinJoints; ++j) {
+      TwinVector q_meas(joints), dq_meas(joints), i_meas(joints);
+      for (int j = 0; j < joints; ++j) {
         q_meas[j] = quantise_position(q[j]);
         dq_meas[j] = quantise_velocity(dq[j]);
         i_meas[j] = quantise_current_ma(drive.current()[j] * 1000.0 +
@@ -234,20 +268,20 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
         std::size_t c = 0;
         row[c++] = stamp;
         for (const TwinVector* v : {&q_meas, &dq_meas, &i_meas})
-          for (int j = 0; j < kTwinJoints; ++j)
+          for (int j = 0; j < joints; ++j)
             row[c++] = (*v)[j];
         double max_pad = 0.0;
         for (int k = 0; k < pads; ++k) {
           row[c++] = pad_sensors.reading(k);
           max_pad = std::max(max_pad, pad_sensors.reading(k));
         }
-        for (int j = 0; j < kTwinJoints; ++j)
+        for (int j = 0; j < joints; ++j)
           row[c++] = std::round(temperature[j]);
-        for (int j = 0; j < kTwinJoints; ++j)
+        for (int j = 0; j < joints; ++j)
           row[c++] = plant.friction()[j] / arm.torque_constant()[j] * 1000.0;
-        for (int j = 0; j < kTwinJoints; ++j)
+        for (int j = 0; j < joints; ++j)
           row[c++] = tau_ext[j];
-        for (int j = 0; j < kTwinJoints; ++j)
+        for (int j = 0; j < joints; ++j)
           row[c++] = plant.ddq()[j];
         row[c++] = contact_pad + 1;
         for (int a = 0; a < 3; ++a)
@@ -274,8 +308,8 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     } else if (admittance) {
       admittance->goal(t - last_host_update, q_ref, dq_ref);  // first-order hold, see goal()
     }
-    TwinVector q_drive, dq_drive;
-    for (int j = 0; j < kTwinJoints; ++j) {
+    TwinVector q_drive(joints), dq_drive(joints);
+    for (int j = 0; j < joints; ++j) {
       q_drive[j] = quantise_position(q[j]);
       dq_drive[j] = quantise_velocity(dq[j]);
     }
@@ -290,16 +324,16 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
       }
     }
     const TwinVector tau_motor = coupling * arm.torque_constant().cwiseProduct(current);
-    TwinVector viscous_scale = TwinVector::Ones();
+    TwinVector viscous_scale = TwinVector::Ones(joints);
     if (fx.thermal.enabled)
-      viscous_scale =
-          (TwinVector::Ones() +
-           fx.thermal.viscous_per_k * (temperature - TwinVector::Constant(fx.thermal.initial_c)))
-              .cwiseMax(0.1);
+      viscous_scale = (TwinVector::Ones(joints) +
+                       fx.thermal.viscous_per_k *
+                           (temperature - TwinVector::Constant(joints, fx.thermal.initial_c)))
+                          .cwiseMax(0.1);
     plant.step(tau_motor + tau_ext, viscous_scale);
     const TwinVector& i_now = drive.current();
     temperature += h * (fx.thermal.heating_k_per_a2s * i_now.cwiseProduct(i_now) -
-                        (temperature - TwinVector::Constant(fx.thermal.ambient_c)) /
+                        (temperature - TwinVector::Constant(joints, fx.thermal.ambient_c)) /
                             fx.thermal.time_constant_s);
 
     if (progress && n % static_cast<long>(scenario.inner_rate_hz) == 0)
@@ -314,8 +348,8 @@ SimulationSummary simulate_to_file(const Scenario& scenario, std::uint64_t seed,
                                    const std::filesystem::path& path,
                                    const ProgressSink& progress) {
   const double duration = duration_s > 0 ? duration_s : scenario.duration_s;
-  const int pads = TwinArm(scenario).pad_count();
-  LogWriter writer(path, simulation_metadata(scenario, seed, duration), simulation_columns(pads));
+  LogWriter writer(path, simulation_metadata(scenario, seed, duration),
+                   simulation_columns(scenario));
   const auto summary = simulate(
       scenario, seed, duration, [&](std::span<const double> row) { writer.write_row(row); },
       progress);
@@ -328,7 +362,7 @@ Log simulate_to_log(const Scenario& scenario, std::uint64_t seed, double duratio
   const double duration = duration_s > 0 ? duration_s : scenario.duration_s;
   Log log;
   log.source = "simulated";
-  log.columns = simulation_columns(TwinArm(scenario).pad_count());
+  log.columns = simulation_columns(scenario);
   log.meta = simulation_metadata(scenario, seed, duration);
   std::vector<double> values;
   const auto summary = simulate(

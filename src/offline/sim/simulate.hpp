@@ -31,18 +31,23 @@ struct SimulationSummary {
   double simulated_s = 0.0;
 };
 
-/// Columns of a simulated log: t, q<j>, dq<j>, i<j>, p<k>, temp<j>, then ground truth
-/// gt_fric<j> (mA), gt_tau_ext<j> (N·m), gt_ddq<j> (rad/s²), gt_contact, gt_fx, gt_fy, gt_fz (N).
-std::vector<std::string> simulation_columns(int pad_count);
+/// Columns of a simulated log of `joints` joints (j = 1..joints) and `pad_count` pads (k, none
+/// without skin): t, q<j>, dq<j>, i<j>, p<k>, temp<j>, then ground truth gt_fric<j> (mA),
+/// gt_tau_ext<j> (N·m), gt_ddq<j> (rad/s²), gt_contact, gt_fx, gt_fy, gt_fz (N).
+std::vector<std::string> simulation_columns(int joints, int pad_count);
+/// The columns simulate() emits for `scenario` (its robot's joints and pads).
+std::vector<std::string> simulation_columns(const Scenario& scenario);
 
-/// Metadata: tpf-log 1, robot arm4, rate_hz, source "simulated (tpf digital twin)", seed,
-/// scenario (name and file), duration, torque constants.
+/// Metadata: tpf-log 1, robot (the robot file's name), rate_hz, source "simulated (tpf digital
+/// twin)", seed, scenario (name and file), duration, torque constants.
 LogMetadata simulation_metadata(const Scenario& scenario, std::uint64_t seed, double duration_s);
 
 /// Runs `scenario` for `duration_s` (the scenario's duration when ≤ 0) with `seed`.
 /// Sign convention of the ground truth: gt_tau_ext = Jᵀ·F with F the force the environment (the
 /// hand) applies to the robot, so at rest K_t·i ≈ G(q) + friction − gt_tau_ext.
-/// With `external_torque` set, a teaching scenario's admittance controller follows its estimate.
+/// With `external_torque` set, a teaching scenario's admittance controller follows its estimate
+/// (one value per joint). Throws tpf::Error when a per-joint vector of `scenario` does not have
+/// one entry per joint of its robot, or a teaching scenario's robot has no pads.
 SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double duration_s,
                            const RowSink& sink, const ProgressSink& progress = {},
                            const ExternalTorqueSource& external_torque = {});

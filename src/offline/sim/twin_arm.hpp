@@ -1,6 +1,8 @@
-// The true rigid-body arm of the twin: the robot model of data/ (with armature), optionally an
+// The true rigid-body arm of the twin: the scenario's robot model (with armature), optionally an
 // undeclared payload on the last link, its pads, and the dynamics calls the simulator needs.
-// A thin adapter over tpf::core's model and algorithms.
+// A thin adapter over tpf::core's model and algorithms, which take the joint count N at compile
+// time: twin_arm.cpp instantiates them once per N = 1..kTwinMaxJoints behind this class, the
+// only place of the twin that knows N at compile time.
 #pragma once
 
 #include <memory>
@@ -17,14 +19,15 @@ struct PadFrame {
   Vector3<double> centre = Vector3<double>::Zero();  ///< world, m
   Matrix3<double> rotation =
       Matrix3<double>::Identity();  ///< columns: tangent x, tangent y, normal
-  Eigen::Matrix<double, 3, kTwinJoints> linear_jacobian =
-      Eigen::Matrix<double, 3, kTwinJoints>::Zero();  ///< ∂centre/∂q, world frame
+  /// ∂centre/∂q, world frame, 3×N.
+  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kTwinMaxJoints> linear_jacobian;
 };
 
 class TwinArm {
  public:
   /// Loads robot and pads; adds the payload when enabled; zeroes gravity when disabled.
-  TwinArm(const Scenario& scenario);
+  /// Throws tpf::Error naming the robot file when its joint count is outside 1..kTwinMaxJoints.
+  explicit TwinArm(const Scenario& scenario);
   ~TwinArm();
   TwinArm(const TwinArm&);
   TwinArm& operator=(const TwinArm&);
@@ -40,7 +43,17 @@ class TwinArm {
   double energy(const TwinVector& q, const TwinVector& dq) const;
   /// Pad k (0-based) at q.
   PadFrame pad_frame(const TwinVector& q, int k) const;
+  /// Velocity of a pad's centre, J_v·q̇ (world frame, m/s).
+  Vector3<double> pad_velocity(const PadFrame& frame, const TwinVector& dq) const;
+  /// A⁻¹·b for a symmetric positive definite N×N matrix A (Eigen's LDLT). Like the dynamics it
+  /// runs at the robot's compile-time size: Eigen's LDLT and 3×N products round differently at
+  /// run-time sizes, and the twin's logs must not depend on how its vectors are sized.
+  TwinVector solve_spd(const TwinMatrix& a, const TwinVector& b) const;
   int pad_count() const;
+  /// Joint count N of the robot.
+  int joints() const;
+  /// The robot's name (robot file, else URDF).
+  const std::string& name() const;
   /// Pad area from the layout, cm².
   double pad_area_cm2(int k) const;
 
@@ -50,8 +63,9 @@ class TwinArm {
   const TwinVector& lower() const;
   const TwinVector& upper() const;
 
+  struct Impl;  ///< the rigid-body model at the robot's compile-time joint count (twin_arm.cpp)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 
@@ -11,27 +14,34 @@ constexpr double kStribeckSmoothing = 1e-3;
 constexpr int kNewtonIterations = 8;
 }  // namespace
 
-TwinPlant::TwinPlant(const TwinArm& arm, const LuGreParameters<double, kTwinJoints>& friction,
-                     const EffectsConfig& effects, double dt)
-    : arm_(arm), friction_parameters_(friction), effects_(effects), dt_(dt) {
+TwinPlant::TwinPlant(const TwinArm& arm, const TwinFriction& friction, const EffectsConfig& effects,
+                     double dt)
+    : arm_(arm), friction_parameters_(friction), effects_(effects), dt_(dt), n_(arm.joints()) {
+  if (friction_parameters_.count() != n_)
+    throw Error("TwinPlant: the friction parameters are for " +
+                std::to_string(friction_parameters_.count()) + " joints, the arm has " +
+                std::to_string(n_));
   if (!effects_.load_dependent_friction) {
-    friction_parameters_.stribeck.load_coulomb.setZero();
-    friction_parameters_.stribeck.load_viscous.setZero();
+    for (JointFriction& p : friction_parameters_.joints) {
+      p.stribeck.load_coulomb.setZero();
+      p.stribeck.load_viscous.setZero();
+    }
   }
+  reset(TwinVector::Zero(n_), TwinVector::Zero(n_));
 }
 
 void TwinPlant::reset(const TwinVector& q, const TwinVector& dq) {
   q_ = q;
   dq_ = dq;
-  ddq_.setZero();
-  friction_.setZero();
-  state_.z.setZero();
+  ddq_.setZero(n_);
+  friction_.setZero(n_);
+  bristles_.setZero(n_);
 }
 
 TwinVector TwinPlant::position_torque(const TwinVector& q) const {
-  TwinVector tau = TwinVector::Zero();
+  TwinVector tau = TwinVector::Zero(n_);
   if (effects_.ripple.enabled)
-    for (int j = 0; j < kTwinJoints; ++j)
+    for (int j = 0; j < n_; ++j)
       tau[j] += effects_.ripple.amplitude[j] *
                 std::sin(effects_.ripple.cycles_per_rev[j] * q[j] + effects_.ripple.phase[j]);
   if (effects_.spring.enabled)
@@ -46,18 +56,18 @@ TwinVector TwinPlant::acceleration(const TwinVector& q, const TwinVector& dq,
 
 double TwinPlant::joint_friction(int j, double v, double abs_gravity, double viscous_scale,
                                  double* z_out) const {
-  const auto& p = friction_parameters_;
+  const JointFriction& p = friction_parameters_[j];
   // Temperature scales the whole viscous term (b + α_v|G|)·v, which is additive in both models.
   const double viscous_change =
-      (viscous_scale - 1.0) * viscous_coefficient(p.stribeck, j, abs_gravity) * v;
+      (viscous_scale - 1.0) * viscous_coefficient(p.stribeck, 0, abs_gravity) * v;
   if (effects_.friction == EffectsConfig::Friction::kLuGre) {
-    const auto step = lugre_joint_step(p, j, state_.z[j], v, abs_gravity, dt_);
+    const auto step = lugre_joint_step(p, 0, bristles_[j], v, abs_gravity, dt_);
     if (z_out) *z_out = step.z;
     return step.torque + viscous_change;
   }
   if (z_out) *z_out = 0.0;
-  return stribeck_level(p.stribeck, j, v, abs_gravity) * std::tanh(v / kStribeckSmoothing) +
-         viscous_coefficient(p.stribeck, j, abs_gravity) * v + viscous_change;
+  return stribeck_level(p.stribeck, 0, v, abs_gravity) * std::tanh(v / kStribeckSmoothing) +
+         viscous_coefficient(p.stribeck, 0, abs_gravity) * v + viscous_change;
 }
 
 void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) {
@@ -76,13 +86,13 @@ void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) 
 
   // 2. Implicit friction impulse.
   if (effects_.friction != EffectsConfig::Friction::kNone) {
-    TwinVector abs_gravity = TwinVector::Zero();
+    TwinVector abs_gravity = TwinVector::Zero(n_);
     if (effects_.load_dependent_friction) abs_gravity = arm_.gravity(q0).cwiseAbs();
     const TwinMatrix M = arm_.mass_matrix(q);
     const TwinVector v0 = (q - q0) / h;
-    TwinVector delta = TwinVector::Zero(), force, slope;
+    TwinVector delta = TwinVector::Zero(n_), force(n_), slope(n_);
     for (int it = 0; it < kNewtonIterations; ++it) {
-      for (int j = 0; j < kTwinJoints; ++j) {
+      for (int j = 0; j < n_; ++j) {
         const double v = v0[j] + 0.5 * delta[j];
         const double e = 1e-7 * (1.0 + std::abs(v));
         force[j] = joint_friction(j, v, abs_gravity[j], viscous_scale[j], nullptr);
@@ -90,16 +100,19 @@ void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) 
                     joint_friction(j, v - e, abs_gravity[j], viscous_scale[j], nullptr)) /
                    (2 * e);
       }
-      const TwinVector residual = M * delta + h * force;
+      // The product first, then the sum: in one expression Eigen would accumulate M·δ into h·F
+      // at run-time sizes, a rounding the fixed-size twin never had (its logs must not move).
+      const TwinVector inertial = M * delta;
+      const TwinVector residual = inertial + h * force;
       TwinMatrix J = M;
       J.diagonal() += 0.5 * h * slope.cwiseMax(0.0);
-      const TwinVector step = J.ldlt().solve(residual);
+      const TwinVector step = arm_.solve_spd(J, residual);
       delta -= step;
       if (step.cwiseAbs().maxCoeff() < 1e-13 * (1.0 + v0.cwiseAbs().maxCoeff())) break;
     }
-    for (int j = 0; j < kTwinJoints; ++j)
-      friction_[j] =
-          joint_friction(j, v0[j] + 0.5 * delta[j], abs_gravity[j], viscous_scale[j], &state_.z[j]);
+    for (int j = 0; j < n_; ++j)
+      friction_[j] = joint_friction(j, v0[j] + 0.5 * delta[j], abs_gravity[j], viscous_scale[j],
+                                    &bristles_[j]);
     q += 0.5 * h * delta;
     dq += delta;
   } else {

@@ -16,14 +16,15 @@
 
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/twin_arm.hpp"
-#include "tpf/friction/lugre.hpp"
+#include "offline/sim/twin_friction.hpp"
 
 namespace tpf::offline {
 
 class TwinPlant {
  public:
-  TwinPlant(const TwinArm& arm, const LuGreParameters<double, kTwinJoints>& friction,
-            const EffectsConfig& effects, double dt);
+  /// `friction` and the effects' per-joint vectors have one entry per joint of `arm`.
+  TwinPlant(const TwinArm& arm, const TwinFriction& friction, const EffectsConfig& effects,
+            double dt);
 
   /// Sets the state (bristles relaxed).
   void reset(const TwinVector& q, const TwinVector& dq);
@@ -37,7 +38,7 @@ class TwinPlant {
   const TwinVector& ddq() const { return ddq_; }
   /// Friction torque applied during the last step (N·m, opposes motion: enters M q̈ with −).
   const TwinVector& friction() const { return friction_; }
-  const TwinVector& bristles() const { return state_.z; }
+  const TwinVector& bristles() const { return bristles_; }
   /// Torque of the position-dependent undeclared effects (ripple + spring) at q, N·m.
   TwinVector position_torque(const TwinVector& q) const;
   /// Total mechanical energy T + V (J).
@@ -50,12 +51,12 @@ class TwinPlant {
                         double* z_out) const;
 
   TwinArm arm_;
-  LuGreParameters<double, kTwinJoints> friction_parameters_;
+  TwinFriction friction_parameters_;
   EffectsConfig effects_;
   double dt_;
-  TwinVector q_ = TwinVector::Zero(), dq_ = TwinVector::Zero(), ddq_ = TwinVector::Zero();
-  TwinVector friction_ = TwinVector::Zero();
-  LuGreState<double, kTwinJoints> state_;
+  int n_;  ///< joints
+  TwinVector q_, dq_, ddq_, friction_;
+  TwinVector bristles_;  ///< LuGre deflection z per joint, rad
 };
 
 }  // namespace tpf::offline
