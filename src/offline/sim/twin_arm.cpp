@@ -46,6 +46,7 @@ TwinArm::TwinArm(const Scenario& scenario) : impl_(std::make_unique<Impl>()) {
   if (payload.enabled && payload.mass > 0)
     model.inertias[kTwinJoints] =
         with_point_mass(model.inertias[kTwinJoints], payload.mass, payload.position);
+  model.update_constants();
   if (!scenario.effects.gravity) model.gravity.setZero();
   impl_->pads = load_pads(scenario.pads_file, model);
   impl_->current_limit_a = model.current_limit / 1000.0;
