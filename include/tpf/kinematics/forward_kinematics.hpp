@@ -2,8 +2,8 @@
 #pragma once
 
 #include <cassert>
-#include <cmath>
 
+#include "tpf/kinematics/sin_cos.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/model.hpp"
 
@@ -13,11 +13,11 @@ namespace detail {
 /// data.liMi[k] = placement_k · Rot(axis_k, q_k), the rotation by Rodrigues' formula on the
 /// model's constants: placement.R + sin q·placement.R[z]× + (1 − cos q)·placement.R[z]×².
 template <typename S, int N>
-void joint_transform(const Model<S, N>& model, Data<S, N>& data, int k, S q) noexcept {
-  using std::cos;
-  using std::sin;
+inline void joint_transform(const Model<S, N>& model, Data<S, N>& data, int k, S q) noexcept {
   const ModelConstants<S, N>& c = model.constants;
-  const S sine = sin(q), versine = S(1) - cos(q);
+  S sine, cosine;
+  sin_cos(q, sine, cosine);
+  const S versine = S(1) - cosine;
   data.liMi[k].R = model.joint_placements[k - 1].R + sine * c.rotation_sine[k - 1] +
                    versine * c.rotation_versine[k - 1];
   data.liMi[k].p = model.joint_placements[k - 1].p;
