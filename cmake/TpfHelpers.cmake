@@ -70,3 +70,5 @@ function(tpf_add_area_programs suffix out_var)
   endforeach()
   set(${out_var} ${made} PARENT_SCOPE)
 endfunction()
+
+include(TpfNative)

@@ -119,6 +119,7 @@ TEST(Rnea, StaticGravityMatchesHandComputationForJoint2) {
   ArmData data;
   const Vec q = Vec::Zero();
   const Vec g = compute_gravity(arm(), data, q);
+  forward_kinematics(arm(), data, q);
   double expected = 0;
   for (int k = 2; k <= kJoints; ++k) {
     const Vector3<double> c = data.oMi[k].apply(arm().inertias[k].com) - data.oMi[2].p;

@@ -88,6 +88,26 @@ TEST(TcnStreaming, FloatEngineTracksDouble) {
   EXPECT_LT((od - of).cwiseAbs().maxCoeff(), 1e-4 * od.cwiseAbs().maxCoeff());
 }
 
+TEST(TcnStreaming, ShippedFloatNetworkEqualsDoubleToFloatRounding) {
+  // The shipped shape (5 inputs, 16 channels, 4 levels, kernel 4): its taps may be summed in
+  // separate accumulators (one per tap where the vector registers allow), so the float engine is
+  // held to the rounding of float sums, a few ulps of the largest activation, not more.
+  using Float = Tcn<float, 5, 16, 4>;
+  const TcnArchitecture a{5, 16, 4, 4, 1};
+  const offline::TcnParameters p = test::random_tcn_parameters(a, 23);
+  Tcn<double, 5, 16, 4> d;
+  Float f;
+  test::load_parameters(p, d);
+  test::load_parameters(p, f);
+  const Eigen::MatrixXd raw = test::random_inputs(5, 300, 24);
+  d.reset(raw.col(0));
+  f.reset(raw.col(0).cast<float>());
+  const Eigen::MatrixXd od = stream(d, raw, 0), of = stream(f, raw, 0);
+  const double scale = od.cwiseAbs().maxCoeff();
+  ASSERT_GT(scale, 0.1);
+  EXPECT_LT((od - of).cwiseAbs().maxCoeff(), 3e-6 * scale);
+}
+
 TEST(TcnStreaming, IsCausal) {
   const TcnArchitecture a{4, 8, 3, 4, 2};
   const offline::TcnParameters p = test::random_tcn_parameters(a, 31);

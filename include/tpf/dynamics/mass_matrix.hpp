@@ -8,30 +8,34 @@
 namespace tpf {
 
 /// M(q) (N×N, symmetric positive definite) in data.M, armature on the diagonal:
-/// kinetic energy T = ½ q̇ᵀ M q̇. Composite bodies k..N are accumulated from the tip (mass,
-/// first moment h and inertia I about link k's origin); column i is the wrench z_i × h_i, I_i z_i
-/// that a unit q̈_i demands of composite body i, carried down to each joint j ≤ i:
-/// M_ji = z_j · n_j. Runs forward_kinematics. Allocation-free.
+/// kinetic energy T = ½ q̇ᵀ M q̇. Composite bodies k..N are accumulated from the tip (mass, a model
+/// constant; first moment h and inertia I about link k's origin): with the child's moved into
+/// link k's frame, h' = R h_{k+1}, and v = ½ m_{k+1} p + h',
+///   h_k = h_{o,k} + m_{k+1} p + h',  I_k = I_{o,k} + R I_{k+1} Rᵀ + 2(p·v)·1 − p vᵀ − v pᵀ
+/// (the parallel-axis theorem for a body whose centre of mass is not at its origin). Column i is
+/// the wrench z_i × h_i, I_i z_i that a unit q̈_i demands of composite body i, carried down to
+/// each joint j ≤ i: M_ji = z_j · n_j. Runs forward_kinematics. Allocation-free.
 template <typename S, int N>
 const JointMatrix<S, N>& compute_mass_matrix(const Model<S, N>& model, Data<S, N>& data,
-                                             const NoDeduce<JointVector<S, N>>& q) {
+                                             const NoDeduce<JointVector<S, N>>& q) noexcept {
   forward_kinematics(model, data, q);
-  for (int k = N; k >= 1; --k) {
-    const Inertia<S>& body = model.inertias[k];
-    data.composite_mass[k] = body.mass;
-    data.composite_first_moment[k] = body.first_moment();
-    data.composite_inertia[k] = body.about_origin();
-    if (k < N) {
-      const Matrix3<S>& R = data.liMi[k + 1].R;
-      const Vector3<S>& p = data.liMi[k + 1].p;
-      const S m = data.composite_mass[k + 1];
-      const Vector3<S> h = R * data.composite_first_moment[k + 1];
-      const Matrix3<S> P = skew(p), H = skew(h);
-      data.composite_mass[k] += m;
-      data.composite_first_moment[k] += m * p + h;
-      data.composite_inertia[k] +=
-          R * data.composite_inertia[k + 1] * R.transpose() - m * P * P - P * H - H * P;
-    }
+  const ModelConstants<S, N>& c = model.constants;
+  data.composite_first_moment[N] = c.first_moment[N];
+  data.composite_inertia[N] = c.inertia_about_origin[N];
+  for (int k = N - 1; k >= 1; --k) {
+    const Matrix3<S>& R = data.liMi[k + 1].R;
+    const Vector3<S>& p = data.liMi[k + 1].p;
+    const S m = c.subtree_mass[k + 1];
+    const Vector3<S> h = R * data.composite_first_moment[k + 1];
+    const Vector3<S> v = S(0.5) * m * p + h;
+    const Matrix3<S> RI = R * data.composite_inertia[k + 1];
+    Matrix3<S>& I = data.composite_inertia[k];
+    I.noalias() = RI * R.transpose();
+    I += c.inertia_about_origin[k];
+    I.diagonal().array() += S(2) * p.dot(v);
+    I.noalias() -= p * v.transpose();
+    I.noalias() -= v * p.transpose();
+    data.composite_first_moment[k] = c.first_moment[k] + m * p + h;
   }
   for (int i = N; i >= 1; --i) {
     const Vector3<S>& z = model.axes[i - 1];

@@ -26,13 +26,16 @@ void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
   }
 }
 
-/// The two Newton–Euler passes on the link transforms already in data.liMi, with base linear
+/// The two Newton–Euler passes on the joint transforms already in data.liMi, with base linear
 /// acceleration a0 (−g for the full dynamics, 0 for velocity terms only). Writes data.tau without
-/// the armature term. Link quantities are in link frames.
+/// the armature term. Link quantities are in link frames; each link's first moment and inertia
+/// about its origin are the model's constants.
 template <typename S, int N>
 void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
                          const NoDeduce<JointVector<S, N>>& dq,
-                         const NoDeduce<JointVector<S, N>>& ddq, const NoDeduce<Vector3<S>>& a0) {
+                         const NoDeduce<JointVector<S, N>>& ddq,
+                         const NoDeduce<Vector3<S>>& a0) noexcept {
+  const ModelConstants<S, N>& c = model.constants;
   data.omega[0].setZero();
   data.domega[0].setZero();
   data.acc[0] = a0;
@@ -40,20 +43,21 @@ void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
     const Matrix3<S>& R = data.liMi[k].R;
     const Vector3<S>& p = data.liMi[k].p;
     const Vector3<S>& z = model.axes[k - 1];
-    const Vector3<S> w_parent = R.transpose() * data.omega[k - 1];
-    data.omega[k] = w_parent + z * dq(k - 1);
-    data.domega[k] =
-        R.transpose() * data.domega[k - 1] + z * ddq(k - 1) + w_parent.cross(z * dq(k - 1));
     const Vector3<S>& w0 = data.omega[k - 1];
-    data.acc[k] =
-        R.transpose() * (data.acc[k - 1] + data.domega[k - 1].cross(p) + w0.cross(w0.cross(p)));
+    const Vector3<S> joint_rate = z * dq(k - 1);
+    const Vector3<S> w_parent = R.transpose() * w0;
+    const Vector3<S> origin_acc =
+        data.acc[k - 1] + data.domega[k - 1].cross(p) + w0.cross(w0.cross(p));
+    data.omega[k] = w_parent + joint_rate;
+    data.domega[k] =
+        R.transpose() * data.domega[k - 1] + z * ddq(k - 1) + w_parent.cross(joint_rate);
+    data.acc[k] = R.transpose() * origin_acc;
 
-    const Inertia<S>& body = model.inertias[k];
-    const Vector3<S> h = body.first_moment();
-    const Matrix3<S> I = body.about_origin();
+    const Vector3<S>& h = c.first_moment[k];
+    const Matrix3<S>& I = c.inertia_about_origin[k];
     const Vector3<S>& w = data.omega[k];
     const Vector3<S>& dw = data.domega[k];
-    data.force[k] = body.mass * data.acc[k] + dw.cross(h) + w.cross(w.cross(h));
+    data.force[k] = model.inertias[k].mass * data.acc[k] + dw.cross(h) + w.cross(w.cross(h));
     data.moment[k] = I * dw + w.cross(I * w) + h.cross(data.acc[k]);
   }
   newton_euler_backward_pass(model, data, data.tau);
@@ -62,14 +66,16 @@ void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
 }  // namespace detail
 
 /// Joint torques τ = M(q)q̈ + C(q,q̇)q̇ + G(q) [N·m], M including the armature (reflected rotor
-/// inertia) on its diagonal. Result in data.tau (also returned). Runs forward_kinematics.
-/// Allocation-free.
+/// inertia) on its diagonal. The result lives in data.tau (the returned reference): the next
+/// dynamics call on `data` (compute_gravity, another rnea, …) overwrites it, so copy what you keep.
+/// Runs joint_transforms (data.liMi at q; data.oMi is left as it was: forward_kinematics gives
+/// the link poses). Allocation-free.
 template <typename S, int N>
 const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
                               const NoDeduce<JointVector<S, N>>& q,
                               const NoDeduce<JointVector<S, N>>& dq,
                               const NoDeduce<JointVector<S, N>>& ddq) {
-  forward_kinematics(model, data, q);
+  joint_transforms(model, data, q);
   detail::newton_euler_passes(model, data, dq, ddq, Vector3<S>(-model.gravity));
   data.tau += model.armature.cwiseProduct(ddq);
   return data.tau;
@@ -77,7 +83,7 @@ const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
 
 /// Joint torques with an external wrench w = [f; m] (world frame) that the environment applies to
 /// link `link` at the world point p: τ = RNEA(q, q̇, q̈) − J(p)ᵀ w. This is the torque the motors
-/// must produce when the environment pushes with w. Allocation-free.
+/// must produce when the environment pushes with w. Runs forward_kinematics. Allocation-free.
 template <typename S, int N>
 const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
                               const NoDeduce<JointVector<S, N>>& q,
@@ -102,23 +108,38 @@ const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
   return data.tau;
 }
 
-/// Gravity torques G(q) = RNEA(q, 0, 0), in data.g. Allocation-free.
+/// Gravity torques G(q) = RNEA(q, 0, 0), in data.g, by a gravity-only pass: with the base
+/// acceleration a_0 = −g carried into each link frame, a_k = R_kᵀ a_{k−1}, and the first moment of
+/// links k..N about link k's origin, H_k = h_k + R_{k+1} H_{k+1} + m_{k+1..N} p_{k+1},
+/// G_k = z_k · (H_k × a_k). Runs joint_transforms (data.liMi at q; data.oMi is left as it was);
+/// overwrites data.acc and data.composite_first_moment. Allocation-free.
 template <typename S, int N>
 const JointVector<S, N>& compute_gravity(const Model<S, N>& model, Data<S, N>& data,
-                                         const NoDeduce<JointVector<S, N>>& q) {
-  forward_kinematics(model, data, q);
-  const JointVector<S, N> zero = JointVector<S, N>::Zero();
-  detail::newton_euler_passes(model, data, zero, zero, Vector3<S>(-model.gravity));
-  data.g = data.tau;
+                                         const NoDeduce<JointVector<S, N>>& q) noexcept {
+  joint_transforms(model, data, q);
+  const ModelConstants<S, N>& c = model.constants;
+  data.acc[0] = -model.gravity;
+  for (int k = 1; k <= N; ++k)
+    data.acc[k].noalias() = data.liMi[k].R.transpose() * data.acc[k - 1];
+  data.composite_first_moment[N] = c.first_moment[N];
+  data.g(N - 1) = model.axes[N - 1].dot(c.first_moment[N].cross(data.acc[N]));
+  for (int k = N - 1; k >= 1; --k) {
+    const Transform<S>& child = data.liMi[k + 1];
+    Vector3<S>& H = data.composite_first_moment[k];
+    H.noalias() = child.R * data.composite_first_moment[k + 1];
+    H += c.first_moment[k] + c.subtree_mass[k + 1] * child.p;
+    data.g(k - 1) = model.axes[k - 1].dot(H.cross(data.acc[k]));
+  }
   return data.g;
 }
 
-/// Velocity-product torques C(q,q̇)q̇ = RNEA(q, q̇, 0) − G(q), in data.tau. Allocation-free.
+/// Velocity-product torques C(q,q̇)q̇ = RNEA(q, q̇, 0) − G(q), in data.tau. Runs joint_transforms.
+/// Allocation-free.
 template <typename S, int N>
 const JointVector<S, N>& velocity_torques(const Model<S, N>& model, Data<S, N>& data,
                                           const NoDeduce<JointVector<S, N>>& q,
                                           const NoDeduce<JointVector<S, N>>& dq) {
-  forward_kinematics(model, data, q);
+  joint_transforms(model, data, q);
   detail::newton_euler_passes(model, data, dq, JointVector<S, N>::Zero().eval(),
                               Vector3<S>::Zero().eval());
   return data.tau;

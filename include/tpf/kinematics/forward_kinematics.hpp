@@ -1,24 +1,55 @@
-// Forward kinematics: link poses in the world frame.
+// Forward kinematics: joint transforms and link poses in the world frame.
 #pragma once
 
+#include <cassert>
+
+#include "tpf/kinematics/sin_cos.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/model.hpp"
 
 namespace tpf {
+namespace detail {
 
-/// Link poses for joint positions q [rad]: data.liMi[k] = placement_k · Rot(axis_k, q_k),
+/// data.liMi[k] = placement_k · Rot(axis_k, q_k), the rotation by Rodrigues' formula on the
+/// model's constants: placement.R + sin q·placement.R[z]× + (1 − cos q)·placement.R[z]×².
+template <typename S, int N>
+inline void joint_transform(const Model<S, N>& model, Data<S, N>& data, int k, S q) noexcept {
+  const ModelConstants<S, N>& c = model.constants;
+  S sine, cosine;
+  sin_cos(q, sine, cosine);
+  const S versine = S(1) - cosine;
+  data.liMi[k].R = model.joint_placements[k - 1].R + sine * c.rotation_sine[k - 1] +
+                   versine * c.rotation_versine[k - 1];
+  data.liMi[k].p = model.joint_placements[k - 1].p;
+}
+
+}  // namespace detail
+
+/// The joint transforms alone, data.liMi[k] = placement_k · Rot(axis_k, q_k) (link k in link k−1)
+/// for joint positions q [rad]: all the dynamics needs. Leaves data.oMi and data.axis_world as they
+/// were. Allocation-free.
+template <typename S, int N>
+void joint_transforms(const Model<S, N>& model, Data<S, N>& data,
+                      const NoDeduce<JointVector<S, N>>& q) noexcept {
+  assert(model.constants_current() && "Model::update_constants() after editing the model");
+  for (int k = 1; k <= N; ++k)
+    detail::joint_transform(model, data, k, q(k - 1));
+}
+
+/// Link poses for joint positions q [rad]: data.liMi[k] (as joint_transforms),
 /// data.oMi[k] = data.oMi[k−1] · data.liMi[k] (oMi[0] = identity, the base is the world frame), and
 /// data.axis_world[k] = oMi[k].R · axis_k. Allocation-free.
 template <typename S, int N>
 void forward_kinematics(const Model<S, N>& model, Data<S, N>& data,
-                        const NoDeduce<JointVector<S, N>>& q) {
+                        const NoDeduce<JointVector<S, N>>& q) noexcept {
+  assert(model.constants_current() && "Model::update_constants() after editing the model");
   data.oMi[0] = Transform<S>{};
   for (int k = 1; k <= N; ++k) {
-    const Transform<S>& placement = model.joint_placements[k - 1];
-    const Matrix3<S> rotation = Eigen::AngleAxis<S>(q(k - 1), model.axes[k - 1]).toRotationMatrix();
-    data.liMi[k].R.noalias() = placement.R * rotation;
-    data.liMi[k].p = placement.p;
-    data.oMi[k] = data.oMi[k - 1] * data.liMi[k];
+    detail::joint_transform(model, data, k, q(k - 1));
+    const Transform<S>& parent = data.oMi[k - 1];
+    data.oMi[k].R.noalias() = parent.R * data.liMi[k].R;
+    data.oMi[k].p.noalias() = parent.R * data.liMi[k].p;
+    data.oMi[k].p += parent.p;
     data.axis_world[k].noalias() = data.oMi[k].R * model.axes[k - 1];
   }
 }

@@ -32,8 +32,8 @@ struct Data {
   JointMatrix<S, N> M = JointMatrix<S, N>::Zero();    ///< joint-space inertia (with armature).
   JointMatrix<S, N> C = JointMatrix<S, N>::Zero();    ///< Coriolis matrix, C + Cᵀ = Ṁ.
 
-  // Composite rigid bodies (mass matrix), in link frames.
-  std::array<S, N + 1> composite_mass;
+  // Composite rigid bodies of links k..N (mass matrix, gravity), in link frames; their masses are
+  // model constants (Model::constants.subtree_mass).
   std::array<Vector3<S>, N + 1> composite_first_moment;
   std::array<Matrix3<S>, N + 1> composite_inertia;
 

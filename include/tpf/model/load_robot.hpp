@@ -35,6 +35,7 @@ Model<S, N> make_model(const ChainDescription& chain) {
     model.velocity_limit(k) = S(j.velocity_limit);
     model.effort_limit(k) = S(j.effort_limit);
   }
+  model.update_constants();
   return model;
 }
 

@@ -9,6 +9,24 @@
 
 namespace tpf {
 
+/// What the per-cycle algorithms need of a Model that does not depend on q: computed once by
+/// Model::update_constants() from the placements, axes and inertias (and the copy of those it was
+/// computed from, which debug builds check against the model on every kinematics call).
+template <typename S, int N>
+struct ModelConstants {
+  /// Joint k's rotation in its parent: liMi[k].R = placement.R + sin q·rotation_sine[k] +
+  /// (1 − cos q)·rotation_versine[k], with rotation_sine = placement.R·[z]×, rotation_versine =
+  /// placement.R·[z]×² (Rodrigues' formula, z the unit axis).
+  std::array<Matrix3<S>, N> rotation_sine, rotation_versine;
+  std::array<Vector3<S>, N + 1> first_moment;          ///< h = m·c per link [kg·m].
+  std::array<Matrix3<S>, N + 1> inertia_about_origin;  ///< I_o per link [kg·m²].
+  std::array<S, N + 2> subtree_mass{};  ///< Σ_{j ≥ k} m_j: links k..N ([N + 1] = 0) [kg].
+
+  std::array<Transform<S>, N> placements_used;  ///< the sources of the constants above
+  std::array<Vector3<S>, N> axes_used;
+  std::array<Inertia<S>, N + 1> inertias_used;
+};
+
 /// A serial chain of N revolute joints with its inertias and drive data. Immutable after loading;
 /// every per-cycle function takes it by const reference together with a Data workspace.
 ///
@@ -40,6 +58,44 @@ struct Model {
 
   Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  ///< in the world frame [m/s²].
 
+  /// Derived from joint_placements, axes and inertias; update_constants() after changing those.
+  ModelConstants<S, N> constants;
+
+  /// Recomputes `constants` from joint_placements, axes and inertias. make_model and cast call
+  /// it; a caller that edits a loaded model (e.g. adds a payload to an inertia) calls it again.
+  void update_constants() {
+    ModelConstants<S, N>& c = constants;
+    for (int k = 0; k < N; ++k) {
+      const Matrix3<S> K = skew(axes[k]);
+      c.rotation_sine[k] = joint_placements[k].R * K;
+      c.rotation_versine[k] = c.rotation_sine[k] * K;
+    }
+    c.subtree_mass[N + 1] = S(0);
+    for (int k = N; k >= 0; --k) {
+      c.first_moment[k] = inertias[k].first_moment();
+      c.inertia_about_origin[k] = inertias[k].about_origin();
+      c.subtree_mass[k] = c.subtree_mass[k + 1] + inertias[k].mass;
+    }
+    c.placements_used = joint_placements;
+    c.axes_used = axes;
+    c.inertias_used = inertias;
+  }
+
+  /// Whether `constants` were computed from the current placements, axes and inertias.
+  bool constants_current() const {
+    const ModelConstants<S, N>& c = constants;
+    for (int k = 0; k < N; ++k)
+      if (c.placements_used[k].R != joint_placements[k].R ||
+          c.placements_used[k].p != joint_placements[k].p || c.axes_used[k] != axes[k])
+        return false;
+    for (int k = 0; k <= N; ++k)
+      if (c.inertias_used[k].mass != inertias[k].mass ||
+          c.inertias_used[k].com != inertias[k].com ||
+          c.inertias_used[k].rotational != inertias[k].rotational)
+        return false;
+    return true;
+  }
+
   /// Index (1..N) of the link called `link_name`, or −1.
   int link_index(const std::string& link_name) const {
     for (int k = 0; k <= N; ++k)
@@ -69,6 +125,7 @@ struct Model {
     m.velocity_limit = velocity_limit.template cast<T>();
     m.effort_limit = effort_limit.template cast<T>();
     m.gravity = gravity.template cast<T>();
+    m.update_constants();
     return m;
   }
 };

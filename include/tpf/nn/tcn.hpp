@@ -11,7 +11,7 @@ namespace tpf {
 
 /// A temporal convolutional network evaluated one sample at a time, with compile-time sizes.
 ///
-///   In      inputs per step, e.g. [q, q̇, q̈, τ̂_fric,s] of one joint (4), or of all N joints (4·N)
+///   In      inputs per step, e.g. compensator_input of one joint (5), or of all N joints (5·N)
 ///   Hidden  channels of every residual block
 ///   Levels  residual blocks; block l has dilation d_l = 2^l
 ///   Kernel  taps per causal convolution (4 by default)
@@ -86,9 +86,12 @@ class Tcn {
     const Input& input = last_input_;
     int head = heads_[0];
     input_history_.col(head) = input;
-    hidden_.noalias() = weights_.input_bias + weights_.input_projection * input;
-    for (int j = 0; j < Kernel; ++j) {
-      hidden_.noalias() += weights_.input_taps[j] * input_history_.col(wrap(head - j, Kernel));
+    {
+      std::array<const S*, Kernel> columns;
+      for (int j = 0; j < Kernel; ++j)
+        columns[j] = input_history_.col(wrap(head - j, Kernel)).data();
+      hidden_.noalias() = weights_.input_bias + weights_.input_projection * input;
+      add_taps(hidden_, weights_.input_taps, columns);
     }
     heads_[0] = next(head, Kernel);
     hidden_ = hidden_.cwiseMax(S(0));
@@ -98,11 +101,11 @@ class Tcn {
       const int dilation = Shape::dilation(l);
       head = heads_[l];
       history_column(l, head) = hidden_;
+      std::array<const S*, Kernel> columns;
+      for (int j = 0; j < Kernel; ++j)
+        columns[j] = history_column(l, wrap(head - j * dilation, length)).data();
       HiddenVector z = weights_.bias[l - 1] + hidden_;
-      for (int j = 0; j < Kernel; ++j) {
-        add_product(z, weights_.taps[l - 1][j],
-                    history_column(l, wrap(head - j * dilation, length)).data());
-      }
+      add_taps(z, weights_.taps[l - 1], columns);
       heads_[l] = next(head, length);
       hidden_ = z.cwiseMax(S(0));
     }
@@ -131,12 +134,43 @@ class Tcn {
     return HiddenColumn(hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column));
   }
 
-  /// z += W·x, one column axpy at a time: keeps z in registers, 4–14 % faster than Eigen's
-  /// general matrix–vector kernel at these sizes (see docs/tcn.md).
+  /// Vector registers of the target (AVX-512: 32 × 64 bytes; AVX: 16 × 32; SSE2: 16 × 16).
+#if defined(__AVX512F__)
+  static constexpr int kVectorBytes = 64, kVectorRegisters = 32;
+#elif defined(__AVX__)
+  static constexpr int kVectorBytes = 32, kVectorRegisters = 16;
+#else
+  static constexpr int kVectorBytes = 16, kVectorRegisters = 16;
+#endif
+  /// Whether one accumulator per tap fits in the vector registers: 16 float channels fill one
+  /// AVX-512 register (four accumulators: 4 of 32 registers), four SSE2 registers (16 of 16).
+  static constexpr bool kAccumulatorPerTap =
+      Kernel * ((Hidden * int(sizeof(S)) + kVectorBytes - 1) / kVectorBytes) <= kVectorRegisters;
+
+  /// z += Σ_j W_j·x_j over the K taps, one column axpy at a time (keeps the sums in registers,
+  /// 4–14 % faster than Eigen's general matrix–vector kernel at these sizes, docs/tcn.md). Where
+  /// the registers allow, each tap has its own accumulator and the K sums meet z at the end: the
+  /// multiply-adds then form K independent chains instead of one through z, which a core with wide
+  /// vector units overlaps instead of waiting on each add (docs/performance.md); the sums are
+  /// ordered differently, equal to rounding. Otherwise one chain through z, as registers allow.
   template <typename Matrix>
-  static void add_product(HiddenVector& z, const Matrix& w, const S* x) noexcept {
-    for (int c = 0; c < Matrix::ColsAtCompileTime; ++c)
-      z.noalias() += w.col(c) * x[c];
+  static void add_taps(HiddenVector& z, const std::array<Matrix, Kernel>& w,
+                       const std::array<const S*, Kernel>& x) noexcept {
+    constexpr int columns = Matrix::ColsAtCompileTime;
+    if constexpr (kAccumulatorPerTap) {
+      std::array<HiddenVector, Kernel> partial;
+      for (int j = 0; j < Kernel; ++j)
+        partial[j].noalias() = w[j].col(0) * x[j][0];
+      for (int c = 1; c < columns; ++c)
+        for (int j = 0; j < Kernel; ++j)
+          partial[j].noalias() += w[j].col(c) * x[j][c];
+      for (int j = 0; j < Kernel; ++j)
+        z += partial[j];
+    } else {
+      for (int j = 0; j < Kernel; ++j)
+        for (int c = 0; c < columns; ++c)
+          z.noalias() += w[j].col(c) * x[j][c];
+    }
   }
 
   void apply_heads() noexcept {

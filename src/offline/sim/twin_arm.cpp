@@ -67,6 +67,7 @@ class FixedArm final : public TwinArm::Impl {
     const auto& payload = scenario.effects.payload;
     if (payload.enabled && payload.mass > 0)
       model_.inertias[N] = with_point_mass(model_.inertias[N], payload.mass, payload.position);
+    model_.update_constants();
     if (!scenario.effects.gravity) model_.gravity.setZero();
     joints = N;
     name = model_.name;
