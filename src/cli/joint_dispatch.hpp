@@ -19,10 +19,15 @@ void with_joint_count(int joints, const std::string& source, Work&& work) {
     throw Error::at(source, 0, "",
                     "arms of 1 to " + std::to_string(kMaxJoints) +
                         " joints are supported, this one has " + std::to_string(joints));
-  [&]<int... K>(std::integer_sequence<int, K...>) {
-    ((joints == K + 1 ? (work.template operator()<K + 1>(), true) : false) || ...);
-  }
-  (std::make_integer_sequence<int, kMaxJoints>{});
+  const auto run_if = [&]<int J>() {
+    if (joints != J) return false;
+    work.template operator()<J>();
+    return true;
+  };
+  const auto first_match = [&]<int... K>(std::integer_sequence<int, K...>) {
+    return (run_if.template operator()<K + 1>() || ...);
+  };
+  first_match(std::make_integer_sequence<int, kMaxJoints>{});
 }
 
 }  // namespace tpf::cli

@@ -47,14 +47,6 @@ double regime_rmse(const RegimeStats& s, int column) {
 template <int N>
 EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const JointSamples& samples,
                                 std::vector<std::string>& notes) {
-  if (nominal.added.effort_lead_s != 0.0)
-    throw Error(
-        "the parameter file holds effort_lead_s (the delay effect), which validate does "
-        "not evaluate");
-  const bool thermal = nominal.added.thermal_viscous.any();
-  const bool has_temperature = samples.temperature.cols() == N;
-  if (thermal && !has_temperature)
-    notes.push_back("the model's thermal friction is left out: the log has no temp<j> columns");
   const JointVector<double, N> armature = identified_armature(nominal, notes);
   const NominalLinks<double, N> links = nominal_links(nominal);
   Data<double, N> data;
@@ -69,8 +61,6 @@ EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const Jo
     const JointVector<double, N> dq = samples.dq.row(k).transpose();
     const JointVector<double, N> ddq = samples.ddq.row(k).transpose();
     predict_effort(nominal, links, data, q, dq, ddq, rigid, friction);
-    if (thermal && has_temperature)
-      friction += thermal_friction(nominal, dq, samples.temperature.row(k).transpose());
     e.effort.row(k) = (rigid + friction).transpose();
     e.drive_loss.row(k) =
         (friction.cwiseQuotient(nominal.effort_per_newton_metre) + armature.cwiseProduct(ddq))

@@ -53,11 +53,11 @@ struct Validation {
   std::vector<std::string> notes;         ///< what was not evaluated and why
 };
 
-/// The nominal model's estimate on `samples`: effort = rigid + friction (+ thermal friction when
-/// the log has temperatures), drive_loss = (friction + thermal) / effort_per_newton_metre +
-/// I_a·q̈ with I_a the identified base parameter of column "Ia<j>" (0, and a note, where the
-/// identification grouped it with a link inertia). Throws tpf::Error naming the effect when the
-/// parameter file holds one this evaluation does not reproduce (effort_lead_s ≠ 0).
+/// The nominal model's estimate on `samples`, as the run-time estimator evaluates it (every effect
+/// the parameter file holds; the loader refuses those it cannot evaluate): effort = rigid +
+/// friction, drive_loss = friction / effort_per_newton_metre + I_a·q̈ with I_a the identified base
+/// parameter of column "Ia<j>" (0, and a note, where the identification grouped it with a link
+/// inertia).
 template <int N>
 EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const JointSamples& samples,
                                 std::vector<std::string>& notes);
