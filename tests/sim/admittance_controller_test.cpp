@@ -10,10 +10,11 @@
 #include "offline/log/read_log.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
+#include "support/constants.hpp"
 
 namespace {
 
-constexpr int kArm4Joints = 4;  // data/arm4.robot.json
+using tpf::test::kArm4Joints;
 
 using namespace tpf::offline;
 

@@ -5,10 +5,11 @@
 
 #include <cmath>
 #include <numbers>
+#include "support/constants.hpp"
 
 namespace {
 
-constexpr int kArm4Joints = 4;  // data/arm4.robot.json
+using tpf::test::kArm4Joints;
 
 using tpf::offline::DriveConfig;
 using tpf::offline::Ph54Drive;

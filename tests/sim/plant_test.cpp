@@ -9,10 +9,11 @@
 #include "offline/sim/twin_arm.hpp"
 #include "offline/sim/twin_plant.hpp"
 #include "tpf/friction/friction_file.hpp"
+#include "support/constants.hpp"
 
 namespace {
 
-constexpr int kArm4Joints = 4;  // data/arm4.robot.json
+using tpf::test::kArm4Joints;
 
 using namespace tpf::offline;
 

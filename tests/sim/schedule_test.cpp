@@ -7,10 +7,11 @@
 #include "offline/sim/excitation_schedule.hpp"
 #include "offline/sim/random.hpp"
 #include "offline/sim/sensor_quantisation.hpp"
+#include "support/constants.hpp"
 
 namespace {
 
-constexpr int kArm4Joints = 4;  // data/arm4.robot.json
+using tpf::test::kArm4Joints;
 
 using namespace tpf::offline;
 

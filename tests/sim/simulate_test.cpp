@@ -17,10 +17,11 @@
 #include "offline/sim/twin_arm.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/robot_description.hpp"
+#include "support/constants.hpp"
 
 namespace {
 
-constexpr int kArm4Joints = 4;  // data/arm4.robot.json
+using tpf::test::kArm4Joints;
 
 using namespace tpf::offline;
 

@@ -17,14 +17,16 @@
 #include "offline/sim/simulate.hpp"
 #include "support/arm_fixture.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
+#include "support/constants.hpp"
 
 namespace tpf::offline {
 namespace {
 
 using test::data_path;
-constexpr int kArmJoints = 4, kArmPads = 11;
-using Vec = JointVector<double, kArmJoints>;
-using AllJointsTcn = tpf::AllJointsTcn<kAllJointsHidden>::For<double, kArmJoints>;
+using test::kArm4Joints;
+using test::kArm4Pads;
+using Vec = JointVector<double, kArm4Joints>;
+using AllJointsTcn = tpf::AllJointsTcn<kAllJointsHidden>::For<double, kArm4Joints>;
 
 const Log& excitation_log() {
   static const Log log = [] {
@@ -35,19 +37,19 @@ const Log& excitation_log() {
   return log;
 }
 
-EstimatorSetup<kArmJoints> twin_setup() {
-  EstimatorSetup<kArmJoints> s;
-  s.nominal = declared_nominal_model<kArmJoints>(data_path("arm4.robot.json"),
+EstimatorSetup<kArm4Joints> twin_setup() {
+  EstimatorSetup<kArm4Joints> s;
+  s.nominal = declared_nominal_model<kArm4Joints>(data_path("arm4.robot.json"),
                                                  data_path("arm4.friction.json"));
   s.pads = load_pads(data_path("arm4.pads.json"), s.nominal.model);
   s.parameters =
-      estimator_parameters_from_noise<kArmJoints>(estimate_sensor_noise(excitation_log()));
+      estimator_parameters_from_noise<kArm4Joints>(estimate_sensor_noise(excitation_log()));
   return s;
 }
 
 TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
-  const EstimatorSetup<kArmJoints> setup = twin_setup();
-  const auto samples = estimator_samples<kArmJoints>(excitation_log(), kArmPads);
+  const EstimatorSetup<kArm4Joints> setup = twin_setup();
+  const auto samples = estimator_samples<kArm4Joints>(excitation_log(), kArm4Pads);
   const EstimatorTrace trace = replay_estimator(setup, samples);
   ASSERT_EQ(trace.rows(), excitation_log().rows());
   EXPECT_EQ(trace.contact.maxCoeff(), 0) << "no pad may switch on in a contact-free log";
@@ -55,14 +57,14 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
   // Independent re-computation with the documented trainer recipe: acceleration filter,
   // predict_effort, StaticFrictionTracker with contact = false, compensator_input with the
   // nominal friction of predict_effort.
-  AccelerationFilter<double, kArmJoints> filter(setup.parameters.acceleration_cutoff_hz,
+  AccelerationFilter<double, kArm4Joints> filter(setup.parameters.acceleration_cutoff_hz,
                                                 setup.parameters.acceleration_damping);
-  StaticFrictionTracker<double, kArmJoints> tracker(setup.parameters.static_friction);
-  Data<double, kArmJoints> data(setup.nominal.model);
+  StaticFrictionTracker<double, kArm4Joints> tracker(setup.parameters.static_friction);
+  Data<double, kArm4Joints> data(setup.nominal.model);
   double t_prev = std::numeric_limits<double>::quiet_NaN();
   int moving_rows = 0, static_rows = 0;
   for (std::size_t k = 0; k < samples.size(); ++k) {
-    const ReplaySample<kArmJoints>& s = samples[k];
+    const ReplaySample<kArm4Joints>& s = samples[k];
     const auto r = static_cast<Eigen::Index>(k);
     if (k == 0) filter.reset(s.dq);
     const double h = k == 0 ? setup.parameters.sample_period_s : s.t - t_prev;
@@ -73,11 +75,11 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
     const Vec residual = s.effort - rigid - friction;
     tracker.update(s.t, s.dq, residual, false, std::numeric_limits<double>::infinity(),
                    Vec::Zero());
-    const auto x = compensator_input<double, kArmJoints>(s.q, s.dq, ddq,
+    const auto x = compensator_input<double, kArm4Joints>(s.q, s.dq, ddq,
                                                          tracker.friction_estimate(), friction);
     ASSERT_LT((trace.inputs.row(r).transpose() - x).cwiseAbs().maxCoeff(), 1e-9) << "row " << k;
     ASSERT_LT((trace.residual.row(r).transpose() - residual).cwiseAbs().maxCoeff(), 1e-9);
-    for (int j = 0; j < kArmJoints; ++j)
+    for (int j = 0; j < kArm4Joints; ++j)
       (tracker.is_static(j) ? static_rows : moving_rows)++;
   }
   EXPECT_GT(static_rows, 1000);  // the log holds both rests and moves
@@ -85,19 +87,19 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
 }
 
 TEST(TrainingFeatures, TargetIsTheResidualInNewtonMetresAndJointColumnsArePicked) {
-  const EstimatorSetup<kArmJoints> setup = twin_setup();
+  const EstimatorSetup<kArm4Joints> setup = twin_setup();
   const EstimatorTrace trace =
-      replay_estimator(setup, estimator_samples<kArmJoints>(excitation_log(), kArmPads));
+      replay_estimator(setup, estimator_samples<kArm4Joints>(excitation_log(), kArm4Pads));
   const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
   const TcnSequence all = training_sequence(trace, scale);
   ASSERT_EQ(all.inputs.cols(), 20);
   ASSERT_EQ(all.residual.cols(), 4);
-  for (int j = 0; j < kArmJoints; ++j) {
+  for (int j = 0; j < kArm4Joints; ++j) {
     EXPECT_LT((all.residual.col(j) * scale[j] - trace.residual.col(j)).cwiseAbs().maxCoeff(), 1e-9);
     const TcnSequence one = training_sequence(trace, scale, j);
     ASSERT_EQ(one.inputs.cols(), 5);
     for (int c = 0; c < 5; ++c)
-      EXPECT_EQ(one.inputs.col(c), trace.inputs.col(c * kArmJoints + j));
+      EXPECT_EQ(one.inputs.col(c), trace.inputs.col(c * kArm4Joints + j));
     EXPECT_LT((one.residual.col(0) - all.residual.col(j)).cwiseAbs().maxCoeff(), 1e-12);
   }
   EXPECT_THROW(training_sequence(trace, scale.head(3)), Error);
@@ -159,11 +161,11 @@ TEST(TrainingFeatures, WeightFilesOfTheOldFourInputSizeAreRefusedNamingTheFile) 
   old.inputs = 4;
   old.hidden = kPerJointHiddenSmall;
   old.levels = kCompensatorLevels;
-  for (int j = 0; j < kArmJoints; ++j)
+  for (int j = 0; j < kArm4Joints; ++j)
     write_tcn_weight_file(joint_weight_path(dir / "old.json", j).string(),
                           to_weight_file(init_tcn_parameters(old, 1)));
   try {
-    find_compensator_weights(dir / "old.json", kArmJoints);
+    find_compensator_weights(dir / "old.json", kArm4Joints);
     ADD_FAILURE() << "a 4-input weight file was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -174,12 +176,12 @@ TEST(TrainingFeatures, WeightFilesOfTheOldFourInputSizeAreRefusedNamingTheFile) 
         << message;
   }
   // The all-joints file of the old size (16 inputs) likewise.
-  old.inputs = 4 * kArmJoints;
+  old.inputs = 4 * kArm4Joints;
   old.hidden = kAllJointsHidden;
-  old.outputs = kArmJoints;
+  old.outputs = kArm4Joints;
   write_tcn_weight_file((dir / "all.json").string(), to_weight_file(init_tcn_parameters(old, 1)));
   try {
-    find_compensator_weights(dir / "all.json", kArmJoints);
+    find_compensator_weights(dir / "all.json", kArm4Joints);
     ADD_FAILURE() << "a 16-input all-joints file was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -195,7 +197,7 @@ TEST(TrainingFeatures, SamplesRefuseAWrongJointCount) {
   log.source = "three.csv";
   log.columns = {"t", "q1", "q2", "q3", "dq1", "dq2", "dq3", "i1", "i2", "i3"};
   log.values = Eigen::MatrixXd::Zero(2, 10);
-  EXPECT_THROW((estimator_samples<kArmJoints>(log, kArmPads)), Error);
+  EXPECT_THROW((estimator_samples<kArm4Joints>(log, kArm4Pads)), Error);
 }
 
 }  // namespace
