@@ -51,7 +51,7 @@ CycleSample resting(std::uint64_t n) {
 
 TEST(EstimatorHook, FlagsFaultyCyclesAndDoesNotAllocate) {
   EstimatorHook hook(arm4_files());
-  EXPECT_NE(hook.description().find("one friction network per joint"), std::string::npos);
+  EXPECT_NE(hook.description().find("per-joint networks of 16 channels"), std::string::npos);
   CycleSample s = resting(0);
   hook.update(s);  // start-up of the filters and the networks
   // Feed the rigid-body effort the model predicts at rest as the measured current.
