@@ -107,7 +107,7 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
 }
 
 TEST(AnyArmLoop, OneJointBench) {
-  run_loop<1>("bench1.robot.json", "bench1-excitation.json", 40);
+  run_loop<1>("bench1.robot.json", "bench1-excitation.json", 40, 0.5);
 }
 
 TEST(AnyArmLoop, SevenJointKinovaWithoutSkin) {
