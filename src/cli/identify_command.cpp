@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
+#include "read_command_logs.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
@@ -92,13 +93,7 @@ void register_identify_command(CLI::App& app) {
   cmd->add_flag("--no-load-friction", a->no_load_friction, "Keep α_c = α_v = 0");
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
-    std::vector<std::string> notes;
-    const offline::Log log = offline::read_logs(a->logs, &notes);
-    for (const std::string& n : notes)
-      std::printf("note: %s\n", n.c_str());
-    if (log.file_count() > 1) std::printf("%s\n", log.quality.summary(log.columns).c_str());
-    for (const std::string& line : offline::torque_sensor_report(log, log.joint_count()))
-      if (line.find("none") == std::string::npos) std::printf("%s\n", line.c_str());
+    const offline::Log log = read_command_logs(a->logs);
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
   });
 }

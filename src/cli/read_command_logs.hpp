@@ -1,0 +1,27 @@
+// The logs a fitting command (identify, diagnose) reads: several files as one log, with what was
+// joined and where the torque sensors are flat or missing said once.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "offline/log/read_logs.hpp"
+#include "offline/log/torque_sensor.hpp"
+
+namespace tpf::cli {
+
+/// read_logs of `paths`, printing its notes, the joined log's quality (several files) and the
+/// torque-sensor lines that name a flat or missing sensor.
+inline offline::Log read_command_logs(const std::vector<std::string>& paths) {
+  std::vector<std::string> notes;
+  offline::Log log = offline::read_logs(paths, &notes);
+  for (const std::string& n : notes)
+    std::printf("note: %s\n", n.c_str());
+  if (log.file_count() > 1) std::printf("%s\n", log.quality.summary(log.columns).c_str());
+  for (const std::string& line : offline::torque_sensor_report(log, log.joint_count()))
+    if (line.find("none") == std::string::npos) std::printf("%s\n", line.c_str());
+  return log;
+}
+
+}  // namespace tpf::cli
