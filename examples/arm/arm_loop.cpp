@@ -14,7 +14,7 @@ using serial::MonoNs;
 using serial::monotonic_now;
 
 ArmLoop::ArmLoop(dxl::Bus& bus, dxl::ph54::ChainStateReader& motors,
-                 std::span<const std::uint8_t> ids, pad::PadReader* pads, CsvLogWriter* log,
+                 std::span<const std::uint8_t> ids, pad::PadReader* pads, LogRecorder* log,
                  ArmLoopOptions options, EstimatorHook* estimator)
     : bus_(bus), motors_(motors), pads_(pads), log_(log), options_(options), estimator_(estimator) {
   std::copy_n(ids.begin(), std::min(ids.size(), ids_.size()), ids_.begin());
@@ -65,6 +65,7 @@ void ArmLoop::cycle(MonoNs start) {
     const MonoNs e0 = monotonic_now();
     estimator_->update(sample_);
     estimator_time_ns_ = monotonic_now() - e0;
+    sample_.estimate = estimator_->estimate();
   }
   if (log_ != nullptr) log_->push(sample_);
 }

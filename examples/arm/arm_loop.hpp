@@ -8,8 +8,8 @@
 #include <atomic>
 #include <cstdint>
 
-#include "arm/csv_log_writer.hpp"
 #include "arm/estimator_hook.hpp"
+#include "arm/log_recorder.hpp"
 #include "arm/loop_statistics.hpp"
 #include "dynamixel/ph54/chain_state_reader.hpp"
 #include "teensy/host/pad_reader.hpp"
@@ -43,7 +43,7 @@ class ArmLoop {
   /// `ids` as given to `motors`. `pads`, `log` and `estimator` may be null. All must outlive the
   /// loop.
   ArmLoop(dxl::Bus& bus, dxl::ph54::ChainStateReader& motors, std::span<const std::uint8_t> ids,
-          pad::PadReader* pads, CsvLogWriter* log, ArmLoopOptions options,
+          pad::PadReader* pads, LogRecorder* log, ArmLoopOptions options,
           EstimatorHook* estimator = nullptr);
 
   /// Runs on the calling thread until `cycles` are done or request_stop().
@@ -66,7 +66,7 @@ class ArmLoop {
   dxl::ph54::ChainStateReader& motors_;
   std::array<std::uint8_t, dxl::ph54::kMaxChainMotors> ids_{};
   pad::PadReader* pads_;
-  CsvLogWriter* log_;
+  LogRecorder* log_;
   ArmLoopOptions options_;
   EstimatorHook* estimator_;
   serial::MonoNs start_ns_ = 0;

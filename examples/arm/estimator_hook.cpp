@@ -50,13 +50,40 @@ void EstimatorHook::update(const CycleSample& s) noexcept {
         s.pads_valid && static_cast<std::size_t>(k) < s.pads ? static_cast<double>(s.p[k]) : nan;
   output_ = &std::visit([this](auto& e) -> const Output& { return e->update(input_); }, estimator_);
 
+  record_estimate(*output_);
+  count(*output_);
+  if (trace_.size() < trace_.capacity()) {
+    EstimateRecord r;
+    r.t = s.t;
+    r.status = estimate_.status;
+    r.contact_pad = estimate_.contact_pad;
+    r.external_torque_nm =
+        estimate_.present ? output_->external.torque : JointVector<double, kJoints>::Constant(nan);
+    r.normal_force_n = estimate_.present ? -output_->wrench.force_contact.z() : nan;
+    trace_.push_back(r);
+  }
+}
+
+void EstimatorHook::record_estimate(const Output& out) noexcept {
+  // A skipped cycle has no estimate: not present (NaN in the log), contact_pad −1.
+  const bool skipped = out.status & (kStatusNonFiniteInput | kStatusStaleTime);
+  estimate_.present = !skipped;
+  estimate_.status = out.status;
+  estimate_.contact = !skipped && out.contact;
+  estimate_.contact_pad = skipped ? -1 : out.wrench.pad;
+  for (int j = 0; j < kJoints; ++j)
+    estimate_.external_torque_nm[static_cast<std::size_t>(j)] = out.external.torque[j];
+  for (int a = 0; a < 3; ++a)
+    estimate_.force_world_n[static_cast<std::size_t>(a)] =
+        out.wrench.pad >= 0 ? out.wrench.force_world[a] : 0.0;
+}
+
+void EstimatorHook::count(const Output& out) noexcept {
   EstimatorStatistics& st = statistics_;
-  const Output& out = *output_;
   ++st.updates;
   for (int b = 0; b < EstimatorStatistics::kStatusBits; ++b)
     if (out.status & (1u << b)) ++st.status_bit[static_cast<std::size_t>(b)];
-  const bool skipped = out.status & (kStatusNonFiniteInput | kStatusStaleTime);
-  if (!skipped) {
+  if (estimate_.present) {
     if (out.wrench.pad >= 0) ++st.contact_cycles;
     if (out.state != ContactState::Dynamic) ++st.static_cycles;
   }
@@ -66,16 +93,6 @@ void EstimatorHook::update(const CycleSample& s) noexcept {
     for (int j = 0; j < kJoints; ++j)
       st.max_abs_torque_nm[static_cast<std::size_t>(j)] = std::max(
           st.max_abs_torque_nm[static_cast<std::size_t>(j)], std::abs(out.external.torque[j]));
-  }
-  if (trace_.size() < trace_.capacity()) {
-    EstimateRecord r;
-    r.t = s.t;
-    r.status = out.status;
-    r.contact_pad = skipped ? -1 : out.wrench.pad;  // a skipped cycle has no estimate: NaN
-    r.external_torque_nm =
-        skipped ? JointVector<double, kJoints>::Constant(nan) : out.external.torque;
-    r.normal_force_n = skipped ? nan : -out.wrench.force_contact.z();
-    trace_.push_back(r);
   }
 }
 

@@ -69,17 +69,24 @@ class EstimatorHook {
 
   /// The last cycle's output (valid after the first update).
   const Output& output() const noexcept { return *output_; }
+  /// The last cycle's answer as the log records it (not present before the first update and for
+  /// a skipped cycle).
+  const CycleEstimate& estimate() const noexcept { return estimate_; }
   const EstimatorStatistics& statistics() const noexcept { return statistics_; }
   std::span<const EstimateRecord> trace() const noexcept { return trace_; }
   /// One line on what was loaded (for the start-up print).
   const std::string& description() const noexcept { return description_; }
 
  private:
+  void record_estimate(const Output& out) noexcept;
+  void count(const Output& out) noexcept;
+
   std::variant<std::unique_ptr<ArmEstimator>, std::unique_ptr<UncompensatedArmEstimator>>
       estimator_;
   ArmEstimator::Sample input_;
   const Output* output_ = nullptr;
   Output empty_;
+  CycleEstimate estimate_;
   EstimatorStatistics statistics_;
   std::vector<EstimateRecord> trace_;
   std::string description_;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "arm/arm_loop.hpp"
@@ -26,6 +27,18 @@ extern "C" void on_signal(int) {
 std::string data_file(const std::string& name) {
   const char* dir = std::getenv("TPF_DATA_DIR");
   return std::string(dir != nullptr && *dir != '\0' ? dir : TPF_ARM_DATA_DIR) + "/" + name;
+}
+
+/// The recording's '# key: value' lines.
+tpf::offline::LogMetadata log_metadata(double rate_hz, const std::string& note) {
+  tpf::offline::LogMetadata meta;
+  std::ostringstream rate;
+  rate << rate_hz;
+  meta.set("robot", "arm4");
+  meta.set("rate_hz", rate.str());
+  meta.set("source", "recorded on the arm (tpf_arm_loop)");
+  meta.set("note", note);
+  return meta;
 }
 
 }  // namespace
@@ -150,10 +163,11 @@ int main(int argc, char** argv) {
     }
     // The log's pads are the layout's (p<k> = pad k of the layout) when the estimator runs.
     const std::size_t log_pads = !pads ? 0 : estimator ? arm::EstimatorHook::kPads : 16;
-    std::unique_ptr<arm::CsvLogWriter> log;
+    std::unique_ptr<arm::LogRecorder> log;
     if (!log_path.empty())
-      log = std::make_unique<arm::CsvLogWriter>(log_path, id_bytes.size(), log_pads,
-                                                arm::LogMetadata{"arm4", rate, note});
+      log = std::make_unique<arm::LogRecorder>(
+          log_path, arm::RecordedColumns{id_bytes.size(), log_pads, estimator != nullptr},
+          log_metadata(rate, note));
     dxl::ph54::ChainStateReader reader(bus, id_bytes, chain.fast_sync_read);
     arm::ArmLoopOptions options;
     options.rate_hz = rate;

@@ -99,7 +99,11 @@ std::vector<std::string> read_lines(const std::string& path) {
 TEST(ArmLoop, HealthyRunLogsEveryCycleInTheTpfFormat) {
   ArmRig rig("healthy");
   const std::string log_path = temp_path("healthy.csv");
-  CsvLogWriter log(log_path, 4, 16, LogMetadata{"arm4", 400.0, "simulated: emulated arm (test)"});
+  offline::LogMetadata meta;
+  meta.set("robot", "arm4");
+  meta.set("rate_hz", "400");
+  meta.set("note", "simulated: emulated arm (test)");
+  LogRecorder log(log_path, RecordedColumns{4, 16, false}, meta);
   dxl::ph54::ChainStateReader reader(*rig.bus, rig.ids, rig.chain.fast_sync_read);
   ArmLoopOptions options;
   options.cycles = 200;  // 0.5 s

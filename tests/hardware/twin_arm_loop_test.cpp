@@ -16,11 +16,13 @@
 
 #include "arm/arm_loop.hpp"
 #include "arm/estimator_hook.hpp"
+#include "arm/log_recorder.hpp"
 #include "dynamixel/emulator/motor_chain_emulator.hpp"
 #include "dynamixel/ph54/chain_setup.hpp"
 #include "dynamixel/serial/pty_pair.hpp"
 #include "dynamixel/serial/serial_port.hpp"
 #include "dynamixel/serial/thread_priority.hpp"
+#include "offline/log/read_log.hpp"
 #include "offline/sim/scenario.hpp"
 #include "teensy/emulator/pad_board_emulator.hpp"
 #include "tpf/estimation/estimator_status.hpp"
@@ -110,7 +112,13 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   dxl::ph54::ChainStateReader reader(bus, ids, chain.fast_sync_read);
   ArmLoopOptions options;
   options.cycles = kCycles;
-  ArmLoop loop(bus, reader, ids, &pads, nullptr, options, &estimator);
+  // Recorded as tpf_arm_loop records: the motors, the pads and the estimator's answer.
+  const std::string log_path = temp_path("twin-loop.csv");
+  offline::LogMetadata meta;
+  meta.set("robot", "arm4");
+  meta.set("rate_hz", "400");
+  LogRecorder log(log_path, RecordedColumns{4, EstimatorHook::kPads, true}, meta);
+  ArmLoop loop(bus, reader, ids, &pads, &log, options, &estimator);
   std::atomic<bool> done{false}, realtime{false};
   std::thread runner([&] {
     realtime.store(serial::set_current_thread_fifo(kDevicePriority));
@@ -140,6 +148,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   const bool finished = test::wait_until([&] { return done.load(); }, 30.0);
   if (!finished) loop.request_stop();
   runner.join();
+  log.close();
   pads.stop();
   board.stop();
   motors.stop();
@@ -177,6 +186,26 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   EXPECT_GT(e.clean, kCycles / 2);
   EXPECT_EQ(e.non_finite_estimates, 0u);
   ASSERT_EQ(estimator.trace().size(), kCycles);
+
+  // The log holds every cycle, and its estimates are the estimator's: a recorded run replays
+  // and scores with the tools.
+  EXPECT_EQ(r.log_rows_dropped, 0u);
+  const offline::Log recorded = offline::read_log(log_path);
+  ASSERT_EQ(recorded.rows(), static_cast<Eigen::Index>(kCycles));
+  for (std::size_t k = 0; k < kCycles; ++k) {
+    const EstimateRecord& rec = estimator.trace()[k];
+    const auto row = static_cast<Eigen::Index>(k);
+    ASSERT_EQ(recorded.col("t")[row], rec.t);
+    ASSERT_EQ(recorded.col("est_status")[row], static_cast<double>(rec.status));
+    ASSERT_EQ(recorded.col("est_pad")[row], rec.contact_pad + 1.0);
+    for (int j = 0; j < 4; ++j) {
+      const double logged = recorded.col("est_tau_ext" + std::to_string(j + 1))[row];
+      if (std::isnan(rec.external_torque_nm[j]))
+        ASSERT_TRUE(std::isnan(logged)) << "cycle " << k << " joint " << j + 1;
+      else
+        ASSERT_EQ(logged, rec.external_torque_nm[j]) << "cycle " << k << " joint " << j + 1;
+    }
+  }
 
   // Estimates against the twin's truth. Loop time t maps to twin time t + offset (both count
   // CLOCK_MONOTONIC; the twin is advanced in real time from the emulator's start).
