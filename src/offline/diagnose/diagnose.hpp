@@ -69,8 +69,9 @@ struct CadPayloadCheck {
   Vector3<double> centre = Vector3<double>::Zero();  ///< m, last link's frame
 };
 
-template <int N>
-struct Diagnosis {
+/// What a diagnosis found, for an arm of any joint count (the samples' joint count): the passes
+/// that need no fixed size (residual analysis, effect selection, findings, report) work on this.
+struct EffectDiagnosis {
   JointSamples samples;
   std::vector<FeatureGroup> groups;  ///< the whole library (declared + candidates)
   std::vector<int> selected;         ///< indices into groups, in selection order
@@ -88,6 +89,13 @@ struct Diagnosis {
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
   std::vector<std::string> notes;     ///< skipped candidates and why
   CadPayloadCheck cad_payload;
+
+  int joints() const { return static_cast<int>(noise_floor.size()); }
+};
+
+/// The diagnosis of an N-joint arm: what was found and the nominal model it writes.
+template <int N>
+struct Diagnosis : EffectDiagnosis {
   NominalModel<double, N> nominal;  ///< the declared model plus the selected effects
 };
 

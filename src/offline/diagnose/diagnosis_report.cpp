@@ -27,8 +27,8 @@ Series heldout_series(const JointSamples& s, const std::string& name, const Eige
 
 }  // namespace
 
-template <int N>
-std::string diagnosis_json(const Diagnosis<N>& d) {
+std::string diagnosis_json(const EffectDiagnosis& d) {
+  const int N = d.joints();
   nlohmann::json j;
   j["format"] = "tpf-diagnosis";
   j["version"] = 1;
@@ -109,8 +109,8 @@ std::string diagnosis_json(const Diagnosis<N>& d) {
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-template <int N>
-void write_diagnosis_report(const Diagnosis<N>& d, const std::filesystem::path& html) {
+void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::path& html) {
+  const int N = d.joints();
   const JointSamples& s = d.samples;
   HtmlReport page("tpf diagnose: " + s.source);
   if (s.simulated) page.mark_simulated();
@@ -181,17 +181,5 @@ void write_diagnosis_report(const Diagnosis<N>& d, const std::filesystem::path& 
   page.preformatted(diagnosis_json(d));
   page.write(html);
 }
-
-#define TPF_INSTANTIATE_REPORT(N)                              \
-  template std::string diagnosis_json<N>(const Diagnosis<N>&); \
-  template void write_diagnosis_report<N>(const Diagnosis<N>&, const std::filesystem::path&);
-TPF_INSTANTIATE_REPORT(1)
-TPF_INSTANTIATE_REPORT(2)
-TPF_INSTANTIATE_REPORT(3)
-TPF_INSTANTIATE_REPORT(4)
-TPF_INSTANTIATE_REPORT(5)
-TPF_INSTANTIATE_REPORT(6)
-TPF_INSTANTIATE_REPORT(7)
-#undef TPF_INSTANTIATE_REPORT
 
 }  // namespace tpf::offline

@@ -11,13 +11,11 @@ namespace tpf::offline {
 /// The numbers of a diagnosis as JSON text: per joint and regime the held-out RMSE, std and count
 /// before and after with the change in percent, the candidate trials, the selected effects, the
 /// findings and notes, and "simulated".
-template <int N>
-std::string diagnosis_json(const Diagnosis<N>& diagnosis);
+std::string diagnosis_json(const EffectDiagnosis& diagnosis);
 
 /// Writes the HTML report (labelled SIMULATED when the log's metadata says so): findings, the
 /// before/after table, per-regime bars, the evidence table, residual over time before and after,
 /// and the residual against each selected effect's term before and after.
-template <int N>
-void write_diagnosis_report(const Diagnosis<N>& diagnosis, const std::filesystem::path& html);
+void write_diagnosis_report(const EffectDiagnosis& diagnosis, const std::filesystem::path& html);
 
 }  // namespace tpf::offline

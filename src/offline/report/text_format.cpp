@@ -94,4 +94,10 @@ std::string format_percent_change(double before, double after) {
   return text;
 }
 
+std::string format_sentence(const char* pattern, double a, double b, double c) {
+  char text[256];
+  std::snprintf(text, sizeof text, pattern, a, b, c);
+  return text;
+}
+
 }  // namespace tpf::offline

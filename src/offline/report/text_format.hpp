@@ -21,4 +21,7 @@ std::string format_fixed(double value, int decimals);
 /// "–" when undefined.
 std::string format_percent_change(double before, double after);
 
+/// printf of up to three numbers into a sentence: format_sentence("removes %.1f %%", 12.34).
+std::string format_sentence(const char* pattern, double a, double b = 0, double c = 0);
+
 }  // namespace tpf::offline

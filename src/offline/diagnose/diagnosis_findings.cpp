@@ -1,0 +1,126 @@
+#include "offline/diagnose/diagnosis_findings.hpp"
+
+#include <cmath>
+
+#include "offline/regimes/regime.hpp"
+#include "offline/report/text_format.hpp"
+
+namespace tpf::offline {
+namespace {
+
+std::string payload_finding(const CadPayloadCheck& c) {
+  return format_sentence("Against the robot file's inertias: a payload of %.3g kg on the last link",
+                         c.mass) +
+         format_sentence(" at (%.3f, %.3f, %.3f) m in its frame", c.centre.x(), c.centre.y(),
+                         c.centre.z()) +
+         format_sentence(
+             " — removes %.1f %% of the held-out residual sum of squares of the CAD "
+             "model (absorbed by the identified rigid body, so not a missing effect of "
+             "the identified model).",
+             100 * c.improvement);
+}
+
+std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
+  const FeatureGroup& g = d.groups[c.groups[0]];
+  std::string coefficients;
+  for (std::size_t i = 0; i < c.coefficients.size(); ++i)
+    coefficients +=
+        (i ? ", " : "") + format_sentence("%.4g ± %.2g", c.coefficients[i], c.standard_errors[i]);
+  std::string text;
+  if (!c.ambiguous()) {
+    text = "Found: " + g.title +
+           format_sentence(
+               " — removes %.1f %% of the held-out residual sum of squares; "
+               "coefficients ",
+               100 * c.improvements[0]) +
+           coefficients + " (" + (g.column_names.size() == 1 ? g.column_names[0] : g.key) + ").";
+  } else {
+    text = "Ambiguous between " + g.title +
+           format_sentence(" (removes %.1f %%)", 100 * c.improvements[0]);
+    for (std::size_t i = 1; i < c.groups.size(); ++i) {
+      text += " and " + d.groups[c.groups[i]].title;
+      text += std::isfinite(c.improvements[i])
+                  ? format_sentence(" (removes %.1f %%)", 100 * c.improvements[i])
+                  : std::string(" (declared)");
+    }
+    text += format_sentence(
+                ": on this log their columns are nearly collinear (share outside the "
+                "model %.3f), so the data cannot tell which it is and no coefficient "
+                "means much alone. The model holds the first (",
+                c.distinct_share) +
+            coefficients +
+            "); a log with more range of motion, both directions and rests tells them apart.";
+  }
+  if (!c.written && (g.kind == FeatureKind::Delay || g.kind == FeatureKind::Thermal))
+    text +=
+        " Not written to the parameter file: the run-time nominal model cannot evaluate it "
+        "(it keeps no past samples / has no temperature input); the 'written' table "
+        "leaves it out.";
+  else if (!c.written)
+    text +=
+        " Not written to the parameter file: it cannot be told from the declared model, "
+        "so its coefficients mean nothing there; the written model is refitted without it.";
+  return text;
+}
+
+// Regimes the written model does worse in than the declared one, explained.
+void add_worsened_regimes(const EffectDiagnosis& d, std::vector<std::string>& findings) {
+  for (int j = 0; j < d.joints(); ++j)
+    for (Regime r : {Regime::Static, Regime::StaticToKinetic, Regime::Moving}) {
+      const double before = d.written_before[j][r].rmse, after = d.written_after[j][r].rmse;
+      if (!(after > 1.02 * before)) continue;
+      findings.push_back(
+          "Joint " + std::to_string(j + 1) + ", " + std::string(regime_name(r)) +
+          format_sentence(
+              ": the written model's held-out RMSE rises from %.4g to %.4g (%+.0f %%). ", before,
+              after, 100 * (after / before - 1)) +
+          (r == Regime::Static
+               ? "Effects are selected on motion; at rest the effort holds whatever friction the "
+                 "motion left (memory) and the run time predicts none, so a term that shifts the "
+                 "prediction (offset, spring, load) moves it away from that held friction."
+               : "The friction curve refitted with the added effects does worse here than the "
+                 "declared model's: the effects and the curve share these samples."));
+    }
+}
+
+// What no candidate explains: held-out RMSE over 3× the noise floor at rest.
+void add_unexplained(const EffectDiagnosis& d, std::vector<std::string>& findings) {
+  for (int j = 0; j < d.joints(); ++j) {
+    const double moving = d.after[j][2].rmse();
+    const double still = d.after[j][0].rmse();
+    const double floor = d.noise_floor[j];
+    if (std::isfinite(floor) && moving > 3 * floor)
+      findings.push_back("Left unexplained on joint " + std::to_string(j + 1) +
+                         format_sentence(": moving held-out RMSE %.3g is %.1f× the noise floor at "
+                                         "rest (%.3g); no candidate of the library explains the "
+                                         "rest.",
+                                         moving, moving / floor, floor));
+    if (std::isfinite(floor) && still > 3 * floor)
+      findings.push_back(
+          "Left unexplained on joint " + std::to_string(j + 1) +
+          format_sentence(": static held-out RMSE %.3g is %.1f× the noise floor (%.3g): the "
+                          "friction held at rest depends on the history of the motion (memory), "
+                          "which no memoryless effect explains (the TCN compensator's job).",
+                          still, still / floor, floor));
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
+                                            const DiagnoseOptions& options) {
+  std::vector<std::string> findings;
+  if (d.cad_payload.claimed) findings.push_back(payload_finding(d.cad_payload));
+  if (d.selected.empty())
+    findings.push_back(
+        "No candidate effect lowers the held-out residual enough to be claimed (threshold " +
+        format_sentence("%.0f %%", 100 * options.min_improvement) +
+        " of the residual sum of squares).");
+  for (const Claim& c : d.claims)
+    findings.push_back(claim_finding(d, c));
+  add_worsened_regimes(d, findings);
+  add_unexplained(d, findings);
+  return findings;
+}
+
+}  // namespace tpf::offline

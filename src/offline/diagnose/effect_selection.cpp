@@ -1,0 +1,314 @@
+#include "offline/diagnose/effect_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "offline/diagnose/column_geometry.hpp"
+
+namespace tpf::offline {
+
+RegimeTable heldout_table(const DesignGrams& grams, const Eigen::VectorXd& theta) {
+  RegimeTable table(grams.joints);
+  for (int j = 0; j < grams.joints; ++j)
+    for (int r = 0; r < DesignGrams::kRegimes; ++r) {
+      table[j][r] = residual_sums(grams, theta, j, r, 1);
+      table[j][3] += table[j][r];
+    }
+  return table;
+}
+
+std::pair<double, double> heldout_sse(const RegimeTable& t, int joint, const Eigen::VectorXd& w) {
+  double sse = 0, count = 0;
+  for (int j = 0; j < static_cast<int>(t.size()); ++j)
+    if (joint < 0 || joint == j)
+      for (int r = 1; r < DesignGrams::kRegimes; ++r) {
+        sse += (joint < 0 ? w[j] : 1.0) * t[j][r].sum_squares;
+        count += t[j][r].count;
+      }
+  return {sse, count};
+}
+
+namespace {
+
+bool is_ripple(const FeatureGroup& g) {
+  return g.kind == FeatureKind::Ripple || g.kind == FeatureKind::RippleMotor;
+}
+
+// Σ_j w_j Σ_(selected regimes) of the training Grams: [φ; y; 1] over every joint row.
+Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& selection) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(grams.features + 2, grams.features + 2);
+  for (int j = 0; j < grams.joints; ++j)
+    for (int r = 0; r < DesignGrams::kRegimes; ++r)
+      if (selection.regimes[r])
+        A +=
+            (selection.joint_weights.size() ? selection.joint_weights[j] : 1.0) * grams.at(j, r, 0);
+  return A;
+}
+
+/// The state of a forward selection: the model so far and the library it draws from.
+class ForwardSelection {
+ public:
+  ForwardSelection(const DesignGrams& grams, const std::vector<FeatureGroup>& groups,
+                   const std::vector<int>& declared_columns, const FitSelection& selection,
+                   const Eigen::VectorXd& inflation, const DiagnoseOptions& options)
+      : grams_(grams),
+        groups_(groups),
+        declared_columns_(declared_columns),
+        selection_(selection),
+        inflation_(inflation),
+        options_(options),
+        A_(training_gram(grams, selection)),
+        used_(groups.size(), false),
+        columns_(declared_columns) {
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      if (groups[g].declared) in_model_.push_back(static_cast<int>(g));
+  }
+
+  EffectSelection run() {
+    EffectSelection out;
+    theta_ = fit_columns(grams_, columns_, selection_);
+    out.theta_declared = theta_;
+    out.theta_before = with_held_friction(theta_, columns_);
+    out.before = heldout_table(grams_, out.theta_before);
+    for (int round = 1; round <= options_.max_effects; ++round)
+      if (!select_one(round, out)) break;
+    out.theta_selected = with_held_friction(theta_, columns_);
+    out.after = heldout_table(grams_, out.theta_selected);
+    const std::vector<int> written = written_columns(out);
+    out.theta_written = with_held_friction(fit_columns(grams_, written, selection_), written);
+    return out;
+  }
+
+ private:
+  /// One round: every candidate tried on the model so far; the best that passes joins it.
+  bool select_one(int round, EffectSelection& out) {
+    const std::vector<int> model = model_columns(-1);
+    std::vector<int> eligible;
+    std::vector<double> gain(groups_.size(), 0.0);
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      if (groups_[g].declared || used_[g] || energetic(groups_[g]).empty()) continue;
+      const CandidateTrial trial = try_candidate(static_cast<int>(g), round, model);
+      gain[g] = trial.improvement;
+      out.trials.push_back(trial);
+      if (trial.improvement >= options_.min_improvement && trial.bic_change < 0 &&
+          trial.wald >= options_.min_standard_errors)
+        eligible.push_back(static_cast<int>(g));
+    }
+    if (eligible.empty()) return false;
+    const int best = best_candidate(eligible, gain);
+    Claim claim = name_claim(best, eligible, gain, model);
+    used_[best] = true;
+    in_model_.push_back(best);
+    out.selected.push_back(best);
+    for (CandidateTrial& t : out.trials)
+      if (t.round == round && t.title == groups_[best].title) t.selected = true;
+    columns_.insert(columns_.end(), groups_[best].columns.begin(), groups_[best].columns.end());
+    theta_ = fit_columns(grams_, columns_, selection_);
+    add_coefficients(best, claim);
+    claim.written = writable(claim);
+    out.claims.push_back(std::move(claim));
+    return true;
+  }
+
+  /// Candidate g on top of the model: held-out gain and BIC, Wald distance from zero, share of
+  /// its columns outside the model.
+  CandidateTrial try_candidate(int g, int round, const std::vector<int>& model) const {
+    const FeatureGroup& group = groups_[g];
+    const std::vector<int> own = energetic(group);
+    // A periodic effect must explain what an offset and a slope of its joint cannot: it is
+    // judged on top of them (over a short range a sine is one or the other).
+    std::vector<int> reference = columns_;
+    std::vector<int> reference_model = model;
+    if (is_ripple(group))
+      for (const FeatureGroup& other : groups_)
+        if (other.joint == group.joint &&
+            (other.kind == FeatureKind::Offset || other.kind == FeatureKind::Spring))
+          for (int c : other.columns)
+            if (std::find(reference.begin(), reference.end(), c) == reference.end()) {
+              reference.push_back(c);
+              if (alive(c)) reference_model.push_back(c);
+            }
+    std::vector<int> trial_columns = reference;
+    trial_columns.insert(trial_columns.end(), own.begin(), own.end());
+    const Eigen::VectorXd trial_theta = fit_columns(grams_, trial_columns, selection_);
+    const RegimeTable now = heldout_table(grams_, reference.size() == columns_.size()
+                                                      ? theta_
+                                                      : fit_columns(grams_, reference, selection_));
+    const RegimeTable with = heldout_table(grams_, trial_theta);
+    const auto [sse0, n] = heldout_sse(now, group.joint, selection_.joint_weights);
+    const auto [sse1, n1] = heldout_sse(with, group.joint, selection_.joint_weights);
+    CandidateTrial trial{group.key, group.title, group.joint, round, 0, 0, 0, 1, false};
+    trial.improvement = sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
+    trial.bic_change = n * std::log(std::max(sse1, 1e-300) / std::max(sse0, 1e-300)) +
+                       static_cast<double>(group.columns.size()) * std::log(std::max(n, 2.0));
+    const double sigma2 = residual_variance(trial_theta, trial_columns.size(), group.joint);
+    const Eigen::MatrixXd S = projected_gram(A_, reference_model, own);
+    Eigen::VectorXd th(own.size());
+    for (std::size_t i = 0; i < own.size(); ++i)
+      th[static_cast<Eigen::Index>(i)] = trial_theta[own[i]];
+    trial.wald = std::sqrt(std::max(th.dot(S * th), 0.0) / std::max(sigma2, 1e-300));
+    trial.distinct_share = distinct_share(A_, reference_model, own);
+    return trial;
+  }
+
+  /// The largest gain; an effect of every joint (one shared delay) is preferred to the same effect
+  /// on one joint when both pass: the per-joint one would leave the others for spurious
+  /// companions.
+  int best_candidate(const std::vector<int>& eligible, const std::vector<double>& gain) const {
+    int best = eligible.front();
+    for (int g : eligible)
+      if (gain[g] > gain[best]) best = g;
+    for (int g : eligible)
+      if (groups_[g].key == groups_[best].key && groups_[g].joint == -1 && groups_[best].joint >= 0)
+        best = g;
+    return best;
+  }
+
+  /// The claim for `best`: alone, or ambiguous with the eligible candidates of its joint whose
+  /// parts outside the model are nearly collinear with its own, and with the model group whose
+  /// removal frees it most when the model's own columns nearly span it.
+  Claim name_claim(int best, const std::vector<int>& eligible, const std::vector<double>& gain,
+                   const std::vector<int>& model) const {
+    Claim claim;
+    claim.groups.push_back(best);
+    claim.improvements.push_back(gain[best]);
+    const std::vector<int> own = energetic(groups_[best]);
+    for (int g : eligible) {
+      const FeatureGroup& other = groups_[g];
+      if (g == best) continue;
+      if (other.joint >= 0 && groups_[best].joint >= 0 && other.joint != groups_[best].joint)
+        continue;
+      if (other.key == groups_[best].key) continue;  // per-joint vs every-joint of one effect
+      if (shared_share(A_, model, own, energetic(other)) >= options_.max_shared_share) {
+        claim.groups.push_back(g);
+        claim.improvements.push_back(gain[g]);
+      }
+    }
+    claim.distinct_share = distinct_share(A_, model, own);
+    if (claim.distinct_share < options_.min_distinct_share) {
+      int partner = -1;
+      double freed = claim.distinct_share;
+      for (int g : in_model_) {
+        const double share = distinct_share(A_, model_columns(g), own);
+        if (share > freed) {
+          freed = share;
+          partner = g;
+        }
+      }
+      if (partner >= 0) {
+        claim.groups.push_back(partner);
+        claim.improvements.push_back(std::nan(""));
+      }
+    }
+    return claim;
+  }
+
+  /// The coefficients of `best` on the model it joined, with their standard errors.
+  void add_coefficients(int best, Claim& claim) const {
+    const std::vector<int> own = energetic(groups_[best]);
+    const Eigen::MatrixXd S = projected_gram(A_, model_columns(best), own);
+    const double sigma2 = residual_variance(theta_, columns_.size(), groups_[best].joint);
+    const Eigen::MatrixXd cov = sigma2 * symmetric_power(S, -1.0);
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      claim.coefficients.push_back(theta_[own[i]]);
+      claim.standard_errors.push_back(std::sqrt(std::max(cov(i, i), 0.0)));
+    }
+  }
+
+  /// Written only when the run time evaluates it and its coefficients mean something: one that
+  /// cannot be told from the declared model (a spring beside gravity's mx) is reported, not
+  /// written.
+  bool writable(const Claim& claim) const {
+    const FeatureKind kind = groups_[claim.groups[0]].kind;
+    bool beside_declared = false;
+    for (int g : claim.groups)
+      beside_declared = beside_declared || groups_[g].declared;
+    return kind != FeatureKind::Delay && kind != FeatureKind::Thermal && !beside_declared;
+  }
+
+  std::vector<int> written_columns(const EffectSelection& out) const {
+    std::vector<int> written = declared_columns_;
+    for (std::size_t e = 0; e < out.claims.size(); ++e)
+      if (out.claims[e].written)
+        for (int c : energetic(groups_[out.selected[e]]))
+          written.push_back(c);
+    return written;
+  }
+
+  /// σ̂² = weighted training SSE/(n − p), inflated for the residual's autocorrelation on `joint`
+  /// (the largest inflation for an effect of every joint).
+  double residual_variance(const Eigen::VectorXd& theta, std::size_t parameters, int joint) const {
+    double sse = 0, count = 0;
+    for (int j = 0; j < grams_.joints; ++j)
+      for (int r = 0; r < DesignGrams::kRegimes; ++r)
+        if (selection_.regimes[r]) {
+          const ResidualSums sums = residual_sums(grams_, theta, j, r, 0);
+          sse += selection_.joint_weights[j] * sums.sum_squares;
+          count += sums.count;
+        }
+    return sse / std::max(count - static_cast<double>(parameters), 1.0) *
+           (joint >= 0 ? inflation_[joint] : inflation_.maxCoeff());
+  }
+
+  /// The friction held at rest (last direction of motion × level, and × |G| once load-dependent
+  /// friction is in the model) fitted on the static training samples on top of the model fitted
+  /// on motion, which it leaves unchanged.
+  Eigen::VectorXd with_held_friction(const Eigen::VectorXd& moving_theta,
+                                     const std::vector<int>& used) const {
+    FitSelection at_rest = selection_;
+    at_rest.regimes = {true, false, false};
+    std::vector<int> held;
+    for (const FeatureGroup& g : groups_)
+      if ((g.kind == FeatureKind::Friction || g.kind == FeatureKind::LoadFriction) &&
+          std::find(used.begin(), used.end(), g.columns[2]) != used.end())
+        held.push_back(g.columns[2]);
+    return refit_columns(grams_, held, moving_theta, at_rest);
+  }
+
+  /// A column with (numerically) nothing in it on the training rows, e.g. |G_k| of a joint whose
+  /// axis is vertical (rounding noise of 1e-16), is left out: its coefficient would be anything.
+  bool alive(int col) const {
+    const int P = grams_.features;
+    return A_(col, col) > 1e-20 * A_(P + 1, P + 1);
+  }
+  /// The live columns of the groups in the model so far, but `except`.
+  std::vector<int> model_columns(int except) const {
+    std::vector<int> c;
+    for (int g : in_model_)
+      if (g != except)
+        for (int col : groups_[g].columns)
+          if (alive(col)) c.push_back(col);
+    return c;
+  }
+  std::vector<int> energetic(const FeatureGroup& group) const {
+    std::vector<int> c;
+    for (int col : group.columns)
+      if (alive(col)) c.push_back(col);
+    return c;
+  }
+
+  const DesignGrams& grams_;
+  const std::vector<FeatureGroup>& groups_;
+  const std::vector<int>& declared_columns_;
+  const FitSelection& selection_;
+  const Eigen::VectorXd& inflation_;
+  const DiagnoseOptions& options_;
+  const Eigen::MatrixXd A_;  ///< the weighted training Gram of the selected regimes
+  std::vector<bool> used_;
+  std::vector<int> in_model_;  ///< groups in the model (declared first), for naming partners
+  std::vector<int> columns_;   ///< the model's columns
+  Eigen::VectorXd theta_;      ///< the model fitted on motion
+};
+
+}  // namespace
+
+EffectSelection select_effects(const DesignGrams& grams, const std::vector<FeatureGroup>& groups,
+                               const std::vector<int>& declared_columns,
+                               const FitSelection& selection,
+                               const Eigen::VectorXd& variance_inflation,
+                               const DiagnoseOptions& options) {
+  return ForwardSelection(grams, groups, declared_columns, selection, variance_inflation, options)
+      .run();
+}
+
+}  // namespace tpf::offline

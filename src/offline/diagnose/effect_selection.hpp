@@ -1,0 +1,47 @@
+// Pass 3 of diagnose: forward selection over the candidate library, on Gram matrices (any joint
+// count). Each round tries every candidate on the model so far, scores it on the held-out blocks,
+// and adds the best one that passes (held-out gain, BIC, standard errors), named alone or as
+// "ambiguous between" the candidates (or the declared group) its columns cannot be told from.
+#pragma once
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "offline/diagnose/diagnose.hpp"
+#include "offline/identify/gram_fit.hpp"
+
+namespace tpf::offline {
+
+/// The held-out residual table of θ (per joint: static, static-to-kinetic, moving, all).
+RegimeTable heldout_table(const DesignGrams& grams, const Eigen::VectorXd& theta);
+
+/// Held-out SSE and sample count over moving samples (static-to-kinetic and moving) of `joint`,
+/// or of every joint weighted by w when joint < 0. At rest the effort holds whatever friction the
+/// motion left (memory), which would only add history noise to the score.
+std::pair<double, double> heldout_sse(const RegimeTable& table, int joint,
+                                      const Eigen::VectorXd& w);
+
+struct EffectSelection {
+  std::vector<CandidateTrial> trials;
+  std::vector<int> selected;  ///< indices into the groups, in selection order
+  std::vector<Claim> claims;  ///< one per selected group
+  RegimeTable before, after;  ///< held-out, declared / selected (with the friction held at rest)
+  Eigen::VectorXd theta_declared;  ///< the declared columns fitted on motion
+  Eigen::VectorXd theta_before;    ///< … plus the friction held at rest, fitted at rest
+  Eigen::VectorXd theta_selected;  ///< declared + selected, plus the held friction
+  /// What the parameter file gets: declared + the written effects, refitted without those not
+  /// written (so that the declared parameters are not the ones fitted beside them), plus the
+  /// held friction.
+  Eigen::VectorXd theta_written;
+};
+
+/// Selection on `grams` over `groups` (declared ones first), fitting on `selection`'s rows with
+/// its joint weights; standard errors inflated per joint by `variance_inflation`.
+EffectSelection select_effects(const DesignGrams& grams, const std::vector<FeatureGroup>& groups,
+                               const std::vector<int>& declared_columns,
+                               const FitSelection& selection,
+                               const Eigen::VectorXd& variance_inflation,
+                               const DiagnoseOptions& options);
+
+}  // namespace tpf::offline

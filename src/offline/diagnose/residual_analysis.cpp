@@ -1,0 +1,112 @@
+#include "offline/diagnose/residual_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "offline/regimes/regime.hpp"
+#include "offline/report/text_format.hpp"
+#include "offline/signal/acceleration.hpp"
+
+namespace tpf::offline {
+namespace {
+
+// The integer n in [lo, hi] whose sin/cos of n·scale·q best explains r (periodogram).
+double dominant_cycles(const Eigen::VectorXd& q, const Eigen::VectorXd& r, int lo, int hi,
+                       double scale) {
+  double best = 0, best_power = -1;
+  for (int n = lo; n <= hi; ++n) {
+    std::complex<double> sum = 0;
+    for (Eigen::Index k = 0; k < q.size(); ++k)
+      sum += r[k] * std::polar(1.0, -n * scale * q[k]);
+    if (std::norm(sum) > best_power) {
+      best_power = std::norm(sum);
+      best = n;
+    }
+  }
+  return best;
+}
+
+// Std of the effort's first difference over consecutive static samples, /√2 (NaN: never rests).
+double static_noise(const JointSamples& s, int j) {
+  double sum = 0, count = 0;
+  for (Eigen::Index k = 1; k < s.size(); ++k)
+    if (s.valid[k] && s.valid[k - 1] && s.regimes[j][k] == Regime::Static &&
+        s.regimes[j][k - 1] == Regime::Static) {
+      sum += std::pow(s.effort(k, j) - s.effort(k - 1, j), 2);
+      ++count;
+    }
+  return count > 0 ? std::sqrt(sum / count / 2.0) : std::nan("");
+}
+
+// The training samples where joint j moves.
+std::vector<Eigen::Index> moving_training_samples(const JointSamples& s, int j) {
+  std::vector<Eigen::Index> moving;
+  for (Eigen::Index k = 1; k < s.size(); ++k)
+    if (s.valid[k] && !s.heldout[k] && s.regimes[j][k] == Regime::Moving) moving.push_back(k);
+  return moving;
+}
+
+// (1 + ρ)/(1 − ρ) of the residual's lag-1 autocorrelation over consecutive moving samples.
+double variance_inflation(const Eigen::VectorXd& residual,
+                          const std::vector<Eigen::Index>& moving) {
+  double num = 0, den = 0;
+  for (std::size_t i = 1; i < moving.size(); ++i)
+    if (moving[i] == moving[i - 1] + 1) {
+      num += residual[moving[i]] * residual[moving[i - 1]];
+      den += residual[moving[i]] * residual[moving[i]];
+    }
+  const double rho = den > 0 ? std::clamp(num / den, 0.0, 0.995) : 0.0;
+  return (1 + rho) / (1 - rho);
+}
+
+// Central 98 % of q's range [rad].
+double range_of_motion(const Eigen::VectorXd& q) {
+  const Eigen::Index m = q.size();
+  std::vector<double> sorted(q.data(), q.data() + m);
+  std::sort(sorted.begin(), sorted.end());
+  return sorted[static_cast<std::size_t>(0.99 * (m - 1))] -
+         sorted[static_cast<std::size_t>(0.01 * (m - 1))];
+}
+
+}  // namespace
+
+ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
+                                  const Eigen::MatrixXd& rigid_prediction,
+                                  const Eigen::VectorXd& gear_ratio) {
+  const int joints = static_cast<int>(residual.cols());
+  ResidualAnalysis a;
+  a.noise_floor.resize(joints);
+  a.variance_inflation = Eigen::VectorXd::Ones(joints);
+  a.ripple_cycles = Eigen::VectorXd::Zero(joints);
+  a.ripple_motor_cycles = Eigen::VectorXd::Zero(joints);
+  a.prediction_rate.resize(s.size(), joints);
+  for (int j = 0; j < joints; ++j) {
+    a.noise_floor[j] = static_noise(s, j);
+    const std::vector<Eigen::Index> moving = moving_training_samples(s, j);
+    a.variance_inflation[j] = variance_inflation(residual.col(j), moving);
+    a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0);
+    // The periodograms on at most 20 000 of the moving samples.
+    const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
+    const Eigen::Index m = static_cast<Eigen::Index>(moving.size() / stride);
+    if (m <= 100) continue;
+    Eigen::VectorXd q(m), r(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      q[i] = s.q(moving[i * stride], j);
+      r[i] = residual(moving[i * stride], j);
+    }
+    const double range = range_of_motion(q);
+    const int shortest = std::max(3, static_cast<int>(std::ceil(2 * M_PI / std::max(range, 1e-9))));
+    if (shortest <= 64) a.ripple_cycles[j] = dominant_cycles(q, r, shortest, 64, 1.0);
+    if (shortest > 3)
+      a.notes.push_back("joint " + std::to_string(j + 1) +
+                        format_sentence(": moves over %.2f rad, so position ripple is checked only "
+                                        "from %.0f periods/rev (a longer period does not fit in "
+                                        "the motion)",
+                                        range, shortest));
+    a.ripple_motor_cycles[j] = dominant_cycles(q, r, 1, 4, gear_ratio[j]);
+  }
+  return a;
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,33 @@
+// Pass 2 of diagnose: what the declared model's residual (fitted on motion) says before any
+// candidate is tried — the noise floor, the ripple periods worth trying, how correlated the
+// residual is, and the rate of the prediction (the delay candidate's column).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "offline/identify/joint_samples.hpp"
+
+namespace tpf::offline {
+
+struct ResidualAnalysis {
+  Eigen::VectorXd noise_floor;  ///< per joint: effort noise at rest, std of Δeffort/√2
+  /// Per joint: (1 + ρ)/(1 − ρ), ρ the lag-1 autocorrelation of the residual on motion: the
+  /// samples are not independent, which inflates every coefficient's variance by this much.
+  Eigen::VectorXd variance_inflation;
+  Eigen::VectorXd ripple_cycles;        ///< per joint: periods per output revolution, 0 = none
+  Eigen::VectorXd ripple_motor_cycles;  ///< per joint: periods per motor revolution, 0 = none
+  Eigen::MatrixXd prediction_rate;      ///< d(rigid-body prediction)/dt per sample and joint
+  std::vector<std::string> notes;       ///< candidates limited by the data, and why
+};
+
+/// `residual` = effort − declared prediction (fitted on motion), `rigid_prediction` its rigid-body
+/// part (the delay candidate shifts that: the friction's own lag at a reversal is memory, not a
+/// delay), `gear_ratio` per joint. A ripple period must fit in the joint's range of motion, or
+/// the sine cannot be told from an offset or a slope (those are checked from 3 periods/rev up).
+ResidualAnalysis analyse_residual(const JointSamples& samples, const Eigen::MatrixXd& residual,
+                                  const Eigen::MatrixXd& rigid_prediction,
+                                  const Eigen::VectorXd& gear_ratio);
+
+}  // namespace tpf::offline
