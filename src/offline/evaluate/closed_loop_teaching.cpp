@@ -124,18 +124,15 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
   for (int mode = 0; mode < 2; ++mode) {
     TeachingLoop& loop = loops[static_cast<std::size_t>(mode)];
     std::vector<TwinVector> estimates;
-    with_estimator(setup, [&](auto& estimator) {
-      estimator.reset();
-      const auto source = [&](std::span<const double> row) -> TwinVector {
-        const auto& out = estimator.update(layout.sample(row));
-        const TwinVector tau =
-            mode == 0 ? out.estimate(TorqueEstimator::Proprioceptive).torque : out.external.torque;
-        estimates.push_back(tau);
-        return tau;
-      };
-      loop.log = simulate_to_log(scenario, seed, duration_s, source);
-      return 0;
-    });
+    SteppedEstimator<N> estimator(setup);
+    const auto source = [&](std::span<const double> row) -> TwinVector {
+      const auto& out = estimator.update(layout.sample(row));
+      const TwinVector tau =
+          mode == 0 ? out.estimate(TorqueEstimator::Proprioceptive).torque : out.external.torque;
+      estimates.push_back(tau);
+      return tau;
+    };
+    loop.log = simulate_to_log(scenario, seed, duration_s, source);
     loop.log.source =
         "closed-loop teaching, " + loop.name + " (simulated, seed " + std::to_string(seed) + ")";
     Eigen::MatrixXd estimate(loop.log.rows(), N);
@@ -146,10 +143,9 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
   return loops;
 }
 
-#define TPF_INSTANTIATE_CLOSED_LOOP_TEACHING(N)                                               \
-  template std::array<TeachingLoop, 2> closed_loop_teaching<N>(const EstimatorSetup<N>&,        \
-                                                               const Scenario&, std::uint64_t, \
-                                                               double);
+#define TPF_INSTANTIATE_CLOSED_LOOP_TEACHING(N)                 \
+  template std::array<TeachingLoop, 2> closed_loop_teaching<N>( \
+      const EstimatorSetup<N>&, const Scenario&, std::uint64_t, double);
 TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_CLOSED_LOOP_TEACHING)
 #undef TPF_INSTANTIATE_CLOSED_LOOP_TEACHING
 

@@ -55,6 +55,22 @@ double pad_noise(const Log& log) {
 
 }  // namespace
 
+template <int N>
+SteppedEstimator<N>::SteppedEstimator(const EstimatorSetup<N>& setup)
+    : estimator_(
+          std::make_unique<ReplayEstimator<N>>(setup.nominal, setup.pads, setup.parameters)) {
+  estimator_->compensator().inner.load(setup.weights);
+}
+
+template <int N>
+SteppedEstimator<N>::~SteppedEstimator() = default;
+
+template <int N>
+const EstimatorOutput<double, N>& SteppedEstimator<N>::update(
+    const ReplaySample<N>& sample) noexcept {
+  return estimator_->update(sample);
+}
+
 SensorNoise estimate_sensor_noise(const Log& log) {
   SensorNoise noise;
   const std::string effort = log.effort_prefix();
@@ -120,15 +136,16 @@ TransitionSigma<double, N> calibrate_sigma(EstimatorSetup<N>& setup,
   return sigma;
 }
 
-#define TPF_INSTANTIATE_REPLAY(N)                                                               \
+#define TPF_INSTANTIATE_REPLAY(N)                                                                \
   template EstimatorParameters<double, N> estimator_parameters_from_noise<N>(const SensorNoise&, \
-                                                                             double);           \
-  template EstimatorTrace replay_estimator<N>(const EstimatorSetup<N>&,                         \
-                                              const std::vector<ReplaySample<N>>&);             \
-  template JointVector<double, N> speed_envelope<N>(const std::vector<ReplaySample<N>>&);       \
-  template JointVector<double, N> acceleration_envelope<N>(const EstimatorTrace&);              \
-  template TransitionSigma<double, N> calibrate_sigma<N>(                                       \
-      EstimatorSetup<N>&, const std::vector<ReplaySample<N>>&, const std::string&);
+                                                                             double);            \
+  template EstimatorTrace replay_estimator<N>(const EstimatorSetup<N>&,                          \
+                                              const std::vector<ReplaySample<N>>&);              \
+  template JointVector<double, N> speed_envelope<N>(const std::vector<ReplaySample<N>>&);        \
+  template JointVector<double, N> acceleration_envelope<N>(const EstimatorTrace&);               \
+  template TransitionSigma<double, N> calibrate_sigma<N>(                                        \
+      EstimatorSetup<N>&, const std::vector<ReplaySample<N>>&, const std::string&);              \
+  template class SteppedEstimator<N>;
 TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_REPLAY)
 #undef TPF_INSTANTIATE_REPLAY
 

@@ -35,6 +35,25 @@ auto with_estimator(const EstimatorSetup<N>& s, Use&& use) {
   return use(*e);
 }
 
+/// The replay estimator of a setup driven one sample at a time, for closed loops whose next
+/// sample depends on the estimate (closed_loop_teaching). Compiled once per joint count in
+/// replay_estimator.cpp, so that its users do not instantiate the estimator again.
+template <int N>
+class SteppedEstimator {
+ public:
+  /// Start-up: as with_estimator (throws tpf::Error naming a weight file the tools are not
+  /// compiled for).
+  explicit SteppedEstimator(const EstimatorSetup<N>& setup);
+  ~SteppedEstimator();
+  SteppedEstimator(const SteppedEstimator&) = delete;
+  SteppedEstimator& operator=(const SteppedEstimator&) = delete;
+
+  const EstimatorOutput<double, N>& update(const ReplaySample<N>& sample) noexcept;
+
+ private:
+  std::unique_ptr<ReplayEstimator<N>> estimator_;
+};
+
 /// Sensor noise the parameters are derived from.
 struct SensorNoise {
   Eigen::VectorXd effort;  ///< per joint, effort unit
