@@ -1,0 +1,296 @@
+#include "offline/pipeline/measured_pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "offline/common/data_files.hpp"
+#include "offline/diagnose/diagnose.hpp"
+#include "offline/identify/identify.hpp"
+#include "offline/log/read_logs.hpp"
+#include "offline/replay/estimator_samples.hpp"
+#include "offline/replay/replay_estimator.hpp"
+#include "tpf/estimation/compensator_weight_files.hpp"
+#include "tpf/model/load_robot.hpp"
+
+namespace tpf::offline {
+
+/// The Kinova Gen3 has 7 joints: the measured loop uses the tools' existing 7-joint instances.
+constexpr int kMeasuredJoints = 7;
+namespace {
+
+using Gen3Model = NominalModel<double, kMeasuredJoints>;
+
+Log read_files(const MeasuredOptions& o, const std::vector<std::string>& names) {
+  std::vector<std::filesystem::path> paths;
+  for (const std::string& n : names)
+    paths.push_back(data_file(std::filesystem::path(o.logs) / n));
+  return read_logs(paths);
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i ? " + " : "") + names[i];
+  return text;
+}
+
+/// Samples with nothing held out: the held-out data are other files.
+JointSamples all_samples(const Log& log) {
+  SampleOptions options;
+  options.hold_out = false;
+  return extract_joint_samples(log, options);
+}
+
+Identification<kMeasuredJoints> identify_all(const Log& log,
+                                             const Model<double, kMeasuredJoints>& model) {
+  IdentifyOptions options;
+  options.samples.hold_out = false;
+  return identify(log, model, options);
+}
+
+/// The columns of a split: maker, Kt only, then each estimate, RMSE over every regime.
+std::vector<MeasuredColumn> split_columns(const Validation& v) {
+  std::vector<MeasuredColumn> columns{{"maker (tau_maker)", {}}, {"Kt only", {}}};
+  for (const std::string& name : v.estimate_names)
+    columns.push_back({name, {}});
+  for (const SensorScore& s : v.sensor) {
+    const bool usable = s.samples > 0;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    columns[0].rmse.push_back(usable ? s.maker.valid.rmse : nan);
+    columns[1].rmse.push_back(usable ? s.kt_only.valid.rmse : nan);
+    for (std::size_t e = 0; e < s.estimates.size(); ++e)
+      columns[e + 2].rmse.push_back(usable ? s.estimates[e].valid.rmse : nan);
+  }
+  return columns;
+}
+
+/// Removes one effect diagnose selected from the written model (its parameters set to 0).
+void remove_effect(Gen3Model& m, const FeatureGroup& g) {
+  const int j = g.joint;
+  switch (g.kind) {
+    case FeatureKind::Spring:
+      m.added.spring_stiffness[j] = 0;
+      break;
+    case FeatureKind::Offset:
+      m.added.offset[j] = 0;
+      break;
+    case FeatureKind::Ripple:
+    case FeatureKind::RippleMotor:
+      for (int i = 0; i < m.added.ripple_count; ++i)
+        if (m.added.ripple[i].joint == j &&
+            m.added.ripple[i].motor_side == (g.kind == FeatureKind::RippleMotor))
+          m.added.ripple[i].sin_amplitude = m.added.ripple[i].cos_amplitude = 0;
+      break;
+    case FeatureKind::Coupling:
+      m.added.coupling_velocity.row(j).setZero();
+      m.added.coupling_acceleration.row(j).setZero();
+      break;
+    case FeatureKind::Asymmetry:
+      m.friction.coulomb_asymmetry[j] = m.friction.viscous_asymmetry[j] = 0;
+      break;
+    case FeatureKind::NeighbourLoad:
+      m.friction.neighbour_load_coulomb.row(j).setZero();
+      m.friction.neighbour_load_viscous.row(j).setZero();
+      break;
+    case FeatureKind::LoadFriction:
+      m.friction.load_coulomb[j] = m.friction.load_viscous[j] = 0;
+      break;
+    default:  // rigid, friction, payload (in the base parameters), delay, thermal (not written)
+      break;
+  }
+}
+
+/// Diagnose's written model with only its first `keep` written effects (the later ones removed),
+/// and the titles of the written effects in selection order.
+Gen3Model with_first_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t keep,
+                             std::vector<std::string>* titles = nullptr) {
+  Gen3Model m = d.nominal;
+  std::size_t written = 0;
+  for (std::size_t e = 0; e < d.claims.size(); ++e) {
+    if (!d.claims[e].written) continue;
+    const FeatureGroup& g = d.groups[static_cast<std::size_t>(d.selected[e])];
+    if (titles) titles->push_back(g.title);
+    if (written++ >= keep) remove_effect(m, g);
+  }
+  return m;
+}
+
+std::size_t written_effects(const Diagnosis<kMeasuredJoints>& d) {
+  std::size_t n = 0;
+  for (const Claim& c : d.claims)
+    n += c.written;
+  return n;
+}
+
+/// The per-joint compensator trained on the fitting log over `nominal`, as tpf train does.
+EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fit,
+                                         const Gen3Model& nominal, CompensatorTraining& training,
+                                         const std::function<void(const std::string&)>& say) {
+  EstimatorSetup<kMeasuredJoints> setup;
+  setup.nominal = nominal;
+  setup.parameters =
+      estimator_parameters_from_noise<kMeasuredJoints>(estimate_sensor_noise(fit));
+  const std::vector<EstimatorTrace> traces{
+      replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, 0))};
+  CompensatorTrainingOptions options;
+  options.per_joint = true;
+  options.joint_hidden = o.joint_hidden;
+  options.tcn.max_epochs = o.training_epochs;
+  options.tcn.max_seconds = 0.0;
+  options.tcn.threads = o.threads;
+  options.tcn.seed = o.seed;
+  int last = 0;
+  training = train_compensator(traces, nominal.effort_per_newton_metre, options,
+                               [&](const TcnTrainProgress& p) {
+                                 if (p.epoch - last < 10 && !p.last) return;
+                                 last = p.last ? 0 : p.epoch;
+                                 char line[160];
+                                 std::snprintf(line, sizeof line,
+                                               "measured: train: epoch %d, held-out loss %.4g",
+                                               p.epoch, p.validation_loss);
+                                 say(line);
+                               });
+  const auto weights = o.out / "gen3.tcn.json";
+  write_compensator(training, weights);
+  setup.weights = find_compensator_weights(weights, kMeasuredJoints);
+  return setup;
+}
+
+/// K_t·i − d − τ_sensor of `estimate` (or Kt only when null) on the scoring log.
+Eigen::MatrixXd residual_of(const Log& log, const JointSamples& s, const EffortEstimate* estimate,
+                            const Eigen::VectorXd& kt) {
+  SensorSide side{&log, &s, estimate ? estimate->drive_loss : Eigen::MatrixXd::Zero(s.size(),
+                                                                                   s.joints())};
+  return sensor_residual(side, kt);
+}
+
+Eigen::VectorXd time_in_file(const Log& log, const JointSamples& s) {
+  Eigen::VectorXd t(s.size());
+  for (std::size_t f = 0; f < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    for (Eigen::Index k = begin; k < end; ++k)
+      t[k] = s.t[k] - s.t[begin];
+  }
+  return t;
+}
+
+}  // namespace
+
+int measured_column(const MeasuredSplit& split, const std::string& name) {
+  for (std::size_t c = 0; c < split.columns.size(); ++c)
+    if (split.columns[c].name == name) return static_cast<int>(c);
+  return -1;
+}
+
+MeasuredResult run_measured(const MeasuredOptions& o,
+                            const std::function<void(const std::string&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  std::filesystem::create_directories(o.out);
+  MeasuredResult result;
+  const auto model = load_robot<double, kMeasuredJoints>(data_file(o.robot));
+  const Log fit = read_files(o, o.fitting);
+  const Log score = read_files(o, o.scoring);
+  const JointSamples fit_samples = all_samples(fit);
+  const JointSamples score_samples = all_samples(score);
+
+  // 1. identify on every fitting file; score on the held-out files.
+  say("measured: identify on " + joined(o.fitting));
+  const Identification<kMeasuredJoints> identified = identify_all(fit, model);
+  const Gen3Model& nominal = identified.nominal;
+  const Eigen::VectorXd kt = nominal.effort_per_newton_metre;
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", nominal,
+                                      fit.source + " (MEASURED)");
+  std::vector<EffortEstimate> estimates{
+      nominal_estimate<kMeasuredJoints>(nominal, score_samples, result.notes)};
+  estimates.back().name = "after identification";
+
+  // 2. diagnose on the fitting files (held out: the last one); each written effect in turn.
+  if (o.run_diagnose) {
+    say("measured: diagnose on " + joined(o.fitting) + " (held out: " + o.fitting.back() + ")");
+    const Diagnosis<kMeasuredJoints> d = diagnose(fit, model, {});
+    result.diagnosis_findings = d.findings;
+    result.diagnosis_notes = d.notes;
+    result.diagnosis_heldout = o.fitting.back();
+    save_nominal_model<kMeasuredJoints>(o.out / "gen3.diagnosed.params.json", d.nominal,
+                                        fit.source + " (MEASURED)");
+    std::vector<std::string> titles;
+    with_first_effects(d, 0, &titles);
+    std::vector<std::string> ignored;
+    for (std::size_t keep = 0; keep <= written_effects(d); ++keep) {
+      estimates.push_back(nominal_estimate<kMeasuredJoints>(with_first_effects(d, keep),
+                                                            score_samples, ignored));
+      estimates.back().name =
+          keep == 0 ? "diagnose: declared model" : "diagnose: + " + titles[keep - 1];
+    }
+  }
+
+  // 3. the per-joint compensator on the fitting files, scored through validate's path.
+  if (o.run_training) {
+    say("measured: train one network per joint on " + joined(o.fitting) + " (" +
+        std::to_string(o.training_epochs) + " epochs at most)");
+    const EstimatorSetup<kMeasuredJoints> setup =
+        train_on(o, fit, nominal, result.training, say);
+    estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, score, estimates.front()));
+    estimates.back().name = "with the compensator";
+  }
+  say("measured: score on " + joined(o.scoring) + " against the torque sensor");
+  result.forward.fitted_on = joined(o.fitting);
+  result.forward.scored_on = joined(o.scoring);
+  result.forward.validation = score_estimates(score, score_samples, estimates, kt);
+  result.forward.validation.notes = result.notes;
+  result.forward.columns = split_columns(result.forward.validation);
+
+  // 4. what the residual holds: each candidate fitted on the fitting files, scored held out.
+  say("measured: candidate effects against the torque sensor, held out by file");
+  std::vector<std::string> ignored;
+  const SensorSide fit_side{
+      &fit, &fit_samples,
+      nominal_estimate<kMeasuredJoints>(nominal, fit_samples, ignored).drive_loss};
+  const SensorSide held_side{&score, &score_samples, estimates.front().drive_loss};
+  result.candidates = sensor_candidates(fit_side, held_side, kt, Eigen::VectorXd(model.gear_ratio));
+
+  // 5. plots' traces: Kt only, after identification, with the compensator.
+  MeasuredTraces& tr = result.traces;
+  tr.t = score_samples.t;
+  tr.file_time = time_in_file(score, score_samples);
+  tr.dq = score_samples.dq;
+  tr.names.push_back("Kt only");
+  tr.residual.push_back(residual_of(score, score_samples, nullptr, kt));
+  tr.names.push_back("after identification");
+  tr.residual.push_back(residual_of(score, score_samples, &estimates.front(), kt));
+  if (o.run_training) {
+    tr.names.push_back("with the compensator");
+    tr.residual.push_back(residual_of(score, score_samples, &estimates.back(), kt));
+  }
+
+  // 6. the other way round: fit on the scoring files, score on the fitting files.
+  if (o.run_reverse) {
+    say("measured: reverse split: identify on " + joined(o.scoring) + ", score on " +
+        joined(o.fitting));
+    const Identification<kMeasuredJoints> reverse = identify_all(score, model);
+    std::vector<std::string> notes;
+    std::vector<EffortEstimate> reverse_estimates{
+        nominal_estimate<kMeasuredJoints>(reverse.nominal, fit_samples, notes)};
+    reverse_estimates.back().name = "after identification";
+    result.reverse.fitted_on = joined(o.scoring);
+    result.reverse.scored_on = joined(o.fitting);
+    result.reverse.validation = score_estimates(fit, fit_samples, reverse_estimates, kt);
+    result.reverse.columns = split_columns(result.reverse.validation);
+  }
+
+  // 7. what the files can decide.
+  std::vector<std::string> every = o.fitting;
+  every.insert(every.end(), o.scoring.begin(), o.scoring.end());
+  const Log all = read_files(o, every);
+  result.facts = measured_facts(all, all_samples(all), kt);
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace tpf::offline

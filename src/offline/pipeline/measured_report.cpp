@@ -1,0 +1,286 @@
+#include "offline/pipeline/measured_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "offline/report/line_plot.hpp"
+#include "offline/report/scatter_plot.hpp"
+#include "offline/report/text_format.hpp"
+#include "tpf/common/atomic_file.hpp"
+
+namespace tpf::offline {
+namespace {
+
+/// Joints (0-based) whose sensor is scored in a split.
+std::vector<int> scored_joints(const MeasuredSplit& split) {
+  std::vector<int> joints;
+  if (split.columns.empty()) return joints;
+  for (std::size_t j = 0; j < split.columns[0].rmse.size(); ++j)
+    if (std::isfinite(split.columns[1].rmse[j])) joints.push_back(static_cast<int>(j));
+  return joints;
+}
+
+/// Names of the estimate columns of a split that meet the target on joint j.
+std::vector<std::string> meeting(const MeasuredSplit& split, int j, double target) {
+  std::vector<std::string> names;
+  const double maker = split.columns[0].rmse[static_cast<std::size_t>(j)];
+  for (std::size_t c = 2; c < split.columns.size(); ++c)
+    if (meets_target(maker, split.columns[c].rmse[static_cast<std::size_t>(j)], target))
+      names.push_back(split.columns[c].name);
+  return names;
+}
+
+std::string cell(double maker, double rmse) {
+  return format_fixed(rmse, 3) + " (" + format_percent_change(maker, rmse) + ")";
+}
+
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    text += (i ? separator : "") + items[i];
+  return text;
+}
+
+/// Residual against time and against q̇ for joint j, every trace.
+void add_joint_plots(HtmlReport& page, const MeasuredTraces& tr, int j,
+                     const std::string& scored_on) {
+  std::vector<Series> in_time, in_velocity;
+  for (std::size_t n = 0; n < tr.names.size(); ++n) {
+    in_time.push_back({tr.names[n], tr.t, tr.residual[n].col(j), ""});
+    in_velocity.push_back({tr.names[n], tr.dq.col(j), tr.residual[n].col(j), ""});
+  }
+  const std::string joint = "joint " + std::to_string(j + 1);
+  PlotOptions time_options{joint + ": K_t·i − d − τ_sensor on the held-out files",
+                           "time in " + scored_on + " [s]", "residual [N·m]", 900, 260, true};
+  page.figure(line_plot(time_options, in_time));
+  PlotOptions velocity_options{joint + ": the same against joint velocity", "q̇ [rad/s]",
+                               "residual [N·m]", 900, 260, true};
+  page.figure(scatter_plot(velocity_options, in_velocity, 1500));
+}
+
+std::string split_text(const MeasuredSplit& split, double target) {
+  std::string text;
+  char line[512];
+  text += "  joint   Kt only = maker";
+  for (std::size_t c = 2; c < split.columns.size(); ++c)
+    text += " | " + split.columns[c].name;
+  text += "   [N*m, change]\n";
+  for (int j : scored_joints(split)) {
+    const double maker = split.columns[0].rmse[static_cast<std::size_t>(j)];
+    std::snprintf(line, sizeof line, "  %5d %17.3f", j + 1,
+                  split.columns[1].rmse[static_cast<std::size_t>(j)]);
+    text += line;
+    for (std::size_t c = 2; c < split.columns.size(); ++c) {
+      const double r = split.columns[c].rmse[static_cast<std::size_t>(j)];
+      std::snprintf(line, sizeof line, " | %7.3f (%+.1f %%)", r, percent_change(maker, r));
+      text += line;
+    }
+    text += meeting(split, j, target).empty() ? "\n" : "  meets the target\n";
+  }
+  return text;
+}
+
+std::string target_sentence(const MeasuredSplit& split, double target) {
+  std::vector<std::string> met, missed;
+  for (int j : scored_joints(split)) {
+    const std::vector<std::string> names = meeting(split, j, target);
+    if (names.empty())
+      missed.push_back(std::to_string(j + 1));
+    else
+      met.push_back(std::to_string(j + 1) + " (" + joined(names, ", ") + ")");
+  }
+  char pct[32];
+  std::snprintf(pct, sizeof pct, "%.0f %%", 100 * target);
+  return "The issue's target (the current-based joint torque ≥ " + std::string(pct) +
+         " closer to the torque sensor than the maker's own current-based torque, on every joint "
+         "whose sensor moves) is met on joints " +
+         (met.empty() ? std::string("none") : joined(met, "; ")) + " and missed on joints " +
+         (missed.empty() ? std::string("none") : joined(missed, ", ")) + ".";
+}
+
+}  // namespace
+
+bool meets_target(double maker, double rmse, double target) {
+  return std::isfinite(maker) && std::isfinite(rmse) && rmse <= (1.0 - target) * maker;
+}
+
+Table measured_table(const MeasuredSplit& split, double target) {
+  Table t;
+  t.header = {"joint", "samples", "maker = Kt only [N·m]"};
+  for (std::size_t c = 2; c < split.columns.size(); ++c)
+    t.header.push_back(split.columns[c].name + " [N·m] (change)");
+  t.header.push_back("meets −" + format_number(100 * target, 3) + " %");
+  t.caption = "RMSE of the current-based joint torque against the torque sensor on " +
+              split.scored_on + " (fitted on " + split.fitted_on +
+              "); every regime, samples where the sensor varies.";
+  for (std::size_t j = 0; j < split.columns[0].rmse.size(); ++j) {
+    const int joint = static_cast<int>(j);
+    std::vector<std::string> row{std::to_string(j + 1)};
+    const SensorScore& s = split.validation.sensor[j];
+    if (s.samples == 0) {
+      row.push_back("0");
+      row.push_back("no usable sensor");
+      t.rows.push_back(row);
+      continue;
+    }
+    const double maker = split.columns[0].rmse[j];
+    row.push_back(std::to_string(s.samples));
+    row.push_back(format_fixed(split.columns[1].rmse[j], 3));
+    for (std::size_t c = 2; c < split.columns.size(); ++c)
+      row.push_back(cell(maker, split.columns[c].rmse[j]));
+    const std::vector<std::string> names = meeting(split, joint, target);
+    row.push_back(names.empty() ? "no" : "yes: " + joined(names, ", "));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+Table candidate_table(const MeasuredResult& r) {
+  Table t;
+  t.header = {"candidate", "joint", "fitted value", "in-file RMSE [N·m]", "held-out RMSE [N·m]",
+              "held-out change", "claimed"};
+  t.percent_column = 5;
+  t.caption =
+      "Each candidate fitted on the fitting files' residual K_t·i − d − τ_sensor (d: the "
+      "identified model's drive loss) and scored on the held-out files; claimed only where the "
+      "held-out RMSE falls by ≥ 5 % (and the in-file one falls too).";
+  for (const SensorCandidate& c : r.candidates)
+    t.rows.push_back({c.title, std::to_string(c.joint + 1), c.detail,
+                      format_fixed(c.fit_before, 3) + " → " + format_fixed(c.fit_after, 3),
+                      format_fixed(c.heldout_before, 3) + " → " + format_fixed(c.heldout_after, 3),
+                      format_percent_change(c.heldout_before, c.heldout_after),
+                      c.supported ? "yes" : "not supported"});
+  return t;
+}
+
+std::string measured_headline(const MeasuredResult& r, double target) {
+  std::string text = std::string(kMeasuredLabel) + "\n";
+  text += "current-based joint torque against the torque sensor, RMSE on the held-out files " +
+          r.forward.scored_on + " (fitted on " + r.forward.fitted_on + "):\n";
+  text += split_text(r.forward, target);
+  if (!r.reverse.columns.empty()) {
+    text += "reverse split, fitted on " + r.reverse.fitted_on + ", scored on " +
+            r.reverse.scored_on + ":\n";
+    text += split_text(r.reverse, target);
+  }
+  text += target_sentence(r.forward, target) + "\n";
+  std::vector<std::string> claimed;
+  for (const SensorCandidate& c : r.candidates)
+    if (c.supported)
+      claimed.push_back(c.key + " j" + std::to_string(c.joint + 1) + " " +
+                        format_percent_change(c.heldout_before, c.heldout_after));
+  text += "candidate effects that lower the held-out error: " +
+          (claimed.empty() ? std::string("none") : joined(claimed, ", ")) + "\n";
+  return text;
+}
+
+void add_measured_summary(HtmlReport& page, const MeasuredResult& r, double target) {
+  page.heading(kMeasuredLabel);
+  page.paragraph("Held out by file: fitted on " + r.forward.fitted_on + ", scored on " +
+                 r.forward.scored_on + " against the joint torque sensor, in " +
+                 format_number(r.seconds, 3) + " s. Details, the reverse split, the candidate "
+                 "effects, what the files cannot decide and the plots: measured.html.");
+  page.links({{"measured.html", "measured",
+               "— the Kinova Gen3 logs: before/after per joint, candidate effects, plots"}});
+  page.table(measured_table(r.forward, target));
+  page.paragraph(target_sentence(r.forward, target));
+}
+
+void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
+                           const std::filesystem::path& folder) {
+  HtmlReport page("tpf: the loop on measured data (Kinova Gen3)");
+  page.mark_measured("Kinova Gen3 logs, W. Chiha, MIT licence (data/real/kinova-gen3/SOURCE.md)");
+  page.subtitle(kMeasuredLabel);
+  page.paragraph(
+      "K_t·i (the maker's own current-based joint torque: TorqueCur = K_t·Cur exactly) against "
+      "the torque sensor behind each gear, before and after the model: K_t·i − d with d the "
+      "drive loss the model predicts (friction + armature·q̈). Held out by file: nothing scored "
+      "was fitted on. " + format_number(r.seconds, 3) + " s.");
+  page.heading("Held out by file");
+  page.table(measured_table(r.forward, o.target_reduction));
+  page.paragraph(target_sentence(r.forward, o.target_reduction));
+  if (!r.reverse.columns.empty()) {
+    page.heading("The reverse split", 3);
+    page.table(measured_table(r.reverse, o.target_reduction));
+    page.paragraph(target_sentence(r.reverse, o.target_reduction));
+  }
+  if (!r.training.results.empty()) {
+    std::string text = "Compensator: one " + std::to_string(o.joint_hidden) +
+                       "-channel network per joint, trained by tpf train's machinery on the "
+                       "fitting files over the identified model (" +
+                       std::to_string(o.training_epochs) + " epochs at most, " +
+                       format_number(r.training.seconds, 3) + " s; best epochs";
+    for (const TcnTrainResult& t : r.training.results)
+      text += " " + std::to_string(t.best_epoch);
+    page.paragraph(text +
+                   "), scored through validate's compensator path (the run-time estimator "
+                   "replayed on the held-out files; its output taken as drive loss).");
+  }
+  if (!r.diagnosis_heldout.empty()) {
+    page.heading("What diagnose adds", 3);
+    page.paragraph(
+        "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
+        ": it claims an effect only if it lowers the current residual there. The columns "
+        "'diagnose: …' above score its written model against the sensor on the held-out files, "
+        "each written effect added in turn. Its findings:");
+    page.list(r.diagnosis_findings);
+  }
+  page.heading("What the residual holds: candidates against the sensor");
+  page.table(candidate_table(r));
+  page.heading("What these files cannot decide");
+  page.list(measured_fact_lines(r.facts));
+  if (!r.notes.empty()) page.list(r.notes);
+  page.heading("Residuals on the held-out files");
+  for (int j : scored_joints(r.forward))
+    add_joint_plots(page, r.traces, j, r.forward.scored_on);
+  page.write(folder / "measured.html");
+  AtomicFile json(folder / "measured.json");
+  json.write(measured_json(r, o.target_reduction));
+  json.commit();
+}
+
+std::string measured_json(const MeasuredResult& r, double target) {
+  using nlohmann::json;
+  const auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+  const auto split = [&](const MeasuredSplit& s) {
+    json out{{"fitted_on", s.fitted_on}, {"scored_on", s.scored_on}};
+    for (const MeasuredColumn& c : s.columns) {
+      json col{{"name", c.name}};
+      for (double x : c.rmse)
+        col["rmse_newton_metre"].push_back(number(x));
+      out["columns"].push_back(col);
+    }
+    out["validation"] = json::parse(validation_json(s.validation));
+    return out;
+  };
+  json j{{"measured", true}, {"label", kMeasuredLabel}, {"target_reduction", target},
+         {"seconds", r.seconds}};
+  j["forward"] = split(r.forward);
+  json met = json::array();
+  for (int joint : scored_joints(r.forward))
+    if (!meeting(r.forward, joint, target).empty()) met.push_back(joint + 1);
+  j["forward"]["joints_meeting_target"] = met;
+  if (!r.reverse.columns.empty()) {
+    j["reverse"] = split(r.reverse);
+    json rmet = json::array();
+    for (int joint : scored_joints(r.reverse))
+      if (!meeting(r.reverse, joint, target).empty()) rmet.push_back(joint + 1);
+    j["reverse"]["joints_meeting_target"] = rmet;
+  }
+  for (const SensorCandidate& c : r.candidates)
+    j["candidates"].push_back({{"key", c.key},
+                               {"title", c.title},
+                               {"joint", c.joint + 1},
+                               {"detail", c.detail},
+                               {"fit_before", number(c.fit_before)},
+                               {"fit_after", number(c.fit_after)},
+                               {"heldout_before", number(c.heldout_before)},
+                               {"heldout_after", number(c.heldout_after)},
+                               {"claimed", c.supported}});
+  j["diagnosis"] = {{"heldout_file", r.diagnosis_heldout}, {"findings", r.diagnosis_findings}};
+  j["facts"] = measured_fact_lines(r.facts);
+  return j.dump(2);
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,275 @@
+#include "offline/validate/sensor_candidates.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <functional>
+#include <limits>
+
+#include "offline/log/torque_sensor.hpp"
+
+namespace tpf::offline {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// The columns of one candidate at sample k of joint j of a side (empty: not defined there).
+using Features = std::function<Eigen::VectorXd(const JointSamples&, Eigen::Index, int)>;
+
+double rms(const Eigen::VectorXd& r) {
+  double sum = 0, n = 0;
+  for (Eigen::Index k = 0; k < r.size(); ++k)
+    if (std::isfinite(r[k])) sum += r[k] * r[k], ++n;
+  return n > 0 ? std::sqrt(sum / n) : kNaN;
+}
+
+bool moving(const JointSamples& s, Eigen::Index k, int j) {
+  const Regime r = s.regimes[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
+  return r == Regime::StaticToKinetic || r == Regime::Moving;
+}
+
+double direction(const JointSamples& s, Eigen::Index k, int j) {
+  return moving(s, k, j) ? (s.dq(k, j) > 0 ? 1.0 : -1.0) : 0.0;
+}
+
+/// r − Φθ over the side, NaN where r is NaN or a feature is not finite.
+Eigen::VectorXd minus_fit(const JointSamples& s, const Eigen::VectorXd& r, int j,
+                          const Features& phi, const Eigen::VectorXd& theta) {
+  Eigen::VectorXd out(r.size());
+  for (Eigen::Index k = 0; k < r.size(); ++k) {
+    if (!std::isfinite(r[k])) {
+      out[k] = kNaN;
+      continue;
+    }
+    const Eigen::VectorXd f = phi(s, k, j);
+    out[k] = f.allFinite() ? r[k] - f.dot(theta) : kNaN;
+  }
+  return out;
+}
+
+/// Least squares of r on the candidate's columns over the finite rows (tiny ridge).
+Eigen::VectorXd fit(const JointSamples& s, const Eigen::VectorXd& r, int j, const Features& phi,
+                    int columns) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(columns, columns);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(columns);
+  for (Eigen::Index k = 0; k < r.size(); ++k) {
+    if (!std::isfinite(r[k])) continue;
+    const Eigen::VectorXd f = phi(s, k, j);
+    if (!f.allFinite()) continue;
+    A += f * f.transpose();
+    b += f * r[k];
+  }
+  A.diagonal().array() += 1e-9 * std::max(A.diagonal().maxCoeff(), 1e-300);
+  return A.ldlt().solve(b);
+}
+
+/// The n in [lo, hi] whose sin/cos of n·q best explains r on moving samples (periodogram).
+int dominant_cycles(const JointSamples& s, const Eigen::VectorXd& r, int j, int lo, int hi) {
+  int best = lo;
+  double best_power = -1;
+  for (int n = lo; n <= hi; ++n) {
+    std::complex<double> sum = 0;
+    for (Eigen::Index k = 0; k < r.size(); ++k)
+      if (std::isfinite(r[k]) && moving(s, k, j)) sum += r[k] * std::polar(1.0, -n * s.q(k, j));
+    if (std::norm(sum) > best_power) {
+      best_power = std::norm(sum);
+      best = n;
+    }
+  }
+  return best;
+}
+
+double motion_range(const JointSamples& s, const Eigen::VectorXd& r, int j) {
+  double lo = 1e300, hi = -1e300;
+  for (Eigen::Index k = 0; k < r.size(); ++k)
+    if (std::isfinite(r[k]) && moving(s, k, j)) {
+      lo = std::min(lo, s.q(k, j));
+      hi = std::max(hi, s.q(k, j));
+    }
+  return hi > lo ? hi - lo : 0.0;
+}
+
+/// The residual with the sensor read `shift` samples later (same file, usable sensor only).
+Eigen::VectorXd shifted(const SensorSide& side, const Eigen::VectorXd& r, int j, int shift) {
+  const Log& log = *side.log;
+  const int sensor = log.column(indexed_name("tau_sensor", j + 1));
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(r.size(), kNaN);
+  for (std::size_t f = 0; f < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    for (Eigen::Index k = begin; k < end; ++k) {
+      const Eigen::Index m = k + shift;
+      if (m < begin || m >= end || !std::isfinite(r[k]) || !std::isfinite(r[m])) continue;
+      out[k] = r[k] + log.values(k, sensor) - log.values(m, sensor);
+    }
+  }
+  return out;
+}
+
+/// Restricts a to the rows where b is finite.
+Eigen::VectorXd where_finite(Eigen::VectorXd a, const Eigen::VectorXd& b) {
+  for (Eigen::Index k = 0; k < a.size(); ++k)
+    if (!std::isfinite(b[k])) a[k] = kNaN;
+  return a;
+}
+
+std::string format(const char* fmt, double a, double b = 0, double c = 0) {
+  char text[200];
+  std::snprintf(text, sizeof text, fmt, a, b, c);
+  return text;
+}
+
+struct Candidate {
+  std::string key, title;
+  int columns;
+  Features phi;
+  std::string detail;
+};
+
+}  // namespace
+
+Eigen::MatrixXd sensor_residual(const SensorSide& side, const Eigen::VectorXd& kt) {
+  const Log& log = *side.log;
+  const JointSamples& s = *side.samples;
+  const int joints = s.joints();
+  const auto sensors = torque_sensor_columns(log, joints);
+  Eigen::MatrixXd r = Eigen::MatrixXd::Constant(s.size(), joints, kNaN);
+  for (int j = 0; j < joints; ++j) {
+    const int sensor = log.column(indexed_name("tau_sensor", j + 1));
+    if (sensor < 0) continue;
+    for (std::size_t f = 0; f < log.file_count(); ++f) {
+      if (!sensor_usable(sensors, f, j)) continue;
+      const auto [begin, end] = log.file_rows(f);
+      for (Eigen::Index k = begin; k < end; ++k)
+        if (s.valid[static_cast<std::size_t>(k)])
+          r(k, j) = s.effort(k, j) / kt[j] - side.drive_loss(k, j) - log.values(k, sensor);
+    }
+  }
+  return r;
+}
+
+std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
+                                               const SensorSide& held_side,
+                                               const Eigen::VectorXd& kt,
+                                               const Eigen::VectorXd& gear_ratio,
+                                               const SensorCandidateOptions& o) {
+  const Eigen::MatrixXd r_fit = sensor_residual(fit_side, kt);
+  const Eigen::MatrixXd r_held = sensor_residual(held_side, kt);
+  const JointSamples& fs = *fit_side.samples;
+  const JointSamples& hs = *held_side.samples;
+  const bool thermal = fs.temperature.cols() == fs.joints() && hs.temperature.cols() == hs.joints();
+  std::vector<SensorCandidate> out;
+  for (int j = 0; j < fs.joints(); ++j) {
+    const Eigen::VectorXd rf = r_fit.col(j), rh = r_held.col(j);
+    const double before_fit = rms(rf), before_held = rms(rh);
+    if (!std::isfinite(before_fit) || !std::isfinite(before_held)) continue;
+    double mean_temperature = 0;
+    if (thermal) {
+      double n = 0;
+      for (Eigen::Index k = 0; k < rf.size(); ++k)
+        if (std::isfinite(rf[k])) mean_temperature += fs.temperature(k, j), ++n;
+      mean_temperature /= std::max(n, 1.0);
+    }
+    const double ratio = gear_ratio[j];
+    const double range = motion_range(fs, rf, j);
+    const int shortest = std::max(3, static_cast<int>(std::ceil(2 * M_PI / std::max(range, 1e-9))));
+    const int cycles = shortest <= o.max_ripple_cycles
+                           ? dominant_cycles(fs, rf, j, shortest, o.max_ripple_cycles)
+                           : 0;
+    std::vector<Candidate> library{
+        {"offset", "constant offset (sensor zero, friction held at rest)", 1,
+         [](const JointSamples&, Eigen::Index, int) { return Eigen::VectorXd::Ones(1); }, ""},
+        {"kt_error", "torque constant error (K_t·i scaled)", 1,
+         [&](const JointSamples& s, Eigen::Index k, int jj) {
+           return Eigen::VectorXd::Constant(1, s.effort(k, jj) / kt[jj]);
+         },
+         ""},
+        {"friction_refit", "Coulomb + viscous refitted against the sensor", 2,
+         [](const JointSamples& s, Eigen::Index k, int jj) {
+           Eigen::VectorXd f(2);
+           f << direction(s, k, jj), s.dq(k, jj);
+           return f;
+         },
+         ""},
+        {"load_friction", "load-dependent friction (|K_t·i|·sgn q̇)", 1,
+         [&](const JointSamples& s, Eigen::Index k, int jj) {
+           return Eigen::VectorXd::Constant(1,
+                                            std::abs(s.effort(k, jj) / kt[jj]) * direction(s, k, jj));
+         },
+         ""},
+        {"held_friction", "friction held at rest (last direction of motion)", 1,
+         [](const JointSamples& s, Eigen::Index k, int jj) {
+           return Eigen::VectorXd::Constant(1, moving(s, k, jj) ? 0.0 : s.held_sign(k, jj));
+         },
+         ""},
+        {"ripple_motor", "strain-wave ripple (1 and 2 periods per motor revolution)", 4,
+         [ratio](const JointSamples& s, Eigen::Index k, int jj) {
+           const double a = ratio * s.q(k, jj);
+           Eigen::VectorXd f(4);
+           f << std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a);
+           return f;
+         },
+         format("gear ratio %.0f", ratio)}};
+    if (cycles > 0)
+      library.push_back({"ripple_output", "position ripple of the output", 2,
+                         [cycles](const JointSamples& s, Eigen::Index k, int jj) {
+                           Eigen::VectorXd f(2);
+                           f << std::sin(cycles * s.q(k, jj)), std::cos(cycles * s.q(k, jj));
+                           return f;
+                         },
+                         format("%.0f periods/rev (shortest that fits the motion: %.0f)", cycles,
+                                shortest)});
+    if (thermal)
+      library.push_back({"temperature", "temperature-dependent friction ((T − T̄)·sgn q̇, (T − T̄)·q̇)",
+                         2,
+                         [mean_temperature](const JointSamples& s, Eigen::Index k, int jj) {
+                           const double d = s.temperature(k, jj) - mean_temperature;
+                           Eigen::VectorXd f(2);
+                           f << d * direction(s, k, jj), d * s.dq(k, jj);
+                           return f;
+                         },
+                         format("T̄ = %.1f °C", mean_temperature)});
+    for (const Candidate& c : library) {
+      const Eigen::VectorXd theta = fit(fs, rf, j, c.phi, c.columns);
+      SensorCandidate sc{c.key, c.title, j, c.detail, before_fit,
+                         rms(minus_fit(fs, rf, j, c.phi, theta)), before_held,
+                         rms(minus_fit(hs, rh, j, c.phi, theta)), false};
+      if (c.key == "kt_error")
+        sc.detail = format("K_t × %.3f", 1.0 - theta[0]);
+      else if (c.key == "offset")
+        sc.detail = format("%.3g N·m", theta[0]);
+      else if (c.key == "load_friction")
+        sc.detail = format("%.3g N·m per N·m", theta[0]);
+      out.push_back(sc);
+    }
+    // Lag: the sensor read later (positive) or earlier than the current, chosen in-file.
+    const int max_shift = static_cast<int>(std::round(o.max_lag_s / std::max(
+                                                                        fs.t[1] - fs.t[0], 1e-6)));
+    int best = 0;
+    double best_rms = before_fit;
+    for (int shift = -max_shift; shift <= max_shift; ++shift) {
+      const Eigen::VectorXd r = shifted(fit_side, rf, j, shift);
+      const double now = rms(r) / rms(where_finite(rf, r)) * before_fit;
+      if (now < best_rms) best_rms = now, best = shift;
+    }
+    const Eigen::VectorXd lag_fit = shifted(fit_side, rf, j, best);
+    const Eigen::VectorXd lag_held = shifted(held_side, rh, j, best);
+    SensorCandidate lag{"lag",
+                        "lag between current and torque sensor",
+                        j,
+                        format("%+.0f ms (chosen in-file from ±%.0f ms)",
+                               1000.0 * best * (fs.t[1] - fs.t[0]), 1000 * o.max_lag_s),
+                        rms(where_finite(rf, lag_fit)),
+                        rms(lag_fit),
+                        rms(where_finite(rh, lag_held)),
+                        rms(lag_held),
+                        false};
+    out.push_back(lag);
+  }
+  for (SensorCandidate& c : out)
+    c.supported = c.fit_after < c.fit_before && c.heldout_after <= (1 - o.min_gain) * c.heldout_before;
+  return out;
+}
+
+}  // namespace tpf::offline
