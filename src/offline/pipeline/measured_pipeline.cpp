@@ -44,9 +44,11 @@ JointSamples all_samples(const Log& log) {
 }
 
 Identification<kMeasuredJoints> identify_all(const Log& log,
-                                             const Model<double, kMeasuredJoints>& model) {
+                                             const Model<double, kMeasuredJoints>& model,
+                                             bool friction_from_sensor = false) {
   IdentifyOptions options;
   options.samples.hold_out = false;
+  options.friction_from_sensor = friction_from_sensor;
   return identify(log, model, options);
 }
 
@@ -117,6 +119,11 @@ Gen3Model with_first_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t ke
   return m;
 }
 
+/// Equal values, NaN equal to NaN.
+bool same_values(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return ((a.array() == b.array()) || (a.array().isNaN() && b.array().isNaN())).all();
+}
+
 std::size_t written_effects(const Diagnosis<kMeasuredJoints>& d) {
   std::size_t n = 0;
   for (const Claim& c : d.claims)
@@ -124,19 +131,31 @@ std::size_t written_effects(const Diagnosis<kMeasuredJoints>& d) {
   return n;
 }
 
-/// The per-joint compensator trained on the fitting log over `nominal`, as tpf train does.
+/// The per-joint compensator trained on the fitting log over `nominal`, as tpf train does: on
+/// the current residual τ_res of the run-time estimator, or, where `sensor_target` (samples ×
+/// joints, N·m) has a value on the joint, on K_t·i − d − τ_sensor (the drive loss the model
+/// misses, as the sensor measures it; NaN rows are cut out of the training windows).
 EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fit,
-                                         const Gen3Model& nominal, CompensatorTraining& training,
+                                         const Gen3Model& nominal,
+                                         const Eigen::MatrixXd& sensor_target,
+                                         const std::string& weight_file,
+                                         CompensatorTraining& training,
                                          const std::function<void(const std::string&)>& say) {
   EstimatorSetup<kMeasuredJoints> setup;
   setup.nominal = nominal;
   setup.parameters =
       estimator_parameters_from_noise<kMeasuredJoints>(estimate_sensor_noise(fit));
-  const std::vector<EstimatorTrace> traces{
+  std::vector<EstimatorTrace> traces{
       replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, 0))};
+  for (int j = 0; j < static_cast<int>(sensor_target.cols()); ++j)
+    if (sensor_target.col(j).array().isFinite().any())
+      traces[0].residual.col(j) = sensor_target.col(j) * nominal.effort_per_newton_metre[j];
   CompensatorTrainingOptions options;
   options.per_joint = true;
   options.joint_hidden = o.joint_hidden;
+  // Against the sensor the static-friction estimate τ̂_fric,s (τ_res frozen at rest) holds the
+  // rigid body's error, not friction: start from a random network, not from predicting it.
+  options.start_from_baseline = sensor_target.cols() == 0;
   options.tcn.max_epochs = o.training_epochs;
   options.tcn.max_seconds = 0.0;
   options.tcn.threads = o.threads;
@@ -152,7 +171,7 @@ EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fi
                                                p.epoch, p.validation_loss);
                                  say(line);
                                });
-  const auto weights = o.out / "gen3.tcn.json";
+  const auto weights = o.out / weight_file;
   write_compensator(training, weights);
   setup.weights = find_compensator_weights(weights, kMeasuredJoints);
   return setup;
@@ -208,6 +227,14 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   std::vector<EffortEstimate> estimates{
       nominal_estimate<kMeasuredJoints>(nominal, score_samples, result.notes)};
   estimates.back().name = "after identification";
+  std::vector<std::string> ignored;  // the same notes again
+  say("measured: identify again, the friction fitted against the torque sensor");
+  const Identification<kMeasuredJoints> sensor_identified = identify_all(fit, model, true);
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json",
+                                      sensor_identified.nominal, fit.source + " (MEASURED)");
+  estimates.push_back(
+      nominal_estimate<kMeasuredJoints>(sensor_identified.nominal, score_samples, ignored));
+  estimates.back().name = "friction against the sensor";
 
   // 2. diagnose on the fitting files (held out: the last one); each written effect in turn.
   if (o.run_diagnose) {
@@ -220,23 +247,43 @@ MeasuredResult run_measured(const MeasuredOptions& o,
                                         fit.source + " (MEASURED)");
     std::vector<std::string> titles;
     with_first_effects(d, 0, &titles);
-    std::vector<std::string> ignored;
+    std::vector<std::string> unseen;
     for (std::size_t keep = 0; keep <= written_effects(d); ++keep) {
-      estimates.push_back(nominal_estimate<kMeasuredJoints>(with_first_effects(d, keep),
-                                                            score_samples, ignored));
-      estimates.back().name =
-          keep == 0 ? "diagnose: declared model" : "diagnose: + " + titles[keep - 1];
+      EffortEstimate e =
+          nominal_estimate<kMeasuredJoints>(with_first_effects(d, keep), score_samples, ignored);
+      if (keep > 0 && same_values(e.drive_loss, estimates.back().drive_loss)) {
+        unseen.push_back(titles[keep - 1]);
+        continue;
+      }
+      e.name = keep == 0 ? "diagnose's model" : "diagnose: + " + titles[keep - 1];
+      estimates.push_back(std::move(e));
     }
+    if (!unseen.empty())
+      result.diagnosis_unseen =
+          "diagnose's " + joined(unseen) +
+          " act on the link side (validate counts only friction and armature as the drive loss "
+          "d that the sensor behind the gear does not see): K_t·i − d − τ_sensor is the same "
+          "with or without them, so they get no column of their own.";
   }
 
   // 3. the per-joint compensator on the fitting files, scored through validate's path.
+  const SensorSide fit_side{
+      &fit, &fit_samples,
+      nominal_estimate<kMeasuredJoints>(nominal, fit_samples, ignored).drive_loss};
   if (o.run_training) {
     say("measured: train one network per joint on " + joined(o.fitting) + " (" +
-        std::to_string(o.training_epochs) + " epochs at most)");
+        std::to_string(o.training_epochs) + " epochs at most), on the current residual");
     const EstimatorSetup<kMeasuredJoints> setup =
-        train_on(o, fit, nominal, result.training, say);
+        train_on(o, fit, nominal, {}, "gen3.tcn.json", result.training, say);
     estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, score, estimates.front()));
     estimates.back().name = "with the compensator";
+    say("measured: the same networks trained against the torque sensor (K_t·i − d − τ_sensor)");
+    const EstimatorSetup<kMeasuredJoints> sensor_setup =
+        train_on(o, fit, nominal, sensor_residual(fit_side, kt), "gen3.tcn-sensor.json",
+                 result.sensor_training, say);
+    estimates.push_back(
+        compensated_estimate<kMeasuredJoints>(sensor_setup, score, estimates.front()));
+    estimates.back().name = "with the compensator trained against the sensor";
   }
   say("measured: score on " + joined(o.scoring) + " against the torque sensor");
   result.forward.fitted_on = joined(o.fitting);
@@ -247,10 +294,6 @@ MeasuredResult run_measured(const MeasuredOptions& o,
 
   // 4. what the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");
-  std::vector<std::string> ignored;
-  const SensorSide fit_side{
-      &fit, &fit_samples,
-      nominal_estimate<kMeasuredJoints>(nominal, fit_samples, ignored).drive_loss};
   const SensorSide held_side{&score, &score_samples, estimates.front().drive_loss};
   result.candidates = sensor_candidates(fit_side, held_side, kt, Eigen::VectorXd(model.gear_ratio));
 
@@ -264,7 +307,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   tr.names.push_back("after identification");
   tr.residual.push_back(residual_of(score, score_samples, &estimates.front(), kt));
   if (o.run_training) {
-    tr.names.push_back("with the compensator");
+    tr.names.push_back("with the compensator trained against the sensor");
     tr.residual.push_back(residual_of(score, score_samples, &estimates.back(), kt));
   }
 
@@ -288,6 +331,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   every.insert(every.end(), o.scoring.begin(), o.scoring.end());
   const Log all = read_files(o, every);
   result.facts = measured_facts(all, all_samples(all), kt);
+  result.facts.outside_share = outside_range_share(fit_samples, score_samples);
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -68,9 +68,11 @@ struct MeasuredResult {
   MeasuredSplit forward, reverse;  ///< reverse.columns empty when not run
   std::vector<std::string> diagnosis_findings, diagnosis_notes;
   std::string diagnosis_heldout;  ///< the fitting file diagnose held out
+  std::string diagnosis_unseen;   ///< its written effects the sensor comparison cannot see
   std::vector<SensorCandidate> candidates;
   MeasuredFacts facts;
-  CompensatorTraining training;
+  CompensatorTraining training;         ///< on the current residual (tpf train's target)
+  CompensatorTraining sensor_training;  ///< on K_t·i − d − τ_sensor where the sensor varies
   MeasuredTraces traces;
   std::vector<std::string> notes;
   double seconds = 0.0;

@@ -206,16 +206,27 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
     page.paragraph(target_sentence(r.reverse, o.target_reduction));
   }
   if (!r.training.results.empty()) {
-    std::string text = "Compensator: one " + std::to_string(o.joint_hidden) +
-                       "-channel network per joint, trained by tpf train's machinery on the "
-                       "fitting files over the identified model (" +
-                       std::to_string(o.training_epochs) + " epochs at most, " +
-                       format_number(r.training.seconds, 3) + " s; best epochs";
-    for (const TcnTrainResult& t : r.training.results)
-      text += " " + std::to_string(t.best_epoch);
-    page.paragraph(text +
-                   "), scored through validate's compensator path (the run-time estimator "
-                   "replayed on the held-out files; its output taken as drive loss).");
+    const auto epochs = [](const CompensatorTraining& t) {
+      std::string text;
+      for (const TcnTrainResult& n : t.results)
+        text += " " + std::to_string(n.best_epoch);
+      return text;
+    };
+    page.paragraph(
+        "Compensator: one " + std::to_string(o.joint_hidden) +
+        "-channel network per joint, trained by tpf train's machinery on the fitting files over "
+        "the identified model (" + std::to_string(o.training_epochs) +
+        " epochs at most; best epochs" + epochs(r.training) + ", " +
+        format_number(r.training.seconds, 3) +
+        " s), scored through validate's compensator path (the run-time estimator replayed on "
+        "the held-out files, its output counted as drive loss). 'with the compensator' learns "
+        "the run-time estimator's current residual τ_res = K_t·i − (rigid body + friction), as "
+        "tpf train does on contact-free logs; on these files that residual holds the rigid "
+        "body's error too (the identified rigid body is not physically consistent on 8.8 s), "
+        "which a per-joint network that sees only its own joint cannot predict. 'trained "
+        "against the sensor' learns K_t·i − d − τ_sensor instead wherever the sensor varies "
+        "(the drive loss the model misses, as the sensor behind the gear measures it; best "
+        "epochs" + epochs(r.sensor_training) + ").");
   }
   if (!r.diagnosis_heldout.empty()) {
     page.heading("What diagnose adds", 3);
@@ -225,6 +236,7 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
         "'diagnose: …' above score its written model against the sensor on the held-out files, "
         "each written effect added in turn. Its findings:");
     page.list(r.diagnosis_findings);
+    if (!r.diagnosis_unseen.empty()) page.paragraph(r.diagnosis_unseen);
   }
   page.heading("What the residual holds: candidates against the sensor");
   page.table(candidate_table(r));
@@ -278,7 +290,9 @@ std::string measured_json(const MeasuredResult& r, double target) {
                                {"heldout_before", number(c.heldout_before)},
                                {"heldout_after", number(c.heldout_after)},
                                {"claimed", c.supported}});
-  j["diagnosis"] = {{"heldout_file", r.diagnosis_heldout}, {"findings", r.diagnosis_findings}};
+  j["diagnosis"] = {{"heldout_file", r.diagnosis_heldout},
+                    {"findings", r.diagnosis_findings},
+                    {"not_seen_by_the_sensor", r.diagnosis_unseen}};
   j["facts"] = measured_fact_lines(r.facts);
   return j.dump(2);
 }

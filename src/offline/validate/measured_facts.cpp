@@ -112,6 +112,26 @@ MeasuredFacts measured_facts(const Log& log, const JointSamples& s,
   return facts;
 }
 
+std::vector<double> outside_range_share(const JointSamples& fit, const JointSamples& heldout) {
+  std::vector<double> share;
+  for (int j = 0; j < fit.joints(); ++j) {
+    double lo = 1e300, hi = -1e300;
+    for (Eigen::Index k = 0; k < fit.size(); ++k)
+      if (fit.valid[static_cast<std::size_t>(k)]) {
+        lo = std::min(lo, fit.q(k, j));
+        hi = std::max(hi, fit.q(k, j));
+      }
+    double outside = 0, count = 0;
+    for (Eigen::Index k = 0; k < heldout.size(); ++k)
+      if (heldout.valid[static_cast<std::size_t>(k)]) {
+        ++count;
+        outside += heldout.q(k, j) < lo || heldout.q(k, j) > hi;
+      }
+    share.push_back(count > 0 ? outside / count : std::nan(""));
+  }
+  return share;
+}
+
 std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
   std::vector<std::string> lines;
   const MeasuredFactsOptions& o = facts.options;
@@ -163,6 +183,16 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
           "rest, where the drive holds whatever friction it stopped with: the gain is decided "
           "in motion only.";
   lines.push_back(rest);
+  if (!facts.outside_share.empty()) {
+    std::string line = "Share of the held-out samples where q lies outside the fitting files' range "
+                       "of q, per joint:";
+    for (std::size_t j = 0; j < facts.outside_share.size(); ++j)
+      line += (j ? " / " : " ") + format("%.0f %%", 100 * facts.outside_share[j]);
+    lines.push_back(line +
+                    ". A model of q (the rigid body, a position ripple, the compensator, whose "
+                    "inputs include q) extrapolates there; the compensator's domain at run time "
+                    "bounds q̇ and q̈, not q.");
+  }
   for (const RepeatedMotion& r : facts.repeats) {
     std::string line = facts.files[r.second].name + " repeats the motion of " +
                        facts.files[r.first].name +

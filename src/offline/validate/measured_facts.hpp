@@ -46,8 +46,14 @@ struct MeasuredFacts {
   /// samples with |q̇| ≥ static_velocity (labelled moving by the noise alone).
   std::vector<double> rest_velocity_rms, rest_noise_moving_share;
   std::vector<RepeatedMotion> repeats;
+  /// Per joint: share of the held-out samples whose q lies outside the fitting files' range of q
+  /// (outside_range_share; empty when not computed).
+  std::vector<double> outside_share;
   MeasuredFactsOptions options;
 };
+
+/// Per joint: the share of `heldout`'s valid samples with q outside [min, max] of `fit`'s q.
+std::vector<double> outside_range_share(const JointSamples& fit, const JointSamples& heldout);
 
 /// The facts of `log` (several files) with effort in `samples` converted to N·m by
 /// effort_per_newton_metre.

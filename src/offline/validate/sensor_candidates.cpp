@@ -120,6 +120,24 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0) {
   return text;
 }
 
+/// The candidate's columns after the base's.
+Features with_base(const Features& base, int base_columns, const Features& phi, int columns) {
+  return [=](const JointSamples& s, Eigen::Index k, int j) {
+    Eigen::VectorXd f(base_columns + columns);
+    f << base(s, k, j), phi(s, k, j);
+    return f;
+  };
+}
+
+/// RMSE on the fitting and the held-out side of r − Φθ, θ fitted on the fitting side.
+std::pair<double, double> fitted_rms(const JointSamples& fs, const Eigen::VectorXd& rf,
+                                     const JointSamples& hs, const Eigen::VectorXd& rh, int j,
+                                     const Features& phi, int columns, Eigen::VectorXd* theta_out) {
+  const Eigen::VectorXd theta = fit(fs, rf, j, phi, columns);
+  if (theta_out) *theta_out = theta;
+  return {rms(minus_fit(fs, rf, j, phi, theta)), rms(minus_fit(hs, rh, j, phi, theta))};
+}
+
 struct Candidate {
   std::string key, title;
   int columns;
@@ -185,13 +203,6 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
            return Eigen::VectorXd::Constant(1, s.effort(k, jj) / kt[jj]);
          },
          ""},
-        {"friction_refit", "Coulomb + viscous refitted against the sensor", 2,
-         [](const JointSamples& s, Eigen::Index k, int jj) {
-           Eigen::VectorXd f(2);
-           f << direction(s, k, jj), s.dq(k, jj);
-           return f;
-         },
-         ""},
         {"load_friction", "load-dependent friction (|K_t·i|·sgn q̇)", 1,
          [&](const JointSamples& s, Eigen::Index k, int jj) {
            return Eigen::VectorXd::Constant(1,
@@ -230,11 +241,26 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                            return f;
                          },
                          format("T̄ = %.1f °C", mean_temperature)});
+    // The base every other candidate is judged on: Coulomb + viscous refitted against the
+    // sensor (what is left is beyond a friction curve's level and slope).
+    const Features base = [](const JointSamples& s, Eigen::Index k, int jj) {
+      Eigen::VectorXd f(2);
+      f << direction(s, k, jj), s.dq(k, jj);
+      return f;
+    };
+    Eigen::VectorXd base_theta;
+    const auto [base_fit, base_held] = fitted_rms(fs, rf, hs, rh, j, base, 2, &base_theta);
+    out.push_back({"friction_refit", "Coulomb + viscous refitted against the sensor", j,
+                   format("τ_c %+.3g N·m, b %+.3g N·m·s/rad on top of the model's", base_theta[0],
+                          base_theta[1]),
+                   before_fit, base_fit, before_held, base_held, false});
     for (const Candidate& c : library) {
-      const Eigen::VectorXd theta = fit(fs, rf, j, c.phi, c.columns);
-      SensorCandidate sc{c.key, c.title, j, c.detail, before_fit,
-                         rms(minus_fit(fs, rf, j, c.phi, theta)), before_held,
-                         rms(minus_fit(hs, rh, j, c.phi, theta)), false};
+      Eigen::VectorXd theta;
+      const auto [after_fit, after_held] =
+          fitted_rms(fs, rf, hs, rh, j, with_base(base, 2, c.phi, c.columns), c.columns + 2, &theta);
+      SensorCandidate sc{c.key, c.title, j, c.detail, base_fit, after_fit, base_held, after_held,
+                         false};
+      theta = theta.tail(c.columns).eval();
       if (c.key == "kt_error")
         sc.detail = format("K_t × %.3f", 1.0 - theta[0]);
       else if (c.key == "offset")
@@ -246,26 +272,25 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
     // Lag: the sensor read later (positive) or earlier than the current, chosen in-file.
     const int max_shift = static_cast<int>(std::round(o.max_lag_s / std::max(
                                                                         fs.t[1] - fs.t[0], 1e-6)));
+    // (judged on the base refitted on the shifted residual, over the rows both have)
     int best = 0;
-    double best_rms = before_fit;
+    double best_ratio = 1.0;
     for (int shift = -max_shift; shift <= max_shift; ++shift) {
       const Eigen::VectorXd r = shifted(fit_side, rf, j, shift);
-      const double now = rms(r) / rms(where_finite(rf, r)) * before_fit;
-      if (now < best_rms) best_rms = now, best = shift;
+      const double ratio = fitted_rms(fs, r, fs, r, j, base, 2, nullptr).first /
+                           fitted_rms(fs, where_finite(rf, r), fs, rf, j, base, 2, nullptr).first;
+      if (ratio < best_ratio) best_ratio = ratio, best = shift;
     }
     const Eigen::VectorXd lag_fit = shifted(fit_side, rf, j, best);
     const Eigen::VectorXd lag_held = shifted(held_side, rh, j, best);
-    SensorCandidate lag{"lag",
-                        "lag between current and torque sensor",
-                        j,
-                        format("%+.0f ms (chosen in-file from ±%.0f ms)",
-                               1000.0 * best * (fs.t[1] - fs.t[0]), 1000 * o.max_lag_s),
-                        rms(where_finite(rf, lag_fit)),
-                        rms(lag_fit),
-                        rms(where_finite(rh, lag_held)),
-                        rms(lag_held),
-                        false};
-    out.push_back(lag);
+    const auto [lag_fit_rms, lag_held_rms] =
+        fitted_rms(fs, lag_fit, hs, lag_held, j, base, 2, nullptr);
+    const auto [same_fit_rms, same_held_rms] = fitted_rms(
+        fs, where_finite(rf, lag_fit), hs, where_finite(rh, lag_held), j, base, 2, nullptr);
+    out.push_back({"lag", "lag between current and torque sensor", j,
+                   format("%+.0f ms (chosen in-file from ±%.0f ms)",
+                          1000.0 * best * (fs.t[1] - fs.t[0]), 1000 * o.max_lag_s),
+                   same_fit_rms, lag_fit_rms, same_held_rms, lag_held_rms, false});
   }
   for (SensorCandidate& c : out)
     c.supported = c.fit_after < c.fit_before && c.heldout_after <= (1 - o.min_gain) * c.heldout_before;

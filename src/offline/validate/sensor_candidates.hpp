@@ -1,7 +1,8 @@
 // What the residual of the current-based joint torque against the torque sensor holds, tested
-// held out by file: each candidate effect is fitted on the fitting files' residual
-// K_t·i − d − τ_sensor (d the model's drive loss) and claimed only where it lowers that residual
-// on the held-out files.
+// held out by file: on the fitting files' residual K_t·i − d − τ_sensor (d the model's drive
+// loss), first Coulomb + viscous are refitted against the sensor (the base), then each candidate
+// effect is fitted on top of the base; each is claimed only where it lowers the residual on the
+// held-out files (the base against the model alone, a candidate against the base).
 #pragma once
 
 #include <Eigen/Core>
@@ -27,8 +28,8 @@ struct SensorCandidateOptions {
   int max_ripple_cycles = 64;  ///< output-side ripple periods per revolution tried
 };
 
-/// One candidate on one joint: RMSE [N·m] of the residual before and after, on the fitting files
-/// (in-file) and on the held-out files.
+/// One candidate on one joint: RMSE [N·m] of the residual before (the base; for the base itself,
+/// the model alone) and after, on the fitting files (in-file) and on the held-out files.
 struct SensorCandidate {
   std::string key;    ///< offset, kt_error, load_friction, temperature, ripple_motor,
                       ///< ripple_output, held_friction, friction_refit, lag
