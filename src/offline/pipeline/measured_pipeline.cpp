@@ -11,6 +11,7 @@
 #include "offline/log/read_logs.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
+#include "offline/signal/causal_low_pass.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -195,6 +196,43 @@ Eigen::VectorXd time_in_file(const Log& log, const JointSamples& s) {
   return t;
 }
 
+/// `e` with the current through causal_low_pass of time constant tau[j] on joint j: the drive
+/// loss less (LP(K_t·i) − K_t·i), so that K_t·i − d becomes LP(K_t·i) − d.
+EffortEstimate low_passed(const EffortEstimate& e, const Log& log, const JointSamples& s,
+                          const Eigen::VectorXd& tau, const Eigen::VectorXd& kt) {
+  EffortEstimate out = e;
+  for (Eigen::Index j = 0; j < tau.size(); ++j) {
+    const Eigen::VectorXd effort = s.effort.col(j);
+    out.drive_loss.col(j) -= (causal_low_pass(s.t, effort, tau[j], log.file_starts) - effort) / kt[j];
+  }
+  return out;
+}
+
+/// Per joint, the time constant (0: none) that minimises the RMSE of `e` against the sensor on
+/// the fitting side.
+Eigen::VectorXd choose_time_constants(const Log& log, const JointSamples& s,
+                                      const EffortEstimate& e, const Eigen::VectorXd& kt) {
+  const auto rmse = [&](const Eigen::VectorXd& tau, Eigen::Index j) {
+    const Eigen::VectorXd r =
+        sensor_residual({&log, &s, low_passed(e, log, s, tau, kt).drive_loss}, kt).col(j);
+    double sum = 0, n = 0;
+    for (Eigen::Index k = 0; k < r.size(); ++k)
+      if (std::isfinite(r[k])) sum += r[k] * r[k], ++n;
+    return n > 0 ? std::sqrt(sum / n) : 0.0;
+  };
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(kt.size());
+  for (Eigen::Index j = 0; j < kt.size(); ++j) {
+    double lowest = rmse(best, j);
+    for (double tau : kCurrentLowPassTimeConstants) {
+      Eigen::VectorXd trial = best;
+      trial[j] = tau;
+      const double now = rmse(trial, j);
+      if (now < lowest) lowest = now, best[j] = tau;
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 int measured_column(const MeasuredSplit& split, const std::string& name) {
@@ -235,6 +273,12 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   estimates.push_back(
       nominal_estimate<kMeasuredJoints>(sensor_identified.nominal, score_samples, ignored));
   estimates.back().name = "friction against the sensor";
+  const EffortEstimate sensor_on_fit =
+      nominal_estimate<kMeasuredJoints>(sensor_identified.nominal, fit_samples, ignored);
+  result.low_pass_time_constants = choose_time_constants(fit, fit_samples, sensor_on_fit, kt);
+  estimates.push_back(
+      low_passed(estimates[1], score, score_samples, result.low_pass_time_constants, kt));
+  estimates.back().name = "+ current low-pass";
 
   // 2. diagnose on the fitting files (held out: the last one); each written effect in turn.
   if (o.run_diagnose) {
@@ -277,13 +321,14 @@ MeasuredResult run_measured(const MeasuredOptions& o,
         train_on(o, fit, nominal, {}, "gen3.tcn.json", result.training, say);
     estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, score, estimates.front()));
     estimates.back().name = "with the compensator";
-    say("measured: the same networks trained against the torque sensor (K_t·i − d − τ_sensor)");
+    say("measured: the same networks over the sensor-fitted friction, trained against the "
+        "torque sensor (K_t·i − d − τ_sensor)");
+    const SensorSide sensor_fit_side{&fit, &fit_samples, sensor_on_fit.drive_loss};
     const EstimatorSetup<kMeasuredJoints> sensor_setup =
-        train_on(o, fit, nominal, sensor_residual(fit_side, kt), "gen3.tcn-sensor.json",
-                 result.sensor_training, say);
-    estimates.push_back(
-        compensated_estimate<kMeasuredJoints>(sensor_setup, score, estimates.front()));
-    estimates.back().name = "with the compensator trained against the sensor";
+        train_on(o, fit, sensor_identified.nominal, sensor_residual(sensor_fit_side, kt),
+                 "gen3.tcn-sensor.json", result.sensor_training, say);
+    estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, score, estimates[1]));
+    estimates.back().name = "friction against the sensor + compensator trained against it";
   }
   say("measured: score on " + joined(o.scoring) + " against the torque sensor");
   result.forward.fitted_on = joined(o.fitting);
@@ -306,8 +351,10 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   tr.residual.push_back(residual_of(score, score_samples, nullptr, kt));
   tr.names.push_back("after identification");
   tr.residual.push_back(residual_of(score, score_samples, &estimates.front(), kt));
+  tr.names.push_back("friction against the sensor + current low-pass");
+  tr.residual.push_back(residual_of(score, score_samples, &estimates[2], kt));
   if (o.run_training) {
-    tr.names.push_back("with the compensator trained against the sensor");
+    tr.names.push_back("friction against the sensor + compensator trained against it");
     tr.residual.push_back(residual_of(score, score_samples, &estimates.back(), kt));
   }
 
@@ -320,6 +367,9 @@ MeasuredResult run_measured(const MeasuredOptions& o,
     std::vector<EffortEstimate> reverse_estimates{
         nominal_estimate<kMeasuredJoints>(reverse.nominal, fit_samples, notes)};
     reverse_estimates.back().name = "after identification";
+    reverse_estimates.push_back(nominal_estimate<kMeasuredJoints>(
+        identify_all(score, model, true).nominal, fit_samples, notes));
+    reverse_estimates.back().name = "friction against the sensor";
     result.reverse.fitted_on = joined(o.scoring);
     result.reverse.scored_on = joined(o.fitting);
     result.reverse.validation = score_estimates(fit, fit_samples, reverse_estimates, kt);

@@ -70,6 +70,9 @@ struct MeasuredResult {
   std::string diagnosis_heldout;  ///< the fitting file diagnose held out
   std::string diagnosis_unseen;   ///< its written effects the sensor comparison cannot see
   std::vector<SensorCandidate> candidates;
+  /// Per joint: time constant [s] of the causal current low-pass chosen on the fitting files for
+  /// the sensor-fitted model (0: none).
+  Eigen::VectorXd low_pass_time_constants;
   MeasuredFacts facts;
   CompensatorTraining training;         ///< on the current residual (tpf train's target)
   CompensatorTraining sensor_training;  ///< on K_t·i − d − τ_sensor where the sensor varies

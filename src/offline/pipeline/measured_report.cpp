@@ -101,6 +101,21 @@ std::string target_sentence(const MeasuredSplit& split, double target) {
 
 }  // namespace
 
+std::string low_pass_sentence(const MeasuredResult& r) {
+  std::string taus;
+  for (Eigen::Index j = 0; j < r.low_pass_time_constants.size(); ++j)
+    taus += (j ? " / " : " ") + format_number(1000 * r.low_pass_time_constants[j], 3);
+  return "'friction against the sensor': identify --friction-from-sensor, each joint's friction "
+         "fitted against its torque sensor (effort − K·(τ_sensor + I_a·q̈)) instead of against "
+         "the effort less a rigid body that 8.8 s cannot identify. '+ current low-pass': the "
+         "same with the motor current through a causal first-order low-pass, time constant "
+         "chosen per joint on the fitting files (joints 1–7, ms:" +
+         taus +
+         "; 0 = none): the published sensor is far smoother than the current, so filtering "
+         "the current brings it closer, at the cost of that much lag, which a contact "
+         "detector pays. The run-time estimator does not filter the current.";
+}
+
 bool meets_target(double maker, double rmse, double target) {
   return std::isfinite(maker) && std::isfinite(rmse) && rmse <= (1.0 - target) * maker;
 }
@@ -165,6 +180,7 @@ std::string measured_headline(const MeasuredResult& r, double target) {
     text += split_text(r.reverse, target);
   }
   text += target_sentence(r.forward, target) + "\n";
+  text += low_pass_sentence(r) + "\n";
   std::vector<std::string> claimed;
   for (const SensorCandidate& c : r.candidates)
     if (c.supported)
@@ -200,6 +216,7 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
   page.heading("Held out by file");
   page.table(measured_table(r.forward, o.target_reduction));
   page.paragraph(target_sentence(r.forward, o.target_reduction));
+  page.paragraph(low_pass_sentence(r));
   if (!r.reverse.columns.empty()) {
     page.heading("The reverse split", 3);
     page.table(measured_table(r.reverse, o.target_reduction));
@@ -209,24 +226,24 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
     const auto epochs = [](const CompensatorTraining& t) {
       std::string text;
       for (const TcnTrainResult& n : t.results)
-        text += " " + std::to_string(n.best_epoch);
+        text.append(" ").append(std::to_string(n.best_epoch));
       return text;
     };
     page.paragraph(
         "Compensator: one " + std::to_string(o.joint_hidden) +
-        "-channel network per joint, trained by tpf train's machinery on the fitting files over "
-        "the identified model (" + std::to_string(o.training_epochs) +
-        " epochs at most; best epochs" + epochs(r.training) + ", " +
-        format_number(r.training.seconds, 3) +
-        " s), scored through validate's compensator path (the run-time estimator replayed on "
-        "the held-out files, its output counted as drive loss). 'with the compensator' learns "
+        "-channel network per joint, trained by tpf train's machinery on the fitting files (" +
+        std::to_string(o.training_epochs) + " epochs at most), scored through validate's "
+        "compensator path (the run-time estimator replayed on the held-out files, its output "
+        "counted as drive loss). 'with the compensator' sits on the identified model and learns "
         "the run-time estimator's current residual τ_res = K_t·i − (rigid body + friction), as "
-        "tpf train does on contact-free logs; on these files that residual holds the rigid "
-        "body's error too (the identified rigid body is not physically consistent on 8.8 s), "
-        "which a per-joint network that sees only its own joint cannot predict. 'trained "
-        "against the sensor' learns K_t·i − d − τ_sensor instead wherever the sensor varies "
-        "(the drive loss the model misses, as the sensor behind the gear measures it; best "
-        "epochs" + epochs(r.sensor_training) + ").");
+        "tpf train does on contact-free logs (best epochs" + epochs(r.training) + ", " +
+        format_number(r.training.seconds, 3) +
+        " s); on these files that residual holds the rigid body's error too, which a per-joint "
+        "network that sees only its own joint cannot predict. The last column sits on the "
+        "friction fitted against the sensor and learns K_t·i − d − τ_sensor wherever the sensor "
+        "varies (best epochs" + epochs(r.sensor_training) +
+        "). Both take q as an input, and the held-out files move where the fitting files never "
+        "went (below), so the networks extrapolate.");
   }
   if (!r.diagnosis_heldout.empty()) {
     page.heading("What diagnose adds", 3);

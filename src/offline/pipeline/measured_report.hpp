@@ -20,6 +20,10 @@ Table measured_table(const MeasuredSplit& split, double target);
 /// The candidates tested against the sensor: held-out change per joint, claimed or not.
 Table candidate_table(const MeasuredResult& result);
 
+/// What the sensor-fitted friction and the current low-pass columns are, with the time constants
+/// chosen.
+std::string low_pass_sentence(const MeasuredResult& result);
+
 /// The terminal's summary: the forward split's table as text, and the joints that meet the
 /// target.
 std::string measured_headline(const MeasuredResult& result, double target);

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "offline/log/torque_sensor.hpp"
+#include "offline/signal/causal_low_pass.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -105,6 +106,15 @@ Eigen::VectorXd shifted(const SensorSide& side, const Eigen::VectorXd& r, int j,
     }
   }
   return out;
+}
+
+/// The residual with the current through causal_low_pass of time constant `tau` [s]:
+/// r + (LP(K_t·i) − K_t·i).
+Eigen::VectorXd low_passed(const SensorSide& side, const Eigen::VectorXd& r, int j, double tau,
+                           double kt) {
+  const JointSamples& s = *side.samples;
+  const Eigen::VectorXd e = s.effort.col(j);
+  return r + (causal_low_pass(s.t, e, tau, side.log->file_starts) - e) / kt;
 }
 
 /// Restricts a to the rows where b is finite.
@@ -287,6 +297,28 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
         fitted_rms(fs, lag_fit, hs, lag_held, j, base, 2, nullptr);
     const auto [same_fit_rms, same_held_rms] = fitted_rms(
         fs, where_finite(rf, lag_fit), hs, where_finite(rh, lag_held), j, base, 2, nullptr);
+    // Current noise: the sensor is far smoother than K_t·i; a causal low-pass of the current,
+    // its time constant chosen in-file.
+    double best_tau = 0.0, best_low = base_fit;
+    for (double tau : kCurrentLowPassTimeConstants) {
+      const double now =
+          fitted_rms(fs, low_passed(fit_side, rf, j, tau, kt[j]), fs, rf, j, base, 2, nullptr)
+              .first;
+      if (now < best_low) best_low = now, best_tau = tau;
+    }
+    if (best_tau > 0) {
+      const auto [low_fit, low_held] =
+          fitted_rms(fs, low_passed(fit_side, rf, j, best_tau, kt[j]), hs,
+                     low_passed(held_side, rh, j, best_tau, kt[j]), j, base, 2, nullptr);
+      out.push_back({"current_low_pass", "current noise: causal low-pass of K_t·i", j,
+                     format("time constant %.0f ms (chosen in-file from 2–200 ms)",
+                            1000 * best_tau),
+                     base_fit, low_fit, base_held, low_held, false});
+    } else {
+      out.push_back({"current_low_pass", "current noise: causal low-pass of K_t·i", j,
+                     "no time constant lowers the in-file error", base_fit, base_fit, base_held,
+                     base_held, false});
+    }
     out.push_back({"lag", "lag between current and torque sensor", j,
                    format("%+.0f ms (chosen in-file from ±%.0f ms)",
                           1000.0 * best * (fs.t[1] - fs.t[0]), 1000 * o.max_lag_s),

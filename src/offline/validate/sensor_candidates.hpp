@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,10 @@
 #include "offline/log/log.hpp"
 
 namespace tpf::offline {
+
+/// Time constants [s] of the causal current low-pass tried (chosen on the fitting files).
+inline constexpr std::array<double, 7> kCurrentLowPassTimeConstants{0.002, 0.005, 0.01, 0.02,
+                                                                   0.05,  0.1,   0.2};
 
 /// One side of the split: a log, its samples and a model's drive loss d on them (samples ×
 /// joints, N·m; validation.hpp's EffortEstimate::drive_loss).
