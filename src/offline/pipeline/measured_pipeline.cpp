@@ -46,8 +46,9 @@ JointSamples all_samples(const Log& log) {
 
 Identification<kMeasuredJoints> identify_all(const Log& log,
                                              const Model<double, kMeasuredJoints>& model,
-                                             bool friction_from_sensor = false) {
+                                             int friction_samples, bool friction_from_sensor) {
   IdentifyOptions options;
+  options.friction_samples_per_joint = friction_samples;
   options.samples.hold_out = false;
   options.friction_from_sensor = friction_from_sensor;
   return identify(log, model, options);
@@ -212,9 +213,8 @@ EffortEstimate low_passed(const EffortEstimate& e, const Log& log, const JointSa
 /// the fitting side.
 Eigen::VectorXd choose_time_constants(const Log& log, const JointSamples& s,
                                       const EffortEstimate& e, const Eigen::VectorXd& kt) {
-  const auto rmse = [&](const Eigen::VectorXd& tau, Eigen::Index j) {
-    const Eigen::VectorXd r =
-        sensor_residual({&log, &s, low_passed(e, log, s, tau, kt).drive_loss}, kt).col(j);
+  const Eigen::MatrixXd residual = sensor_residual({&log, &s, e.drive_loss}, kt);
+  const auto rmse = [](const Eigen::VectorXd& r) {
     double sum = 0, n = 0;
     for (Eigen::Index k = 0; k < r.size(); ++k)
       if (std::isfinite(r[k])) sum += r[k] * r[k], ++n;
@@ -222,11 +222,11 @@ Eigen::VectorXd choose_time_constants(const Log& log, const JointSamples& s,
   };
   Eigen::VectorXd best = Eigen::VectorXd::Zero(kt.size());
   for (Eigen::Index j = 0; j < kt.size(); ++j) {
-    double lowest = rmse(best, j);
+    const Eigen::VectorXd effort = s.effort.col(j);
+    double lowest = rmse(residual.col(j));
     for (double tau : kCurrentLowPassTimeConstants) {
-      Eigen::VectorXd trial = best;
-      trial[j] = tau;
-      const double now = rmse(trial, j);
+      const double now = rmse(residual.col(j) +
+                              (causal_low_pass(s.t, effort, tau, log.file_starts) - effort) / kt[j]);
       if (now < lowest) lowest = now, best[j] = tau;
     }
   }
@@ -257,7 +257,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
 
   // 1. identify on every fitting file; score on the held-out files.
   say("measured: identify on " + joined(o.fitting));
-  const Identification<kMeasuredJoints> identified = identify_all(fit, model);
+  const Identification<kMeasuredJoints> identified = identify_all(fit, model, o.friction_samples_per_joint, false);
   const Gen3Model& nominal = identified.nominal;
   const Eigen::VectorXd kt = nominal.effort_per_newton_metre;
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", nominal,
@@ -267,7 +267,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   estimates.back().name = "after identification";
   std::vector<std::string> ignored;  // the same notes again
   say("measured: identify again, the friction fitted against the torque sensor");
-  const Identification<kMeasuredJoints> sensor_identified = identify_all(fit, model, true);
+  const Identification<kMeasuredJoints> sensor_identified = identify_all(fit, model, o.friction_samples_per_joint, true);
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json",
                                       sensor_identified.nominal, fit.source + " (MEASURED)");
   estimates.push_back(
@@ -362,13 +362,13 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   if (o.run_reverse) {
     say("measured: reverse split: identify on " + joined(o.scoring) + ", score on " +
         joined(o.fitting));
-    const Identification<kMeasuredJoints> reverse = identify_all(score, model);
+    const Identification<kMeasuredJoints> reverse = identify_all(score, model, o.friction_samples_per_joint, false);
     std::vector<std::string> notes;
     std::vector<EffortEstimate> reverse_estimates{
         nominal_estimate<kMeasuredJoints>(reverse.nominal, fit_samples, notes)};
     reverse_estimates.back().name = "after identification";
     reverse_estimates.push_back(nominal_estimate<kMeasuredJoints>(
-        identify_all(score, model, true).nominal, fit_samples, notes));
+        identify_all(score, model, o.friction_samples_per_joint, true).nominal, fit_samples, notes));
     reverse_estimates.back().name = "friction against the sensor";
     result.reverse.fitted_on = joined(o.scoring);
     result.reverse.scored_on = joined(o.fitting);
@@ -377,10 +377,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   }
 
   // 7. what the files can decide.
-  std::vector<std::string> every = o.fitting;
-  every.insert(every.end(), o.scoring.begin(), o.scoring.end());
-  const Log all = read_files(o, every);
-  result.facts = measured_facts(all, all_samples(all), kt);
+  result.facts = measured_facts({{&fit, &fit_samples}, {&score, &score_samples}}, kt);
   result.facts.outside_share = outside_range_share(fit_samples, score_samples);
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

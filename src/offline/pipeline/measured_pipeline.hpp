@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "offline/compensator_training/train_compensator.hpp"
+#include "offline/identify/identify.hpp"
 #include "offline/validate/measured_facts.hpp"
 #include "offline/validate/sensor_candidates.hpp"
 #include "offline/validate/validation.hpp"
@@ -34,6 +35,8 @@ struct MeasuredOptions {
   bool run_diagnose = true;
   bool run_reverse = true;  ///< also fit on the scoring files and score on the fitting files
   bool run_training = true;
+  /// identify's subsample of moving samples per joint for the friction curve (Ceres).
+  int friction_samples_per_joint = IdentifyOptions{}.friction_samples_per_joint;
   int training_epochs = 40;  ///< per network (reproducible: an epoch budget)
   int joint_hidden = kPerJointHiddenSmall;
   std::uint64_t seed = 1;

@@ -88,27 +88,38 @@ std::string format(const char* fmt, double a, double b = 0.0) {
 
 }  // namespace
 
-MeasuredFacts measured_facts(const Log& log, const JointSamples& s,
+MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
                              const Eigen::VectorXd& effort_per_newton_metre,
                              const MeasuredFactsOptions& o) {
   MeasuredFacts facts;
   facts.options = o;
-  const auto sensors = torque_sensor_columns(log, s.joints());
-  for (std::size_t f = 0; f < log.file_count(); ++f)
-    facts.files.push_back(file_facts(log, s, f, sensors, o));
-  for (int j = 0; j < s.joints(); ++j) {
-    double sum = 0, count = 0, noisy = 0;
-    for (Eigen::Index k = 0; k < s.size(); ++k) {
-      const double v = std::abs(s.dq(k, j));
-      if (!std::isfinite(v) || v >= o.rest_velocity) continue;
-      sum += v * v;
-      ++count;
-      noisy += v >= o.static_velocity;
+  const int joints = static_cast<int>(effort_per_newton_metre.size());
+  std::vector<double> sum(joints, 0.0), count(joints, 0.0), noisy(joints, 0.0);
+  for (const LogWithSamples& item : logs) {
+    const Log& log = *item.log;
+    const JointSamples& s = *item.samples;
+    const auto sensors = torque_sensor_columns(log, s.joints());
+    const std::size_t first = facts.files.size();
+    for (std::size_t f = 0; f < log.file_count(); ++f)
+      facts.files.push_back(file_facts(log, s, f, sensors, o));
+    for (RepeatedMotion r : repeated_motions(log, s, effort_per_newton_metre, o)) {
+      r.first += first;
+      r.second += first;
+      facts.repeats.push_back(r);
     }
-    facts.rest_velocity_rms.push_back(count > 0 ? std::sqrt(sum / count) : std::nan(""));
-    facts.rest_noise_moving_share.push_back(count > 0 ? noisy / count : std::nan(""));
+    for (int j = 0; j < joints; ++j)
+      for (Eigen::Index k = 0; k < s.size(); ++k) {
+        const double v = std::abs(s.dq(k, j));
+        if (!std::isfinite(v) || v >= o.rest_velocity) continue;
+        sum[j] += v * v;
+        ++count[j];
+        noisy[j] += v >= o.static_velocity;
+      }
   }
-  facts.repeats = repeated_motions(log, s, effort_per_newton_metre, o);
+  for (int j = 0; j < joints; ++j) {
+    facts.rest_velocity_rms.push_back(count[j] > 0 ? std::sqrt(sum[j] / count[j]) : std::nan(""));
+    facts.rest_noise_moving_share.push_back(count[j] > 0 ? noisy[j] / count[j] : std::nan(""));
+  }
   return facts;
 }
 

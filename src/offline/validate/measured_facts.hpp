@@ -55,9 +55,15 @@ struct MeasuredFacts {
 /// Per joint: the share of `heldout`'s valid samples with q outside [min, max] of `fit`'s q.
 std::vector<double> outside_range_share(const JointSamples& fit, const JointSamples& heldout);
 
-/// The facts of `log` (several files) with effort in `samples` converted to N·m by
-/// effort_per_newton_metre.
-MeasuredFacts measured_facts(const Log& log, const JointSamples& samples,
+/// One log (of one or several files) and its samples.
+struct LogWithSamples {
+  const Log* log = nullptr;
+  const JointSamples* samples = nullptr;
+};
+
+/// The facts of every file of `logs`, with the effort converted to N·m by
+/// effort_per_newton_metre (repeated motions are looked for within each log).
+MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
                              const Eigen::VectorXd& effort_per_newton_metre,
                              const MeasuredFactsOptions& options = {});
 

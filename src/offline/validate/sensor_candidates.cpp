@@ -16,8 +16,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The columns of one candidate at sample k of joint j of a side (empty: not defined there).
-using Features = std::function<Eigen::VectorXd(const JointSamples&, Eigen::Index, int)>;
+/// The columns of one candidate at sample k of joint j of a side (at most 8: no heap).
+using FeatureVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1>;
+using Features = std::function<FeatureVector(const JointSamples&, Eigen::Index, int)>;
 
 double rms(const Eigen::VectorXd& r) {
   double sum = 0, n = 0;
@@ -44,7 +45,7 @@ Eigen::VectorXd minus_fit(const JointSamples& s, const Eigen::VectorXd& r, int j
       out[k] = kNaN;
       continue;
     }
-    const Eigen::VectorXd f = phi(s, k, j);
+    const FeatureVector f = phi(s, k, j);
     out[k] = f.allFinite() ? r[k] - f.dot(theta) : kNaN;
   }
   return out;
@@ -57,7 +58,7 @@ Eigen::VectorXd fit(const JointSamples& s, const Eigen::VectorXd& r, int j, cons
   Eigen::VectorXd b = Eigen::VectorXd::Zero(columns);
   for (Eigen::Index k = 0; k < r.size(); ++k) {
     if (!std::isfinite(r[k])) continue;
-    const Eigen::VectorXd f = phi(s, k, j);
+    const FeatureVector f = phi(s, k, j);
     if (!f.allFinite()) continue;
     A += f * f.transpose();
     b += f * r[k];
@@ -133,7 +134,7 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0) {
 /// The candidate's columns after the base's.
 Features with_base(const Features& base, int base_columns, const Features& phi, int columns) {
   return [=](const JointSamples& s, Eigen::Index k, int j) {
-    Eigen::VectorXd f(base_columns + columns);
+    FeatureVector f(base_columns + columns);
     f << base(s, k, j), phi(s, k, j);
     return f;
   };
@@ -207,27 +208,27 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                            : 0;
     std::vector<Candidate> library{
         {"offset", "constant offset (sensor zero, friction held at rest)", 1,
-         [](const JointSamples&, Eigen::Index, int) { return Eigen::VectorXd::Ones(1); }, ""},
+         [](const JointSamples&, Eigen::Index, int) { return FeatureVector::Ones(1); }, ""},
         {"kt_error", "torque constant error (K_t·i scaled)", 1,
          [&](const JointSamples& s, Eigen::Index k, int jj) {
-           return Eigen::VectorXd::Constant(1, s.effort(k, jj) / kt[jj]);
+           return FeatureVector::Constant(1, s.effort(k, jj) / kt[jj]);
          },
          ""},
         {"load_friction", "load-dependent friction (|K_t·i|·sgn q̇)", 1,
          [&](const JointSamples& s, Eigen::Index k, int jj) {
-           return Eigen::VectorXd::Constant(1,
+           return FeatureVector::Constant(1,
                                             std::abs(s.effort(k, jj) / kt[jj]) * direction(s, k, jj));
          },
          ""},
         {"held_friction", "friction held at rest (last direction of motion)", 1,
          [](const JointSamples& s, Eigen::Index k, int jj) {
-           return Eigen::VectorXd::Constant(1, moving(s, k, jj) ? 0.0 : s.held_sign(k, jj));
+           return FeatureVector::Constant(1, moving(s, k, jj) ? 0.0 : s.held_sign(k, jj));
          },
          ""},
         {"ripple_motor", "strain-wave ripple (1 and 2 periods per motor revolution)", 4,
          [ratio](const JointSamples& s, Eigen::Index k, int jj) {
            const double a = ratio * s.q(k, jj);
-           Eigen::VectorXd f(4);
+           FeatureVector f(4);
            f << std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a);
            return f;
          },
@@ -235,7 +236,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
     if (cycles > 0)
       library.push_back({"ripple_output", "position ripple of the output", 2,
                          [cycles](const JointSamples& s, Eigen::Index k, int jj) {
-                           Eigen::VectorXd f(2);
+                           FeatureVector f(2);
                            f << std::sin(cycles * s.q(k, jj)), std::cos(cycles * s.q(k, jj));
                            return f;
                          },
@@ -246,7 +247,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                          2,
                          [mean_temperature](const JointSamples& s, Eigen::Index k, int jj) {
                            const double d = s.temperature(k, jj) - mean_temperature;
-                           Eigen::VectorXd f(2);
+                           FeatureVector f(2);
                            f << d * direction(s, k, jj), d * s.dq(k, jj);
                            return f;
                          },
@@ -254,7 +255,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
     // The base every other candidate is judged on: Coulomb + viscous refitted against the
     // sensor (what is left is beyond a friction curve's level and slope).
     const Features base = [](const JointSamples& s, Eigen::Index k, int jj) {
-      Eigen::VectorXd f(2);
+      FeatureVector f(2);
       f << direction(s, k, jj), s.dq(k, jj);
       return f;
     };
