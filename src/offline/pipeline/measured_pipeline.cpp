@@ -121,6 +121,20 @@ Gen3Model with_first_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t ke
   return m;
 }
 
+/// Per joint: RMSE of the log's effort less the estimate's over the valid samples.
+std::vector<double> effort_rmse(const JointSamples& s, const EffortEstimate& e) {
+  std::vector<double> out;
+  for (int j = 0; j < s.joints(); ++j) {
+    double sum = 0, n = 0;
+    for (Eigen::Index k = 0; k < s.size(); ++k) {
+      const double r = s.effort(k, j) - e.effort(k, j);
+      if (s.valid[static_cast<std::size_t>(k)] && std::isfinite(r)) sum += r * r, ++n;
+    }
+    out.push_back(n > 0 ? std::sqrt(sum / n) : std::nan(""));
+  }
+  return out;
+}
+
 /// Equal values, NaN equal to NaN.
 bool same_values(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return ((a.array() == b.array()) || (a.array().isNaN() && b.array().isNaN())).all();
@@ -292,9 +306,14 @@ MeasuredResult run_measured(const MeasuredOptions& o,
     std::vector<std::string> titles;
     with_first_effects(d, 0, &titles);
     std::vector<std::string> unseen;
+    result.diagnosis_effort.push_back(
+        {"after identification", effort_rmse(score_samples, estimates.front())});
     for (std::size_t keep = 0; keep <= written_effects(d); ++keep) {
       EffortEstimate e =
           nominal_estimate<kMeasuredJoints>(with_first_effects(d, keep), score_samples, ignored);
+      result.diagnosis_effort.push_back(
+          {keep == 0 ? "diagnose's model without its effects" : "+ " + titles[keep - 1],
+           effort_rmse(score_samples, e)});
       if (keep > 0 && same_values(e.drive_loss, estimates.back().drive_loss)) {
         unseen.push_back(titles[keep - 1]);
         continue;

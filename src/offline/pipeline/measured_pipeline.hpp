@@ -72,6 +72,10 @@ struct MeasuredResult {
   std::vector<std::string> diagnosis_findings, diagnosis_notes;
   std::string diagnosis_heldout;  ///< the fitting file diagnose held out
   std::string diagnosis_unseen;   ///< its written effects the sensor comparison cannot see
+  /// RMSE of the held-out files' effort (mA) less each model: identify's, then diagnose's written
+  /// model without its effects and with each added in turn (the current, where link-side
+  /// effects show).
+  std::vector<MeasuredColumn> diagnosis_effort;
   std::vector<SensorCandidate> candidates;
   /// Per joint: time constant [s] of the causal current low-pass chosen on the fitting files for
   /// the sensor-fitted model (0: none).

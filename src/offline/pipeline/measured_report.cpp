@@ -151,6 +151,30 @@ Table measured_table(const MeasuredSplit& split, double target) {
   return t;
 }
 
+Table diagnosis_effort_table(const MeasuredResult& r) {
+  Table t;
+  t.header = {"model"};
+  const std::size_t joints =
+      r.diagnosis_effort.empty() ? 0 : r.diagnosis_effort.front().rmse.size();
+  for (std::size_t j = 0; j < joints; ++j)
+    t.header.push_back("joint " + std::to_string(j + 1));
+  t.caption = "diagnose's effects against the held-out files' current: RMSE of the effort less "
+              "the model's whole prediction (rigid body included) on " + r.forward.scored_on +
+              " [mA], change against the row above.";
+  for (std::size_t m = 0; m < r.diagnosis_effort.size(); ++m) {
+    std::vector<std::string> row{r.diagnosis_effort[m].name};
+    for (std::size_t j = 0; j < joints; ++j) {
+      const double now = r.diagnosis_effort[m].rmse[j];
+      row.push_back(m < 2 ? format_number(now, 4)
+                          : format_number(now, 4) + " (" +
+                                format_percent_change(r.diagnosis_effort[m - 1].rmse[j], now) +
+                                ")");
+    }
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
 Table candidate_table(const MeasuredResult& r) {
   Table t;
   t.header = {"candidate", "joint", "fitted value", "in-file RMSE [N·m]", "held-out RMSE [N·m]",
@@ -254,6 +278,7 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
         "each written effect added in turn. Its findings:");
     page.list(r.diagnosis_findings);
     if (!r.diagnosis_unseen.empty()) page.paragraph(r.diagnosis_unseen);
+    page.table(diagnosis_effort_table(r));
   }
   page.heading("What the residual holds: candidates against the sensor");
   page.table(candidate_table(r));
@@ -307,7 +332,15 @@ std::string measured_json(const MeasuredResult& r, double target) {
                                {"heldout_before", number(c.heldout_before)},
                                {"heldout_after", number(c.heldout_after)},
                                {"claimed", c.supported}});
+  json effort = json::array();
+  for (const MeasuredColumn& c : r.diagnosis_effort) {
+    json row{{"name", c.name}};
+    for (double x : c.rmse)
+      row["rmse_effort"].push_back(number(x));
+    effort.push_back(row);
+  }
   j["diagnosis"] = {{"heldout_file", r.diagnosis_heldout},
+                    {"effort_on_scoring_files", effort},
                     {"findings", r.diagnosis_findings},
                     {"not_seen_by_the_sensor", r.diagnosis_unseen}};
   j["facts"] = measured_fact_lines(r.facts);

@@ -17,6 +17,9 @@ bool meets_target(double maker, double rmse, double target);
 /// which columns meet the target.
 Table measured_table(const MeasuredSplit& split, double target);
 
+/// diagnose's written effects one by one against the held-out files' effort (mA).
+Table diagnosis_effort_table(const MeasuredResult& result);
+
 /// The candidates tested against the sensor: held-out change per joint, claimed or not.
 Table candidate_table(const MeasuredResult& result);
 
