@@ -40,8 +40,7 @@ void register_demo_command(CLI::App& app) {
   cmd->add_flag("!--all-joints", o->per_joint,
                 "one network for all joints instead of one per joint (the default)");
   cmd->add_flag("!--no-twin", o->run_twin, "skip the digital twin (stages 1-5)");
-  cmd->add_flag("!--no-measured", o->run_measured,
-                "skip the Kinova Gen3 logs (stage 6, MEASURED)");
+  cmd->add_flag("!--no-measured", o->run_measured, "skip the Kinova Gen3 logs (stage 6, MEASURED)");
   cmd->add_option("--measured-epochs", o->measured.training_epochs,
                   "training budget of the measured compensator: epochs per network")
       ->capture_default_str();
@@ -59,9 +58,9 @@ void register_demo_command(CLI::App& app) {
       std::printf("\nSIMULATED (digital twin)\n%s",
                   offline::evaluation_headline(result.evaluation).c_str());
     if (result.measured)
-      std::printf("\n%s", offline::measured_headline(*result.measured,
-                                                      o->measured.target_reduction)
-                              .c_str());
+      std::printf(
+          "\n%s",
+          offline::measured_headline(*result.measured, o->measured.target_reduction).c_str());
     for (const auto& t : result.training.results)
       if (t.stopped_on_time) {
         std::printf(

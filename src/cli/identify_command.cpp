@@ -9,10 +9,10 @@
 
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
-#include "read_command_logs.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "read_command_logs.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
 

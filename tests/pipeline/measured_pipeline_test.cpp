@@ -26,7 +26,8 @@ std::string read_text(const std::filesystem::path& p) {
 double rmse(const MeasuredSplit& split, const std::string& column, int joint) {
   const int c = measured_column(split, column);
   EXPECT_GE(c, 0) << column;
-  return c < 0 ? NAN : split.columns[static_cast<std::size_t>(c)].rmse[static_cast<std::size_t>(joint)];
+  return c < 0 ? NAN
+               : split.columns[static_cast<std::size_t>(c)].rmse[static_cast<std::size_t>(joint)];
 }
 
 class MeasuredLoop : public ::testing::Test {

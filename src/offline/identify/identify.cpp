@@ -282,8 +282,8 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     for (int i = 0; i < nominal.base_count; ++i)
       if (nominal.base_columns[i] >= 10 * N && nominal.base_columns[i] < 11 * N)
         armature[nominal.base_columns[i] - 10 * N] = nominal.base_values[i];
-    SensorFrictionReference sensor = sensor_friction_reference(
-        log, s, armature, Eigen::VectorXd(setup.effort_scale), rigid);
+    SensorFrictionReference sensor =
+        sensor_friction_reference(log, s, armature, Eigen::VectorXd(setup.effort_scale), rigid);
     friction_reference = std::move(sensor.reference);
     for (int j = 0; j < N; ++j)
       if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {

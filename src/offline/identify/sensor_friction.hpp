@@ -18,9 +18,9 @@ struct SensorFrictionReference {
   /// I_a·q̈) where the joint's sensor varies in the sample's file (NaN in its other files), the
   /// rigid-body prediction on joints whose sensor varies nowhere.
   Eigen::MatrixXd reference;
-  std::vector<bool> from_sensor;   ///< per joint
+  std::vector<bool> from_sensor;     ///< per joint
   Eigen::VectorXd coulomb, viscous;  ///< linear start per joint (effort unit; NaN: not from sensor)
-  std::string note;                ///< which joints, how many samples
+  std::string note;                  ///< which joints, how many samples
 };
 
 /// The reference for `samples` of `log`. `armature` [kg·m²] per joint (0 where unknown), `scale`

@@ -91,9 +91,10 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
     page.mark_measured("Kinova Gen3 logs, W. Chiha, MIT licence");
   else
     page.mark_simulated();
-  page.paragraph("Twin: simulate → identify → diagnose → train → evaluate; measured: identify → "
-                 "diagnose → train → validate on held-out files; in " +
-                 format_number(r.seconds, 3) + " s.");
+  page.paragraph(
+      "Twin: simulate → identify → diagnose → train → evaluate; measured: identify → "
+      "diagnose → train → validate on held-out files; in " +
+      format_number(r.seconds, 3) + " s.");
   if (r.measured) add_measured_summary(page, *r.measured, o.measured.target_reduction);
   if (!o.run_twin) {
     page.write(out / "index.html");
@@ -139,12 +140,11 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   // 1. Simulate.
   say("[1/6] simulate: training, calibration and held-out logs on " + std::to_string(o.threads) +
       " threads");
-  jobs = {
-      {"training excitation", o.training_scenario, o.training_seed, o.training_s, {}},
-      {"held-out excitation", o.test_scenario, o.test_seed, o.test_s, {}},
-      {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}},
-      {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}},
-      {"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}}};
+  jobs = {{"training excitation", o.training_scenario, o.training_seed, o.training_s, {}},
+          {"held-out excitation", o.test_scenario, o.test_seed, o.test_s, {}},
+          {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}},
+          {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}},
+          {"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}}};
   // The arm is the training scenario's: the held-out, contact and teaching logs come from the same
   // plant the model was identified on (its payload, ripple, … included).
   const EffectsConfig arm = load_scenario(data_file(o.training_scenario).string()).effects;

@@ -50,9 +50,9 @@ struct DemoOptions {
 struct DemoResult {
   Evaluation evaluation;
   CompensatorTraining training;
-  std::vector<std::string> findings;  ///< the diagnosis, in plain sentences
+  std::vector<std::string> findings;       ///< the diagnosis, in plain sentences
   std::optional<MeasuredResult> measured;  ///< stage 6, when run
-  std::filesystem::path index;        ///< the report's entry page
+  std::filesystem::path index;             ///< the report's entry page
   double seconds = 0.0;
 };
 

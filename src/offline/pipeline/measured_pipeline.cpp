@@ -159,8 +159,7 @@ EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fi
                                          const std::function<void(const std::string&)>& say) {
   EstimatorSetup<kMeasuredJoints> setup;
   setup.nominal = nominal;
-  setup.parameters =
-      estimator_parameters_from_noise<kMeasuredJoints>(estimate_sensor_noise(fit));
+  setup.parameters = estimator_parameters_from_noise<kMeasuredJoints>(estimate_sensor_noise(fit));
   std::vector<EstimatorTrace> traces{
       replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, 0))};
   for (int j = 0; j < static_cast<int>(sensor_target.cols()); ++j)
@@ -177,16 +176,15 @@ EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fi
   options.tcn.threads = o.threads;
   options.tcn.seed = o.seed;
   int last = 0;
-  training = train_compensator(traces, nominal.effort_per_newton_metre, options,
-                               [&](const TcnTrainProgress& p) {
-                                 if (p.epoch - last < 10 && !p.last) return;
-                                 last = p.last ? 0 : p.epoch;
-                                 char line[160];
-                                 std::snprintf(line, sizeof line,
-                                               "measured: train: epoch %d, held-out loss %.4g",
-                                               p.epoch, p.validation_loss);
-                                 say(line);
-                               });
+  training = train_compensator(
+      traces, nominal.effort_per_newton_metre, options, [&](const TcnTrainProgress& p) {
+        if (p.epoch - last < 10 && !p.last) return;
+        last = p.last ? 0 : p.epoch;
+        char line[160];
+        std::snprintf(line, sizeof line, "measured: train: epoch %d, held-out loss %.4g", p.epoch,
+                      p.validation_loss);
+        say(line);
+      });
   const auto weights = o.out / weight_file;
   write_compensator(training, weights);
   setup.weights = find_compensator_weights(weights, kMeasuredJoints);
@@ -196,8 +194,8 @@ EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fi
 /// K_t·i − d − τ_sensor of `estimate` (or Kt only when null) on the scoring log.
 Eigen::MatrixXd residual_of(const Log& log, const JointSamples& s, const EffortEstimate* estimate,
                             const Eigen::VectorXd& kt) {
-  SensorSide side{&log, &s, estimate ? estimate->drive_loss : Eigen::MatrixXd::Zero(s.size(),
-                                                                                   s.joints())};
+  SensorSide side{&log, &s,
+                  estimate ? estimate->drive_loss : Eigen::MatrixXd::Zero(s.size(), s.joints())};
   return sensor_residual(side, kt);
 }
 
@@ -218,7 +216,8 @@ EffortEstimate low_passed(const EffortEstimate& e, const Log& log, const JointSa
   EffortEstimate out = e;
   for (Eigen::Index j = 0; j < tau.size(); ++j) {
     const Eigen::VectorXd effort = s.effort.col(j);
-    out.drive_loss.col(j) -= (causal_low_pass(s.t, effort, tau[j], log.file_starts) - effort) / kt[j];
+    out.drive_loss.col(j) -=
+        (causal_low_pass(s.t, effort, tau[j], log.file_starts) - effort) / kt[j];
   }
   return out;
 }
@@ -239,8 +238,8 @@ Eigen::VectorXd choose_time_constants(const Log& log, const JointSamples& s,
     const Eigen::VectorXd effort = s.effort.col(j);
     double lowest = rmse(residual.col(j));
     for (double tau : kCurrentLowPassTimeConstants) {
-      const double now = rmse(residual.col(j) +
-                              (causal_low_pass(s.t, effort, tau, log.file_starts) - effort) / kt[j]);
+      const double now = rmse(
+          residual.col(j) + (causal_low_pass(s.t, effort, tau, log.file_starts) - effort) / kt[j]);
       if (now < lowest) lowest = now, best[j] = tau;
     }
   }
@@ -271,7 +270,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
 
   // 1. identify on every fitting file; score on the held-out files.
   say("measured: identify on " + joined(o.fitting));
-  const Identification<kMeasuredJoints> identified = identify_all(fit, model, o.friction_samples_per_joint, false);
+  const Identification<kMeasuredJoints> identified =
+      identify_all(fit, model, o.friction_samples_per_joint, false);
   const Gen3Model& nominal = identified.nominal;
   const Eigen::VectorXd kt = nominal.effort_per_newton_metre;
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", nominal,
@@ -281,7 +281,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   estimates.back().name = "after identification";
   std::vector<std::string> ignored;  // the same notes again
   say("measured: identify again, the friction fitted against the torque sensor");
-  const Identification<kMeasuredJoints> sensor_identified = identify_all(fit, model, o.friction_samples_per_joint, true);
+  const Identification<kMeasuredJoints> sensor_identified =
+      identify_all(fit, model, o.friction_samples_per_joint, true);
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json",
                                       sensor_identified.nominal, fit.source + " (MEASURED)");
   estimates.push_back(
@@ -381,13 +382,15 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   if (o.run_reverse) {
     say("measured: reverse split: identify on " + joined(o.scoring) + ", score on " +
         joined(o.fitting));
-    const Identification<kMeasuredJoints> reverse = identify_all(score, model, o.friction_samples_per_joint, false);
+    const Identification<kMeasuredJoints> reverse =
+        identify_all(score, model, o.friction_samples_per_joint, false);
     std::vector<std::string> notes;
     std::vector<EffortEstimate> reverse_estimates{
         nominal_estimate<kMeasuredJoints>(reverse.nominal, fit_samples, notes)};
     reverse_estimates.back().name = "after identification";
     reverse_estimates.push_back(nominal_estimate<kMeasuredJoints>(
-        identify_all(score, model, o.friction_samples_per_joint, true).nominal, fit_samples, notes));
+        identify_all(score, model, o.friction_samples_per_joint, true).nominal, fit_samples,
+        notes));
     reverse_estimates.back().name = "friction against the sensor";
     result.reverse.fitted_on = joined(o.scoring);
     result.reverse.scored_on = joined(o.fitting);
@@ -398,8 +401,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   // 7. what the files can decide.
   result.facts = measured_facts({{&fit, &fit_samples}, {&score, &score_samples}}, kt);
   result.facts.outside_share = outside_range_share(fit_samples, score_samples);
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

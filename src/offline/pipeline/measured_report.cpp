@@ -52,11 +52,15 @@ void add_joint_plots(HtmlReport& page, const MeasuredTraces& tr, int j,
   }
   const std::string joint = "joint " + std::to_string(j + 1);
   PlotOptions time_options{joint + ": K_t·i − d − τ_sensor on the held-out files",
-                           "time in " + scored_on + " [s]", "residual [N·m]", 900, 260, true};
+                           "time in " + scored_on + " [s]",
+                           "residual [N·m]",
+                           900,
+                           260,
+                           true};
   page.figure(line_plot(time_options, in_time));
-  PlotOptions velocity_options{joint + ": the same against joint velocity", "q̇ [rad/s]",
-                               "residual [N·m]", 900, 260, true};
-  page.figure(scatter_plot(velocity_options, in_velocity, 1500));
+  PlotOptions velocity_options{
+      joint + ": the same against joint velocity", "q̇ [rad/s]", "residual [N·m]", 900, 260, true};
+  page.figure(scatter_plot(velocity_options, in_velocity, 800));
 }
 
 std::string split_text(const MeasuredSplit& split, double target) {
@@ -100,6 +104,29 @@ std::string target_sentence(const MeasuredSplit& split, double target) {
 }
 
 }  // namespace
+
+std::string diagnosis_transfer_sentence(const MeasuredResult& r) {
+  std::vector<std::string> lower, higher;
+  for (std::size_t m = 2; m < r.diagnosis_effort.size(); ++m) {
+    const MeasuredColumn& now = r.diagnosis_effort[m];
+    for (std::size_t j = 0; j < now.rmse.size(); ++j) {
+      const double change = percent_change(r.diagnosis_effort[m - 1].rmse[j], now.rmse[j]);
+      if (!(std::abs(change) >= 1.0)) continue;
+      const std::string text =
+          now.name.substr(2) + " (joint " + std::to_string(j + 1) + " " +
+          format_percent_change(r.diagnosis_effort[m - 1].rmse[j], now.rmse[j]) + ")";
+      (change < 0 ? lower : higher).push_back(text);
+    }
+  }
+  if (r.diagnosis_effort.size() <= 2)
+    return "diagnose wrote no effect: nothing to check on the held-out files.";
+  return "On the held-out files' current, these of diagnose's effects lower the error: " +
+         (lower.empty() ? std::string("none") : joined(lower, "; ")) +
+         "; these raise it, so they are not claimed here: " +
+         (higher.empty() ? std::string("none") : joined(higher, "; ")) +
+         ". A claim that passes one held-out file can fail on another: the facts below say why "
+         "(few reversals, motions outside the fitting files' range).";
+}
 
 std::string low_pass_sentence(const MeasuredResult& r) {
   std::string taus;
@@ -158,17 +185,18 @@ Table diagnosis_effort_table(const MeasuredResult& r) {
       r.diagnosis_effort.empty() ? 0 : r.diagnosis_effort.front().rmse.size();
   for (std::size_t j = 0; j < joints; ++j)
     t.header.push_back("joint " + std::to_string(j + 1));
-  t.caption = "diagnose's effects against the held-out files' current: RMSE of the effort less "
-              "the model's whole prediction (rigid body included) on " + r.forward.scored_on +
-              " [mA], change against the row above.";
+  t.caption =
+      "diagnose's effects against the held-out files' current: RMSE of the effort less "
+      "the model's whole prediction (rigid body included) on " +
+      r.forward.scored_on + " [mA], change against the row above.";
   for (std::size_t m = 0; m < r.diagnosis_effort.size(); ++m) {
     std::vector<std::string> row{r.diagnosis_effort[m].name};
     for (std::size_t j = 0; j < joints; ++j) {
       const double now = r.diagnosis_effort[m].rmse[j];
-      row.push_back(m < 2 ? format_number(now, 4)
-                          : format_number(now, 4) + " (" +
-                                format_percent_change(r.diagnosis_effort[m - 1].rmse[j], now) +
-                                ")");
+      row.push_back(m < 2
+                        ? format_number(now, 4)
+                        : format_number(now, 4) + " (" +
+                              format_percent_change(r.diagnosis_effort[m - 1].rmse[j], now) + ")");
     }
     t.rows.push_back(row);
   }
@@ -177,8 +205,8 @@ Table diagnosis_effort_table(const MeasuredResult& r) {
 
 Table candidate_table(const MeasuredResult& r) {
   Table t;
-  t.header = {"candidate", "joint", "fitted value", "in-file RMSE [N·m]", "held-out RMSE [N·m]",
-              "held-out change", "claimed"};
+  t.header = {"candidate",           "joint",           "fitted value", "in-file RMSE [N·m]",
+              "held-out RMSE [N·m]", "held-out change", "claimed"};
   t.percent_column = 5;
   t.caption =
       "Each candidate fitted on the fitting files' residual K_t·i − d − τ_sensor (d: the "
@@ -205,6 +233,7 @@ std::string measured_headline(const MeasuredResult& r, double target) {
   }
   text += target_sentence(r.forward, target) + "\n";
   text += low_pass_sentence(r) + "\n";
+  if (!r.diagnosis_heldout.empty()) text += diagnosis_transfer_sentence(r) + "\n";
   std::vector<std::string> claimed;
   for (const SensorCandidate& c : r.candidates)
     if (c.supported)
@@ -219,7 +248,8 @@ void add_measured_summary(HtmlReport& page, const MeasuredResult& r, double targ
   page.heading(kMeasuredLabel);
   page.paragraph("Held out by file: fitted on " + r.forward.fitted_on + ", scored on " +
                  r.forward.scored_on + " against the joint torque sensor, in " +
-                 format_number(r.seconds, 3) + " s. Details, the reverse split, the candidate "
+                 format_number(r.seconds, 3) +
+                 " s. Details, the reverse split, the candidate "
                  "effects, what the files cannot decide and the plots: measured.html.");
   page.links({{"measured.html", "measured",
                "— the Kinova Gen3 logs: before/after per joint, candidate effects, plots"}});
@@ -236,7 +266,8 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
       "K_t·i (the maker's own current-based joint torque: TorqueCur = K_t·Cur exactly) against "
       "the torque sensor behind each gear, before and after the model: K_t·i − d with d the "
       "drive loss the model predicts (friction + armature·q̈). Held out by file: nothing scored "
-      "was fitted on. " + format_number(r.seconds, 3) + " s.");
+      "was fitted on. " +
+      format_number(r.seconds, 3) + " s.");
   page.heading("Held out by file");
   page.table(measured_table(r.forward, o.target_reduction));
   page.paragraph(target_sentence(r.forward, o.target_reduction));
@@ -256,16 +287,18 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
     page.paragraph(
         "Compensator: one " + std::to_string(o.joint_hidden) +
         "-channel network per joint, trained by tpf train's machinery on the fitting files (" +
-        std::to_string(o.training_epochs) + " epochs at most), scored through validate's "
+        std::to_string(o.training_epochs) +
+        " epochs at most), scored through validate's "
         "compensator path (the run-time estimator replayed on the held-out files, its output "
         "counted as drive loss). 'with the compensator' sits on the identified model and learns "
         "the run-time estimator's current residual τ_res = K_t·i − (rigid body + friction), as "
-        "tpf train does on contact-free logs (best epochs" + epochs(r.training) + ", " +
-        format_number(r.training.seconds, 3) +
+        "tpf train does on contact-free logs (best epochs" +
+        epochs(r.training) + ", " + format_number(r.training.seconds, 3) +
         " s); on these files that residual holds the rigid body's error too, which a per-joint "
         "network that sees only its own joint cannot predict. The last column sits on the "
         "friction fitted against the sensor and learns K_t·i − d − τ_sensor wherever the sensor "
-        "varies (best epochs" + epochs(r.sensor_training) +
+        "varies (best epochs" +
+        epochs(r.sensor_training) +
         "). Both take q as an input, and the held-out files move where the fitting files never "
         "went (below), so the networks extrapolate.");
   }
@@ -273,12 +306,14 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
     page.heading("What diagnose adds", 3);
     page.paragraph(
         "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
-        ": it claims an effect only if it lowers the current residual there. The columns "
-        "'diagnose: …' above score its written model against the sensor on the held-out files, "
-        "each written effect added in turn. Its findings:");
+        ": it claims an effect only if it lowers the current residual there. The column "
+        "\"diagnose's model\" above scores its written model against the sensor on the held-out "
+        "files; the table below adds its written effects one at a time against the held-out "
+        "files' current. Its findings on the fitting files:");
     page.list(r.diagnosis_findings);
     if (!r.diagnosis_unseen.empty()) page.paragraph(r.diagnosis_unseen);
     page.table(diagnosis_effort_table(r));
+    page.paragraph(diagnosis_transfer_sentence(r));
   }
   page.heading("What the residual holds: candidates against the sensor");
   page.table(candidate_table(r));
@@ -308,7 +343,9 @@ std::string measured_json(const MeasuredResult& r, double target) {
     out["validation"] = json::parse(validation_json(s.validation));
     return out;
   };
-  json j{{"measured", true}, {"label", kMeasuredLabel}, {"target_reduction", target},
+  json j{{"measured", true},
+         {"label", kMeasuredLabel},
+         {"target_reduction", target},
          {"seconds", r.seconds}};
   j["forward"] = split(r.forward);
   json met = json::array();

@@ -20,6 +20,9 @@ Table measured_table(const MeasuredSplit& split, double target);
 /// diagnose's written effects one by one against the held-out files' effort (mA).
 Table diagnosis_effort_table(const MeasuredResult& result);
 
+/// Which of diagnose's written effects lower the held-out files' current error and which raise it.
+std::string diagnosis_transfer_sentence(const MeasuredResult& result);
+
 /// The candidates tested against the sensor: held-out change per joint, claimed or not.
 Table candidate_table(const MeasuredResult& result);
 

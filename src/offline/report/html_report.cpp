@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "tpf/common/atomic_file.hpp"
 #include "offline/report/plot_canvas.hpp"
 #include "offline/report/text_format.hpp"
+#include "tpf/common/atomic_file.hpp"
 
 namespace tpf::offline {
 namespace {

@@ -160,10 +160,10 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
       if (std::isfinite(p) && (p > 0.9 || p < 0.1)) one_way.push_back(joint);
       if (!f.sensor_usable[j]) flat.push_back(joint);
     }
-    std::string line = f.name + format(": %.2f s (%.0f samples)", f.seconds,
-                                       static_cast<double>(f.samples));
-    line += "; velocity reversals per joint (|q̇| ≥ " + format("%g rad/s", o.reversal_velocity) +
-            "):";
+    std::string line =
+        f.name + format(": %.2f s (%.0f samples)", f.seconds, static_cast<double>(f.samples));
+    line +=
+        "; velocity reversals per joint (|q̇| ≥ " + format("%g rad/s", o.reversal_velocity) + "):";
     for (std::size_t j = 0; j < f.reversals.size(); ++j)
       line += (j ? " / " : " ") + std::to_string(f.reversals[j]);
     if (!none.empty()) line += "; joints " + joint_list(none) + " never reverse";
@@ -195,8 +195,9 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
           "in motion only.";
   lines.push_back(rest);
   if (!facts.outside_share.empty()) {
-    std::string line = "Share of the held-out samples where q lies outside the fitting files' range "
-                       "of q, per joint:";
+    std::string line =
+        "Share of the held-out samples where q lies outside the fitting files' range "
+        "of q, per joint:";
     for (std::size_t j = 0; j < facts.outside_share.size(); ++j)
       line += (j ? " / " : " ") + format("%.0f %%", 100 * facts.outside_share[j]);
     lines.push_back(line +
@@ -205,10 +206,10 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
                     "bounds q̇ and q̈, not q.");
   }
   for (const RepeatedMotion& r : facts.repeats) {
-    std::string line = facts.files[r.second].name + " repeats the motion of " +
-                       facts.files[r.first].name +
-                       format(" (|Δq| ≤ %.3g rad), yet K_t·i differs by", r.max_position_difference) +
-                       " (RMS per joint, N·m)";
+    std::string line =
+        facts.files[r.second].name + " repeats the motion of " + facts.files[r.first].name +
+        format(" (|Δq| ≤ %.3g rad), yet K_t·i differs by", r.max_position_difference) +
+        " (RMS per joint, N·m)";
     for (std::size_t j = 0; j < r.torque_rms_difference.size(); ++j)
       line += (j ? " / " : " ") + format("%.2f", r.torque_rms_difference[j]);
     line +=

@@ -30,13 +30,13 @@ struct MeasuredFile {
   Eigen::Index samples = 0;
   std::vector<int> reversals;          ///< per joint
   std::vector<double> positive_share;  ///< per joint: share of |q̇| ≥ reversal_velocity with q̇ > 0
-  std::vector<bool> sensor_usable;     ///< per joint (torque_sensor.hpp)
+  std::vector<bool> sensor_usable;  ///< per joint (torque_sensor.hpp)
 };
 
 /// Two files with the same motion, and how far their current-based torques differ.
 struct RepeatedMotion {
-  std::size_t first = 0, second = 0;  ///< indices into MeasuredFacts::files
-  double max_position_difference = 0.0;  ///< rad, over all joints
+  std::size_t first = 0, second = 0;          ///< indices into MeasuredFacts::files
+  double max_position_difference = 0.0;       ///< rad, over all joints
   std::vector<double> torque_rms_difference;  ///< per joint, RMS of Δ(K_t·i) [N·m]
 };
 

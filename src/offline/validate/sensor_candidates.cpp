@@ -217,7 +217,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
         {"load_friction", "load-dependent friction (|K_t·i|·sgn q̇)", 1,
          [&](const JointSamples& s, Eigen::Index k, int jj) {
            return FeatureVector::Constant(1,
-                                            std::abs(s.effort(k, jj) / kt[jj]) * direction(s, k, jj));
+                                          std::abs(s.effort(k, jj) / kt[jj]) * direction(s, k, jj));
          },
          ""},
         {"held_friction", "friction held at rest (last direction of motion)", 1,
@@ -234,14 +234,14 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
          },
          format("gear ratio %.0f", ratio)}};
     if (cycles > 0)
-      library.push_back({"ripple_output", "position ripple of the output", 2,
-                         [cycles](const JointSamples& s, Eigen::Index k, int jj) {
-                           FeatureVector f(2);
-                           f << std::sin(cycles * s.q(k, jj)), std::cos(cycles * s.q(k, jj));
-                           return f;
-                         },
-                         format("%.0f periods/rev (shortest that fits the motion: %.0f)", cycles,
-                                shortest)});
+      library.push_back(
+          {"ripple_output", "position ripple of the output", 2,
+           [cycles](const JointSamples& s, Eigen::Index k, int jj) {
+             FeatureVector f(2);
+             f << std::sin(cycles * s.q(k, jj)), std::cos(cycles * s.q(k, jj));
+             return f;
+           },
+           format("%.0f periods/rev (shortest that fits the motion: %.0f)", cycles, shortest)});
     if (thermal)
       library.push_back({"temperature", "temperature-dependent friction ((T − T̄)·sgn q̇, (T − T̄)·q̇)",
                          2,
@@ -267,10 +267,10 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                    before_fit, base_fit, before_held, base_held, false});
     for (const Candidate& c : library) {
       Eigen::VectorXd theta;
-      const auto [after_fit, after_held] =
-          fitted_rms(fs, rf, hs, rh, j, with_base(base, 2, c.phi, c.columns), c.columns + 2, &theta);
-      SensorCandidate sc{c.key, c.title, j, c.detail, base_fit, after_fit, base_held, after_held,
-                         false};
+      const auto [after_fit, after_held] = fitted_rms(
+          fs, rf, hs, rh, j, with_base(base, 2, c.phi, c.columns), c.columns + 2, &theta);
+      SensorCandidate sc{c.key,     c.title,   j,          c.detail, base_fit,
+                         after_fit, base_held, after_held, false};
       theta = theta.tail(c.columns).eval();
       if (c.key == "kt_error")
         sc.detail = format("K_t × %.3f", 1.0 - theta[0]);
@@ -281,8 +281,8 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
       out.push_back(sc);
     }
     // Lag: the sensor read later (positive) or earlier than the current, chosen in-file.
-    const int max_shift = static_cast<int>(std::round(o.max_lag_s / std::max(
-                                                                        fs.t[1] - fs.t[0], 1e-6)));
+    const int max_shift =
+        static_cast<int>(std::round(o.max_lag_s / std::max(fs.t[1] - fs.t[0], 1e-6)));
     // (judged on the base refitted on the shifted residual, over the rows both have)
     int best = 0;
     double best_ratio = 1.0;
@@ -311,10 +311,10 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
       const auto [low_fit, low_held] =
           fitted_rms(fs, low_passed(fit_side, rf, j, best_tau, kt[j]), hs,
                      low_passed(held_side, rh, j, best_tau, kt[j]), j, base, 2, nullptr);
-      out.push_back({"current_low_pass", "current noise: causal low-pass of K_t·i", j,
-                     format("time constant %.0f ms (chosen in-file from 2–200 ms)",
-                            1000 * best_tau),
-                     base_fit, low_fit, base_held, low_held, false});
+      out.push_back(
+          {"current_low_pass", "current noise: causal low-pass of K_t·i", j,
+           format("time constant %.0f ms (chosen in-file from 2–200 ms)", 1000 * best_tau),
+           base_fit, low_fit, base_held, low_held, false});
     } else {
       out.push_back({"current_low_pass", "current noise: causal low-pass of K_t·i", j,
                      "no time constant lowers the in-file error", base_fit, base_fit, base_held,
@@ -326,7 +326,8 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                    same_fit_rms, lag_fit_rms, same_held_rms, lag_held_rms, false});
   }
   for (SensorCandidate& c : out)
-    c.supported = c.fit_after < c.fit_before && c.heldout_after <= (1 - o.min_gain) * c.heldout_before;
+    c.supported =
+        c.fit_after < c.fit_before && c.heldout_after <= (1 - o.min_gain) * c.heldout_before;
   return out;
 }
 

@@ -17,7 +17,7 @@ namespace tpf::offline {
 
 /// Time constants [s] of the causal current low-pass tried (chosen on the fitting files).
 inline constexpr std::array<double, 7> kCurrentLowPassTimeConstants{0.002, 0.005, 0.01, 0.02,
-                                                                   0.05,  0.1,   0.2};
+                                                                    0.05,  0.1,   0.2};
 
 /// One side of the split: a log, its samples and a model's drive loss d on them (samples ×
 /// joints, N·m; validation.hpp's EffortEstimate::drive_loss).
@@ -36,10 +36,10 @@ struct SensorCandidateOptions {
 /// One candidate on one joint: RMSE [N·m] of the residual before (the base; for the base itself,
 /// the model alone) and after, on the fitting files (in-file) and on the held-out files.
 struct SensorCandidate {
-  std::string key;    ///< offset, kt_error, load_friction, temperature, ripple_motor,
-                      ///< ripple_output, held_friction, friction_refit, lag
-  std::string title;  ///< what a robot engineer would call it
-  int joint = 0;      ///< 0-based
+  std::string key;     ///< offset, kt_error, load_friction, temperature, ripple_motor,
+                       ///< ripple_output, held_friction, friction_refit, lag
+  std::string title;   ///< what a robot engineer would call it
+  int joint = 0;       ///< 0-based
   std::string detail;  ///< the fitted value that matters (lag in ms, periods, coefficients)
   double fit_before = 0, fit_after = 0, heldout_before = 0, heldout_after = 0;
   bool supported = false;  ///< held-out RMSE down by ≥ min_gain (and in-file down too)
