@@ -73,6 +73,15 @@ std::vector<RepeatedMotion> repeated_motions(const Log& log, const JointSamples&
   return out;
 }
 
+/// Σ of squared second differences of x within [begin, end) and their count (finite ones only).
+void add_second_differences(const Eigen::Ref<const Eigen::VectorXd>& x, double& sum,
+                            double& count) {
+  for (Eigen::Index k = 1; k + 1 < x.size(); ++k) {
+    const double d = x[k + 1] - 2 * x[k] + x[k - 1];
+    if (std::isfinite(d)) sum += d * d, ++count;
+  }
+}
+
 std::string joint_list(const std::vector<int>& joints) {
   std::string text;
   for (std::size_t i = 0; i < joints.size(); ++i)
@@ -95,6 +104,8 @@ MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
   facts.options = o;
   const int joints = static_cast<int>(effort_per_newton_metre.size());
   std::vector<double> sum(joints, 0.0), count(joints, 0.0), noisy(joints, 0.0);
+  std::vector<double> current2(joints, 0.0), current_n(joints, 0.0), sensor2(joints, 0.0),
+      sensor_n(joints, 0.0);
   for (const LogWithSamples& item : logs) {
     const Log& log = *item.log;
     const JointSamples& s = *item.samples;
@@ -106,6 +117,18 @@ MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
       r.first += first;
       r.second += first;
       facts.repeats.push_back(r);
+    }
+    for (std::size_t f = 0; f < log.file_count(); ++f) {
+      const auto [begin, end] = log.file_rows(f);
+      for (int j = 0; j < joints; ++j) {
+        add_second_differences(
+            s.effort.col(j).segment(begin, end - begin) / effort_per_newton_metre[j], current2[j],
+            current_n[j]);
+        if (sensor_usable(sensors, f, j))
+          add_second_differences(
+              log.col(indexed_name("tau_sensor", j + 1)).segment(begin, end - begin), sensor2[j],
+              sensor_n[j]);
+      }
     }
     for (int j = 0; j < joints; ++j)
       for (Eigen::Index k = 0; k < s.size(); ++k) {
@@ -119,6 +142,10 @@ MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
   for (int j = 0; j < joints; ++j) {
     facts.rest_velocity_rms.push_back(count[j] > 0 ? std::sqrt(sum[j] / count[j]) : std::nan(""));
     facts.rest_noise_moving_share.push_back(count[j] > 0 ? noisy[j] / count[j] : std::nan(""));
+    facts.current_noise.push_back(current_n[j] > 0 ? std::sqrt(current2[j] / current_n[j] / 6)
+                                                   : std::nan(""));
+    facts.sensor_noise.push_back(sensor_n[j] > 0 ? std::sqrt(sensor2[j] / sensor_n[j] / 6)
+                                                 : std::nan(""));
   }
   return facts;
 }
@@ -194,6 +221,18 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
           "rest, where the drive holds whatever friction it stopped with: the gain is decided "
           "in motion only.";
   lines.push_back(rest);
+  if (!facts.current_noise.empty()) {
+    std::string line =
+        "Sample-to-sample noise σ per joint [N·m] (second differences within each "
+        "file, as white noise), K_t·i vs τ_sensor:";
+    for (std::size_t j = 0; j < facts.current_noise.size(); ++j)
+      line +=
+          (j ? " / " : " ") + format("%.2f vs %.3f", facts.current_noise[j], facts.sensor_noise[j]);
+    lines.push_back(line +
+                    ". The published sensor is far smoother than the current (filtered, or "
+                    "partly computed: the files cannot tell), so an unfiltered current-based "
+                    "torque keeps about σ of error against it whatever the model.");
+  }
   if (!facts.outside_share.empty()) {
     std::string line =
         "Share of the held-out samples where q lies outside the fitting files' range "
@@ -213,8 +252,8 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
     for (std::size_t j = 0; j < r.torque_rms_difference.size(); ++j)
       line += (j ? " / " : " ") + format("%.2f", r.torque_rms_difference[j]);
     line +=
-        ": the same motion does not give the same current from run to run, a floor for any "
-        "model of the current that sees only the motion; and a file that repeats another is no "
+        ": the same motion does not give the same current from run to run (the current's "
+        "sample noise, below, explains √2·σ of it), and a file that repeats another is no "
         "independent held-out file.";
     lines.push_back(line);
   }

@@ -46,6 +46,9 @@ struct MeasuredFacts {
   /// samples with |q̇| ≥ static_velocity (labelled moving by the noise alone).
   std::vector<double> rest_velocity_rms, rest_noise_moving_share;
   std::vector<RepeatedMotion> repeats;
+  /// Per joint, sample-to-sample noise [N·m] of K_t·i and of τ_sensor (where it varies): the RMS
+  /// second difference within each file over √6, the σ of white noise.
+  std::vector<double> current_noise, sensor_noise;
   /// Per joint: share of the held-out samples whose q lies outside the fitting files' range of q
   /// (outside_range_share; empty when not computed).
   std::vector<double> outside_share;
