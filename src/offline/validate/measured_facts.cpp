@@ -226,8 +226,9 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
         "Sample-to-sample noise σ per joint [N·m] (second differences within each "
         "file, as white noise), K_t·i vs τ_sensor:";
     for (std::size_t j = 0; j < facts.current_noise.size(); ++j)
-      line +=
-          (j ? " / " : " ") + format("%.2f vs %.3f", facts.current_noise[j], facts.sensor_noise[j]);
+      line += (j ? " / " : " ") + format("%.2f vs ", facts.current_noise[j]) +
+              (std::isfinite(facts.sensor_noise[j]) ? format("%.3f", facts.sensor_noise[j])
+                                                    : std::string("– (flat)"));
     lines.push_back(line +
                     ". The published sensor is far smoother than the current (filtered, or "
                     "partly computed: the files cannot tell), so an unfiltered current-based "
@@ -253,7 +254,7 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
       line += (j ? " / " : " ") + format("%.2f", r.torque_rms_difference[j]);
     line +=
         ": the same motion does not give the same current from run to run (the current's "
-        "sample noise, below, explains √2·σ of it), and a file that repeats another is no "
+        "sample noise σ above accounts for √2·σ of it), and a file that repeats another is no "
         "independent held-out file.";
     lines.push_back(line);
   }
