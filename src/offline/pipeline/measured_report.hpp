@@ -30,6 +30,9 @@ Table candidate_table(const MeasuredResult& result);
 /// chosen.
 std::string low_pass_sentence(const MeasuredResult& result);
 
+/// The candidates claimed (with their joints) and those supported nowhere, in one sentence.
+std::string candidate_summary(const MeasuredResult& result);
+
 /// The terminal's summary: the forward split's table as text, and the joints that meet the
 /// target.
 std::string measured_headline(const MeasuredResult& result, double target);

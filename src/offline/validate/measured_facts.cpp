@@ -193,11 +193,16 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
         "; velocity reversals per joint (|q̇| ≥ " + format("%g rad/s", o.reversal_velocity) + "):";
     for (std::size_t j = 0; j < f.reversals.size(); ++j)
       line += (j ? " / " : " ") + std::to_string(f.reversals[j]);
-    if (!none.empty()) line += "; joints " + joint_list(none) + " never reverse";
+    if (!none.empty())
+      line += none.size() == 1 ? "; joint " + joint_list(none) + " never reverses"
+                               : "; joints " + joint_list(none) + " never reverse";
     if (!one_way.empty())
-      line += "; joints " + joint_list(one_way) + " move ≥ 90 % of the time in one direction";
+      line += (one_way.size() == 1 ? "; joint " + joint_list(one_way) + " moves"
+                                   : "; joints " + joint_list(one_way) + " move") +
+              " ≥ 90 % of the time in one direction";
     line += flat.empty() ? "; every torque sensor varies"
-                         : "; torque sensor flat or missing on joints " + joint_list(flat) +
+                         : "; torque sensor flat or missing on joint" +
+                               std::string(flat.size() == 1 ? " " : "s ") + joint_list(flat) +
                                " (not scored there)";
     lines.push_back(line + ".");
   }
