@@ -10,7 +10,7 @@
 namespace tpf::offline {
 namespace {
 
-bool moving(const JointSamples& s, Eigen::Index k, int j) {
+bool sensor_friction_moving(const JointSamples& s, Eigen::Index k, int j) {
   const Regime r = s.regimes[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
   return r == Regime::StaticToKinetic || r == Regime::Moving;
 }
@@ -48,7 +48,7 @@ SensorFrictionReference sensor_friction_reference(const Log& log, const JointSam
         const double tau = log.values(k, column);
         if (!s.valid[static_cast<std::size_t>(k)] || !std::isfinite(tau)) continue;
         out.reference(k, j) = scale[j] * (tau + armature[j] * s.ddq(k, j));
-        if (!moving(s, k, j)) continue;
+        if (!sensor_friction_moving(s, k, j)) continue;
         const Eigen::Vector2d phi(s.dq(k, j) > 0 ? 1.0 : -1.0, s.dq(k, j));
         A += phi * phi.transpose();
         b += phi * (s.effort(k, j) - out.reference(k, j));

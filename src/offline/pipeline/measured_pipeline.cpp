@@ -23,14 +23,14 @@ namespace {
 
 using Gen3Model = NominalModel<double, kMeasuredJoints>;
 
-Log read_files(const MeasuredOptions& o, const std::vector<std::string>& names) {
+Log read_measured_files(const MeasuredOptions& o, const std::vector<std::string>& names) {
   std::vector<std::filesystem::path> paths;
   for (const std::string& n : names)
     paths.push_back(data_file(std::filesystem::path(o.logs) / n));
   return read_logs(paths);
 }
 
-std::string joined(const std::vector<std::string>& names) {
+std::string joined_file_names(const std::vector<std::string>& names) {
   std::string text;
   for (std::size_t i = 0; i < names.size(); ++i)
     text += (i ? " + " : "") + names[i];
@@ -38,15 +38,15 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 /// Samples with nothing held out: the held-out data are other files.
-JointSamples all_samples(const Log& log) {
+JointSamples samples_without_holdout(const Log& log) {
   SampleOptions options;
   options.hold_out = false;
   return extract_joint_samples(log, options);
 }
 
-Identification<kMeasuredJoints> identify_all(const Log& log,
-                                             const Model<double, kMeasuredJoints>& model,
-                                             int friction_samples, bool friction_from_sensor) {
+Identification<kMeasuredJoints> identify_on_every_sample(
+    const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
+    bool friction_from_sensor) {
   IdentifyOptions options;
   options.friction_samples_per_joint = friction_samples;
   options.samples.hold_out = false;
@@ -55,7 +55,7 @@ Identification<kMeasuredJoints> identify_all(const Log& log,
 }
 
 /// The columns of a split: maker, Kt only, then each estimate, RMSE over every regime.
-std::vector<MeasuredColumn> split_columns(const Validation& v) {
+std::vector<MeasuredColumn> measured_split_columns(const Validation& v) {
   std::vector<MeasuredColumn> columns{{"maker (tau_maker)", {}}, {"Kt only", {}}};
   for (const std::string& name : v.estimate_names)
     columns.push_back({name, {}});
@@ -71,7 +71,7 @@ std::vector<MeasuredColumn> split_columns(const Validation& v) {
 }
 
 /// Removes one effect diagnose selected from the written model (its parameters set to 0).
-void remove_effect(Gen3Model& m, const FeatureGroup& g) {
+void remove_diagnosed_effect(Gen3Model& m, const FeatureGroup& g) {
   const int j = g.joint;
   switch (g.kind) {
     case FeatureKind::Spring:
@@ -108,21 +108,21 @@ void remove_effect(Gen3Model& m, const FeatureGroup& g) {
 
 /// Diagnose's written model with only its first `keep` written effects (the later ones removed),
 /// and the titles of the written effects in selection order.
-Gen3Model with_first_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t keep,
-                             std::vector<std::string>* titles = nullptr) {
+Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t keep,
+                                       std::vector<std::string>* titles = nullptr) {
   Gen3Model m = d.nominal;
   std::size_t written = 0;
   for (std::size_t e = 0; e < d.claims.size(); ++e) {
     if (!d.claims[e].written) continue;
     const FeatureGroup& g = d.groups[static_cast<std::size_t>(d.selected[e])];
     if (titles) titles->push_back(g.title);
-    if (written++ >= keep) remove_effect(m, g);
+    if (written++ >= keep) remove_diagnosed_effect(m, g);
   }
   return m;
 }
 
 /// Per joint: RMSE of the log's effort less the estimate's over the valid samples.
-std::vector<double> effort_rmse(const JointSamples& s, const EffortEstimate& e) {
+std::vector<double> effort_rmse_per_joint(const JointSamples& s, const EffortEstimate& e) {
   std::vector<double> out;
   for (int j = 0; j < s.joints(); ++j) {
     double sum = 0, n = 0;
@@ -136,11 +136,11 @@ std::vector<double> effort_rmse(const JointSamples& s, const EffortEstimate& e) 
 }
 
 /// Equal values, NaN equal to NaN.
-bool same_values(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+bool same_values_or_nan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return ((a.array() == b.array()) || (a.array().isNaN() && b.array().isNaN())).all();
 }
 
-std::size_t written_effects(const Diagnosis<kMeasuredJoints>& d) {
+std::size_t written_effect_count(const Diagnosis<kMeasuredJoints>& d) {
   std::size_t n = 0;
   for (const Claim& c : d.claims)
     n += c.written;
@@ -151,12 +151,10 @@ std::size_t written_effects(const Diagnosis<kMeasuredJoints>& d) {
 /// the current residual τ_res of the run-time estimator, or, where `sensor_target` (samples ×
 /// joints, N·m) has a value on the joint, on K_t·i − d − τ_sensor (the drive loss the model
 /// misses, as the sensor measures it; NaN rows are cut out of the training windows).
-EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fit,
-                                         const Gen3Model& nominal,
-                                         const Eigen::MatrixXd& sensor_target,
-                                         const std::string& weight_file,
-                                         CompensatorTraining& training,
-                                         const std::function<void(const std::string&)>& say) {
+EstimatorSetup<kMeasuredJoints> train_measured_compensator(
+    const MeasuredOptions& o, const Log& fit, const Gen3Model& nominal,
+    const Eigen::MatrixXd& sensor_target, const std::string& weight_file,
+    CompensatorTraining& training, const std::function<void(const std::string&)>& say) {
   EstimatorSetup<kMeasuredJoints> setup;
   setup.nominal = nominal;
   setup.parameters = estimator_parameters_from_noise<kMeasuredJoints>(estimate_sensor_noise(fit));
@@ -192,14 +190,14 @@ EstimatorSetup<kMeasuredJoints> train_on(const MeasuredOptions& o, const Log& fi
 }
 
 /// K_t·i − d − τ_sensor of `estimate` (or Kt only when null) on the scoring log.
-Eigen::MatrixXd residual_of(const Log& log, const JointSamples& s, const EffortEstimate* estimate,
-                            const Eigen::VectorXd& kt) {
+Eigen::MatrixXd sensor_residual_of(const Log& log, const JointSamples& s,
+                                   const EffortEstimate* estimate, const Eigen::VectorXd& kt) {
   SensorSide side{&log, &s,
                   estimate ? estimate->drive_loss : Eigen::MatrixXd::Zero(s.size(), s.joints())};
   return sensor_residual(side, kt);
 }
 
-Eigen::VectorXd time_in_file(const Log& log, const JointSamples& s) {
+Eigen::VectorXd time_within_file(const Log& log, const JointSamples& s) {
   Eigen::VectorXd t(s.size());
   for (std::size_t f = 0; f < log.file_count(); ++f) {
     const auto [begin, end] = log.file_rows(f);
@@ -211,8 +209,8 @@ Eigen::VectorXd time_in_file(const Log& log, const JointSamples& s) {
 
 /// `e` with the current through causal_low_pass of time constant tau[j] on joint j: the drive
 /// loss less (LP(K_t·i) − K_t·i), so that K_t·i − d becomes LP(K_t·i) − d.
-EffortEstimate low_passed(const EffortEstimate& e, const Log& log, const JointSamples& s,
-                          const Eigen::VectorXd& tau, const Eigen::VectorXd& kt) {
+EffortEstimate low_passed_estimate(const EffortEstimate& e, const Log& log, const JointSamples& s,
+                                   const Eigen::VectorXd& tau, const Eigen::VectorXd& kt) {
   EffortEstimate out = e;
   for (Eigen::Index j = 0; j < tau.size(); ++j) {
     const Eigen::VectorXd effort = s.effort.col(j);
@@ -224,8 +222,8 @@ EffortEstimate low_passed(const EffortEstimate& e, const Log& log, const JointSa
 
 /// Per joint, the time constant (0: none) that minimises the RMSE of `e` against the sensor on
 /// the fitting side.
-Eigen::VectorXd choose_time_constants(const Log& log, const JointSamples& s,
-                                      const EffortEstimate& e, const Eigen::VectorXd& kt) {
+Eigen::VectorXd choose_low_pass_time_constants(const Log& log, const JointSamples& s,
+                                               const EffortEstimate& e, const Eigen::VectorXd& kt) {
   const Eigen::MatrixXd residual = sensor_residual({&log, &s, e.drive_loss}, kt);
   const auto rmse = [](const Eigen::VectorXd& r) {
     double sum = 0, n = 0;
@@ -263,15 +261,15 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   std::filesystem::create_directories(o.out);
   MeasuredResult result;
   const auto model = load_robot<double, kMeasuredJoints>(data_file(o.robot));
-  const Log fit = read_files(o, o.fitting);
-  const Log score = read_files(o, o.scoring);
-  const JointSamples fit_samples = all_samples(fit);
-  const JointSamples score_samples = all_samples(score);
+  const Log fit = read_measured_files(o, o.fitting);
+  const Log score = read_measured_files(o, o.scoring);
+  const JointSamples fit_samples = samples_without_holdout(fit);
+  const JointSamples score_samples = samples_without_holdout(score);
 
   // 1. identify on every fitting file; score on the held-out files.
-  say("measured: identify on " + joined(o.fitting));
+  say("measured: identify on " + joined_file_names(o.fitting));
   const Identification<kMeasuredJoints> identified =
-      identify_all(fit, model, o.friction_samples_per_joint, false);
+      identify_on_every_sample(fit, model, o.friction_samples_per_joint, false);
   const Gen3Model& nominal = identified.nominal;
   const Eigen::VectorXd kt = nominal.effort_per_newton_metre;
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", nominal,
@@ -282,7 +280,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   std::vector<std::string> ignored;  // the same notes again
   say("measured: identify again, the friction fitted against the torque sensor");
   const Identification<kMeasuredJoints> sensor_identified =
-      identify_all(fit, model, o.friction_samples_per_joint, true);
+      identify_on_every_sample(fit, model, o.friction_samples_per_joint, true);
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json",
                                       sensor_identified.nominal, fit.source + " (MEASURED)");
   estimates.push_back(
@@ -290,14 +288,16 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   estimates.back().name = "friction against the sensor";
   const EffortEstimate sensor_on_fit =
       nominal_estimate<kMeasuredJoints>(sensor_identified.nominal, fit_samples, ignored);
-  result.low_pass_time_constants = choose_time_constants(fit, fit_samples, sensor_on_fit, kt);
+  result.low_pass_time_constants =
+      choose_low_pass_time_constants(fit, fit_samples, sensor_on_fit, kt);
   estimates.push_back(
-      low_passed(estimates[1], score, score_samples, result.low_pass_time_constants, kt));
+      low_passed_estimate(estimates[1], score, score_samples, result.low_pass_time_constants, kt));
   estimates.back().name = "+ current low-pass";
 
   // 2. diagnose on the fitting files (held out: the last one); each written effect in turn.
   if (o.run_diagnose) {
-    say("measured: diagnose on " + joined(o.fitting) + " (held out: " + o.fitting.back() + ")");
+    say("measured: diagnose on " + joined_file_names(o.fitting) +
+        " (held out: " + o.fitting.back() + ")");
     const Diagnosis<kMeasuredJoints> d = diagnose(fit, model, {});
     result.diagnosis_findings = d.findings;
     result.diagnosis_notes = d.notes;
@@ -305,17 +305,17 @@ MeasuredResult run_measured(const MeasuredOptions& o,
     save_nominal_model<kMeasuredJoints>(o.out / "gen3.diagnosed.params.json", d.nominal,
                                         fit.source + " (MEASURED)");
     std::vector<std::string> titles;
-    with_first_effects(d, 0, &titles);
+    with_first_diagnosed_effects(d, 0, &titles);
     std::vector<std::string> unseen;
     result.diagnosis_effort.push_back(
-        {"after identification", effort_rmse(score_samples, estimates.front())});
-    for (std::size_t keep = 0; keep <= written_effects(d); ++keep) {
-      EffortEstimate e =
-          nominal_estimate<kMeasuredJoints>(with_first_effects(d, keep), score_samples, ignored);
+        {"after identification", effort_rmse_per_joint(score_samples, estimates.front())});
+    for (std::size_t keep = 0; keep <= written_effect_count(d); ++keep) {
+      EffortEstimate e = nominal_estimate<kMeasuredJoints>(with_first_diagnosed_effects(d, keep),
+                                                           score_samples, ignored);
       result.diagnosis_effort.push_back(
           {keep == 0 ? "diagnose's model without its effects" : "+ " + titles[keep - 1],
-           effort_rmse(score_samples, e)});
-      if (keep > 0 && same_values(e.drive_loss, estimates.back().drive_loss)) {
+           effort_rmse_per_joint(score_samples, e)});
+      if (keep > 0 && same_values_or_nan(e.drive_loss, estimates.back().drive_loss)) {
         unseen.push_back(titles[keep - 1]);
         continue;
       }
@@ -324,7 +324,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
     }
     if (!unseen.empty())
       result.diagnosis_unseen =
-          "diagnose's " + joined(unseen) +
+          "diagnose's " + joined_file_names(unseen) +
           " act on the link side (validate counts only friction and armature as the drive loss "
           "d that the sensor behind the gear does not see): K_t·i − d − τ_sensor is the same "
           "with or without them, so they get no column of their own.";
@@ -335,27 +335,27 @@ MeasuredResult run_measured(const MeasuredOptions& o,
       &fit, &fit_samples,
       nominal_estimate<kMeasuredJoints>(nominal, fit_samples, ignored).drive_loss};
   if (o.run_training) {
-    say("measured: train one network per joint on " + joined(o.fitting) + " (" +
+    say("measured: train one network per joint on " + joined_file_names(o.fitting) + " (" +
         std::to_string(o.training_epochs) + " epochs at most), on the current residual");
     const EstimatorSetup<kMeasuredJoints> setup =
-        train_on(o, fit, nominal, {}, "gen3.tcn.json", result.training, say);
+        train_measured_compensator(o, fit, nominal, {}, "gen3.tcn.json", result.training, say);
     estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, score, estimates.front()));
     estimates.back().name = "with the compensator";
     say("measured: the same networks over the sensor-fitted friction, trained against the "
         "torque sensor (K_t·i − d − τ_sensor)");
     const SensorSide sensor_fit_side{&fit, &fit_samples, sensor_on_fit.drive_loss};
-    const EstimatorSetup<kMeasuredJoints> sensor_setup =
-        train_on(o, fit, sensor_identified.nominal, sensor_residual(sensor_fit_side, kt),
-                 "gen3.tcn-sensor.json", result.sensor_training, say);
+    const EstimatorSetup<kMeasuredJoints> sensor_setup = train_measured_compensator(
+        o, fit, sensor_identified.nominal, sensor_residual(sensor_fit_side, kt),
+        "gen3.tcn-sensor.json", result.sensor_training, say);
     estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, score, estimates[1]));
     estimates.back().name = "friction against the sensor + compensator trained against it";
   }
-  say("measured: score on " + joined(o.scoring) + " against the torque sensor");
-  result.forward.fitted_on = joined(o.fitting);
-  result.forward.scored_on = joined(o.scoring);
+  say("measured: score on " + joined_file_names(o.scoring) + " against the torque sensor");
+  result.forward.fitted_on = joined_file_names(o.fitting);
+  result.forward.scored_on = joined_file_names(o.scoring);
   result.forward.validation = score_estimates(score, score_samples, estimates, kt);
   result.forward.validation.notes = result.notes;
-  result.forward.columns = split_columns(result.forward.validation);
+  result.forward.columns = measured_split_columns(result.forward.validation);
 
   // 4. what the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");
@@ -365,37 +365,37 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   // 5. plots' traces: Kt only, after identification, with the compensator.
   MeasuredTraces& tr = result.traces;
   tr.t = score_samples.t;
-  tr.file_time = time_in_file(score, score_samples);
+  tr.file_time = time_within_file(score, score_samples);
   tr.dq = score_samples.dq;
   tr.names.push_back("Kt only");
-  tr.residual.push_back(residual_of(score, score_samples, nullptr, kt));
+  tr.residual.push_back(sensor_residual_of(score, score_samples, nullptr, kt));
   tr.names.push_back("after identification");
-  tr.residual.push_back(residual_of(score, score_samples, &estimates.front(), kt));
+  tr.residual.push_back(sensor_residual_of(score, score_samples, &estimates.front(), kt));
   tr.names.push_back("friction against the sensor + current low-pass");
-  tr.residual.push_back(residual_of(score, score_samples, &estimates[2], kt));
+  tr.residual.push_back(sensor_residual_of(score, score_samples, &estimates[2], kt));
   if (o.run_training) {
     tr.names.push_back("friction against the sensor + compensator trained against it");
-    tr.residual.push_back(residual_of(score, score_samples, &estimates.back(), kt));
+    tr.residual.push_back(sensor_residual_of(score, score_samples, &estimates.back(), kt));
   }
 
   // 6. the other way round: fit on the scoring files, score on the fitting files.
   if (o.run_reverse) {
-    say("measured: reverse split: identify on " + joined(o.scoring) + ", score on " +
-        joined(o.fitting));
+    say("measured: reverse split: identify on " + joined_file_names(o.scoring) + ", score on " +
+        joined_file_names(o.fitting));
     const Identification<kMeasuredJoints> reverse =
-        identify_all(score, model, o.friction_samples_per_joint, false);
+        identify_on_every_sample(score, model, o.friction_samples_per_joint, false);
     std::vector<std::string> notes;
     std::vector<EffortEstimate> reverse_estimates{
         nominal_estimate<kMeasuredJoints>(reverse.nominal, fit_samples, notes)};
     reverse_estimates.back().name = "after identification";
     reverse_estimates.push_back(nominal_estimate<kMeasuredJoints>(
-        identify_all(score, model, o.friction_samples_per_joint, true).nominal, fit_samples,
-        notes));
+        identify_on_every_sample(score, model, o.friction_samples_per_joint, true).nominal,
+        fit_samples, notes));
     reverse_estimates.back().name = "friction against the sensor";
-    result.reverse.fitted_on = joined(o.scoring);
-    result.reverse.scored_on = joined(o.fitting);
+    result.reverse.fitted_on = joined_file_names(o.scoring);
+    result.reverse.scored_on = joined_file_names(o.fitting);
     result.reverse.validation = score_estimates(fit, fit_samples, reverse_estimates, kt);
-    result.reverse.columns = split_columns(result.reverse.validation);
+    result.reverse.columns = measured_split_columns(result.reverse.validation);
   }
 
   // 7. what the files can decide.

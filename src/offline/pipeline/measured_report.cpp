@@ -14,7 +14,7 @@ namespace tpf::offline {
 namespace {
 
 /// Joints (0-based) whose sensor is scored in a split.
-std::vector<int> scored_joints(const MeasuredSplit& split) {
+std::vector<int> sensor_scored_joints(const MeasuredSplit& split) {
   std::vector<int> joints;
   if (split.columns.empty()) return joints;
   for (std::size_t j = 0; j < split.columns[0].rmse.size(); ++j)
@@ -23,7 +23,8 @@ std::vector<int> scored_joints(const MeasuredSplit& split) {
 }
 
 /// Names of the estimate columns of a split that meet the target on joint j.
-std::vector<std::string> meeting(const MeasuredSplit& split, int j, double target) {
+std::vector<std::string> estimates_meeting_target(const MeasuredSplit& split, int j,
+                                                  double target) {
   std::vector<std::string> names;
   const double maker = split.columns[0].rmse[static_cast<std::size_t>(j)];
   for (std::size_t c = 2; c < split.columns.size(); ++c)
@@ -32,11 +33,11 @@ std::vector<std::string> meeting(const MeasuredSplit& split, int j, double targe
   return names;
 }
 
-std::string cell(double maker, double rmse) {
+std::string rmse_cell(double maker, double rmse) {
   return format_fixed(rmse, 3) + " (" + format_percent_change(maker, rmse) + ")";
 }
 
-std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+std::string joined_items(const std::vector<std::string>& items, const std::string& separator) {
   std::string text;
   for (std::size_t i = 0; i < items.size(); ++i)
     text += (i ? separator : "") + items[i];
@@ -44,8 +45,8 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
 }
 
 /// Residual against time and against q̇ for joint j, every trace.
-void add_joint_plots(HtmlReport& page, const MeasuredTraces& tr, int j,
-                     const std::string& scored_on) {
+void add_measured_joint_plots(HtmlReport& page, const MeasuredTraces& tr, int j,
+                              const std::string& scored_on) {
   std::vector<Series> in_time, in_velocity;
   for (std::size_t n = 0; n < tr.names.size(); ++n) {
     in_time.push_back({tr.names[n], tr.t, tr.residual[n].col(j), ""});
@@ -64,14 +65,14 @@ void add_joint_plots(HtmlReport& page, const MeasuredTraces& tr, int j,
   page.figure(scatter_plot(velocity_options, in_velocity, 800));
 }
 
-std::string split_text(const MeasuredSplit& split, double target) {
+std::string measured_split_text(const MeasuredSplit& split, double target) {
   std::string text;
   char line[512];
   text += "  joint   Kt only = maker";
   for (std::size_t c = 2; c < split.columns.size(); ++c)
     text += " | " + split.columns[c].name;
   text += "   [N*m, change]\n";
-  for (int j : scored_joints(split)) {
+  for (int j : sensor_scored_joints(split)) {
     const double maker = split.columns[0].rmse[static_cast<std::size_t>(j)];
     std::snprintf(line, sizeof line, "  %5d %17.3f", j + 1,
                   split.columns[1].rmse[static_cast<std::size_t>(j)]);
@@ -81,27 +82,27 @@ std::string split_text(const MeasuredSplit& split, double target) {
       std::snprintf(line, sizeof line, " | %7.3f (%+.1f %%)", r, percent_change(maker, r));
       text += line;
     }
-    text += meeting(split, j, target).empty() ? "\n" : "  meets the target\n";
+    text += estimates_meeting_target(split, j, target).empty() ? "\n" : "  meets the target\n";
   }
   return text;
 }
 
-std::string target_sentence(const MeasuredSplit& split, double target) {
+std::string measured_target_sentence(const MeasuredSplit& split, double target) {
   std::vector<std::string> met, missed;
-  for (int j : scored_joints(split)) {
-    const std::vector<std::string> names = meeting(split, j, target);
+  for (int j : sensor_scored_joints(split)) {
+    const std::vector<std::string> names = estimates_meeting_target(split, j, target);
     if (names.empty())
       missed.push_back(std::to_string(j + 1));
     else
-      met.push_back(std::to_string(j + 1) + " (" + joined(names, ", ") + ")");
+      met.push_back(std::to_string(j + 1) + " (" + joined_items(names, ", ") + ")");
   }
   char pct[32];
   std::snprintf(pct, sizeof pct, "%.0f %%", 100 * target);
   return "The issue's target (the current-based joint torque ≥ " + std::string(pct) +
          " closer to the torque sensor than the maker's own current-based torque, on every joint "
          "whose sensor moves) is met on joints " +
-         (met.empty() ? std::string("none") : joined(met, "; ")) + " and missed on joints " +
-         (missed.empty() ? std::string("none") : joined(missed, ", ")) + ".";
+         (met.empty() ? std::string("none") : joined_items(met, "; ")) + " and missed on joints " +
+         (missed.empty() ? std::string("none") : joined_items(missed, ", ")) + ".";
 }
 
 }  // namespace
@@ -122,9 +123,9 @@ std::string diagnosis_transfer_sentence(const MeasuredResult& r) {
   if (r.diagnosis_effort.size() <= 2)
     return "diagnose wrote no effect: nothing to check on the held-out files.";
   return "On the held-out files' current, these of diagnose's effects lower the error: " +
-         (lower.empty() ? std::string("none") : joined(lower, "; ")) +
+         (lower.empty() ? std::string("none") : joined_items(lower, "; ")) +
          "; these raise it, so they are not claimed here: " +
-         (higher.empty() ? std::string("none") : joined(higher, "; ")) +
+         (higher.empty() ? std::string("none") : joined_items(higher, "; ")) +
          ". A claim that passes one held-out file can fail on another: the facts below say why "
          "(few reversals, motions outside the fitting files' range).";
 }
@@ -171,9 +172,9 @@ Table measured_table(const MeasuredSplit& split, double target) {
     row.push_back(std::to_string(s.samples));
     row.push_back(format_fixed(split.columns[1].rmse[j], 3));
     for (std::size_t c = 2; c < split.columns.size(); ++c)
-      row.push_back(cell(maker, split.columns[c].rmse[j]));
-    const std::vector<std::string> names = meeting(split, joint, target);
-    row.push_back(names.empty() ? "no" : "yes: " + joined(names, ", "));
+      row.push_back(rmse_cell(maker, split.columns[c].rmse[j]));
+    const std::vector<std::string> names = estimates_meeting_target(split, joint, target);
+    row.push_back(names.empty() ? "no" : "yes: " + joined_items(names, ", "));
     t.rows.push_back(row);
   }
   return t;
@@ -249,22 +250,22 @@ std::string candidate_summary(const MeasuredResult& r) {
         .push_back(joints.empty() ? title : title + " (joints " + joints + ")");
   }
   return "Claimed, held out by file: " +
-         (claimed.empty() ? std::string("none") : joined(claimed, "; ")) +
+         (claimed.empty() ? std::string("none") : joined_items(claimed, "; ")) +
          ". Not supported on any joint: " +
-         (none.empty() ? std::string("none") : joined(none, "; ")) + ".";
+         (none.empty() ? std::string("none") : joined_items(none, "; ")) + ".";
 }
 
 std::string measured_headline(const MeasuredResult& r, double target) {
   std::string text = std::string(kMeasuredLabel) + "\n";
   text += "current-based joint torque against the torque sensor, RMSE on the held-out files " +
           r.forward.scored_on + " (fitted on " + r.forward.fitted_on + "):\n";
-  text += split_text(r.forward, target);
+  text += measured_split_text(r.forward, target);
   if (!r.reverse.columns.empty()) {
     text += "reverse split, fitted on " + r.reverse.fitted_on + ", scored on " +
             r.reverse.scored_on + ":\n";
-    text += split_text(r.reverse, target);
+    text += measured_split_text(r.reverse, target);
   }
-  text += target_sentence(r.forward, target) + "\n";
+  text += measured_target_sentence(r.forward, target) + "\n";
   text += low_pass_sentence(r) + "\n";
   if (!r.diagnosis_heldout.empty()) text += diagnosis_transfer_sentence(r) + "\n";
   std::vector<std::string> claimed;
@@ -273,7 +274,7 @@ std::string measured_headline(const MeasuredResult& r, double target) {
       claimed.push_back(c.key + " j" + std::to_string(c.joint + 1) + " " +
                         format_percent_change(c.heldout_before, c.heldout_after));
   text += "candidate effects that lower the held-out error: " +
-          (claimed.empty() ? std::string("none") : joined(claimed, ", ")) + "\n";
+          (claimed.empty() ? std::string("none") : joined_items(claimed, ", ")) + "\n";
   return text;
 }
 
@@ -287,7 +288,7 @@ void add_measured_summary(HtmlReport& page, const MeasuredResult& r, double targ
   page.links({{"measured.html", "measured",
                "— the Kinova Gen3 logs: before/after per joint, candidate effects, plots"}});
   page.table(measured_table(r.forward, target));
-  page.paragraph(target_sentence(r.forward, target));
+  page.paragraph(measured_target_sentence(r.forward, target));
 }
 
 void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
@@ -303,12 +304,12 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
       format_number(r.seconds, 3) + " s.");
   page.heading("Held out by file");
   page.table(measured_table(r.forward, o.target_reduction));
-  page.paragraph(target_sentence(r.forward, o.target_reduction));
+  page.paragraph(measured_target_sentence(r.forward, o.target_reduction));
   page.paragraph(low_pass_sentence(r));
   if (!r.reverse.columns.empty()) {
     page.heading("The reverse split", 3);
     page.table(measured_table(r.reverse, o.target_reduction));
-    page.paragraph(target_sentence(r.reverse, o.target_reduction));
+    page.paragraph(measured_target_sentence(r.reverse, o.target_reduction));
   }
   if (!r.training.results.empty()) {
     const auto epochs = [](const CompensatorTraining& t) {
@@ -355,8 +356,8 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
   page.list(measured_fact_lines(r.facts));
   if (!r.notes.empty()) page.list(r.notes);
   page.heading("Residuals on the held-out files");
-  for (int j : scored_joints(r.forward))
-    add_joint_plots(page, r.traces, j, r.forward.scored_on);
+  for (int j : sensor_scored_joints(r.forward))
+    add_measured_joint_plots(page, r.traces, j, r.forward.scored_on);
   page.write(folder / "measured.html");
   AtomicFile json(folder / "measured.json");
   json.write(measured_json(r, o.target_reduction));
@@ -383,14 +384,14 @@ std::string measured_json(const MeasuredResult& r, double target) {
          {"seconds", r.seconds}};
   j["forward"] = split(r.forward);
   json met = json::array();
-  for (int joint : scored_joints(r.forward))
-    if (!meeting(r.forward, joint, target).empty()) met.push_back(joint + 1);
+  for (int joint : sensor_scored_joints(r.forward))
+    if (!estimates_meeting_target(r.forward, joint, target).empty()) met.push_back(joint + 1);
   j["forward"]["joints_meeting_target"] = met;
   if (!r.reverse.columns.empty()) {
     j["reverse"] = split(r.reverse);
     json rmet = json::array();
-    for (int joint : scored_joints(r.reverse))
-      if (!meeting(r.reverse, joint, target).empty()) rmet.push_back(joint + 1);
+    for (int joint : sensor_scored_joints(r.reverse))
+      if (!estimates_meeting_target(r.reverse, joint, target).empty()) rmet.push_back(joint + 1);
     j["reverse"]["joints_meeting_target"] = rmet;
   }
   for (const SensorCandidate& c : r.candidates)
