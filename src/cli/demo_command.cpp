@@ -8,6 +8,7 @@
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
 #include "offline/pipeline/measured_report.hpp"
+#include "tpf/common/error.hpp"
 
 namespace tpf::cli {
 
@@ -46,10 +47,12 @@ void register_demo_command(CLI::App& app) {
       ->capture_default_str();
   cmd->callback([o, out] {
     o->out = *out;
-    std::printf(
-        "tpf demo: the whole loop on the digital twin (SIMULATED) and on the Kinova Gen3 logs "
-        "(MEASURED), output in %s\n",
-        out->c_str());
+    if (!o->run_twin && !o->run_measured)
+      throw Error("tpf demo: --no-twin and --no-measured leave nothing to run");
+    const std::string twin = o->run_twin ? "the digital twin (SIMULATED)" : "";
+    const std::string measured = o->run_measured ? "the Kinova Gen3 logs (MEASURED)" : "";
+    std::printf("tpf demo: the whole loop on %s%s%s, output in %s\n", twin.c_str(),
+                twin.empty() || measured.empty() ? "" : " and on ", measured.c_str(), out->c_str());
     const auto result = offline::run_demo(*o, [](const std::string& line) {
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
