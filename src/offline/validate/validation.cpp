@@ -293,8 +293,8 @@ std::string validation_json(const Validation& v) {
 
 #define TPF_INSTANTIATE_VALIDATION(N)                                                              \
   template EffortEstimate nominal_estimate<N>(const NominalModel<double, N>&, const JointSamples&, \
-                                              std::vector<std::string>&);                          \
-  template EffortEstimate compensated_estimate<N>(const EstimatorSetup<N>&, const Log&,            \
+                                              std::vector<std::string>&);            \
+  template EffortEstimate compensated_estimate<N>(const EstimatorSetup<N>&, const Log&,             \
                                                   const EffortEstimate&);
 TPF_INSTANTIATE_VALIDATION(1)
 TPF_INSTANTIATE_VALIDATION(2)
