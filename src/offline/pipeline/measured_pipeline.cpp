@@ -244,6 +244,151 @@ Eigen::VectorXd choose_low_pass_time_constants(const Log& log, const JointSample
   return best;
 }
 
+/// What every stage reads: the arm, the fitting and the scoring logs with their samples.
+struct MeasuredData {
+  Model<double, kMeasuredJoints> model;
+  Log fit, score;
+  JointSamples fit_samples, score_samples;
+  Eigen::VectorXd kt;  ///< effort per N·m
+};
+
+using Say = std::function<void(const std::string&)>;
+
+/// Stage 1: identify (current-based), identify with the friction against the sensor, and the
+/// latter with the current low-passed: estimates 0, 1, 2 on the scoring files.
+std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredData& d,
+                                           MeasuredResult& result, Gen3Model& identified,
+                                           Gen3Model& sensor_model, const Say& say) {
+  say("measured: identify on " + joined_file_names(o.fitting));
+  identified =
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false).nominal;
+  d.kt = identified.effort_per_newton_metre;
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", identified,
+                                      d.fit.source + " (MEASURED)");
+  std::vector<EffortEstimate> estimates{
+      nominal_estimate<kMeasuredJoints>(identified, d.score_samples, result.notes)};
+  estimates.back().name = "after identification";
+  say("measured: identify again, the friction fitted against the torque sensor");
+  sensor_model =
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true).nominal;
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json", sensor_model,
+                                      d.fit.source + " (MEASURED)");
+  std::vector<std::string> ignored;  // the same notes again
+  estimates.push_back(nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, ignored));
+  estimates.back().name = "friction against the sensor";
+  const EffortEstimate on_fit =
+      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored);
+  result.low_pass_time_constants =
+      choose_low_pass_time_constants(d.fit, d.fit_samples, on_fit, d.kt);
+  estimates.push_back(low_passed_estimate(estimates[1], d.score, d.score_samples,
+                                          result.low_pass_time_constants, d.kt));
+  estimates.back().name = "+ current low-pass";
+  return estimates;
+}
+
+/// Stage 2: diagnose on the fitting files (held out: the last one); its written model against
+/// the sensor, and each written effect in turn against the scoring files' current.
+void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredResult& result,
+                    std::vector<EffortEstimate>& estimates, const Say& say) {
+  say("measured: diagnose on " + joined_file_names(o.fitting) + " (held out: " + o.fitting.back() +
+      ")");
+  const Diagnosis<kMeasuredJoints> diagnosis = diagnose(d.fit, d.model, {});
+  result.diagnosis_findings = diagnosis.findings;
+  result.diagnosis_notes = diagnosis.notes;
+  result.diagnosis_heldout = o.fitting.back();
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.diagnosed.params.json", diagnosis.nominal,
+                                      d.fit.source + " (MEASURED)");
+  std::vector<std::string> titles, unseen, ignored;
+  with_first_diagnosed_effects(diagnosis, 0, &titles);
+  result.diagnosis_effort.push_back(
+      {"after identification", effort_rmse_per_joint(d.score_samples, estimates.front())});
+  for (std::size_t keep = 0; keep <= written_effect_count(diagnosis); ++keep) {
+    EffortEstimate e = nominal_estimate<kMeasuredJoints>(
+        with_first_diagnosed_effects(diagnosis, keep), d.score_samples, ignored);
+    result.diagnosis_effort.push_back(
+        {keep == 0 ? "diagnose's model without its effects" : "+ " + titles[keep - 1],
+         effort_rmse_per_joint(d.score_samples, e)});
+    if (keep > 0 && same_values_or_nan(e.drive_loss, estimates.back().drive_loss)) {
+      unseen.push_back(titles[keep - 1]);
+      continue;
+    }
+    e.name = keep == 0 ? "diagnose's model" : "diagnose: + " + titles[keep - 1];
+    estimates.push_back(std::move(e));
+  }
+  if (!unseen.empty())
+    result.diagnosis_unseen =
+        "diagnose's " + joined_file_names(unseen) +
+        " act on the link side (validate counts only friction and armature as the drive loss "
+        "d that the sensor behind the gear does not see): K_t·i − d − τ_sensor is the same "
+        "with or without them, so they get no column of their own.";
+}
+
+/// Stage 3: the per-joint compensators on the fitting files, scored through validate's path:
+/// over the identified model on the current residual, and over the sensor-fitted friction
+/// against the sensor.
+void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredResult& result,
+                       const Gen3Model& identified, const Gen3Model& sensor_model,
+                       std::vector<EffortEstimate>& estimates, const Say& say) {
+  say("measured: train one network per joint on " + joined_file_names(o.fitting) + " (" +
+      std::to_string(o.training_epochs) + " epochs at most), on the current residual");
+  const EstimatorSetup<kMeasuredJoints> setup =
+      train_measured_compensator(o, d.fit, identified, {}, "gen3.tcn.json", result.training, say);
+  estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, d.score, estimates[0]));
+  estimates.back().name = "with the compensator";
+  say("measured: the same networks over the sensor-fitted friction, trained against the "
+      "torque sensor (K_t·i − d − τ_sensor)");
+  std::vector<std::string> ignored;
+  const SensorSide fit_side{
+      &d.fit, &d.fit_samples,
+      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored).drive_loss};
+  const EstimatorSetup<kMeasuredJoints> sensor_setup =
+      train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side, d.kt),
+                                 "gen3.tcn-sensor.json", result.sensor_training, say);
+  estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, d.score, estimates[1]));
+  estimates.back().name = "friction against the sensor + compensator trained against it";
+}
+
+/// The plots' residuals on the scoring files: Kt only, after identification, the sensor-fitted
+/// friction with the low-pass, and (when trained) the compensator trained against the sensor.
+MeasuredTraces plot_traces(const MeasuredData& d, const std::vector<EffortEstimate>& estimates,
+                           bool trained) {
+  MeasuredTraces tr;
+  tr.t = d.score_samples.t;
+  tr.file_time = time_within_file(d.score, d.score_samples);
+  tr.dq = d.score_samples.dq;
+  const auto add = [&](const std::string& name, const EffortEstimate* e) {
+    tr.names.push_back(name);
+    tr.residual.push_back(sensor_residual_of(d.score, d.score_samples, e, d.kt));
+  };
+  add("Kt only", nullptr);
+  add("after identification", &estimates[0]);
+  add("friction against the sensor + current low-pass", &estimates[2]);
+  if (trained)
+    add("friction against the sensor + compensator trained against it", &estimates.back());
+  return tr;
+}
+
+/// Stage 6: the other way round, fitted on the scoring files and scored on the fitting files.
+MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d, const Say& say) {
+  say("measured: reverse split: identify on " + joined_file_names(o.scoring) + ", score on " +
+      joined_file_names(o.fitting));
+  std::vector<std::string> notes;
+  std::vector<EffortEstimate> estimates;
+  for (bool from_sensor : {false, true}) {
+    estimates.push_back(nominal_estimate<kMeasuredJoints>(
+        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor)
+            .nominal,
+        d.fit_samples, notes));
+    estimates.back().name = from_sensor ? "friction against the sensor" : "after identification";
+  }
+  MeasuredSplit split;
+  split.fitted_on = joined_file_names(o.scoring);
+  split.scored_on = joined_file_names(o.fitting);
+  split.validation = score_estimates(d.fit, d.fit_samples, estimates, d.kt);
+  split.columns = measured_split_columns(split.validation);
+  return split;
+}
+
 }  // namespace
 
 int measured_column(const MeasuredSplit& split, const std::string& name) {
@@ -255,152 +400,45 @@ int measured_column(const MeasuredSplit& split, const std::string& name) {
 MeasuredResult run_measured(const MeasuredOptions& o,
                             const std::function<void(const std::string&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const auto say = [&](const std::string& line) {
+  const Say say = [&](const std::string& line) {
     if (progress) progress(line);
   };
   std::filesystem::create_directories(o.out);
   MeasuredResult result;
-  const auto model = load_robot<double, kMeasuredJoints>(data_file(o.robot));
-  const Log fit = read_measured_files(o, o.fitting);
-  const Log score = read_measured_files(o, o.scoring);
-  const JointSamples fit_samples = samples_without_holdout(fit);
-  const JointSamples score_samples = samples_without_holdout(score);
+  MeasuredData d{load_robot<double, kMeasuredJoints>(data_file(o.robot)),
+                 read_measured_files(o, o.fitting),
+                 read_measured_files(o, o.scoring),
+                 {},
+                 {},
+                 {}};
+  d.fit_samples = samples_without_holdout(d.fit);
+  d.score_samples = samples_without_holdout(d.score);
 
-  // 1. identify on every fitting file; score on the held-out files.
-  say("measured: identify on " + joined_file_names(o.fitting));
-  const Identification<kMeasuredJoints> identified =
-      identify_on_every_sample(fit, model, o.friction_samples_per_joint, false);
-  const Gen3Model& nominal = identified.nominal;
-  const Eigen::VectorXd kt = nominal.effort_per_newton_metre;
-  save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", nominal,
-                                      fit.source + " (MEASURED)");
-  std::vector<EffortEstimate> estimates{
-      nominal_estimate<kMeasuredJoints>(nominal, score_samples, result.notes)};
-  estimates.back().name = "after identification";
-  std::vector<std::string> ignored;  // the same notes again
-  say("measured: identify again, the friction fitted against the torque sensor");
-  const Identification<kMeasuredJoints> sensor_identified =
-      identify_on_every_sample(fit, model, o.friction_samples_per_joint, true);
-  save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json",
-                                      sensor_identified.nominal, fit.source + " (MEASURED)");
-  estimates.push_back(
-      nominal_estimate<kMeasuredJoints>(sensor_identified.nominal, score_samples, ignored));
-  estimates.back().name = "friction against the sensor";
-  const EffortEstimate sensor_on_fit =
-      nominal_estimate<kMeasuredJoints>(sensor_identified.nominal, fit_samples, ignored);
-  result.low_pass_time_constants =
-      choose_low_pass_time_constants(fit, fit_samples, sensor_on_fit, kt);
-  estimates.push_back(
-      low_passed_estimate(estimates[1], score, score_samples, result.low_pass_time_constants, kt));
-  estimates.back().name = "+ current low-pass";
-
-  // 2. diagnose on the fitting files (held out: the last one); each written effect in turn.
-  if (o.run_diagnose) {
-    say("measured: diagnose on " + joined_file_names(o.fitting) +
-        " (held out: " + o.fitting.back() + ")");
-    const Diagnosis<kMeasuredJoints> d = diagnose(fit, model, {});
-    result.diagnosis_findings = d.findings;
-    result.diagnosis_notes = d.notes;
-    result.diagnosis_heldout = o.fitting.back();
-    save_nominal_model<kMeasuredJoints>(o.out / "gen3.diagnosed.params.json", d.nominal,
-                                        fit.source + " (MEASURED)");
-    std::vector<std::string> titles;
-    with_first_diagnosed_effects(d, 0, &titles);
-    std::vector<std::string> unseen;
-    result.diagnosis_effort.push_back(
-        {"after identification", effort_rmse_per_joint(score_samples, estimates.front())});
-    for (std::size_t keep = 0; keep <= written_effect_count(d); ++keep) {
-      EffortEstimate e = nominal_estimate<kMeasuredJoints>(with_first_diagnosed_effects(d, keep),
-                                                           score_samples, ignored);
-      result.diagnosis_effort.push_back(
-          {keep == 0 ? "diagnose's model without its effects" : "+ " + titles[keep - 1],
-           effort_rmse_per_joint(score_samples, e)});
-      if (keep > 0 && same_values_or_nan(e.drive_loss, estimates.back().drive_loss)) {
-        unseen.push_back(titles[keep - 1]);
-        continue;
-      }
-      e.name = keep == 0 ? "diagnose's model" : "diagnose: + " + titles[keep - 1];
-      estimates.push_back(std::move(e));
-    }
-    if (!unseen.empty())
-      result.diagnosis_unseen =
-          "diagnose's " + joined_file_names(unseen) +
-          " act on the link side (validate counts only friction and armature as the drive loss "
-          "d that the sensor behind the gear does not see): K_t·i − d − τ_sensor is the same "
-          "with or without them, so they get no column of their own.";
-  }
-
-  // 3. the per-joint compensator on the fitting files, scored through validate's path.
-  const SensorSide fit_side{
-      &fit, &fit_samples,
-      nominal_estimate<kMeasuredJoints>(nominal, fit_samples, ignored).drive_loss};
-  if (o.run_training) {
-    say("measured: train one network per joint on " + joined_file_names(o.fitting) + " (" +
-        std::to_string(o.training_epochs) + " epochs at most), on the current residual");
-    const EstimatorSetup<kMeasuredJoints> setup =
-        train_measured_compensator(o, fit, nominal, {}, "gen3.tcn.json", result.training, say);
-    estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, score, estimates.front()));
-    estimates.back().name = "with the compensator";
-    say("measured: the same networks over the sensor-fitted friction, trained against the "
-        "torque sensor (K_t·i − d − τ_sensor)");
-    const SensorSide sensor_fit_side{&fit, &fit_samples, sensor_on_fit.drive_loss};
-    const EstimatorSetup<kMeasuredJoints> sensor_setup = train_measured_compensator(
-        o, fit, sensor_identified.nominal, sensor_residual(sensor_fit_side, kt),
-        "gen3.tcn-sensor.json", result.sensor_training, say);
-    estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, score, estimates[1]));
-    estimates.back().name = "friction against the sensor + compensator trained against it";
-  }
+  Gen3Model identified, sensor_model;
+  std::vector<EffortEstimate> estimates =
+      identify_stage(o, d, result, identified, sensor_model, say);
+  if (o.run_diagnose) diagnose_stage(o, d, result, estimates, say);
+  if (o.run_training) compensator_stage(o, d, result, identified, sensor_model, estimates, say);
   say("measured: score on " + joined_file_names(o.scoring) + " against the torque sensor");
   result.forward.fitted_on = joined_file_names(o.fitting);
   result.forward.scored_on = joined_file_names(o.scoring);
-  result.forward.validation = score_estimates(score, score_samples, estimates, kt);
+  result.forward.validation = score_estimates(d.score, d.score_samples, estimates, d.kt);
   result.forward.validation.notes = result.notes;
   result.forward.columns = measured_split_columns(result.forward.validation);
 
-  // 4. what the residual holds: each candidate fitted on the fitting files, scored held out.
+  // What the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");
-  const SensorSide held_side{&score, &score_samples, estimates.front().drive_loss};
-  result.candidates = sensor_candidates(fit_side, held_side, kt, Eigen::VectorXd(model.gear_ratio));
-
-  // 5. plots' traces: Kt only, after identification, with the compensator.
-  MeasuredTraces& tr = result.traces;
-  tr.t = score_samples.t;
-  tr.file_time = time_within_file(score, score_samples);
-  tr.dq = score_samples.dq;
-  tr.names.push_back("Kt only");
-  tr.residual.push_back(sensor_residual_of(score, score_samples, nullptr, kt));
-  tr.names.push_back("after identification");
-  tr.residual.push_back(sensor_residual_of(score, score_samples, &estimates.front(), kt));
-  tr.names.push_back("friction against the sensor + current low-pass");
-  tr.residual.push_back(sensor_residual_of(score, score_samples, &estimates[2], kt));
-  if (o.run_training) {
-    tr.names.push_back("friction against the sensor + compensator trained against it");
-    tr.residual.push_back(sensor_residual_of(score, score_samples, &estimates.back(), kt));
-  }
-
-  // 6. the other way round: fit on the scoring files, score on the fitting files.
-  if (o.run_reverse) {
-    say("measured: reverse split: identify on " + joined_file_names(o.scoring) + ", score on " +
-        joined_file_names(o.fitting));
-    const Identification<kMeasuredJoints> reverse =
-        identify_on_every_sample(score, model, o.friction_samples_per_joint, false);
-    std::vector<std::string> notes;
-    std::vector<EffortEstimate> reverse_estimates{
-        nominal_estimate<kMeasuredJoints>(reverse.nominal, fit_samples, notes)};
-    reverse_estimates.back().name = "after identification";
-    reverse_estimates.push_back(nominal_estimate<kMeasuredJoints>(
-        identify_on_every_sample(score, model, o.friction_samples_per_joint, true).nominal,
-        fit_samples, notes));
-    reverse_estimates.back().name = "friction against the sensor";
-    result.reverse.fitted_on = joined_file_names(o.scoring);
-    result.reverse.scored_on = joined_file_names(o.fitting);
-    result.reverse.validation = score_estimates(fit, fit_samples, reverse_estimates, kt);
-    result.reverse.columns = measured_split_columns(result.reverse.validation);
-  }
-
-  // 7. what the files can decide.
-  result.facts = measured_facts({{&fit, &fit_samples}, {&score, &score_samples}}, kt);
-  result.facts.outside_share = outside_range_share(fit_samples, score_samples);
+  std::vector<std::string> ignored;
+  const SensorSide fit_side{
+      &d.fit, &d.fit_samples,
+      nominal_estimate<kMeasuredJoints>(identified, d.fit_samples, ignored).drive_loss};
+  const SensorSide held_side{&d.score, &d.score_samples, estimates.front().drive_loss};
+  result.candidates =
+      sensor_candidates(fit_side, held_side, d.kt, Eigen::VectorXd(d.model.gear_ratio));
+  result.traces = plot_traces(d, estimates, o.run_training);
+  if (o.run_reverse) result.reverse = reverse_stage(o, d, say);
+  result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}}, d.kt);
+  result.facts.outside_share = outside_range_share(d.fit_samples, d.score_samples);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
