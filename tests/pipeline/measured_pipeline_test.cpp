@@ -16,14 +16,14 @@
 namespace tpf::offline {
 namespace {
 
-std::string read_text(const std::filesystem::path& p) {
+std::string read_measured_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
 }
 
-double rmse(const MeasuredSplit& split, const std::string& column, int joint) {
+double column_rmse(const MeasuredSplit& split, const std::string& column, int joint) {
   const int c = measured_column(split, column);
   EXPECT_GE(c, 0) << column;
   return c < 0 ? NAN
@@ -57,19 +57,20 @@ TEST_F(MeasuredLoop, ModelsBeatKtOnlyAgainstTheSensorHeldOutByFile) {
   const MeasuredSplit& f = measured().forward;
   EXPECT_EQ(f.scored_on, "opti_traj_testing1.csv.gz + opti_traj_testing2.csv.gz");
   for (int j = 0; j < 6; ++j) {
-    const double kt = rmse(f, "Kt only", j);
+    const double kt = column_rmse(f, "Kt only", j);
     // The maker's TorqueCur is K_t·Cur exactly: the same RMSE.
-    EXPECT_NEAR(rmse(f, "maker (tau_maker)", j), kt, 1e-3 * kt) << "joint " << j + 1;
+    EXPECT_NEAR(column_rmse(f, "maker (tau_maker)", j), kt, 1e-3 * kt) << "joint " << j + 1;
     EXPECT_GT(kt, 1.0) << "joint " << j + 1;
     // Friction fitted against the sensor: at least 40 % below K_t·i alone on every joint (50–83 %
     // measured); a model without friction stays at K_t·i's error.
-    EXPECT_LT(rmse(f, "friction against the sensor", j), 0.6 * kt) << "joint " << j + 1;
-    EXPECT_LT(rmse(f, "+ current low-pass", j), 0.7 * kt) << "joint " << j + 1;
+    EXPECT_LT(column_rmse(f, "friction against the sensor", j), 0.6 * kt) << "joint " << j + 1;
+    EXPECT_LT(column_rmse(f, "+ current low-pass", j), 0.7 * kt) << "joint " << j + 1;
   }
   // The current-based identification halves the error where the rigid body matters little.
   for (int j : {0, 4, 5})
-    EXPECT_LT(rmse(f, "after identification", j), 0.5 * rmse(f, "Kt only", j)) << j + 1;
-  EXPECT_TRUE(std::isnan(rmse(f, "Kt only", 6))) << "joint 7's sensor is flat: not scored";
+    EXPECT_LT(column_rmse(f, "after identification", j), 0.5 * column_rmse(f, "Kt only", j))
+        << j + 1;
+  EXPECT_TRUE(std::isnan(column_rmse(f, "Kt only", 6))) << "joint 7's sensor is flat: not scored";
 }
 
 TEST_F(MeasuredLoop, CandidatesAreClaimedOnlyWhereTheHeldOutErrorFalls) {
@@ -102,14 +103,14 @@ TEST_F(MeasuredLoop, FactsComeFromTheFiles) {
 }
 
 TEST_F(MeasuredLoop, ReportAndJsonHoldTheNumbers) {
-  const std::string html = read_text(out_ / "measured.html");
+  const std::string html = read_measured_text(out_ / "measured.html");
   EXPECT_NE(html.find("MEASURED DATA"), std::string::npos);
   EXPECT_NE(html.find("W. Chiha, MIT licence"), std::string::npos);
   EXPECT_NE(html.find("data/real/kinova-gen3/SOURCE.md"), std::string::npos);
   EXPECT_NE(html.find("<svg"), std::string::npos);
-  const std::string index = read_text(out_ / "index.html");
+  const std::string index = read_measured_text(out_ / "index.html");
   EXPECT_NE(index.find("href=\"measured.html\""), std::string::npos);
-  const auto json = nlohmann::json::parse(read_text(out_ / "measured.json"));
+  const auto json = nlohmann::json::parse(read_measured_text(out_ / "measured.json"));
   EXPECT_TRUE(json.at("measured").get<bool>());
   const MeasuredSplit& f = measured().forward;
   const int c = measured_column(f, "friction against the sensor");
