@@ -46,11 +46,12 @@ JointSamples samples_without_holdout(const Log& log) {
 
 Identification<kMeasuredJoints> identify_on_every_sample(
     const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
-    bool friction_from_sensor) {
+    bool friction_from_sensor, const std::function<void(const std::string&)>& say) {
   IdentifyOptions options;
   options.friction_samples_per_joint = friction_samples;
   options.samples.hold_out = false;
   options.friction_from_sensor = friction_from_sensor;
+  options.progress = say;
   return identify(log, model, options);
 }
 
@@ -261,7 +262,7 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
                                            Gen3Model& sensor_model, const Say& say) {
   say("measured: identify on " + joined_file_names(o.fitting));
   identified =
-      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false).nominal;
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false, say).nominal;
   d.kt = identified.effort_per_newton_metre;
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", identified,
                                       d.fit.source + " (MEASURED)");
@@ -270,7 +271,7 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
   estimates.back().name = "after identification";
   say("measured: identify again, the friction fitted against the torque sensor");
   sensor_model =
-      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true).nominal;
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true, say).nominal;
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json", sensor_model,
                                       d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
@@ -376,7 +377,7 @@ MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d, con
   std::vector<EffortEstimate> estimates;
   for (bool from_sensor : {false, true}) {
     estimates.push_back(nominal_estimate<kMeasuredJoints>(
-        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor)
+        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor, say)
             .nominal,
         d.fit_samples, notes));
     estimates.back().name = from_sensor ? "friction against the sensor" : "after identification";

@@ -291,15 +291,18 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
     // Lag: the sensor read later (positive) or earlier than the current, chosen in-file.
     const int max_shift =
         static_cast<int>(std::round(o.max_lag_s / std::max(fs.t[1] - fs.t[0], 1e-6)));
-    // (judged on the base refitted on the shifted residual, over the rows both have)
+    // (judged on the base refitted on each shifted residual, over the rows every shift has;
+    // 2-sample steps)
+    const Eigen::VectorXd common = restricted_to_finite(
+        sensor_shifted(fit_side, rf, j, max_shift), sensor_shifted(fit_side, rf, j, -max_shift));
     int best = 0;
-    double best_ratio = 1.0;
-    for (int shift = -max_shift; shift <= max_shift; ++shift) {
-      const Eigen::VectorXd r = sensor_shifted(fit_side, rf, j, shift);
-      const double ratio =
-          fitted_candidate_rms(fs, r, fs, r, j, base, 2, nullptr).first /
-          fitted_candidate_rms(fs, restricted_to_finite(rf, r), fs, rf, j, base, 2, nullptr).first;
-      if (ratio < best_ratio) best_ratio = ratio, best = shift;
+    double best_rms = std::numeric_limits<double>::infinity();
+    for (int shift = -(max_shift / 2) * 2; shift <= max_shift; shift += 2) {
+      const Eigen::VectorXd r =
+          restricted_to_finite(sensor_shifted(fit_side, rf, j, shift), common);
+      const double now =
+          finite_rms(minus_candidate_fit(fs, r, j, base, fit_candidate(fs, r, j, base, 2)));
+      if (now < best_rms) best_rms = now, best = shift;
     }
     const Eigen::VectorXd lag_fit = sensor_shifted(fit_side, rf, j, best);
     const Eigen::VectorXd lag_held = sensor_shifted(held_side, rh, j, best);
