@@ -370,18 +370,28 @@ MeasuredTraces plot_traces(const MeasuredData& d, const std::vector<EffortEstima
 }
 
 /// Stage 6: the other way round, fitted on the scoring files and scored on the fitting files.
-MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d, const Say& say) {
+MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
+                            Eigen::VectorXd& time_constants, const Say& say) {
   say("measured: reverse split: identify on " + joined_file_names(o.scoring) + ", score on " +
       joined_file_names(o.fitting));
   std::vector<std::string> notes;
   std::vector<EffortEstimate> estimates;
+  Gen3Model sensor_model;
   for (bool from_sensor : {false, true}) {
-    estimates.push_back(nominal_estimate<kMeasuredJoints>(
+    const Gen3Model model =
         identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor, say)
-            .nominal,
-        d.fit_samples, notes));
+            .nominal;
+    estimates.push_back(nominal_estimate<kMeasuredJoints>(model, d.fit_samples, notes));
     estimates.back().name = from_sensor ? "friction against the sensor" : "after identification";
+    if (from_sensor) sensor_model = model;
   }
+  // The low-pass chosen on this split's fitting files (the scoring files of the forward one).
+  time_constants = choose_low_pass_time_constants(
+      d.score, d.score_samples,
+      nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, notes), d.kt);
+  estimates.push_back(
+      low_passed_estimate(estimates[1], d.fit, d.fit_samples, time_constants, d.kt));
+  estimates.back().name = "+ current low-pass";
   MeasuredSplit split;
   split.fitted_on = joined_file_names(o.scoring);
   split.scored_on = joined_file_names(o.fitting);
@@ -437,7 +447,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   result.candidates =
       sensor_candidates(fit_side, held_side, d.kt, Eigen::VectorXd(d.model.gear_ratio));
   result.traces = plot_traces(d, estimates, o.run_training);
-  if (o.run_reverse) result.reverse = reverse_stage(o, d, say);
+  if (o.run_reverse)
+    result.reverse = reverse_stage(o, d, result.reverse_low_pass_time_constants, say);
   result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}}, d.kt);
   result.facts.outside_share = outside_range_share(d.fit_samples, d.score_samples);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

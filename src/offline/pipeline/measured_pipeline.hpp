@@ -80,6 +80,7 @@ struct MeasuredResult {
   /// Per joint: time constant [s] of the causal current low-pass chosen on the fitting files for
   /// the sensor-fitted model (0: none).
   Eigen::VectorXd low_pass_time_constants;
+  Eigen::VectorXd reverse_low_pass_time_constants;  ///< the same, chosen for the reverse split
   MeasuredFacts facts;
   CompensatorTraining training;         ///< on the current residual (tpf train's target)
   CompensatorTraining sensor_training;  ///< on K_t·i − d − τ_sensor where the sensor varies

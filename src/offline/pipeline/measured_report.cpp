@@ -310,6 +310,12 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
     page.heading("The reverse split", 3);
     page.table(measured_table(r.reverse, o.target_reduction));
     page.paragraph(measured_target_sentence(r.reverse, o.target_reduction));
+    std::string taus;
+    for (Eigen::Index j = 0; j < r.reverse_low_pass_time_constants.size(); ++j)
+      taus += (j ? " / " : " ") + format_number(1000 * r.reverse_low_pass_time_constants[j], 3);
+    page.paragraph(
+        "Low-pass time constants chosen on this split's fitting files (joints 1–7, ms):" + taus +
+        ".");
   }
   if (!r.training.results.empty()) {
     const auto epochs = [](const CompensatorTraining& t) {
