@@ -291,6 +291,64 @@ void add_measured_summary(HtmlReport& page, const MeasuredResult& r, double targ
   page.paragraph(measured_target_sentence(r.forward, target));
 }
 
+namespace {
+
+/// The reverse split's table, target and low-pass time constants.
+void add_reverse_section(HtmlReport& page, const MeasuredResult& r, const MeasuredOptions& o) {
+  page.heading("The reverse split", 3);
+  page.table(measured_table(r.reverse, o.target_reduction));
+  page.paragraph(measured_target_sentence(r.reverse, o.target_reduction));
+  std::string taus;
+  for (Eigen::Index j = 0; j < r.reverse_low_pass_time_constants.size(); ++j)
+    taus += (j ? " / " : " ") + format_number(1000 * r.reverse_low_pass_time_constants[j], 3);
+  page.paragraph("Low-pass time constants chosen on this split's fitting files (joints 1–7, ms):" +
+                 taus + ".");
+}
+
+/// What the two compensators are and how they trained.
+void add_compensator_section(HtmlReport& page, const MeasuredResult& r, const MeasuredOptions& o) {
+  const auto epochs = [](const CompensatorTraining& t) {
+    std::string text;
+    for (const TcnTrainResult& n : t.results)
+      text.append(" ").append(std::to_string(n.best_epoch));
+    return text;
+  };
+  page.paragraph(
+      "Compensator: one " + std::to_string(o.joint_hidden) +
+      "-channel network per joint, trained by tpf train's machinery on the fitting files (" +
+      std::to_string(o.training_epochs) +
+      " epochs at most), scored through validate's "
+      "compensator path (the run-time estimator replayed on the held-out files, its output "
+      "counted as drive loss). 'with the compensator' sits on the identified model and learns "
+      "the run-time estimator's current residual τ_res = K_t·i − (rigid body + friction), as "
+      "tpf train does on contact-free logs (best epochs" +
+      epochs(r.training) + ", " + format_number(r.training.seconds, 3) +
+      " s); on these files that residual holds the rigid body's error too, which a per-joint "
+      "network that sees only its own joint cannot predict. The last column sits on the "
+      "friction fitted against the sensor and learns K_t·i − d − τ_sensor wherever the sensor "
+      "varies (best epochs" +
+      epochs(r.sensor_training) +
+      "). Both take q as an input, and the held-out files move where the fitting files never "
+      "went (below), so the networks extrapolate.");
+}
+
+/// diagnose's findings on the fitting files and its effects against the held-out current.
+void add_diagnosis_section(HtmlReport& page, const MeasuredResult& r) {
+  page.heading("What diagnose adds", 3);
+  page.paragraph(
+      "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
+      ": it claims an effect only if it lowers the current residual there. The column "
+      "\"diagnose's model\" above scores its written model against the sensor on the held-out "
+      "files; the table below adds its written effects one at a time against the held-out "
+      "files' current. Its findings on the fitting files:");
+  page.list(r.diagnosis_findings);
+  if (!r.diagnosis_unseen.empty()) page.paragraph(r.diagnosis_unseen);
+  page.table(diagnosis_effort_table(r));
+  page.paragraph(diagnosis_transfer_sentence(r));
+}
+
+}  // namespace
+
 void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
                            const std::filesystem::path& folder) {
   HtmlReport page("tpf: the loop on measured data (Kinova Gen3)");
@@ -306,55 +364,9 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
   page.table(measured_table(r.forward, o.target_reduction));
   page.paragraph(measured_target_sentence(r.forward, o.target_reduction));
   page.paragraph(low_pass_sentence(r));
-  if (!r.reverse.columns.empty()) {
-    page.heading("The reverse split", 3);
-    page.table(measured_table(r.reverse, o.target_reduction));
-    page.paragraph(measured_target_sentence(r.reverse, o.target_reduction));
-    std::string taus;
-    for (Eigen::Index j = 0; j < r.reverse_low_pass_time_constants.size(); ++j)
-      taus += (j ? " / " : " ") + format_number(1000 * r.reverse_low_pass_time_constants[j], 3);
-    page.paragraph(
-        "Low-pass time constants chosen on this split's fitting files (joints 1–7, ms):" + taus +
-        ".");
-  }
-  if (!r.training.results.empty()) {
-    const auto epochs = [](const CompensatorTraining& t) {
-      std::string text;
-      for (const TcnTrainResult& n : t.results)
-        text.append(" ").append(std::to_string(n.best_epoch));
-      return text;
-    };
-    page.paragraph(
-        "Compensator: one " + std::to_string(o.joint_hidden) +
-        "-channel network per joint, trained by tpf train's machinery on the fitting files (" +
-        std::to_string(o.training_epochs) +
-        " epochs at most), scored through validate's "
-        "compensator path (the run-time estimator replayed on the held-out files, its output "
-        "counted as drive loss). 'with the compensator' sits on the identified model and learns "
-        "the run-time estimator's current residual τ_res = K_t·i − (rigid body + friction), as "
-        "tpf train does on contact-free logs (best epochs" +
-        epochs(r.training) + ", " + format_number(r.training.seconds, 3) +
-        " s); on these files that residual holds the rigid body's error too, which a per-joint "
-        "network that sees only its own joint cannot predict. The last column sits on the "
-        "friction fitted against the sensor and learns K_t·i − d − τ_sensor wherever the sensor "
-        "varies (best epochs" +
-        epochs(r.sensor_training) +
-        "). Both take q as an input, and the held-out files move where the fitting files never "
-        "went (below), so the networks extrapolate.");
-  }
-  if (!r.diagnosis_heldout.empty()) {
-    page.heading("What diagnose adds", 3);
-    page.paragraph(
-        "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
-        ": it claims an effect only if it lowers the current residual there. The column "
-        "\"diagnose's model\" above scores its written model against the sensor on the held-out "
-        "files; the table below adds its written effects one at a time against the held-out "
-        "files' current. Its findings on the fitting files:");
-    page.list(r.diagnosis_findings);
-    if (!r.diagnosis_unseen.empty()) page.paragraph(r.diagnosis_unseen);
-    page.table(diagnosis_effort_table(r));
-    page.paragraph(diagnosis_transfer_sentence(r));
-  }
+  if (!r.reverse.columns.empty()) add_reverse_section(page, r, o);
+  if (!r.training.results.empty()) add_compensator_section(page, r, o);
+  if (!r.diagnosis_heldout.empty()) add_diagnosis_section(page, r);
   page.heading("What the residual holds: candidates against the sensor");
   page.table(candidate_table(r));
   page.paragraph(candidate_summary(r));
