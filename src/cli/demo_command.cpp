@@ -7,6 +7,8 @@
 #include "commands.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
+#include "offline/pipeline/measured_report.hpp"
+#include "tpf/common/error.hpp"
 
 namespace tpf::cli {
 
@@ -14,7 +16,9 @@ void register_demo_command(CLI::App& app) {
   auto o = std::make_shared<offline::DemoOptions>();
   auto out = std::make_shared<std::string>("tpf-demo");
   auto* cmd = app.add_subcommand(
-      "demo", "Run the whole loop on the digital twin and write a report (the README's main job)");
+      "demo",
+      "Run the whole loop on the digital twin and on the measured Kinova Gen3 logs and write one "
+      "report (the README's main job)");
   cmd->add_option("--out", *out, "output folder for parameters, weights and the report")
       ->capture_default_str();
   cmd->add_option("--train-epochs", o->training_epochs,
@@ -36,15 +40,30 @@ void register_demo_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("!--all-joints", o->per_joint,
                 "one network for all joints instead of one per joint (the default)");
+  cmd->add_flag("!--no-twin", o->run_twin, "skip the digital twin (stages 1-5)");
+  cmd->add_flag("!--no-measured", o->run_measured, "skip the Kinova Gen3 logs (stage 6, MEASURED)");
+  cmd->add_option("--measured-epochs", o->measured.training_epochs,
+                  "training budget of the measured compensator: epochs per network")
+      ->capture_default_str();
   cmd->callback([o, out] {
     o->out = *out;
-    std::printf("tpf demo: the whole loop on the digital twin (SIMULATED), output in %s\n",
-                out->c_str());
+    if (!o->run_twin && !o->run_measured)
+      throw Error("tpf demo: --no-twin and --no-measured leave nothing to run");
+    const std::string twin = o->run_twin ? "the digital twin (SIMULATED)" : "";
+    const std::string measured = o->run_measured ? "the Kinova Gen3 logs (MEASURED)" : "";
+    std::printf("tpf demo: the whole loop on %s%s%s, output in %s\n", twin.c_str(),
+                twin.empty() || measured.empty() ? "" : " and on ", measured.c_str(), out->c_str());
     const auto result = offline::run_demo(*o, [](const std::string& line) {
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
     });
-    std::printf("\n%s", offline::evaluation_headline(result.evaluation).c_str());
+    if (o->run_twin)
+      std::printf("\nSIMULATED (digital twin)\n%s",
+                  offline::evaluation_headline(result.evaluation).c_str());
+    if (result.measured)
+      std::printf(
+          "\n%s",
+          offline::measured_headline(*result.measured, o->measured.target_reduction).c_str());
     for (const auto& t : result.training.results)
       if (t.stopped_on_time) {
         std::printf(

@@ -9,10 +9,10 @@
 
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
-#include "read_command_logs.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "read_command_logs.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -22,7 +22,7 @@ struct IdentifyArgs {
   std::vector<std::string> logs;
   std::string robot, out;
   double static_velocity = 1e-4;
-  bool no_load_friction = false, quiet = false;
+  bool no_load_friction = false, quiet = false, friction_from_sensor = false;
 };
 
 template <int N>
@@ -32,6 +32,7 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   IdentifyOptions options;
   options.samples.regimes.static_velocity = a.static_velocity;
   options.fit_load_friction = !a.no_load_friction;
+  options.friction_from_sensor = a.friction_from_sensor;
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const auto model = tpf::load_robot<double, N>(a.robot);
@@ -91,6 +92,10 @@ void register_identify_command(CLI::App& app) {
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str();
   cmd->add_flag("--no-load-friction", a->no_load_friction, "Keep α_c = α_v = 0");
+  cmd->add_flag("--friction-from-sensor", a->friction_from_sensor,
+                "Fit each joint's friction against its joint torque sensor (tau_sensor<j>, "
+                "where it varies): effort - K*(tau_sensor + Ia*q''), the drive loss behind the "
+                "gear, instead of effort - rigid-body prediction");
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
     const offline::Log log = read_command_logs(a->logs);

@@ -10,6 +10,7 @@
 #include "offline/identify/gram_fit.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/parallel_halves.hpp"
+#include "offline/identify/sensor_friction.hpp"
 #include "offline/identify/stribeck_fit.hpp"
 #include "tpf/common/error.hpp"
 
@@ -117,7 +118,8 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
   auto fit_joint = [&](int j) {
     std::vector<Eigen::Index> rows, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
-      if (s.valid[k] && s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid)
+      if (s.valid[k] && s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid &&
+          std::isfinite(rigid_prediction(k, j)))
         (s.heldout[k] ? heldout : rows).push_back(k);
     // Friction target without the held terms (asymmetry, neighbour load), and the linear curve.
     auto target_at = [&](Eigen::Index k) {
@@ -273,10 +275,28 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   say("identify: pass 2/3: rigid-body prediction, friction curves (Ceres)");
   const Eigen::MatrixXd rigid = design.predict(s, rigid_theta);
   const Eigen::MatrixXd load = gravity_load(model, s);
-  FrictionCurves<N> curves = fit_friction_curves<N>(
-      s, rigid, load, linear, options.fit_load_friction, options.friction_samples_per_joint);
+  Eigen::MatrixXd friction_reference = rigid;
+  if (options.friction_from_sensor) {
+    // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
+    Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
+    for (int i = 0; i < nominal.base_count; ++i)
+      if (nominal.base_columns[i] >= 10 * N && nominal.base_columns[i] < 11 * N)
+        armature[nominal.base_columns[i] - 10 * N] = nominal.base_values[i];
+    SensorFrictionReference sensor =
+        sensor_friction_reference(log, s, armature, Eigen::VectorXd(setup.effort_scale), rigid);
+    friction_reference = std::move(sensor.reference);
+    for (int j = 0; j < N; ++j)
+      if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {
+        linear.coulomb[j] = linear.static_friction[j] = sensor.coulomb[j];
+        linear.viscous[j] = sensor.viscous[j];
+      }
+    out.friction_notes.push_back(sensor.note);
+  }
+  FrictionCurves<N> curves =
+      fit_friction_curves<N>(s, friction_reference, load, linear, options.fit_load_friction,
+                             options.friction_samples_per_joint);
   nominal.friction = curves.parameters;
-  out.friction_notes = std::move(curves.notes);
+  out.friction_notes.insert(out.friction_notes.end(), curves.notes.begin(), curves.notes.end());
 
   say("identify: pass 3/3: validation on held-out blocks");
   // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has

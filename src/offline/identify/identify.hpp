@@ -20,6 +20,11 @@ struct IdentifyOptions {
   SampleOptions samples;
   bool fit_load_friction = true;           ///< α_c, α_v free in the nonlinear friction fit
   int friction_samples_per_joint = 20000;  ///< subsample of moving training samples for Ceres
+  /// Fit the friction of each joint whose joint torque sensor varies (tau_sensor<j>, a file at a
+  /// time) against the sensor: target effort − scale·(τ_sensor + I_a·q̈), the drive loss behind
+  /// the gear, instead of effort − rigid-body prediction (joints without a usable sensor keep the
+  /// latter). The rigid body is fitted from the effort as before.
+  bool friction_from_sensor = false;
   ProgressLine progress;
 };
 
@@ -59,6 +64,7 @@ struct FrictionCurves {
 /// 2. per joint, Stribeck + load-dependent friction by Ceres on the friction target
 ///    effort − rigid prediction (moving training samples, subsampled);
 /// 3. held-out residual per regime (interleaved blocks not used in 1–2) and a consistency check.
+/// With options.friction_from_sensor, step 2 (and its linear start) uses the torque sensor.
 template <int N>
 Identification<N> identify(const Log& log, const Model<double, N>& model,
                            const IdentifyOptions& options = {});
@@ -84,6 +90,7 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
 /// they are subtracted from the target and kept). On the held-out non-static samples the curve
 /// must do at least as well as `linear` (its Coulomb and viscous clamped at ≥ 0): where it does
 /// not, the linear fit is kept and a note says so; parameters that end at a bound are noted.
+/// Samples where rigid_prediction is NaN are left out.
 template <int N>
 FrictionCurves<N> fit_friction_curves(const JointSamples& samples,
                                       const Eigen::MatrixXd& rigid_prediction,

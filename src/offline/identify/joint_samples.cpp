@@ -56,13 +56,15 @@ JointSamples extract_joint_samples(const Log& log, const SampleOptions& options)
     s.regimes[j] = label_regimes(s.t, s.dq.col(j), options.regimes);
 
   // Held-out split: the last file of a several-file log (fit on the others), else interleaved
-  // time blocks.
+  // time blocks; none when the caller scores on other logs.
   s.heldout.assign(n, 0);
-  if (log.file_starts.size() > 1 && log.file_starts.back() > 0 && log.file_starts.back() < n) {
+  const bool by_file =
+      log.file_starts.size() > 1 && log.file_starts.back() > 0 && log.file_starts.back() < n;
+  if (options.hold_out && by_file) {
     s.heldout_file = static_cast<int>(log.file_starts.size());
     for (Eigen::Index k = log.file_starts.back(); k < n; ++k)
       s.heldout[k] = 1;
-  } else {
+  } else if (options.hold_out) {
     const double t0 = s.t[0];
     for (Eigen::Index k = 0; k < n; ++k) {
       const long block = static_cast<long>(std::floor((s.t[k] - t0) / options.block_s));

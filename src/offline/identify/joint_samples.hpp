@@ -18,6 +18,9 @@ struct SampleOptions {
   /// held out (25 %). A several-file log (Log::file_starts) holds out its last file instead.
   double block_s = 5.0;
   int heldout_every = 4;
+  /// false: nothing is held out (every sample fits; the caller scores on other logs, e.g. the
+  /// measured loop's held-out files).
+  bool hold_out = true;
 };
 
 /// Samples × joints matrices of one log (column j = joint j+1). Effort in the log's unit.

@@ -13,6 +13,7 @@
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/pipeline/measured_report.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
@@ -81,23 +82,21 @@ std::string training_summary(const CompensatorTraining& training) {
   return text;
 }
 
-void write_index(const std::filesystem::path& out, const DemoOptions& o, const DemoResult& r,
-                 const std::vector<SimulationJob>& jobs) {
-  HtmlReport page("tpf demo: the whole loop on the digital twin");
-  page.mark_simulated();
-  page.paragraph("simulate → identify → diagnose → train → evaluate, in " +
-                 format_number(r.seconds, 3) + " s.");
-  page.heading("Pages");
+/// The twin's section of the index page (SIMULATED).
+void add_twin_section(HtmlReport& page, const DemoOptions& o, const DemoResult& r,
+                      const std::vector<SimulationJob>& jobs) {
+  page.heading("SIMULATED — the digital twin of the 4-joint arm");
+  page.heading("Pages", 3);
   page.links({{"diagnose.html", "diagnose",
                "— what the declared model misses, the effects added, held-out before/after"},
               {"evaluate.html", "evaluate",
                "— tactile-only, proprioceptive-only and fusion side by side (Table I, dead "
                "bands, detection, force, teaching)"}});
-  page.heading("Diagnosis");
+  page.heading("Diagnosis", 3);
   page.list(r.findings);
-  page.heading("Headline");
+  page.heading("Headline", 3);
   page.preformatted(evaluation_headline(r.evaluation));
-  page.heading("Stages");
+  page.heading("Stages", 3);
   std::vector<std::string> stages;
   for (const SimulationJob& j : jobs)
     stages.push_back("log: " + j.log.source);
@@ -113,28 +112,42 @@ void write_index(const std::filesystem::path& out, const DemoOptions& o, const D
       format_number(r.training.seconds, 3) + " s;" + training_summary(r.training) +
       " weights in tcn.json or tcn.joint<j>.json");
   page.list(stages);
+}
+
+void write_index(const std::filesystem::path& out, const DemoOptions& o, const DemoResult& r,
+                 const std::vector<SimulationJob>& jobs) {
+  HtmlReport page("tpf demo: the whole loop on the digital twin and on measured logs");
+  if (r.measured && o.run_twin)
+    page.mark_mixed();
+  else if (r.measured)
+    page.mark_measured("Kinova Gen3 logs, W. Chiha, MIT licence");
+  else
+    page.mark_simulated();
+  page.paragraph(
+      "Twin (SIMULATED): simulate → identify → diagnose → train → evaluate. Kinova Gen3 logs "
+      "(MEASURED): identify → diagnose → train on fitting files, validate against the torque "
+      "sensor on held-out files. " +
+      format_number(r.seconds, 3) + " s.");
+  if (o.run_twin) add_twin_section(page, o, r, jobs);
+  if (r.measured) add_measured_summary(page, *r.measured, o.measured.target_reduction);
   page.write(out / "index.html");
 }
 
 }  // namespace
 
-DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::string&)>& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto say = [&](const std::string& line) {
-    if (progress) progress(line);
-  };
-  std::filesystem::create_directories(o.out);
-  DemoResult result;
+namespace {
 
+/// Stages 1–5: the loop on the digital twin (SIMULATED).
+void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJob>& jobs,
+              const std::function<void(const std::string&)>& say) {
   // 1. Simulate.
-  say("[1/5] simulate: training, calibration and held-out logs on " + std::to_string(o.threads) +
+  say("[1/6] simulate: training, calibration and held-out logs on " + std::to_string(o.threads) +
       " threads");
-  std::vector<SimulationJob> jobs{
-      {"training excitation", o.training_scenario, o.training_seed, o.training_s, {}},
-      {"held-out excitation", o.test_scenario, o.test_seed, o.test_s, {}},
-      {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}},
-      {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}},
-      {"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}}};
+  jobs = {{"training excitation", o.training_scenario, o.training_seed, o.training_s, {}},
+          {"held-out excitation", o.test_scenario, o.test_seed, o.test_s, {}},
+          {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}},
+          {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}},
+          {"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}}};
   // The arm is the training scenario's: the held-out, contact and teaching logs come from the same
   // plant the model was identified on (its payload, ripple, … included).
   const EffectsConfig arm = load_scenario(data_file(o.training_scenario).string()).effects;
@@ -142,7 +155,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   const Log& training_log = jobs[0].log;
 
   // 2. Identify the declared model on the training log.
-  say("[2/5] identify: declared model (base parameters, armature, Stribeck + load friction) on "
+  say("[2/6] identify: declared model (base parameters, armature, Stribeck + load friction) on "
       "the training log");
   const auto model = load_robot<double, kDemoJoints>(data_file("arm4.robot.json"));
   IdentifyOptions identify_options;
@@ -152,7 +165,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
                                   training_log.source);
 
   // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
-  say("[3/5] diagnose: candidate effects on the training log's held-out blocks");
+  say("[3/6] diagnose: candidate effects on the training log's held-out blocks");
   DiagnoseOptions diagnose_options;
   diagnose_options.progress = say;
   const Diagnosis<kDemoJoints> diagnosis = diagnose(training_log, model, diagnose_options);
@@ -171,7 +184,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   const int pads = static_cast<int>(setup.pads.size());
 
   // 4. Train.
-  say("[4/5] train: estimator features on the training log, then the TCN (" +
+  say("[4/6] train: estimator features on the training log, then the TCN (" +
       std::to_string(o.training_epochs) + " epochs per network at most)");
   setup.parameters =
       estimator_parameters_from_noise<kDemoJoints>(estimate_sensor_noise(training_log));
@@ -204,7 +217,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   setup.weights = find_compensator_weights(weights, kDemoJoints);
 
   // 5. Evaluate.
-  say("[5/5] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
+  say("[5/6] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
       std::to_string(o.contacts_seed) + ", " + std::to_string(o.teaching_seed) + ")");
   EvaluationLogs logs;
   logs.calibration = &jobs[3].log;
@@ -235,7 +248,28 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   AtomicFile json(o.out / "evaluation.json");
   json.write(evaluation_json(result.evaluation));
   json.commit();
+}
 
+}  // namespace
+
+DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::string&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  std::filesystem::create_directories(o.out);
+  DemoResult result;
+  std::vector<SimulationJob> jobs;
+  if (o.run_twin) run_twin(o, result, jobs, say);
+  if (o.run_measured) {
+    say("[6/6] measured: the Kinova Gen3 logs, held out by file (" + std::string(kMeasuredLabel) +
+        ")");
+    MeasuredOptions measured = o.measured;
+    measured.out = o.out;
+    measured.threads = o.threads;
+    result.measured = run_measured(measured, say);
+    write_measured_report(*result.measured, measured, o.out);
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_index(o.out, o, result, jobs);
   result.index = o.out / "index.html";

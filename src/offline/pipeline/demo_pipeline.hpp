@@ -4,11 +4,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/evaluate/evaluation.hpp"
+#include "offline/pipeline/measured_pipeline.hpp"
 
 namespace tpf::offline {
 
@@ -40,20 +42,25 @@ struct DemoOptions {
   /// Cut-off of the trainer's zero-phase low/high split of the target [Hz].
   double split_cutoff_hz = 2.0;
   int threads = 2;
+  bool run_twin = true;      ///< stages 1–5 (SIMULATED)
+  bool run_measured = true;  ///< stage 6: the Kinova Gen3 logs (MEASURED)
+  MeasuredOptions measured;  ///< its out and threads are the demo's
 };
 
 struct DemoResult {
   Evaluation evaluation;
   CompensatorTraining training;
-  std::vector<std::string> findings;  ///< the diagnosis, in plain sentences
-  std::filesystem::path index;        ///< the report's entry page
+  std::vector<std::string> findings;       ///< the diagnosis, in plain sentences
+  std::optional<MeasuredResult> measured;  ///< stage 6, when run
+  std::filesystem::path index;             ///< the report's entry page
   double seconds = 0.0;
 };
 
-/// simulate (training, calibration and held-out logs, two at a time) → identify → diagnose (the
-/// nominal model: declared + added effects) → train → evaluate → report (out/index.html linking
-/// out/diagnose.html and out/evaluate.html; parameters, weights and evaluation.json beside it).
-/// `progress` gets one line per stage. Everything is SIMULATED.
+/// The twin (SIMULATED): simulate (training, calibration and held-out logs, two at a time) →
+/// identify → diagnose (the nominal model: declared + added effects) → train → evaluate; then the
+/// Kinova Gen3 logs (MEASURED, run_measured, held out by file); one report (out/index.html
+/// linking out/diagnose.html, out/evaluate.html and out/measured.html; parameters, weights,
+/// evaluation.json and measured.json beside it). `progress` gets one line per stage.
 DemoResult run_demo(const DemoOptions& options,
                     const std::function<void(const std::string&)>& progress = {});
 

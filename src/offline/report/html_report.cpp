@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "tpf/common/atomic_file.hpp"
 #include "offline/report/plot_canvas.hpp"
 #include "offline/report/text_format.hpp"
+#include "tpf/common/atomic_file.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -18,6 +18,8 @@ main { max-width: 1000px; margin: 0 auto; padding: 28px 40px 56px; background: #
   min-height: 100vh; box-shadow: 0 0 0 1px var(--line); }
 .banner { background: repeating-linear-gradient(135deg, #b3261e 0 18px, #c5372e 18px 36px);
   color: #fff; text-align: center; font-weight: 700; letter-spacing: .12em; padding: 8px 12px; }
+.banner.measured { background: repeating-linear-gradient(135deg, #005a8c 0 18px, #0b6aa0 18px 36px); }
+.banner.mixed { background: repeating-linear-gradient(135deg, #b3261e 0 18px, #005a8c 18px 36px); }
 .banner span { font-weight: 400; letter-spacing: normal; opacity: .92; margin-left: .8em; }
 h1 { font-size: 26px; margin: 8px 0 2px; letter-spacing: -.01em; }
 .subtitle { color: var(--muted); margin: 0 0 18px; }
@@ -60,6 +62,16 @@ HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
 void HtmlReport::mark_simulated(std::string detail) {
   banner_ = "<div class=\"banner\" role=\"note\">SIMULATED DATA<span>" + html_escape(detail) +
             "</span></div>\n";
+}
+
+void HtmlReport::mark_measured(std::string detail) {
+  banner_ = "<div class=\"banner measured\" role=\"note\">MEASURED DATA<span>" +
+            html_escape(detail) + "</span></div>\n";
+}
+
+void HtmlReport::mark_mixed(std::string detail) {
+  banner_ = "<div class=\"banner mixed\" role=\"note\">SIMULATED AND MEASURED DATA<span>" +
+            html_escape(detail) + "</span></div>\n";
 }
 
 void HtmlReport::subtitle(const std::string& text) {

@@ -31,6 +31,11 @@ class HtmlReport {
 
   /// Shows a "SIMULATED DATA" banner on top: results come from the digital twin, not a robot.
   void mark_simulated(std::string detail = "results from the digital twin, not from a robot");
+  /// Shows a "MEASURED DATA" banner: results from logs recorded on a real robot (`detail` names
+  /// them and their source).
+  void mark_measured(std::string detail);
+  /// Shows a banner for a page with both: each section says which it is.
+  void mark_mixed(std::string detail = "each section says which");
   /// Subtitle line under the title (e.g. source log and date).
   void subtitle(const std::string& text);
   void heading(const std::string& text, int level = 2);

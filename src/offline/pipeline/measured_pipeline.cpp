@@ -1,0 +1,458 @@
+#include "offline/pipeline/measured_pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "offline/common/data_files.hpp"
+#include "offline/diagnose/diagnose.hpp"
+#include "offline/identify/identify.hpp"
+#include "offline/log/read_logs.hpp"
+#include "offline/replay/estimator_samples.hpp"
+#include "offline/replay/replay_estimator.hpp"
+#include "offline/signal/causal_low_pass.hpp"
+#include "tpf/estimation/compensator_weight_files.hpp"
+#include "tpf/model/load_robot.hpp"
+
+namespace tpf::offline {
+
+/// The Kinova Gen3 has 7 joints: the measured loop uses the tools' existing 7-joint instances.
+constexpr int kMeasuredJoints = 7;
+namespace {
+
+using Gen3Model = NominalModel<double, kMeasuredJoints>;
+
+Log read_measured_files(const MeasuredOptions& o, const std::vector<std::string>& names) {
+  std::vector<std::filesystem::path> paths;
+  for (const std::string& n : names)
+    paths.push_back(data_file(std::filesystem::path(o.logs) / n));
+  return read_logs(paths);
+}
+
+std::string joined_file_names(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i ? " + " : "") + names[i];
+  return text;
+}
+
+/// Samples with nothing held out: the held-out data are other files.
+JointSamples samples_without_holdout(const Log& log) {
+  SampleOptions options;
+  options.hold_out = false;
+  return extract_joint_samples(log, options);
+}
+
+Identification<kMeasuredJoints> identify_on_every_sample(
+    const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
+    bool friction_from_sensor, const std::function<void(const std::string&)>& say) {
+  IdentifyOptions options;
+  options.friction_samples_per_joint = friction_samples;
+  options.samples.hold_out = false;
+  options.friction_from_sensor = friction_from_sensor;
+  options.progress = say;
+  return identify(log, model, options);
+}
+
+/// The columns of a split: maker, Kt only, then each estimate, RMSE over every regime.
+std::vector<MeasuredColumn> measured_split_columns(const Validation& v) {
+  std::vector<MeasuredColumn> columns{{"maker (tau_maker)", {}}, {"Kt only", {}}};
+  for (const std::string& name : v.estimate_names)
+    columns.push_back({name, {}});
+  for (const SensorScore& s : v.sensor) {
+    const bool usable = s.samples > 0;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    columns[0].rmse.push_back(usable ? s.maker.valid.rmse : nan);
+    columns[1].rmse.push_back(usable ? s.kt_only.valid.rmse : nan);
+    for (std::size_t e = 0; e < s.estimates.size(); ++e)
+      columns[e + 2].rmse.push_back(usable ? s.estimates[e].valid.rmse : nan);
+  }
+  return columns;
+}
+
+/// Removes one effect diagnose selected from the written model (its parameters set to 0).
+void remove_diagnosed_effect(Gen3Model& m, const FeatureGroup& g) {
+  const int j = g.joint;
+  switch (g.kind) {
+    case FeatureKind::Spring:
+      m.added.spring_stiffness[j] = 0;
+      break;
+    case FeatureKind::Offset:
+      m.added.offset[j] = 0;
+      break;
+    case FeatureKind::Ripple:
+    case FeatureKind::RippleMotor:
+      for (int i = 0; i < m.added.ripple_count; ++i)
+        if (m.added.ripple[i].joint == j &&
+            m.added.ripple[i].motor_side == (g.kind == FeatureKind::RippleMotor))
+          m.added.ripple[i].sin_amplitude = m.added.ripple[i].cos_amplitude = 0;
+      break;
+    case FeatureKind::Coupling:
+      m.added.coupling_velocity.row(j).setZero();
+      m.added.coupling_acceleration.row(j).setZero();
+      break;
+    case FeatureKind::Asymmetry:
+      m.friction.coulomb_asymmetry[j] = m.friction.viscous_asymmetry[j] = 0;
+      break;
+    case FeatureKind::NeighbourLoad:
+      m.friction.neighbour_load_coulomb.row(j).setZero();
+      m.friction.neighbour_load_viscous.row(j).setZero();
+      break;
+    case FeatureKind::LoadFriction:
+      m.friction.load_coulomb[j] = m.friction.load_viscous[j] = 0;
+      break;
+    default:  // rigid, friction, payload (in the base parameters), delay, thermal (not written)
+      break;
+  }
+}
+
+/// Diagnose's written model with only its first `keep` written effects (the later ones removed),
+/// and the titles of the written effects in selection order.
+Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t keep,
+                                       std::vector<std::string>* titles = nullptr) {
+  Gen3Model m = d.nominal;
+  std::size_t written = 0;
+  for (std::size_t e = 0; e < d.claims.size(); ++e) {
+    if (!d.claims[e].written) continue;
+    const FeatureGroup& g = d.groups[static_cast<std::size_t>(d.selected[e])];
+    if (titles) titles->push_back(g.title);
+    if (written++ >= keep) remove_diagnosed_effect(m, g);
+  }
+  return m;
+}
+
+/// Per joint: RMSE of the log's effort less the estimate's over the valid samples.
+std::vector<double> effort_rmse_per_joint(const JointSamples& s, const EffortEstimate& e) {
+  std::vector<double> out;
+  for (int j = 0; j < s.joints(); ++j) {
+    double sum = 0, n = 0;
+    for (Eigen::Index k = 0; k < s.size(); ++k) {
+      const double r = s.effort(k, j) - e.effort(k, j);
+      if (s.valid[static_cast<std::size_t>(k)] && std::isfinite(r)) sum += r * r, ++n;
+    }
+    out.push_back(n > 0 ? std::sqrt(sum / n) : std::nan(""));
+  }
+  return out;
+}
+
+/// Equal values, NaN equal to NaN.
+bool same_values_or_nan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return ((a.array() == b.array()) || (a.array().isNaN() && b.array().isNaN())).all();
+}
+
+std::size_t written_effect_count(const Diagnosis<kMeasuredJoints>& d) {
+  std::size_t n = 0;
+  for (const Claim& c : d.claims)
+    n += c.written;
+  return n;
+}
+
+/// The per-joint compensator trained on the fitting log over `nominal`, as tpf train does: on
+/// the current residual τ_res of the run-time estimator, or, where `sensor_target` (samples ×
+/// joints, N·m) has a value on the joint, on K_t·i − d − τ_sensor (the drive loss the model
+/// misses, as the sensor measures it; NaN rows are cut out of the training windows).
+EstimatorSetup<kMeasuredJoints> train_measured_compensator(
+    const MeasuredOptions& o, const Log& fit, const Gen3Model& nominal,
+    const Eigen::MatrixXd& sensor_target, const std::string& weight_file,
+    CompensatorTraining& training, const std::function<void(const std::string&)>& say) {
+  EstimatorSetup<kMeasuredJoints> setup;
+  setup.nominal = nominal;
+  setup.parameters = estimator_parameters_from_noise<kMeasuredJoints>(estimate_sensor_noise(fit));
+  std::vector<EstimatorTrace> traces{
+      replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, 0))};
+  for (int j = 0; j < static_cast<int>(sensor_target.cols()); ++j)
+    if (sensor_target.col(j).array().isFinite().any())
+      traces[0].residual.col(j) = sensor_target.col(j) * nominal.effort_per_newton_metre[j];
+  CompensatorTrainingOptions options;
+  options.per_joint = true;
+  options.joint_hidden = o.joint_hidden;
+  // Against the sensor the static-friction estimate τ̂_fric,s (τ_res frozen at rest) holds the
+  // rigid body's error, not friction: start from a random network, not from predicting it.
+  options.start_from_baseline = sensor_target.cols() == 0;
+  options.tcn.max_epochs = o.training_epochs;
+  options.tcn.max_seconds = 0.0;
+  options.tcn.threads = o.threads;
+  options.tcn.seed = o.seed;
+  int last = 0;
+  training = train_compensator(
+      traces, nominal.effort_per_newton_metre, options, [&](const TcnTrainProgress& p) {
+        if (p.epoch - last < 10 && !p.last) return;
+        last = p.last ? 0 : p.epoch;
+        char line[160];
+        std::snprintf(line, sizeof line, "measured: train: epoch %d, held-out loss %.4g", p.epoch,
+                      p.validation_loss);
+        say(line);
+      });
+  const auto weights = o.out / weight_file;
+  write_compensator(training, weights);
+  setup.weights = find_compensator_weights(weights, kMeasuredJoints);
+  return setup;
+}
+
+/// K_t·i − d − τ_sensor of `estimate` (or Kt only when null) on the scoring log.
+Eigen::MatrixXd sensor_residual_of(const Log& log, const JointSamples& s,
+                                   const EffortEstimate* estimate, const Eigen::VectorXd& kt) {
+  SensorSide side{&log, &s,
+                  estimate ? estimate->drive_loss : Eigen::MatrixXd::Zero(s.size(), s.joints())};
+  return sensor_residual(side, kt);
+}
+
+Eigen::VectorXd time_within_file(const Log& log, const JointSamples& s) {
+  Eigen::VectorXd t(s.size());
+  for (std::size_t f = 0; f < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    for (Eigen::Index k = begin; k < end; ++k)
+      t[k] = s.t[k] - s.t[begin];
+  }
+  return t;
+}
+
+/// `e` with the current through causal_low_pass of time constant tau[j] on joint j: the drive
+/// loss less (LP(K_t·i) − K_t·i), so that K_t·i − d becomes LP(K_t·i) − d.
+EffortEstimate low_passed_estimate(const EffortEstimate& e, const Log& log, const JointSamples& s,
+                                   const Eigen::VectorXd& tau, const Eigen::VectorXd& kt) {
+  EffortEstimate out = e;
+  for (Eigen::Index j = 0; j < tau.size(); ++j) {
+    const Eigen::VectorXd effort = s.effort.col(j);
+    out.drive_loss.col(j) -=
+        (causal_low_pass(s.t, effort, tau[j], log.file_starts) - effort) / kt[j];
+  }
+  return out;
+}
+
+/// Per joint, the time constant (0: none) that minimises the RMSE of `e` against the sensor on
+/// the fitting side.
+Eigen::VectorXd choose_low_pass_time_constants(const Log& log, const JointSamples& s,
+                                               const EffortEstimate& e, const Eigen::VectorXd& kt) {
+  const Eigen::MatrixXd residual = sensor_residual({&log, &s, e.drive_loss}, kt);
+  const auto rmse = [](const Eigen::VectorXd& r) {
+    double sum = 0, n = 0;
+    for (Eigen::Index k = 0; k < r.size(); ++k)
+      if (std::isfinite(r[k])) sum += r[k] * r[k], ++n;
+    return n > 0 ? std::sqrt(sum / n) : 0.0;
+  };
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(kt.size());
+  for (Eigen::Index j = 0; j < kt.size(); ++j) {
+    const Eigen::VectorXd effort = s.effort.col(j);
+    double lowest = rmse(residual.col(j));
+    for (double tau : kCurrentLowPassTimeConstants) {
+      const double now = rmse(
+          residual.col(j) + (causal_low_pass(s.t, effort, tau, log.file_starts) - effort) / kt[j]);
+      if (now < lowest) lowest = now, best[j] = tau;
+    }
+  }
+  return best;
+}
+
+/// What every stage reads: the arm, the fitting and the scoring logs with their samples.
+struct MeasuredData {
+  Model<double, kMeasuredJoints> model;
+  Log fit, score;
+  JointSamples fit_samples, score_samples;
+  Eigen::VectorXd kt;  ///< effort per N·m
+};
+
+using Say = std::function<void(const std::string&)>;
+
+/// Stage 1: identify (current-based), identify with the friction against the sensor, and the
+/// latter with the current low-passed: estimates 0, 1, 2 on the scoring files.
+std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredData& d,
+                                           MeasuredResult& result, Gen3Model& identified,
+                                           Gen3Model& sensor_model, const Say& say) {
+  say("measured: identify on " + joined_file_names(o.fitting));
+  identified =
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false, say).nominal;
+  d.kt = identified.effort_per_newton_metre;
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", identified,
+                                      d.fit.source + " (MEASURED)");
+  std::vector<EffortEstimate> estimates{
+      nominal_estimate<kMeasuredJoints>(identified, d.score_samples, result.notes)};
+  estimates.back().name = "after identification";
+  say("measured: identify again, the friction fitted against the torque sensor");
+  sensor_model =
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true, say).nominal;
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json", sensor_model,
+                                      d.fit.source + " (MEASURED)");
+  std::vector<std::string> ignored;  // the same notes again
+  estimates.push_back(nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, ignored));
+  estimates.back().name = "friction against the sensor";
+  const EffortEstimate on_fit =
+      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored);
+  result.low_pass_time_constants =
+      choose_low_pass_time_constants(d.fit, d.fit_samples, on_fit, d.kt);
+  estimates.push_back(low_passed_estimate(estimates[1], d.score, d.score_samples,
+                                          result.low_pass_time_constants, d.kt));
+  estimates.back().name = "+ current low-pass";
+  return estimates;
+}
+
+/// Stage 2: diagnose on the fitting files (held out: the last one); its written model against
+/// the sensor, and each written effect in turn against the scoring files' current.
+void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredResult& result,
+                    std::vector<EffortEstimate>& estimates, const Say& say) {
+  say("measured: diagnose on " + joined_file_names(o.fitting) + " (held out: " + o.fitting.back() +
+      ")");
+  const Diagnosis<kMeasuredJoints> diagnosis = diagnose(d.fit, d.model, {});
+  result.diagnosis_findings = diagnosis.findings;
+  result.diagnosis_notes = diagnosis.notes;
+  result.diagnosis_heldout = o.fitting.back();
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.diagnosed.params.json", diagnosis.nominal,
+                                      d.fit.source + " (MEASURED)");
+  std::vector<std::string> titles, unseen, ignored;
+  with_first_diagnosed_effects(diagnosis, 0, &titles);
+  result.diagnosis_effort.push_back(
+      {"after identification", effort_rmse_per_joint(d.score_samples, estimates.front())});
+  for (std::size_t keep = 0; keep <= written_effect_count(diagnosis); ++keep) {
+    EffortEstimate e = nominal_estimate<kMeasuredJoints>(
+        with_first_diagnosed_effects(diagnosis, keep), d.score_samples, ignored);
+    result.diagnosis_effort.push_back(
+        {keep == 0 ? "diagnose's model without its effects" : "+ " + titles[keep - 1],
+         effort_rmse_per_joint(d.score_samples, e)});
+    if (keep > 0 && same_values_or_nan(e.drive_loss, estimates.back().drive_loss)) {
+      unseen.push_back(titles[keep - 1]);
+      continue;
+    }
+    e.name = keep == 0 ? "diagnose's model" : "diagnose: + " + titles[keep - 1];
+    estimates.push_back(std::move(e));
+  }
+  if (!unseen.empty())
+    result.diagnosis_unseen =
+        "diagnose's " + joined_file_names(unseen) +
+        " act on the link side (validate counts only friction and armature as the drive loss "
+        "d that the sensor behind the gear does not see): K_t·i − d − τ_sensor is the same "
+        "with or without them, so they get no column of their own.";
+}
+
+/// Stage 3: the per-joint compensators on the fitting files, scored through validate's path:
+/// over the identified model on the current residual, and over the sensor-fitted friction
+/// against the sensor.
+void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredResult& result,
+                       const Gen3Model& identified, const Gen3Model& sensor_model,
+                       std::vector<EffortEstimate>& estimates, const Say& say) {
+  say("measured: train one network per joint on " + joined_file_names(o.fitting) + " (" +
+      std::to_string(o.training_epochs) + " epochs at most), on the current residual");
+  const EstimatorSetup<kMeasuredJoints> setup =
+      train_measured_compensator(o, d.fit, identified, {}, "gen3.tcn.json", result.training, say);
+  estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, d.score, estimates[0]));
+  estimates.back().name = "with the compensator";
+  say("measured: the same networks over the sensor-fitted friction, trained against the "
+      "torque sensor (K_t·i − d − τ_sensor)");
+  std::vector<std::string> ignored;
+  const SensorSide fit_side{
+      &d.fit, &d.fit_samples,
+      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored).drive_loss};
+  const EstimatorSetup<kMeasuredJoints> sensor_setup =
+      train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side, d.kt),
+                                 "gen3.tcn-sensor.json", result.sensor_training, say);
+  estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, d.score, estimates[1]));
+  estimates.back().name = "friction against the sensor + compensator trained against it";
+}
+
+/// The plots' residuals on the scoring files: Kt only, after identification, the sensor-fitted
+/// friction with the low-pass, and (when trained) the compensator trained against the sensor.
+MeasuredTraces plot_traces(const MeasuredData& d, const std::vector<EffortEstimate>& estimates,
+                           bool trained) {
+  MeasuredTraces tr;
+  tr.t = d.score_samples.t;
+  tr.file_time = time_within_file(d.score, d.score_samples);
+  tr.dq = d.score_samples.dq;
+  const auto add = [&](const std::string& name, const EffortEstimate* e) {
+    tr.names.push_back(name);
+    tr.residual.push_back(sensor_residual_of(d.score, d.score_samples, e, d.kt));
+  };
+  add("Kt only", nullptr);
+  add("after identification", &estimates[0]);
+  add("friction against the sensor + current low-pass", &estimates[2]);
+  if (trained)
+    add("friction against the sensor + compensator trained against it", &estimates.back());
+  return tr;
+}
+
+/// Stage 6: the other way round, fitted on the scoring files and scored on the fitting files.
+MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
+                            Eigen::VectorXd& time_constants, const Say& say) {
+  say("measured: reverse split: identify on " + joined_file_names(o.scoring) + ", score on " +
+      joined_file_names(o.fitting));
+  std::vector<std::string> notes;
+  std::vector<EffortEstimate> estimates;
+  Gen3Model sensor_model;
+  for (bool from_sensor : {false, true}) {
+    const Gen3Model model =
+        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor, say)
+            .nominal;
+    estimates.push_back(nominal_estimate<kMeasuredJoints>(model, d.fit_samples, notes));
+    estimates.back().name = from_sensor ? "friction against the sensor" : "after identification";
+    if (from_sensor) sensor_model = model;
+  }
+  // The low-pass chosen on this split's fitting files (the scoring files of the forward one).
+  time_constants = choose_low_pass_time_constants(
+      d.score, d.score_samples,
+      nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, notes), d.kt);
+  estimates.push_back(
+      low_passed_estimate(estimates[1], d.fit, d.fit_samples, time_constants, d.kt));
+  estimates.back().name = "+ current low-pass";
+  MeasuredSplit split;
+  split.fitted_on = joined_file_names(o.scoring);
+  split.scored_on = joined_file_names(o.fitting);
+  split.validation = score_estimates(d.fit, d.fit_samples, estimates, d.kt);
+  split.columns = measured_split_columns(split.validation);
+  return split;
+}
+
+}  // namespace
+
+int measured_column(const MeasuredSplit& split, const std::string& name) {
+  for (std::size_t c = 0; c < split.columns.size(); ++c)
+    if (split.columns[c].name == name) return static_cast<int>(c);
+  return -1;
+}
+
+MeasuredResult run_measured(const MeasuredOptions& o,
+                            const std::function<void(const std::string&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const Say say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  std::filesystem::create_directories(o.out);
+  MeasuredResult result;
+  MeasuredData d{load_robot<double, kMeasuredJoints>(data_file(o.robot)),
+                 read_measured_files(o, o.fitting),
+                 read_measured_files(o, o.scoring),
+                 {},
+                 {},
+                 {}};
+  d.fit_samples = samples_without_holdout(d.fit);
+  d.score_samples = samples_without_holdout(d.score);
+
+  Gen3Model identified, sensor_model;
+  std::vector<EffortEstimate> estimates =
+      identify_stage(o, d, result, identified, sensor_model, say);
+  if (o.run_diagnose) diagnose_stage(o, d, result, estimates, say);
+  if (o.run_training) compensator_stage(o, d, result, identified, sensor_model, estimates, say);
+  say("measured: score on " + joined_file_names(o.scoring) + " against the torque sensor");
+  result.forward.fitted_on = joined_file_names(o.fitting);
+  result.forward.scored_on = joined_file_names(o.scoring);
+  result.forward.validation = score_estimates(d.score, d.score_samples, estimates, d.kt);
+  result.forward.validation.notes = result.notes;
+  result.forward.columns = measured_split_columns(result.forward.validation);
+
+  // What the residual holds: each candidate fitted on the fitting files, scored held out.
+  say("measured: candidate effects against the torque sensor, held out by file");
+  std::vector<std::string> ignored;
+  const SensorSide fit_side{
+      &d.fit, &d.fit_samples,
+      nominal_estimate<kMeasuredJoints>(identified, d.fit_samples, ignored).drive_loss};
+  const SensorSide held_side{&d.score, &d.score_samples, estimates.front().drive_loss};
+  result.candidates =
+      sensor_candidates(fit_side, held_side, d.kt, Eigen::VectorXd(d.model.gear_ratio));
+  result.traces = plot_traces(d, estimates, o.run_training);
+  if (o.run_reverse)
+    result.reverse = reverse_stage(o, d, result.reverse_low_pass_time_constants, say);
+  result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}}, d.kt);
+  result.facts.outside_share = outside_range_share(d.fit_samples, d.score_samples);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,440 @@
+#include "offline/pipeline/measured_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "offline/report/line_plot.hpp"
+#include "offline/report/scatter_plot.hpp"
+#include "offline/report/text_format.hpp"
+#include "tpf/common/atomic_file.hpp"
+
+namespace tpf::offline {
+namespace {
+
+/// Joints (0-based) whose sensor is scored in a split.
+std::vector<int> sensor_scored_joints(const MeasuredSplit& split) {
+  std::vector<int> joints;
+  if (split.columns.empty()) return joints;
+  for (std::size_t j = 0; j < split.columns[0].rmse.size(); ++j)
+    if (std::isfinite(split.columns[1].rmse[j])) joints.push_back(static_cast<int>(j));
+  return joints;
+}
+
+/// Names of the estimate columns of a split that meet the target on joint j.
+std::vector<std::string> estimates_meeting_target(const MeasuredSplit& split, int j,
+                                                  double target) {
+  std::vector<std::string> names;
+  const double maker = split.columns[0].rmse[static_cast<std::size_t>(j)];
+  for (std::size_t c = 2; c < split.columns.size(); ++c)
+    if (meets_target(maker, split.columns[c].rmse[static_cast<std::size_t>(j)], target))
+      names.push_back(split.columns[c].name);
+  return names;
+}
+
+std::string rmse_cell(double maker, double rmse) {
+  return format_fixed(rmse, 3) + " (" + format_percent_change(maker, rmse) + ")";
+}
+
+std::string joined_items(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    text += (i ? separator : "") + items[i];
+  return text;
+}
+
+/// Residual against time and against q̇ for joint j, every trace.
+void add_measured_joint_plots(HtmlReport& page, const MeasuredTraces& tr, int j,
+                              const std::string& scored_on) {
+  std::vector<Series> in_time, in_velocity;
+  for (std::size_t n = 0; n < tr.names.size(); ++n) {
+    in_time.push_back({tr.names[n], tr.t, tr.residual[n].col(j), ""});
+    in_velocity.push_back({tr.names[n], tr.dq.col(j), tr.residual[n].col(j), ""});
+  }
+  const std::string joint = "joint " + std::to_string(j + 1);
+  PlotOptions time_options{joint + ": K_t·i − d − τ_sensor on the held-out files",
+                           "time in " + scored_on + " [s]",
+                           "residual [N·m]",
+                           900,
+                           260,
+                           true};
+  page.figure(line_plot(time_options, in_time));
+  PlotOptions velocity_options{
+      joint + ": the same against joint velocity", "q̇ [rad/s]", "residual [N·m]", 900, 260, true};
+  page.figure(scatter_plot(velocity_options, in_velocity, 800));
+}
+
+std::string measured_split_text(const MeasuredSplit& split, double target) {
+  std::string text;
+  char line[512];
+  text += "  joint   Kt only = maker";
+  for (std::size_t c = 2; c < split.columns.size(); ++c)
+    text += " | " + split.columns[c].name;
+  text += "   [N*m, change]\n";
+  for (int j : sensor_scored_joints(split)) {
+    const double maker = split.columns[0].rmse[static_cast<std::size_t>(j)];
+    std::snprintf(line, sizeof line, "  %5d %17.3f", j + 1,
+                  split.columns[1].rmse[static_cast<std::size_t>(j)]);
+    text += line;
+    for (std::size_t c = 2; c < split.columns.size(); ++c) {
+      const double r = split.columns[c].rmse[static_cast<std::size_t>(j)];
+      std::snprintf(line, sizeof line, " | %7.3f (%+.1f %%)", r, percent_change(maker, r));
+      text += line;
+    }
+    text += estimates_meeting_target(split, j, target).empty() ? "\n" : "  meets the target\n";
+  }
+  return text;
+}
+
+std::string measured_target_sentence(const MeasuredSplit& split, double target) {
+  std::vector<std::string> met, missed;
+  for (int j : sensor_scored_joints(split)) {
+    const std::vector<std::string> names = estimates_meeting_target(split, j, target);
+    if (names.empty())
+      missed.push_back(std::to_string(j + 1));
+    else
+      met.push_back(std::to_string(j + 1) + " (" + joined_items(names, ", ") + ")");
+  }
+  char pct[32];
+  std::snprintf(pct, sizeof pct, "%.0f %%", 100 * target);
+  return "The issue's target (the current-based joint torque ≥ " + std::string(pct) +
+         " closer to the torque sensor than the maker's own current-based torque, on every joint "
+         "whose sensor moves) is met on joints " +
+         (met.empty() ? std::string("none") : joined_items(met, "; ")) + " and missed on joints " +
+         (missed.empty() ? std::string("none") : joined_items(missed, ", ")) + ".";
+}
+
+}  // namespace
+
+std::string diagnosis_transfer_sentence(const MeasuredResult& r) {
+  std::vector<std::string> lower, higher;
+  for (std::size_t m = 2; m < r.diagnosis_effort.size(); ++m) {
+    const MeasuredColumn& now = r.diagnosis_effort[m];
+    for (std::size_t j = 0; j < now.rmse.size(); ++j) {
+      const double change = percent_change(r.diagnosis_effort[m - 1].rmse[j], now.rmse[j]);
+      if (!(std::abs(change) >= 1.0)) continue;
+      const std::string text =
+          now.name.substr(2) + " (joint " + std::to_string(j + 1) + " " +
+          format_percent_change(r.diagnosis_effort[m - 1].rmse[j], now.rmse[j]) + ")";
+      (change < 0 ? lower : higher).push_back(text);
+    }
+  }
+  if (r.diagnosis_effort.size() <= 2)
+    return "diagnose wrote no effect: nothing to check on the held-out files.";
+  return "On the held-out files' current, these of diagnose's effects lower the error: " +
+         (lower.empty() ? std::string("none") : joined_items(lower, "; ")) +
+         "; these raise it, so they are not claimed here: " +
+         (higher.empty() ? std::string("none") : joined_items(higher, "; ")) +
+         ". A claim that passes one held-out file can fail on another: the facts below say why "
+         "(few reversals, motions outside the fitting files' range).";
+}
+
+std::string low_pass_sentence(const MeasuredResult& r) {
+  std::string taus;
+  for (Eigen::Index j = 0; j < r.low_pass_time_constants.size(); ++j)
+    taus += (j ? " / " : " ") + format_number(1000 * r.low_pass_time_constants[j], 3);
+  return "'friction against the sensor': identify --friction-from-sensor, each joint's friction "
+         "fitted against its torque sensor (effort − K·(τ_sensor + I_a·q̈)) instead of against "
+         "the effort less a rigid body that 8.8 s cannot identify. '+ current low-pass': the "
+         "same with the motor current through a causal first-order low-pass, time constant "
+         "chosen per joint on the fitting files (joints 1–7, ms:" +
+         taus +
+         "; 0 = none): the published sensor is far smoother than the current, so filtering "
+         "the current brings it closer, at the cost of that much lag, which a contact "
+         "detector pays. The run-time estimator does not filter the current.";
+}
+
+bool meets_target(double maker, double rmse, double target) {
+  return std::isfinite(maker) && std::isfinite(rmse) && rmse <= (1.0 - target) * maker;
+}
+
+Table measured_table(const MeasuredSplit& split, double target) {
+  Table t;
+  t.header = {"joint", "samples", "maker = Kt only [N·m]"};
+  for (std::size_t c = 2; c < split.columns.size(); ++c)
+    t.header.push_back(split.columns[c].name + " [N·m] (change)");
+  t.header.push_back("meets −" + format_number(100 * target, 3) + " %");
+  t.caption = "RMSE of the current-based joint torque against the torque sensor on " +
+              split.scored_on + " (fitted on " + split.fitted_on +
+              "); every regime, samples where the sensor varies.";
+  for (std::size_t j = 0; j < split.columns[0].rmse.size(); ++j) {
+    const int joint = static_cast<int>(j);
+    std::vector<std::string> row{std::to_string(j + 1)};
+    const SensorScore& s = split.validation.sensor[j];
+    if (s.samples == 0) {
+      row.push_back("0");
+      row.push_back("no usable sensor");
+      t.rows.push_back(row);
+      continue;
+    }
+    const double maker = split.columns[0].rmse[j];
+    row.push_back(std::to_string(s.samples));
+    row.push_back(format_fixed(split.columns[1].rmse[j], 3));
+    for (std::size_t c = 2; c < split.columns.size(); ++c)
+      row.push_back(rmse_cell(maker, split.columns[c].rmse[j]));
+    const std::vector<std::string> names = estimates_meeting_target(split, joint, target);
+    row.push_back(names.empty() ? "no" : "yes: " + joined_items(names, ", "));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+Table diagnosis_effort_table(const MeasuredResult& r) {
+  Table t;
+  t.header = {"model"};
+  const std::size_t joints =
+      r.diagnosis_effort.empty() ? 0 : r.diagnosis_effort.front().rmse.size();
+  for (std::size_t j = 0; j < joints; ++j)
+    t.header.push_back("joint " + std::to_string(j + 1));
+  t.caption =
+      "diagnose's effects against the held-out files' current: RMSE of the effort less "
+      "the model's whole prediction (rigid body included) on " +
+      r.forward.scored_on + " [mA], change against the row above.";
+  for (std::size_t m = 0; m < r.diagnosis_effort.size(); ++m) {
+    std::vector<std::string> row{r.diagnosis_effort[m].name};
+    for (std::size_t j = 0; j < joints; ++j) {
+      const double now = r.diagnosis_effort[m].rmse[j];
+      row.push_back(m < 2
+                        ? format_number(now, 4)
+                        : format_number(now, 4) + " (" +
+                              format_percent_change(r.diagnosis_effort[m - 1].rmse[j], now) + ")");
+    }
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+Table candidate_table(const MeasuredResult& r) {
+  Table t;
+  t.header = {"candidate"};
+  int joints = 0;
+  for (const SensorCandidate& c : r.candidates)
+    joints = std::max(joints, c.joint + 1);
+  for (int j = 0; j < joints; ++j)
+    t.header.push_back("joint " + std::to_string(j + 1));
+  t.caption =
+      "Change of the held-out RMSE of K_t·i − d − τ_sensor per joint (d: the identified model's "
+      "drive loss). Each candidate is fitted on the fitting files on top of Coulomb + viscous "
+      "refitted against the sensor (the base, first row, itself judged against the model "
+      "alone); ✔ = claimed: the held-out RMSE falls by ≥ 5 % and the in-file one falls too. "
+      "Fitted values in measured.json.";
+  std::vector<std::string> keys;
+  for (const SensorCandidate& c : r.candidates)
+    if (std::find(keys.begin(), keys.end(), c.key) == keys.end()) keys.push_back(c.key);
+  for (const std::string& key : keys) {
+    std::vector<std::string> row(static_cast<std::size_t>(joints) + 1, "–");
+    for (const SensorCandidate& c : r.candidates) {
+      if (c.key != key) continue;
+      row[0] = c.title;
+      row[static_cast<std::size_t>(c.joint) + 1] =
+          format_percent_change(c.heldout_before, c.heldout_after) + (c.supported ? " ✔" : "");
+    }
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+std::string candidate_summary(const MeasuredResult& r) {
+  std::vector<std::string> keys, claimed, none;
+  for (const SensorCandidate& c : r.candidates)
+    if (std::find(keys.begin(), keys.end(), c.key) == keys.end()) keys.push_back(c.key);
+  for (const std::string& key : keys) {
+    std::string title, joints;
+    for (const SensorCandidate& c : r.candidates) {
+      if (c.key != key) continue;
+      title = c.title;
+      if (c.supported) joints += (joints.empty() ? "" : ", ") + std::to_string(c.joint + 1);
+    }
+    (joints.empty() ? none : claimed)
+        .push_back(joints.empty() ? title : title + " (joints " + joints + ")");
+  }
+  return "Claimed, held out by file: " +
+         (claimed.empty() ? std::string("none") : joined_items(claimed, "; ")) +
+         ". Not supported on any joint: " +
+         (none.empty() ? std::string("none") : joined_items(none, "; ")) + ".";
+}
+
+std::string measured_headline(const MeasuredResult& r, double target) {
+  std::string text = std::string(kMeasuredLabel) + "\n";
+  text += "current-based joint torque against the torque sensor, RMSE on the held-out files " +
+          r.forward.scored_on + " (fitted on " + r.forward.fitted_on + "):\n";
+  text += measured_split_text(r.forward, target);
+  if (!r.reverse.columns.empty()) {
+    text += "reverse split, fitted on " + r.reverse.fitted_on + ", scored on " +
+            r.reverse.scored_on + ":\n";
+    text += measured_split_text(r.reverse, target);
+  }
+  text += measured_target_sentence(r.forward, target) + "\n";
+  text += low_pass_sentence(r) + "\n";
+  if (!r.diagnosis_heldout.empty()) text += diagnosis_transfer_sentence(r) + "\n";
+  std::vector<std::string> claimed;
+  for (const SensorCandidate& c : r.candidates)
+    if (c.supported)
+      claimed.push_back(c.key + " j" + std::to_string(c.joint + 1) + " " +
+                        format_percent_change(c.heldout_before, c.heldout_after));
+  text += "candidate effects that lower the held-out error: " +
+          (claimed.empty() ? std::string("none") : joined_items(claimed, ", ")) + "\n";
+  return text;
+}
+
+void add_measured_summary(HtmlReport& page, const MeasuredResult& r, double target) {
+  page.heading(kMeasuredLabel);
+  page.paragraph("Held out by file: fitted on " + r.forward.fitted_on + ", scored on " +
+                 r.forward.scored_on + " against the joint torque sensor, in " +
+                 format_number(r.seconds, 3) +
+                 " s. Details, the reverse split, the candidate "
+                 "effects, what the files cannot decide and the plots: measured.html.");
+  page.links({{"measured.html", "measured",
+               "— the Kinova Gen3 logs: before/after per joint, candidate effects, plots"}});
+  page.table(measured_table(r.forward, target));
+  page.paragraph(measured_target_sentence(r.forward, target));
+}
+
+namespace {
+
+/// The reverse split's table, target and low-pass time constants.
+void add_reverse_section(HtmlReport& page, const MeasuredResult& r, const MeasuredOptions& o) {
+  page.heading("The reverse split", 3);
+  page.table(measured_table(r.reverse, o.target_reduction));
+  page.paragraph(measured_target_sentence(r.reverse, o.target_reduction));
+  std::string taus;
+  for (Eigen::Index j = 0; j < r.reverse_low_pass_time_constants.size(); ++j)
+    taus += (j ? " / " : " ") + format_number(1000 * r.reverse_low_pass_time_constants[j], 3);
+  page.paragraph("Low-pass time constants chosen on this split's fitting files (joints 1–7, ms):" +
+                 taus + ".");
+}
+
+/// What the two compensators are and how they trained.
+void add_compensator_section(HtmlReport& page, const MeasuredResult& r, const MeasuredOptions& o) {
+  const auto epochs = [](const CompensatorTraining& t) {
+    std::string text;
+    for (const TcnTrainResult& n : t.results)
+      text.append(" ").append(std::to_string(n.best_epoch));
+    return text;
+  };
+  page.paragraph(
+      "Compensator: one " + std::to_string(o.joint_hidden) +
+      "-channel network per joint, trained by tpf train's machinery on the fitting files (" +
+      std::to_string(o.training_epochs) +
+      " epochs at most), scored through validate's "
+      "compensator path (the run-time estimator replayed on the held-out files, its output "
+      "counted as drive loss). 'with the compensator' sits on the identified model and learns "
+      "the run-time estimator's current residual τ_res = K_t·i − (rigid body + friction), as "
+      "tpf train does on contact-free logs (best epochs" +
+      epochs(r.training) + ", " + format_number(r.training.seconds, 3) +
+      " s); on these files that residual holds the rigid body's error too, which a per-joint "
+      "network that sees only its own joint cannot predict. The last column sits on the "
+      "friction fitted against the sensor and learns K_t·i − d − τ_sensor wherever the sensor "
+      "varies (best epochs" +
+      epochs(r.sensor_training) +
+      "). Both take q as an input, and the held-out files move where the fitting files never "
+      "went (below), so the networks extrapolate.");
+}
+
+/// diagnose's findings on the fitting files and its effects against the held-out current.
+void add_diagnosis_section(HtmlReport& page, const MeasuredResult& r) {
+  page.heading("What diagnose adds", 3);
+  page.paragraph(
+      "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
+      ": it claims an effect only if it lowers the current residual there. The column "
+      "\"diagnose's model\" above scores its written model against the sensor on the held-out "
+      "files; the table below adds its written effects one at a time against the held-out "
+      "files' current. Its findings on the fitting files:");
+  page.list(r.diagnosis_findings);
+  if (!r.diagnosis_unseen.empty()) page.paragraph(r.diagnosis_unseen);
+  page.table(diagnosis_effort_table(r));
+  page.paragraph(diagnosis_transfer_sentence(r));
+}
+
+}  // namespace
+
+void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
+                           const std::filesystem::path& folder) {
+  HtmlReport page("tpf: the loop on measured data (Kinova Gen3)");
+  page.mark_measured("Kinova Gen3 logs, W. Chiha, MIT licence (data/real/kinova-gen3/SOURCE.md)");
+  page.subtitle(kMeasuredLabel);
+  page.paragraph(
+      "K_t·i (the maker's own current-based joint torque: TorqueCur = K_t·Cur exactly) against "
+      "the torque sensor behind each gear, before and after the model: K_t·i − d with d the "
+      "drive loss the model predicts (friction + armature·q̈). Held out by file: nothing scored "
+      "was fitted on. " +
+      format_number(r.seconds, 3) + " s.");
+  page.heading("Held out by file");
+  page.table(measured_table(r.forward, o.target_reduction));
+  page.paragraph(measured_target_sentence(r.forward, o.target_reduction));
+  page.paragraph(low_pass_sentence(r));
+  if (!r.reverse.columns.empty()) add_reverse_section(page, r, o);
+  if (!r.training.results.empty()) add_compensator_section(page, r, o);
+  if (!r.diagnosis_heldout.empty()) add_diagnosis_section(page, r);
+  page.heading("What the residual holds: candidates against the sensor");
+  page.table(candidate_table(r));
+  page.paragraph(candidate_summary(r));
+  page.heading("What these files cannot decide");
+  page.list(measured_fact_lines(r.facts));
+  if (!r.notes.empty()) page.list(r.notes);
+  page.heading("Residuals on the held-out files");
+  for (int j : sensor_scored_joints(r.forward))
+    add_measured_joint_plots(page, r.traces, j, r.forward.scored_on);
+  page.write(folder / "measured.html");
+  AtomicFile json(folder / "measured.json");
+  json.write(measured_json(r, o.target_reduction));
+  json.commit();
+}
+
+std::string measured_json(const MeasuredResult& r, double target) {
+  using nlohmann::json;
+  const auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+  const auto split = [&](const MeasuredSplit& s) {
+    json out{{"fitted_on", s.fitted_on}, {"scored_on", s.scored_on}};
+    for (const MeasuredColumn& c : s.columns) {
+      json col{{"name", c.name}};
+      for (double x : c.rmse)
+        col["rmse_newton_metre"].push_back(number(x));
+      out["columns"].push_back(col);
+    }
+    out["validation"] = json::parse(validation_json(s.validation));
+    return out;
+  };
+  json j{{"measured", true},
+         {"label", kMeasuredLabel},
+         {"target_reduction", target},
+         {"seconds", r.seconds}};
+  j["forward"] = split(r.forward);
+  json met = json::array();
+  for (int joint : sensor_scored_joints(r.forward))
+    if (!estimates_meeting_target(r.forward, joint, target).empty()) met.push_back(joint + 1);
+  j["forward"]["joints_meeting_target"] = met;
+  if (!r.reverse.columns.empty()) {
+    j["reverse"] = split(r.reverse);
+    json rmet = json::array();
+    for (int joint : sensor_scored_joints(r.reverse))
+      if (!estimates_meeting_target(r.reverse, joint, target).empty()) rmet.push_back(joint + 1);
+    j["reverse"]["joints_meeting_target"] = rmet;
+  }
+  for (const SensorCandidate& c : r.candidates)
+    j["candidates"].push_back({{"key", c.key},
+                               {"title", c.title},
+                               {"joint", c.joint + 1},
+                               {"detail", c.detail},
+                               {"fit_before", number(c.fit_before)},
+                               {"fit_after", number(c.fit_after)},
+                               {"heldout_before", number(c.heldout_before)},
+                               {"heldout_after", number(c.heldout_after)},
+                               {"claimed", c.supported}});
+  json effort = json::array();
+  for (const MeasuredColumn& c : r.diagnosis_effort) {
+    json row{{"name", c.name}};
+    for (double x : c.rmse)
+      row["rmse_effort"].push_back(number(x));
+    effort.push_back(row);
+  }
+  j["diagnosis"] = {{"heldout_file", r.diagnosis_heldout},
+                    {"effort_on_scoring_files", effort},
+                    {"findings", r.diagnosis_findings},
+                    {"not_seen_by_the_sensor", r.diagnosis_unseen}};
+  j["facts"] = measured_fact_lines(r.facts);
+  return j.dump(2);
+}
+
+}  // namespace tpf::offline
