@@ -11,6 +11,7 @@
 #include "offline/log/read_logs.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
+#include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -31,10 +32,7 @@ Log read_measured_files(const MeasuredOptions& o, const std::vector<std::string>
 }
 
 std::string joined_file_names(const std::vector<std::string>& names) {
-  std::string text;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    text += (i ? " + " : "") + names[i];
-  return text;
+  return joined(names, " + ");
 }
 
 /// Samples with nothing held out: the held-out data are other files.

@@ -37,13 +37,6 @@ std::string rmse_cell(double maker, double rmse) {
   return format_fixed(rmse, 3) + " (" + format_percent_change(maker, rmse) + ")";
 }
 
-std::string joined_items(const std::vector<std::string>& items, const std::string& separator) {
-  std::string text;
-  for (std::size_t i = 0; i < items.size(); ++i)
-    text += (i ? separator : "") + items[i];
-  return text;
-}
-
 /// Residual against time and against q̇ for joint j, every trace.
 void add_measured_joint_plots(HtmlReport& page, const MeasuredTraces& tr, int j,
                               const std::string& scored_on) {
@@ -94,15 +87,14 @@ std::string measured_target_sentence(const MeasuredSplit& split, double target) 
     if (names.empty())
       missed.push_back(std::to_string(j + 1));
     else
-      met.push_back(std::to_string(j + 1) + " (" + joined_items(names, ", ") + ")");
+      met.push_back(std::to_string(j + 1) + " (" + joined(names, ", ") + ")");
   }
-  char pct[32];
-  std::snprintf(pct, sizeof pct, "%.0f %%", 100 * target);
-  return "The issue's target (the current-based joint torque ≥ " + std::string(pct) +
+  return "The issue's target (the current-based joint torque ≥ " +
+         format_sentence("%.0f %%", 100 * target) +
          " closer to the torque sensor than the maker's own current-based torque, on every joint "
          "whose sensor moves) is met on joints " +
-         (met.empty() ? std::string("none") : joined_items(met, "; ")) + " and missed on joints " +
-         (missed.empty() ? std::string("none") : joined_items(missed, ", ")) + ".";
+         (met.empty() ? std::string("none") : joined(met, "; ")) + " and missed on joints " +
+         (missed.empty() ? std::string("none") : joined(missed, ", ")) + ".";
 }
 
 }  // namespace
@@ -123,9 +115,9 @@ std::string diagnosis_transfer_sentence(const MeasuredResult& r) {
   if (r.diagnosis_effort.size() <= 2)
     return "diagnose wrote no effect: nothing to check on the held-out files.";
   return "On the held-out files' current, these of diagnose's effects lower the error: " +
-         (lower.empty() ? std::string("none") : joined_items(lower, "; ")) +
+         (lower.empty() ? std::string("none") : joined(lower, "; ")) +
          "; these raise it, so they are not claimed here: " +
-         (higher.empty() ? std::string("none") : joined_items(higher, "; ")) +
+         (higher.empty() ? std::string("none") : joined(higher, "; ")) +
          ". A claim that passes one held-out file can fail on another: the facts below say why "
          "(few reversals, motions outside the fitting files' range).";
 }
@@ -174,7 +166,7 @@ Table measured_table(const MeasuredSplit& split, double target) {
     for (std::size_t c = 2; c < split.columns.size(); ++c)
       row.push_back(rmse_cell(maker, split.columns[c].rmse[j]));
     const std::vector<std::string> names = estimates_meeting_target(split, joint, target);
-    row.push_back(names.empty() ? "no" : "yes: " + joined_items(names, ", "));
+    row.push_back(names.empty() ? "no" : "yes: " + joined(names, ", "));
     t.rows.push_back(row);
   }
   return t;
@@ -250,9 +242,9 @@ std::string candidate_summary(const MeasuredResult& r) {
         .push_back(joints.empty() ? title : title + " (joints " + joints + ")");
   }
   return "Claimed, held out by file: " +
-         (claimed.empty() ? std::string("none") : joined_items(claimed, "; ")) +
+         (claimed.empty() ? std::string("none") : joined(claimed, "; ")) +
          ". Not supported on any joint: " +
-         (none.empty() ? std::string("none") : joined_items(none, "; ")) + ".";
+         (none.empty() ? std::string("none") : joined(none, "; ")) + ".";
 }
 
 std::string measured_headline(const MeasuredResult& r, double target) {
@@ -274,7 +266,7 @@ std::string measured_headline(const MeasuredResult& r, double target) {
       claimed.push_back(c.key + " j" + std::to_string(c.joint + 1) + " " +
                         format_percent_change(c.heldout_before, c.heldout_after));
   text += "candidate effects that lower the held-out error: " +
-          (claimed.empty() ? std::string("none") : joined_items(claimed, ", ")) + "\n";
+          (claimed.empty() ? std::string("none") : joined(claimed, ", ")) + "\n";
   return text;
 }
 

@@ -94,6 +94,13 @@ std::string format_percent_change(double before, double after) {
   return text;
 }
 
+std::string joined(const std::vector<std::string>& items, std::string_view separator) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    text.append(i ? separator : "").append(items[i]);
+  return text;
+}
+
 std::string format_sentence(const char* pattern, double a, double b, double c) {
   char text[256];
   std::snprintf(text, sizeof text, pattern, a, b, c);

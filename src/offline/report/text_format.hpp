@@ -3,6 +3,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tpf::offline {
 
@@ -20,6 +21,9 @@ std::string format_fixed(double value, int decimals);
 /// Percent change 100·(after − before)/before as "−88.6 %" (one decimal, sign always shown);
 /// "–" when undefined.
 std::string format_percent_change(double before, double after);
+
+/// `items` with `separator` between them: joined({"a", "b"}, " + ") → "a + b".
+std::string joined(const std::vector<std::string>& items, std::string_view separator);
 
 /// printf of up to three numbers into a sentence: format_sentence("removes %.1f %%", 12.34).
 std::string format_sentence(const char* pattern, double a, double b = 0, double c = 0);

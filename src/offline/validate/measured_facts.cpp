@@ -1,10 +1,10 @@
 #include "offline/validate/measured_facts.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "offline/log/torque_sensor.hpp"
+#include "offline/report/text_format.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -86,12 +86,6 @@ std::string facts_joint_list(const std::vector<int>& joints) {
   std::string text;
   for (std::size_t i = 0; i < joints.size(); ++i)
     text += (i ? ", " : "") + std::to_string(joints[i] + 1);
-  return text;
-}
-
-std::string facts_text(const char* fmt, double a, double b = 0.0) {
-  char text[160];
-  std::snprintf(text, sizeof text, fmt, a, b);
   return text;
 }
 
@@ -187,10 +181,10 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
       if (std::isfinite(p) && (p > 0.9 || p < 0.1)) one_way.push_back(joint);
       if (!f.sensor_usable[j]) flat.push_back(joint);
     }
-    std::string line =
-        f.name + facts_text(": %.2f s (%.0f samples)", f.seconds, static_cast<double>(f.samples));
-    line += "; velocity reversals per joint (|q̇| ≥ " + facts_text("%g rad/s", o.reversal_velocity) +
-            "):";
+    std::string line = f.name + format_sentence(": %.2f s (%.0f samples)", f.seconds,
+                                                static_cast<double>(f.samples));
+    line += "; velocity reversals per joint (|q̇| ≥ " +
+            format_sentence("%g rad/s", o.reversal_velocity) + "):";
     for (std::size_t j = 0; j < f.reversals.size(); ++j)
       line += (j ? " / " : " ") + std::to_string(f.reversals[j]);
     if (!none.empty())
@@ -206,34 +200,34 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
                                " (not scored there)";
     lines.push_back(line + ".");
   }
-  lines.push_back(facts_text("Each file lasts %.1f–%.1f s", shortest, longest) +
+  lines.push_back(format_sentence("Each file lasts %.1f–%.1f s", shortest, longest) +
                   " and no joint reverses more than " + std::to_string(most_reversals) +
                   " times in a file: Coulomb friction is seen in few direction changes, the "
                   "friction at a reversal (memory, break-away) in a handful of events, and the "
                   "interleaved 5 s blocks of a one-file split hold almost nothing out. Held out "
                   "by file is the only validation these files support.");
-  std::string rest = "Velocity at rest (|q̇| < " + facts_text("%g rad/s", o.rest_velocity) +
+  std::string rest = "Velocity at rest (|q̇| < " + format_sentence("%g rad/s", o.rest_velocity) +
                      "), RMS per joint [rad/s]:";
   double worst_share = 0;
   for (std::size_t j = 0; j < facts.rest_velocity_rms.size(); ++j) {
-    rest += (j ? " / " : " ") + facts_text("%.2g", facts.rest_velocity_rms[j]);
+    rest += (j ? " / " : " ") + format_sentence("%.2g", facts.rest_velocity_rms[j]);
     if (std::isfinite(facts.rest_noise_moving_share[j]))
       worst_share = std::max(worst_share, facts.rest_noise_moving_share[j]);
   }
-  rest +=
-      facts_text("; up to %.0f %% of those samples are at or above the static threshold %g rad/s",
-                 100 * worst_share, o.static_velocity) +
-      ", so the Stribeck model takes the noise's sign and predicts full Coulomb friction at "
-      "rest, where the drive holds whatever friction it stopped with: the gain is decided "
-      "in motion only.";
+  rest += format_sentence(
+              "; up to %.0f %% of those samples are at or above the static threshold %g rad/s",
+              100 * worst_share, o.static_velocity) +
+          ", so the Stribeck model takes the noise's sign and predicts full Coulomb friction at "
+          "rest, where the drive holds whatever friction it stopped with: the gain is decided "
+          "in motion only.";
   lines.push_back(rest);
   if (!facts.current_noise.empty()) {
     std::string line =
         "Sample-to-sample noise σ per joint [N·m] (second differences within each "
         "file, as white noise), K_t·i vs τ_sensor:";
     for (std::size_t j = 0; j < facts.current_noise.size(); ++j)
-      line += (j ? " / " : " ") + facts_text("%.2f vs ", facts.current_noise[j]) +
-              (std::isfinite(facts.sensor_noise[j]) ? facts_text("%.3f", facts.sensor_noise[j])
+      line += (j ? " / " : " ") + format_sentence("%.2f vs ", facts.current_noise[j]) +
+              (std::isfinite(facts.sensor_noise[j]) ? format_sentence("%.3f", facts.sensor_noise[j])
                                                     : std::string("– (flat)"));
     lines.push_back(line +
                     ". The published sensor is far smoother than the current (filtered, or "
@@ -245,7 +239,7 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
         "Share of the held-out samples where q lies outside the fitting files' range "
         "of q, per joint:";
     for (std::size_t j = 0; j < facts.outside_share.size(); ++j)
-      line += (j ? " / " : " ") + facts_text("%.0f %%", 100 * facts.outside_share[j]);
+      line += (j ? " / " : " ") + format_sentence("%.0f %%", 100 * facts.outside_share[j]);
     lines.push_back(line +
                     ". A model of q (the rigid body, a position ripple, the compensator, whose "
                     "inputs include q) extrapolates there; the compensator's domain at run time "
@@ -254,10 +248,10 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
   for (const RepeatedMotion& r : facts.repeats) {
     std::string line =
         facts.files[r.second].name + " repeats the motion of " + facts.files[r.first].name +
-        facts_text(" (|Δq| ≤ %.3g rad), yet K_t·i differs by", r.max_position_difference) +
+        format_sentence(" (|Δq| ≤ %.3g rad), yet K_t·i differs by", r.max_position_difference) +
         " (RMS per joint, N·m)";
     for (std::size_t j = 0; j < r.torque_rms_difference.size(); ++j)
-      line += (j ? " / " : " ") + facts_text("%.2f", r.torque_rms_difference[j]);
+      line += (j ? " / " : " ") + format_sentence("%.2f", r.torque_rms_difference[j]);
     line +=
         ": the same motion does not give the same current from run to run (the current's "
         "sample noise σ above accounts for √2·σ of it), and a file that repeats another is no "
