@@ -2,30 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 
 #include "offline/regimes/regime.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/acceleration.hpp"
+#include "offline/signal/periodogram.hpp"
 
 namespace tpf::offline {
 namespace {
-
-// The integer n in [lo, hi] whose sin/cos of n·scale·q best explains r (periodogram).
-double dominant_cycles(const Eigen::VectorXd& q, const Eigen::VectorXd& r, int lo, int hi,
-                       double scale) {
-  double best = 0, best_power = -1;
-  for (int n = lo; n <= hi; ++n) {
-    std::complex<double> sum = 0;
-    for (Eigen::Index k = 0; k < q.size(); ++k)
-      sum += r[k] * std::polar(1.0, -n * scale * q[k]);
-    if (std::norm(sum) > best_power) {
-      best_power = std::norm(sum);
-      best = n;
-    }
-  }
-  return best;
-}
 
 // Std of the effort's first difference over consecutive static samples, /√2 (NaN: never rests).
 double static_noise(const JointSamples& s, int j) {
@@ -96,7 +80,7 @@ ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& 
       r[i] = residual(moving[i * stride], j);
     }
     const double range = range_of_motion(q);
-    const int shortest = std::max(3, static_cast<int>(std::ceil(2 * M_PI / std::max(range, 1e-9))));
+    const int shortest = shortest_fitting_cycles(range);
     if (shortest <= 64) a.ripple_cycles[j] = dominant_cycles(q, r, shortest, 64, 1.0);
     if (shortest > 3)
       a.notes.push_back("joint " + std::to_string(j + 1) +

@@ -3,13 +3,13 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <complex>
-#include <cstdio>
 #include <functional>
 #include <limits>
 
 #include "offline/log/torque_sensor.hpp"
+#include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
+#include "offline/signal/periodogram.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -68,21 +68,18 @@ Eigen::VectorXd fit_candidate(const JointSamples& s, const Eigen::VectorXd& r, i
   return A.ldlt().solve(b);
 }
 
-/// The n in [lo, hi] whose sin/cos of n·q best explains r on moving samples (periodogram).
+/// The n in [lo, hi] whose sin/cos of n·q best explains r on the finite moving samples.
 int dominant_ripple_cycles(const JointSamples& s, const Eigen::VectorXd& r, int j, int lo, int hi) {
-  int best = lo;
-  double best_power = -1;
-  for (int n = lo; n <= hi; ++n) {
-    std::complex<double> sum = 0;
-    for (Eigen::Index k = 0; k < r.size(); ++k)
-      if (std::isfinite(r[k]) && candidate_moving(s, k, j))
-        sum += r[k] * std::polar(1.0, -n * s.q(k, j));
-    if (std::norm(sum) > best_power) {
-      best_power = std::norm(sum);
-      best = n;
+  std::vector<double> q_moving, r_moving;
+  for (Eigen::Index k = 0; k < r.size(); ++k)
+    if (std::isfinite(r[k]) && candidate_moving(s, k, j)) {
+      q_moving.push_back(s.q(k, j));
+      r_moving.push_back(r[k]);
     }
-  }
-  return best;
+  const auto as_vector = [](const std::vector<double>& v) {
+    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+  };
+  return static_cast<int>(dominant_cycles(as_vector(q_moving), as_vector(r_moving), lo, hi, 1.0));
 }
 
 double moving_range_of(const JointSamples& s, const Eigen::VectorXd& r, int j) {
@@ -125,12 +122,6 @@ Eigen::VectorXd restricted_to_finite(Eigen::VectorXd a, const Eigen::VectorXd& b
   for (Eigen::Index k = 0; k < a.size(); ++k)
     if (!std::isfinite(b[k])) a[k] = kNoValue;
   return a;
-}
-
-std::string candidate_text(const char* fmt, double a, double b = 0, double c = 0) {
-  char text[200];
-  std::snprintf(text, sizeof text, fmt, a, b, c);
-  return text;
 }
 
 /// The candidate's columns after the base's.
@@ -207,7 +198,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
     }
     const double ratio = gear_ratio[j];
     const double range = moving_range_of(fs, rf, j);
-    const int shortest = std::max(3, static_cast<int>(std::ceil(2 * M_PI / std::max(range, 1e-9))));
+    const int shortest = shortest_fitting_cycles(range);
     const int cycles = shortest <= o.max_ripple_cycles
                            ? dominant_ripple_cycles(fs, rf, j, shortest, o.max_ripple_cycles)
                            : 0;
@@ -239,7 +230,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
            f << std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a);
            return f;
          },
-         candidate_text("gear ratio %.0f", ratio)}};
+         format_sentence("gear ratio %.0f", ratio)}};
     if (cycles > 0)
       library.push_back({"ripple_output", "position ripple of the output", 2,
                          [cycles](const JointSamples& s, Eigen::Index k, int jj) {
@@ -247,8 +238,8 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                            f << std::sin(cycles * s.q(k, jj)), std::cos(cycles * s.q(k, jj));
                            return f;
                          },
-                         candidate_text("%.0f periods/rev (shortest that fits the motion: %.0f)",
-                                        cycles, shortest)});
+                         format_sentence("%.0f periods/rev (shortest that fits the motion: %.0f)",
+                                         cycles, shortest)});
     if (thermal)
       library.push_back({"temperature", "temperature-dependent friction ((T − T̄)·sgn q̇, (T − T̄)·q̇)",
                          2,
@@ -258,7 +249,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                            f << d * motion_direction(s, k, jj), d * s.dq(k, jj);
                            return f;
                          },
-                         candidate_text("T̄ = %.1f °C", mean_temperature)});
+                         format_sentence("T̄ = %.1f °C", mean_temperature)});
     // The base every other candidate is judged on: Coulomb + viscous refitted against the
     // sensor (what is left is beyond a friction curve's level and slope).
     const CandidateFeatures base = [](const JointSamples& s, Eigen::Index k, int jj) {
@@ -270,8 +261,8 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
     const auto [base_fit, base_held] =
         fitted_candidate_rms(fs, rf, hs, rh, j, base, 2, &base_theta);
     out.push_back({"friction_refit", "Coulomb + viscous refitted against the sensor", j,
-                   candidate_text("τ_c %+.3g N·m, b %+.3g N·m·s/rad on top of the model's",
-                                  base_theta[0], base_theta[1]),
+                   format_sentence("τ_c %+.3g N·m, b %+.3g N·m·s/rad on top of the model's",
+                                   base_theta[0], base_theta[1]),
                    before_fit, base_fit, before_held, base_held, false});
     for (const CandidateEffect& c : library) {
       Eigen::VectorXd theta;
@@ -281,11 +272,11 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                          after_fit, base_held, after_held, false};
       theta = theta.tail(c.columns).eval();
       if (c.key == "kt_error")
-        sc.detail = candidate_text("K_t × %.3f", 1.0 - theta[0]);
+        sc.detail = format_sentence("K_t × %.3f", 1.0 - theta[0]);
       else if (c.key == "offset")
-        sc.detail = candidate_text("%.3g N·m", theta[0]);
+        sc.detail = format_sentence("%.3g N·m", theta[0]);
       else if (c.key == "load_friction")
-        sc.detail = candidate_text("%.3g N·m per N·m", theta[0]);
+        sc.detail = format_sentence("%.3g N·m per N·m", theta[0]);
       out.push_back(sc);
     }
     // Lag: the sensor read later (positive) or earlier than the current, chosen in-file.
@@ -326,7 +317,7 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
           current_low_passed(held_side, rh, j, best_tau, kt[j]), j, base, 2, nullptr);
       out.push_back(
           {"current_low_pass", "current noise: causal low-pass of K_t·i", j,
-           candidate_text("time constant %.0f ms (chosen in-file from 2–200 ms)", 1000 * best_tau),
+           format_sentence("time constant %.0f ms (chosen in-file from 2–200 ms)", 1000 * best_tau),
            base_fit, low_fit, base_held, low_held, false});
     } else {
       out.push_back({"current_low_pass", "current noise: causal low-pass of K_t·i", j,
@@ -334,8 +325,8 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                      base_held, false});
     }
     out.push_back({"lag", "lag between current and torque sensor", j,
-                   candidate_text("%+.0f ms (chosen in-file from ±%.0f ms)",
-                                  1000.0 * best * (fs.t[1] - fs.t[0]), 1000 * o.max_lag_s),
+                   format_sentence("%+.0f ms (chosen in-file from ±%.0f ms)",
+                                   1000.0 * best * (fs.t[1] - fs.t[0]), 1000 * o.max_lag_s),
                    same_fit_rms, lag_fit_rms, same_held_rms, lag_held_rms, false});
   }
   for (SensorCandidate& c : out)
