@@ -14,15 +14,6 @@ namespace {
 constexpr double kRounding = 1e-12;
 
 template <int N>
-JointVector<double, N> random_vector(std::mt19937_64& rng, double scale) {
-  std::uniform_real_distribution<double> u(-scale, scale);
-  JointVector<double, N> v;
-  for (int j = 0; j < N; ++j)
-    v(j) = u(rng);
-  return v;
-}
-
-template <int N>
 void expect_fast_forms_match_reference(const Model<double, N>& model, unsigned seed) {
   Data<double, N> data;
   reference::Workspace<N> ref;

@@ -48,15 +48,6 @@ PeerRobot<7> gen3() {
 }
 
 template <int N>
-JointVector<double, N> random_vector(std::mt19937_64& rng, double scale) {
-  std::uniform_real_distribution<double> u(-scale, scale);
-  JointVector<double, N> v;
-  for (int j = 0; j < N; ++j)
-    v(j) = u(rng);
-  return v;
-}
-
-template <int N>
 void expect_inverse_dynamics_agree(const PeerRobot<N>& robot, unsigned seed) {
   using R = PeerRobot<N>;
   ASSERT_EQ(robot.chain.getNrOfJoints(), static_cast<unsigned>(N));

@@ -28,7 +28,17 @@ inline const Arm& arm() {
   return model;
 }
 
-/// Seeded uniform vectors in [−scale, scale].
+/// A uniform joint vector of an N-joint arm in [−scale, scale] from `rng`.
+template <int N>
+JointVector<double, N> random_vector(std::mt19937_64& rng, double scale) {
+  std::uniform_real_distribution<double> u(-scale, scale);
+  JointVector<double, N> v;
+  for (int j = 0; j < N; ++j)
+    v(j) = u(rng);
+  return v;
+}
+
+/// Seeded uniform vectors in [−scale, scale] of the 4-DoF arm.
 class RandomStates {
  public:
   explicit RandomStates(unsigned seed) : rng_(seed) {}
