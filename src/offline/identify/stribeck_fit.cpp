@@ -5,24 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "offline/identify/stribeck_curve_cost.hpp"
+
 namespace tpf::offline {
-namespace {
-
-// Parameters x = [τ_c, τ_s, q̇_s, δ, b, α_c, α_v].
-struct StribeckResidual {
-  double dq, abs_gravity, target;
-  template <typename T>
-  bool operator()(const T* x, T* residual) const {
-    using std::abs, std::exp, std::pow;
-    const T ratio = T(abs(dq)) / x[2];
-    const T level = x[0] + x[5] * abs_gravity + (x[1] - x[0]) * exp(-pow(ratio, x[3]));
-    const double sign = dq > 0 ? 1.0 : -1.0;
-    residual[0] = level * sign + (x[4] + x[6] * abs_gravity) * dq - target;
-    return true;
-  }
-};
-
-}  // namespace
 
 StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
                          const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load) {
@@ -34,11 +19,7 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
                  fit_load ? std::max(start.load_coulomb, 0.0) : 0.0,
                  fit_load ? std::max(start.load_viscous, 0.0) : 0.0};
   ceres::Problem problem;
-  for (Eigen::Index k = 0; k < dq.size(); ++k) {
-    auto* cost = new ceres::AutoDiffCostFunction<StribeckResidual, 1, 7>(
-        new StribeckResidual{dq[k], abs_gravity[k], target[k]});
-    problem.AddResidualBlock(cost, nullptr, x);
-  }
+  problem.AddResidualBlock(new StribeckCurveCost(dq, abs_gravity, target), nullptr, x);
   const double lower[7] = {0, 0, 1e-3, 0.3, 0, 0, 0};
   const double upper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
   for (int i = 0; i < 7; ++i) {
