@@ -71,6 +71,23 @@ CandidateInputs candidate_inputs(const Model<double, N>& model, const JointSampl
   return inputs;
 }
 
+/// The files of a several-file log other than the held-out one (the last), each held out in turn:
+/// the folds a candidate's gain must transfer to. None for a one-file log or without a split.
+template <int N>
+std::vector<TransferFold> transfer_folds(const Log& log, const EffectDesign<N>& design,
+                                         const JointSamples& s) {
+  std::vector<TransferFold> folds;
+  if (s.heldout_file == 0) return folds;
+  JointSamples fold = s;
+  for (std::size_t f = 0; f + 1 < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    std::fill(fold.heldout.begin(), fold.heldout.end(), 0);
+    std::fill(fold.heldout.begin() + begin, fold.heldout.begin() + end, 1);
+    folds.push_back({log.file_path(f), design.accumulate(fold)});
+  }
+  return folds;
+}
+
 /// The effort predictions pass 4 needs, in one pass over the samples.
 struct EffectPredictions {
   Eigen::MatrixXd selected, declared;  ///< the selected and the declared linear models
@@ -281,8 +298,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   const EffectDesign<N> design(model, setup.base, setup.effort_scale, s, inputs, threshold);
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
-  EffectSelection sel = select_effects(grams, out.groups, design.declared_columns(), selection,
-                                       analysis.variance_inflation, options);
+  EffectSelection sel =
+      select_effects(grams, transfer_folds(log, design, s), out.groups, design.declared_columns(),
+                     selection, analysis.variance_inflation, options);
   out.trials = std::move(sel.trials);
   out.selected = sel.selected;
   out.claims = sel.claims;

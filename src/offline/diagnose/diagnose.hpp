@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -54,7 +56,17 @@ struct CandidateTrial {
   double bic_change = 0.0;      ///< held-out BIC change (negative favours the candidate)
   double wald = 0.0;            ///< min over columns of |θ|/SE (SE inflated for autocorrelation)
   double distinct_share = 1.0;  ///< sin² of the smallest angle to the model's columns
+  /// A several-file log: the smallest improvement on the other files, each held out in turn
+  /// (fitted on the rest), and that file; NaN for a one-file log. A candidate is claimed only if
+  /// this is positive: it lowers the held-out error of every file, not of one.
+  double transfer_improvement = std::numeric_limits<double>::quiet_NaN();
+  std::string transfer_file;
   bool selected = false;
+  /// Passed every test on the selection's held-out file but made another file worse.
+  bool fails_transfer(const DiagnoseOptions& o) const {
+    return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors &&
+           !(transfer_improvement > 0 || std::isnan(transfer_improvement));
+  }
 };
 
 /// A payload judged against the robot file's inertias (CAD): the rigid body is held at the robot

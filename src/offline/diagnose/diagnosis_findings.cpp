@@ -1,5 +1,6 @@
 #include "offline/diagnose/diagnosis_findings.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "offline/regimes/regime.hpp"
@@ -83,6 +84,25 @@ void add_worsened_regimes(const EffectDiagnosis& d, std::vector<std::string>& fi
     }
 }
 
+// Candidates that passed on the held-out file but made another file worse, once each.
+void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
+                       std::vector<std::string>& findings) {
+  std::vector<std::string> said;
+  for (const CandidateTrial& t : d.trials) {
+    if (!t.fails_transfer(options)) continue;
+    if (std::find(said.begin(), said.end(), t.title) != said.end()) continue;
+    said.push_back(t.title);
+    findings.push_back(
+        "Not claimed: " + t.title +
+        format_sentence(" — removes %.1f %% of the held-out file's residual sum of squares, but "
+                        "raises that of ",
+                        100 * t.improvement) +
+        t.transfer_file +
+        format_sentence(", held out in turn, by %.1f %%: it does not transfer between files.",
+                        -100 * t.transfer_improvement));
+  }
+}
+
 // What no candidate explains: held-out RMSE over 3× the noise floor at rest.
 void add_unexplained(const EffectDiagnosis& d, std::vector<std::string>& findings) {
   for (int j = 0; j < d.joints(); ++j) {
@@ -111,13 +131,18 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
                                             const DiagnoseOptions& options) {
   std::vector<std::string> findings;
   if (d.cad_payload.claimed) findings.push_back(payload_finding(d.cad_payload));
+  const bool untransferred =
+      std::any_of(d.trials.begin(), d.trials.end(),
+                  [&](const CandidateTrial& t) { return t.fails_transfer(options); });
   if (d.selected.empty())
     findings.push_back(
-        "No candidate effect lowers the held-out residual enough to be claimed (threshold " +
+        "No candidate effect is claimed: none lowers the held-out residual by the threshold (" +
         format_sentence("%.0f %%", 100 * options.min_improvement) +
-        " of the residual sum of squares).");
+        " of the residual sum of squares)" +
+        (untransferred ? " and does so on every file held out in turn (below)." : "."));
   for (const Claim& c : d.claims)
     findings.push_back(claim_finding(d, c));
+  add_untransferred(d, options, findings);
   add_worsened_regimes(d, findings);
   add_unexplained(d, findings);
   return findings;

@@ -53,15 +53,20 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   j["joints"] = joints;
   nlohmann::json trials = nlohmann::json::array();
   for (const CandidateTrial& t : d.trials)
-    trials.push_back({{"effect", t.key},
-                      {"title", t.title},
-                      {"joint", t.joint + 1},
-                      {"round", t.round},
-                      {"heldout_improvement_percent", 100 * t.improvement},
-                      {"bic_change", t.bic_change},
-                      {"standard_errors_from_zero", t.wald},
-                      {"share_outside_model", t.distinct_share},
-                      {"selected", t.selected}});
+    trials.push_back(
+        {{"effect", t.key},
+         {"title", t.title},
+         {"joint", t.joint + 1},
+         {"round", t.round},
+         {"heldout_improvement_percent", 100 * t.improvement},
+         {"bic_change", t.bic_change},
+         {"standard_errors_from_zero", t.wald},
+         {"share_outside_model", t.distinct_share},
+         {"transfer_improvement_percent", std::isnan(t.transfer_improvement)
+                                              ? nlohmann::json(nullptr)
+                                              : nlohmann::json(100 * t.transfer_improvement)},
+         {"transfer_file", t.transfer_file},
+         {"selected", t.selected}});
   j["trials"] = trials;
   nlohmann::json selected = nlohmann::json::array();
   for (int g : d.selected)

@@ -48,10 +48,12 @@ Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& sele
 /// The state of a forward selection: the model so far and the library it draws from.
 class ForwardSelection {
  public:
-  ForwardSelection(const DesignGrams& grams, const std::vector<FeatureGroup>& groups,
+  ForwardSelection(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
+                   const std::vector<FeatureGroup>& groups,
                    const std::vector<int>& declared_columns, const FitSelection& selection,
                    const Eigen::VectorXd& inflation, const DiagnoseOptions& options)
       : grams_(grams),
+        transfer_(transfer),
         groups_(groups),
         declared_columns_(declared_columns),
         selection_(selection),
@@ -91,7 +93,7 @@ class ForwardSelection {
       gain[g] = trial.improvement;
       out.trials.push_back(trial);
       if (trial.improvement >= options_.min_improvement && trial.bic_change < 0 &&
-          trial.wald >= options_.min_standard_errors)
+          trial.wald >= options_.min_standard_errors && !trial.fails_transfer(options_))
         eligible.push_back(static_cast<int>(g));
     }
     if (eligible.empty()) return false;
@@ -137,7 +139,11 @@ class ForwardSelection {
     const RegimeTable with = heldout_table(grams_, trial_theta);
     const auto [sse0, n] = heldout_sse(now, group.joint, selection_.joint_weights);
     const auto [sse1, n1] = heldout_sse(with, group.joint, selection_.joint_weights);
-    CandidateTrial trial{group.key, group.title, group.joint, round, 0, 0, 0, 1, false};
+    CandidateTrial trial;
+    trial.key = group.key;
+    trial.title = group.title;
+    trial.joint = group.joint;
+    trial.round = round;
     trial.improvement = sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
     trial.bic_change = n * std::log(std::max(sse1, 1e-300) / std::max(sse0, 1e-300)) +
                        static_cast<double>(group.columns.size()) * std::log(std::max(n, 2.0));
@@ -148,7 +154,25 @@ class ForwardSelection {
       th[static_cast<Eigen::Index>(i)] = trial_theta[own[i]];
     trial.wald = std::sqrt(std::max(th.dot(S * th), 0.0) / std::max(sigma2, 1e-300));
     trial.distinct_share = distinct_share(A_, reference_model, own);
+    for (const TransferFold& fold : transfer_) {
+      const double gain = fold_improvement(fold.grams, reference, trial_columns, group.joint);
+      if (!(gain >= trial.transfer_improvement)) {
+        trial.transfer_improvement = gain;
+        trial.transfer_file = fold.file;
+      }
+    }
     return trial;
+  }
+
+  /// Fraction of a fold's held-out SSE (on `joint`, or every joint) that `with` removes from
+  /// `without`, both fitted on the fold's training rows.
+  double fold_improvement(const DesignGrams& fold, const std::vector<int>& without,
+                          const std::vector<int>& with, int joint) const {
+    const auto [sse0, n0] = heldout_sse(heldout_table(fold, fit_columns(fold, without, selection_)),
+                                        joint, selection_.joint_weights);
+    const auto [sse1, n1] = heldout_sse(heldout_table(fold, fit_columns(fold, with, selection_)),
+                                        joint, selection_.joint_weights);
+    return sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
   }
 
   /// The largest gain; an effect of every joint (one shared delay) is preferred to the same effect
@@ -288,6 +312,7 @@ class ForwardSelection {
   }
 
   const DesignGrams& grams_;
+  const std::vector<TransferFold>& transfer_;
   const std::vector<FeatureGroup>& groups_;
   const std::vector<int>& declared_columns_;
   const FitSelection& selection_;
@@ -302,12 +327,14 @@ class ForwardSelection {
 
 }  // namespace
 
-EffectSelection select_effects(const DesignGrams& grams, const std::vector<FeatureGroup>& groups,
+EffectSelection select_effects(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
+                               const std::vector<FeatureGroup>& groups,
                                const std::vector<int>& declared_columns,
                                const FitSelection& selection,
                                const Eigen::VectorXd& variance_inflation,
                                const DiagnoseOptions& options) {
-  return ForwardSelection(grams, groups, declared_columns, selection, variance_inflation, options)
+  return ForwardSelection(grams, transfer, groups, declared_columns, selection, variance_inflation,
+                          options)
       .run();
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -22,6 +23,13 @@ RegimeTable heldout_table(const DesignGrams& grams, const Eigen::VectorXd& theta
 std::pair<double, double> heldout_sse(const RegimeTable& table, int joint,
                                       const Eigen::VectorXd& w);
 
+/// Another file of a several-file log held out instead of the selection's (its Grams with that
+/// file's samples in the held-out split): a candidate's gain must transfer to it.
+struct TransferFold {
+  std::string file;
+  DesignGrams grams;
+};
+
 struct EffectSelection {
   std::vector<CandidateTrial> trials;
   std::vector<int> selected;  ///< indices into the groups, in selection order
@@ -37,8 +45,10 @@ struct EffectSelection {
 };
 
 /// Selection on `grams` over `groups` (declared ones first), fitting on `selection`'s rows with
-/// its joint weights; standard errors inflated per joint by `variance_inflation`.
-EffectSelection select_effects(const DesignGrams& grams, const std::vector<FeatureGroup>& groups,
+/// its joint weights; standard errors inflated per joint by `variance_inflation`. A candidate
+/// must also lower the held-out error of every fold in `transfer` (none for a one-file log).
+EffectSelection select_effects(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
+                               const std::vector<FeatureGroup>& groups,
                                const std::vector<int>& declared_columns,
                                const FitSelection& selection,
                                const Eigen::VectorXd& variance_inflation,
