@@ -58,14 +58,14 @@ struct CandidateTrial {
   double distinct_share = 1.0;  ///< sin² of the smallest angle to the model's columns
   /// A several-file log: the smallest improvement on the other files, each held out in turn
   /// (fitted on the rest), and that file; NaN for a one-file log. A candidate is claimed only if
-  /// this is positive: it lowers the held-out error of every file, not of one.
+  /// this too reaches min_improvement: it lowers the held-out error of every file, not of one.
   double transfer_improvement = std::numeric_limits<double>::quiet_NaN();
   std::string transfer_file;
   bool selected = false;
   /// Passed every test on the selection's held-out file but made another file worse.
   bool fails_transfer(const DiagnoseOptions& o) const {
     return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors &&
-           !(transfer_improvement > 0 || std::isnan(transfer_improvement));
+           !(transfer_improvement >= o.min_improvement || std::isnan(transfer_improvement));
   }
 };
 

@@ -95,11 +95,12 @@ void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
     findings.push_back(
         "Not claimed: " + t.title +
         format_sentence(" — removes %.1f %% of the held-out file's residual sum of squares, but "
-                        "raises that of ",
+                        "changes that of ",
                         100 * t.improvement) +
         t.transfer_file +
-        format_sentence(", held out in turn, by %.1f %%: it does not transfer between files.",
-                        -100 * t.transfer_improvement));
+        format_sentence(", held out in turn, by %+.1f %% (claims need −%.0f %% on every file): it "
+                        "does not transfer between files.",
+                        -100 * t.transfer_improvement, 100 * options.min_improvement));
   }
 }
 
