@@ -29,6 +29,7 @@ Eigen::VectorXd only_kind(const std::vector<FeatureGroup>& groups, const Eigen::
 /// prediction, and the joint weights 1/σ_j² of the fit.
 struct DeclaredFit {
   Eigen::VectorXd joint_weights;
+  Eigen::VectorXd viscous;           ///< per joint: the fitted viscous coefficient b_j
   Eigen::MatrixXd residual;          ///< effort − declared prediction
   Eigen::MatrixXd rigid_prediction;  ///< its rigid-body part
 };
@@ -51,13 +52,16 @@ DeclaredFit fit_declared(const EffectDesign<N>& declared, const JointSamples& s,
   const std::vector<Eigen::MatrixXd> predictions =
       declared.predict_each(s, {theta, only_kind(declared.groups(), theta, FeatureKind::Rigid)});
   fit.residual = s.effort - predictions[0];
+  fit.viscous.resize(N);
+  for (const FeatureGroup& g : declared.groups())
+    if (g.kind == FeatureKind::Friction) fit.viscous[g.joint] = std::max(theta[g.columns[1]], 0.0);
   fit.rigid_prediction = predictions[1];
   return fit;
 }
 
 template <int N>
 CandidateInputs candidate_inputs(const Model<double, N>& model, const JointSamples& s,
-                                 const ResidualAnalysis& analysis) {
+                                 const ResidualAnalysis& analysis, const DeclaredFit& fit) {
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
@@ -68,6 +72,7 @@ CandidateInputs candidate_inputs(const Model<double, N>& model, const JointSampl
       s.temperature.cols() == N
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
           : 25.0;
+  inputs.viscous = fit.viscous;
   return inputs;
 }
 
@@ -294,7 +299,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   if (N == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const CandidateInputs inputs = candidate_inputs(model, s, analysis);
+  const CandidateInputs inputs = candidate_inputs(model, s, analysis, fit);
   const EffectDesign<N> design(model, setup.base, setup.effort_scale, s, inputs, threshold);
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();

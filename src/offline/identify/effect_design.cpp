@@ -124,6 +124,11 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
     if (candidates_.prediction_rate.cols() == N && N > 1)
       add_group(K::Delay, "delay", "delay between effort and motion, every joint (one lead)", -1,
                 {"lead_s"});
+    if (has_temperature_ && candidates_.viscous.size() == N && N > 1)
+      add_group(K::Thermal, "thermal",
+                "temperature-dependent friction, every joint (one relative change of the viscous "
+                "friction per °C)",
+                -1, {"beta_v"});
   }
   local_.assign(N, {});
   joint_groups_.assign(N, {});
@@ -192,7 +197,8 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
           break;
         }
         case K::Thermal:
-          *out++ = (s.temperature(k, j) - candidates_.reference_temperature) * dq[j];
+          *out++ = (s.temperature(k, j) - candidates_.reference_temperature) * dq[j] *
+                   (groups_[g].joint < 0 ? candidates_.viscous[j] : 1.0);
           break;
         case K::Spring:
           *out++ = q[j];

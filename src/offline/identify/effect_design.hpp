@@ -53,6 +53,9 @@ struct CandidateInputs {
   Eigen::MatrixXd prediction_rate;  ///< d(declared prediction)/dt per sample and joint, or empty
   Eigen::MatrixXd abs_gravity;      ///< |G_j(q)| per sample and joint [N·m] (gravity_load)
   double reference_temperature = 25.0;  ///< °C
+  /// Per joint: the declared fit's viscous coefficient b_j (effort unit·s/rad), which the
+  /// every-joint thermal candidate scales; empty = no every-joint thermal candidate.
+  Eigen::VectorXd viscous;
 };
 
 /// Features of every joint row of the samples, for an N-joint model. Rigid columns are scaled by
@@ -62,7 +65,9 @@ struct CandidateInputs {
 ///   declared: Y_b(q,q̇,q̈)·e_j | s, q̇_j, h
 ///   load_friction: |G|s, |G|q̇_j, |G|h        ripple: sin(nq_j), cos(nq_j)
 ///   ripple_motor: sin(n r_j q_j), cos(n r_j q_j)   payload: Y(j, link N)·e_j (10 columns)
-///   thermal: (T_j − T_ref)q̇_j    spring: q_j    offset: 1
+///   thermal: (T_j − T_ref)q̇_j, and for every joint at once (T_j − T_ref)·b_j·q̇_j (one shared
+///            relative coefficient: viscous friction × (1 + β(T − T_ref)))
+///   spring: q_j    offset: 1
 ///   asymmetric_friction: |s|, |q̇_j| (level τ_c ± a_c and viscous b ± a_v by direction)
 ///   neighbour_load_friction: |G_k|s, |G_k|q̇_j for every k ≠ j
 ///   delay: d(rigid-body prediction_j)/dt (coefficient = the effort's lead over the motion, s),
