@@ -16,6 +16,7 @@
 #include "arm/arm4.hpp"
 #include "arm/cycle_sample.hpp"
 #include "tpf/estimation/estimator_status.hpp"
+#include "tpf/model/model.hpp"
 
 namespace tpf::arm {
 
@@ -84,6 +85,7 @@ class EstimatorHook {
   std::variant<std::unique_ptr<ArmEstimator>, std::unique_ptr<UncompensatedArmEstimator>>
       estimator_;
   ArmEstimator::Sample input_;
+  Model<double, kArmJoints> model_;  ///< the robot file's: its K_t turns the currents into N·m
   const Output* output_ = nullptr;
   Output empty_;
   CycleEstimate estimate_;

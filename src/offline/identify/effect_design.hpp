@@ -55,8 +55,8 @@ struct CandidateInputs {
   double reference_temperature = 25.0;  ///< °C
 };
 
-/// Features of every joint row of the samples, for an N-joint model. Rigid columns are scaled by
-/// effort_per_newton_metre so that their coefficients are SI base parameters.
+/// Features of every joint row of the samples (effort in N·m), for an N-joint model: the rigid
+/// columns' coefficients are SI base parameters, every other coefficient is in N·m per feature.
 /// Row j of sample k (moving = |q̇_j| ≥ threshold, s = sgn(q̇_j) when moving else 0, h = held sign
 /// at rest else 0, |G| = |G_j(q)| of the robot file's model [N·m]):
 ///   declared: Y_b(q,q̇,q̈)·e_j | s, q̇_j, h
@@ -72,8 +72,7 @@ template <int N>
 class EffectDesign {
  public:
   EffectDesign(const Model<double, N>& model, const BaseParameters& base,
-               const Eigen::VectorXd& effort_per_newton_metre, const JointSamples& samples,
-               CandidateInputs candidates, double static_velocity);
+               const JointSamples& samples, CandidateInputs candidates, double static_velocity);
 
   int features() const { return features_; }
   const std::vector<FeatureGroup>& groups() const { return groups_; }
@@ -98,7 +97,6 @@ class EffectDesign {
 
   Model<double, N> model_;
   std::vector<int> base_columns_;
-  Eigen::VectorXd scale_;
   CandidateInputs candidates_;
   double static_velocity_;
   bool has_temperature_;
