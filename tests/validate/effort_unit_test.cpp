@@ -17,6 +17,7 @@
 #include "offline/upgrade/upgrade_files.hpp"
 #include "support/arm_fixture.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/estimation/compensator_weight_files.hpp"
 #include "tpf/estimation/estimator.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/friction/friction_file.hpp"
