@@ -15,6 +15,7 @@
 #include "offline/sim/simulate.hpp"
 #include "tpf/estimation/estimator.hpp"
 #include "tpf/friction/friction_file.hpp"
+#include "tpf/model/effort_unit.hpp"
 #include "tpf/model/load_robot.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
 #include "tpf/nn/per_joint_tcn_compensator.hpp"
@@ -43,6 +44,7 @@ const std::vector<Sample>& samples() {
   static const std::vector<Sample> rows = [] {
     const auto log = tpf::offline::simulate_to_log(
         tpf::offline::load_scenario(data("scenarios/teaching.json")), 1, 20.0);
+    const auto model = tpf::load_robot<double, N>(data("arm4.robot.json"));
     std::vector<Sample> out(static_cast<std::size_t>(log.rows()));
     for (Eigen::Index r = 0; r < log.rows(); ++r) {
       Sample& s = out[static_cast<std::size_t>(r)];
@@ -52,6 +54,7 @@ const std::vector<Sample>& samples() {
         s.dq[j] = log.col(tpf::offline::indexed_name("dq", j + 1))[r];
         s.effort[j] = log.col(tpf::offline::indexed_name("i", j + 1))[r];
       }
+      s.effort = tpf::torque_from_current(model, s.effort);  // mA → N·m
       for (int k = 0; k < P; ++k)
         s.pressure[k] = log.col(tpf::offline::indexed_name("p", k + 1))[r];
     }
@@ -62,19 +65,15 @@ const std::vector<Sample>& samples() {
 
 tpf::NominalModel<double, N> twin_nominal() {
   const auto model = tpf::load_robot<double, N>(data("arm4.robot.json"));
-  auto friction = tpf::load_stribeck_parameters<double, N>(data("arm4.friction.json"));
-  const auto scale = tpf::effort_scale<N>(model, "mA");
-  for (auto* v : {&friction.coulomb, &friction.static_friction, &friction.viscous,
-                  &friction.load_coulomb, &friction.load_viscous})
-    *v = v->cwiseProduct(scale);
-  return tpf::nominal_from_model<N>(model, friction, scale);
+  return tpf::nominal_from_model<N>(
+      model, tpf::load_stribeck_parameters<double, N>(data("arm4.friction.json")));
 }
 
 tpf::EstimatorParameters<double, N> parameters() {
   tpf::EstimatorParameters<double, N> p;
   p.skin.force_gain = 1.0 / (1.5 * 1000.0 * 0.0025);
-  p.nominal_sigma = p.fused_sigma = tpf::JointVector<double, N>::Constant(100.0);
-  p.static_dead_band = tpf::JointVector<double, N>::Constant(20.0);
+  p.nominal_sigma = p.fused_sigma = tpf::JointVector<double, N>::Constant(0.5);  // N·m
+  p.static_dead_band = tpf::JointVector<double, N>::Constant(0.1);
   return p;
 }
 

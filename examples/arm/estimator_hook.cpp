@@ -6,6 +6,7 @@
 
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/estimator_status.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace tpf::arm {
 
@@ -14,10 +15,6 @@ namespace {
 /// The core's estimator set-up for the arm, from the files; `description` says what was loaded.
 EstimatorSetup<kArmJoints> load_setup(const EstimatorFiles& f, std::string& description) {
   EstimatorSetup<kArmJoints> setup = load_estimator_setup<kArmJoints>(f);
-  if (setup.nominal.effort_unit != "mA")
-    throw Error::at(f.params, 0, "effort_unit",
-                    "is \"" + setup.nominal.effort_unit +
-                        "\"; the loop measures motor currents in mA (identify on an i<j> log)");
   description = "estimator: " + f.params + ", " + std::to_string(setup.pads.size()) +
                 " pads, parameters " + f.estimator + ", " + describe(setup.weights) +
                 (f.weights.empty() ? "" : " (" + f.weights + ")");
@@ -28,6 +25,7 @@ EstimatorSetup<kArmJoints> load_setup(const EstimatorFiles& f, std::string& desc
 
 EstimatorHook::EstimatorHook(const EstimatorFiles& files) {
   const EstimatorSetup<kArmJoints> setup = load_setup(files, description_);
+  model_ = setup.nominal.model;
   if (setup.weights.layout == CompensatorLayout::None)
     estimator_ = make_estimator<kArmJoints, kArmPads, NoCompensator>(setup);
   else
@@ -45,6 +43,8 @@ void EstimatorHook::update(const CycleSample& s) noexcept {
     input_.dq[j] = have ? s.dq[j] : nan;
     input_.effort[j] = have ? s.i[j] : nan;
   }
+  // The drives report current [mA]; the estimator computes in N·m.
+  input_.effort = torque_from_current(model_, input_.effort);
   for (int k = 0; k < kPads; ++k)
     input_.pressure[k] =
         s.pads_valid && static_cast<std::size_t>(k) < s.pads ? static_cast<double>(s.p[k]) : nan;

@@ -16,13 +16,14 @@
 #include "arm/arm4.hpp"
 #include "arm/cycle_sample.hpp"
 #include "tpf/estimation/estimator_status.hpp"
+#include "tpf/model/model.hpp"
 
 namespace tpf::arm {
 
 /// Where the estimator comes from (tpf::EstimatorFiles: params, robot, pads, estimator, weights;
 /// no weights: UncompensatedArmEstimator). Paths default to the project's data/ folder
-/// (tpf_arm_loop). The effort unit of the parameter file must be mA (the loop measures motor
-/// currents).
+/// (tpf_arm_loop). The loop measures motor currents; the robot file's torque constants turn
+/// them into the N·m the estimator computes in.
 struct EstimatorFiles : tpf::EstimatorFiles {
   /// Estimates kept for inspection (one per cycle, reserved at start-up; 0: none).
   std::size_t trace_capacity = 0;
@@ -58,11 +59,12 @@ class EstimatorHook {
   using Output = EstimatorOutput<double, kJoints>;
 
   /// Start-up: loads every file and builds the estimator. Throws tpf::Error naming the file and
-  /// field on bad input (also when the parameter file's effort unit is not mA).
+  /// field on bad input.
   explicit EstimatorHook(const EstimatorFiles& files);
 
-  /// Per cycle (no allocation, no exception, no I/O): the sample's q, q̇, current (mA) and pad
-  /// pressures (kPa, channel k → pad k) become an EstimatorSample. A failed motor read feeds NaN
+  /// Per cycle (no allocation, no exception, no I/O): the sample's q, q̇, current (mA, through
+  /// torque_from_current into N·m) and pad pressures (kPa, channel k → pad k) become an
+  /// EstimatorSample. A failed motor read feeds NaN
   /// q (the estimator skips the cycle: kStatusNonFiniteInput); stale or missing pads feed NaN
   /// pressures (kept state: kStatusPadDataInvalid).
   void update(const CycleSample& sample) noexcept;
@@ -84,6 +86,7 @@ class EstimatorHook {
   std::variant<std::unique_ptr<ArmEstimator>, std::unique_ptr<UncompensatedArmEstimator>>
       estimator_;
   ArmEstimator::Sample input_;
+  Model<double, kArmJoints> model_;  ///< the robot file's: its K_t turns the currents into N·m
   const Output* output_ = nullptr;
   Output empty_;
   CycleEstimate estimate_;

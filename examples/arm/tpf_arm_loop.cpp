@@ -88,7 +88,9 @@ int main(int argc, char** argv) {
   app.add_flag("--hold", hold,
                "position mode, goal = the pose read at start, torque on: the drives hold the arm");
   app.add_flag("--no-estimator", no_estimator, "only read, log and report");
-  app.add_option("--params", est.params, "nominal model (tpf-params, effort in mA)")
+  app.add_option(
+         "--params", est.params,
+         "nominal model (tpf-params, N*m; the currents are converted with the robot file's K_t)")
       ->capture_default_str();
   app.add_option("--robot", est.robot, "robot file of the parameters")->capture_default_str();
   app.add_option("--pad-layout", est.pads, "pad layout (tpf-pads); pad k = board channel k")

@@ -31,25 +31,29 @@ int main(int argc, char** argv) {
     sample.q << 0.0, 0.6, -0.9, 0.3;  // a held pose [rad]
     tpf::JointVector<double, kJoints> rigid, friction;
     tpf::predict_effort(nominal, data, sample.q, sample.dq, sample.dq, rigid, friction);
-    const tpf::JointVector<double, kJoints> holding = rigid;  // mA at rest
+    // The drives report motor current [mA]; the estimator computes in N·m.
+    const tpf::JointVector<double, kJoints> holding =
+        tpf::current_from_torque(nominal.model, rigid);  // mA at rest
 
     // Per cycle: no allocation, no exception. The push lowers joints 2–3's current (τ_ext > 0
     // there) and raises the pad's pressure (1.5 kPa/N on the twin's pads).
     std::mt19937 rng(1);
     std::normal_distribution<double> current_noise(0.0, 8.0), pressure_noise(0.0, 0.02);
     bool missed = false, false_alarm = false;
+    tpf::JointVector<double, kJoints> current;  // [mA], as the drives report it
     for (int k = 0; k < 800; ++k) {
       const bool pushed = k >= 400;
       sample.t = k / 400.0;
       for (int j = 0; j < kJoints; ++j)
-        sample.effort[j] = holding[j] + current_noise(rng);
+        current[j] = holding[j] + current_noise(rng);
       for (int p = 0; p < kPads; ++p)
         sample.pressure[p] = pressure_noise(rng);
       if (pushed) {
-        sample.effort[1] -= 900.0;
-        sample.effort[2] -= 400.0;
+        current[1] -= 900.0;
+        current[2] -= 400.0;
         sample.pressure[kPushedPad] += 12.0;
       }
+      sample.effort = tpf::torque_from_current(nominal.model, current);  // τ = K_t·i [N·m]
       const tpf::EstimatorOutput<double, kJoints>& out = estimator->update(sample);
       if (k < 400 && out.contact) false_alarm = true;
       if (k == 799) missed = !out.contact || out.wrench.pad != kPushedPad;

@@ -11,6 +11,7 @@
 #include "offline/calibrate/estimator_calibration.hpp"
 #include "offline/log/read_log.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace {
 
@@ -44,7 +45,14 @@ void run_calibrate(const CalibrateCommandOptions& o) {
   std::string source = o.log + (simulated ? " (SIMULATED log)" : "") + ", nominal model " +
                        o.model.params + ", compensator " + (o.weights.empty() ? "none" : o.weights);
   tpf::save_estimator_parameters<N>(o.out, p, source);
-  const std::string unit = setup.nominal.effort_unit;
+  // Calibrated in N·m; printed in the log's unit (mA for a log of currents).
+  const tpf::DriveUnits units =
+      tpf::drive_units(setup.nominal.model, tpf::effort_unit_of_column(log.effort_prefix()));
+  const std::string unit = units.name();
+  const auto in_log_unit = [&](const tpf::JointVector<double, N>& tau) {
+    return tpf::JointVector<double, N>(
+        units.to_effort(Eigen::MatrixXd(tau.transpose())).transpose());
+  };
   std::printf("calibrate: %s%s, %d joints, %s, %s\n", o.log.c_str(),
               simulated ? " (SIMULATED)" : "", N,
               tpf::cli::describe_pads(
@@ -53,11 +61,11 @@ void run_calibrate(const CalibrateCommandOptions& o) {
                   .c_str(),
               describe(setup.weights).c_str());
   std::printf("  static dead band [%s]: %s\n", unit.c_str(),
-              joint_values(p.static_dead_band).c_str());
+              joint_values(in_log_unit(p.static_dead_band)).c_str());
   std::printf("  transition sigma, nominal [%s]: %s\n", unit.c_str(),
-              joint_values(p.nominal_sigma).c_str());
+              joint_values(in_log_unit(p.nominal_sigma)).c_str());
   std::printf("  transition sigma, fused [%s]: %s\n", unit.c_str(),
-              joint_values(p.fused_sigma).c_str());
+              joint_values(in_log_unit(p.fused_sigma)).c_str());
   if (setup.pads.empty())
     std::printf("  pad contact on/off [kPa]: no skin\n");
   else
@@ -89,7 +97,8 @@ void register_calibrate_command(CLI::App& app) {
       "alarms later). Writes the estimator parameter file (tpf-estimator) that "
       "tpf_arm_loop --estimator loads at start-up. Run it again when the arm, its nominal model "
       "or its compensator changes.");
-  cmd->add_option("--log", o->log, "Contact-free calibration log (tpf CSV, effort i<j> in mA)")
+  cmd->add_option("--log", o->log,
+                  "Contact-free calibration log (tpf CSV, effort i<j> in mA or tau<j> in N*m)")
       ->required()
       ->check(CLI::ExistingFile);
   add_model_file_options(cmd, o->model, "Nominal model (tpf-params file)");

@@ -9,10 +9,10 @@
 
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
-#include "read_command_logs.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "read_command_logs.hpp"
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -44,18 +44,21 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   std::printf(
       "held-out RMSE [%s] before -> after: the selection's linear fit (friction held at "
       "rest) | the written model (--params: friction curve, run-time effects only)\n",
-      d.samples.effort_unit.c_str());
+      d.samples.units.name());
   const Regime regimes[4] = {Regime::Static, Regime::StaticToKinetic, Regime::Moving,
                              Regime::Invalid};
   for (int j = 0; j < N; ++j)
     for (int r = 0; r < 4; ++r) {
       const auto& wb = d.written_before[j];
       const auto& wa = d.written_after[j];
-      const double b = r < 3 ? wb[regimes[r]].rmse : wb.valid.rmse;
-      const double w = r < 3 ? wa[regimes[r]].rmse : wa.valid.rmse;
+      // Fitted in N·m; printed in the log's unit (mA for a log of currents).
+      const auto in_log_unit = [&](double tau) { return d.samples.units.to_effort(j, tau); };
+      const double b = in_log_unit(r < 3 ? wb[regimes[r]].rmse : wb.valid.rmse);
+      const double w = in_log_unit(r < 3 ? wa[regimes[r]].rmse : wa.valid.rmse);
+      const double before = in_log_unit(d.before[j][r].rmse());
+      const double after = in_log_unit(d.after[j][r].rmse());
       std::printf("  joint %d %-18s %10.3f -> %10.3f  (%+.1f %%) | %10.3f -> %10.3f  (%+.1f %%)\n",
-                  j + 1, names[r], d.before[j][r].rmse(), d.after[j][r].rmse(),
-                  percent_change(d.before[j][r].rmse(), d.after[j][r].rmse()), b, w,
+                  j + 1, names[r], before, after, percent_change(before, after), b, w,
                   percent_change(b, w));
     }
   if (!a.report.empty()) {

@@ -48,7 +48,8 @@ void run_evaluate(const EvaluateCommandOptions& o) {
     excitation.push_back(read_log(p));
   const Log contacts = o.contacts.empty() ? Log{} : read_log(o.contacts);
   const Log teaching = o.teaching.empty() ? Log{} : read_log(o.teaching);
-  setup.parameters = estimator_parameters_from_noise<N>(estimate_sensor_noise(calibration));
+  setup.parameters = estimator_parameters_from_noise<N>(
+      estimate_sensor_noise(calibration, setup.nominal.model.torque_constant));
 
   EvaluationLogs logs;
   logs.calibration = &calibration;

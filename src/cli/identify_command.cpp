@@ -40,14 +40,17 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   const auto& s = id.samples;
   std::printf("%s%s: %ld samples (%zu skipped for a missing value), effort in %s\n",
               s.simulated ? "SIMULATED log " : "log ", log.source.c_str(),
-              static_cast<long>(s.size()), s.invalid_count, s.effort_unit.c_str());
+              static_cast<long>(s.size()), s.invalid_count, s.units.name());
   std::printf("held-out residual RMSE [%s]     static  static-to-kinetic   moving      all\n",
-              s.effort_unit.c_str());
+              s.units.name());
   nlohmann::json fit;
   for (int j = 0; j < N; ++j) {
     const auto& h = id.heldout[j];
-    std::printf("  joint %d  %28.3f %18.3f %8.3f %8.3f\n", j + 1, h[Regime::Static].rmse,
-                h[Regime::StaticToKinetic].rmse, h[Regime::Moving].rmse, h.valid.rmse);
+    // Fitted in N·m; printed in the log's unit (mA for a log of currents).
+    const auto in_log_unit = [&](double tau) { return s.units.to_effort(j, tau); };
+    std::printf("  joint %d  %28.3f %18.3f %8.3f %8.3f\n", j + 1,
+                in_log_unit(h[Regime::Static].rmse), in_log_unit(h[Regime::StaticToKinetic].rmse),
+                in_log_unit(h[Regime::Moving].rmse), in_log_unit(h.valid.rmse));
     fit["heldout_rmse"].push_back({{"static", h[Regime::Static].rmse},
                                    {"static-to-kinetic", h[Regime::StaticToKinetic].rmse},
                                    {"moving", h[Regime::Moving].rmse},

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   tpf::cli::register_calibrate_command(app);
   tpf::cli::register_import_command(app);
   tpf::cli::register_validate_command(app);
+  tpf::cli::register_upgrade_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

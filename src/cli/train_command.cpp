@@ -34,17 +34,16 @@ struct TrainCommandOptions {
 /// The estimator's trace over each log (no compensator, no skin: the network reads no pad), with
 /// parameters from the log's own noise.
 template <int N>
-std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& o,
-                                                     Eigen::VectorXd& effort_per_newton_metre) {
+std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& o) {
   using namespace tpf::offline;
   tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, "", false);
-  effort_per_newton_metre = setup.nominal.effort_per_newton_metre;
   std::vector<EstimatorTrace> traces;
   for (const std::string& path : o.logs) {
     if (!o.quiet) std::fprintf(stderr, "train: reading %s\n", path.c_str());
     const Log log = read_log(path);
-    setup.parameters = estimator_parameters_from_noise<N>(estimate_sensor_noise(log));
-    traces.push_back(replay_estimator(setup, estimator_samples<N>(log, 0)));
+    setup.parameters = estimator_parameters_from_noise<N>(
+        estimate_sensor_noise(log, setup.nominal.model.torque_constant));
+    traces.push_back(replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0)));
   }
   return traces;
 }
@@ -52,9 +51,8 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& 
 void run_train(TrainCommandOptions o) {
   using namespace tpf::offline;
   std::vector<EstimatorTrace> traces;
-  Eigen::VectorXd scale;
   tpf::cli::with_joint_count(tpf::cli::robot_joint_count(o.model.robot), o.model.robot,
-                             [&]<int N>() { traces = trace_logs<N>(o, scale); });
+                             [&]<int N>() { traces = trace_logs<N>(o); });
   CompensatorTrainingOptions options;
   options.tcn = o.tcn;
   options.tcn.checkpoint_path = o.checkpoint;
@@ -63,7 +61,7 @@ void run_train(TrainCommandOptions o) {
   options.static_to_kinetic_weight = o.static_to_kinetic_weight;
   options.static_weight = o.static_weight;
   const CompensatorTraining result = train_compensator(
-      traces, scale, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
+      traces, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
   for (const std::string& p : write_compensator(result, o.out))
     std::printf("train: wrote %s\n", p.c_str());
   for (std::size_t k = 0; k < result.results.size(); ++k) {

@@ -29,10 +29,7 @@ void run(const tpf::offline::Log& log, const ValidateArgs& a) {
   const auto nominal = tpf::load_nominal_model<N>(a.params, a.robot);
   SampleOptions options;
   options.regimes.static_velocity = a.static_velocity;
-  const JointSamples samples = extract_joint_samples(log, options);
-  if (samples.effort_unit != nominal.effort_unit)
-    throw tpf::Error(a.params + ": the model predicts " + nominal.effort_unit + ", the log " +
-                     log.source + " holds " + samples.effort_unit);
+  const JointSamples samples = extract_joint_samples(log, nominal.model.torque_constant, options);
   std::vector<std::string> notes;
   // One column per estimate; the compensator (--weights) becomes one more here.
   std::vector<EffortEstimate> estimates{nominal_estimate<N>(nominal, samples, notes)};
@@ -43,7 +40,7 @@ void run(const tpf::offline::Log& log, const ValidateArgs& a) {
     setup.weights = tpf::find_compensator_weights(a.weights, N);
     estimates.push_back(compensated_estimate<N>(setup, log, estimates.front()));
   }
-  Validation v = score_estimates(log, samples, estimates, nominal.effort_per_newton_metre);
+  Validation v = score_estimates(log, samples, estimates);
   v.notes = notes;
   std::printf("validate: %s on %s (%s)\n", a.params.c_str(), log.source.c_str(),
               samples.simulated ? "SIMULATED" : "held out by log");

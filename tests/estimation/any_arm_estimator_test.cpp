@@ -55,11 +55,7 @@ EstimatorFiles write_model_files(const fs::path& dir, const std::string& robot) 
   friction.static_friction.setConstant(1.1);
   friction.viscous.setConstant(0.3);
   friction.stribeck_velocity.setConstant(0.05);
-  const auto scale = effort_scale<N>(model, "mA");
-  for (auto* v : {&friction.coulomb, &friction.static_friction, &friction.viscous})
-    *v = v->cwiseProduct(scale);
-  NominalModel<double, N> nominal = nominal_from_model<N>(model, friction, scale);
-  nominal.effort_unit = "mA";
+  const NominalModel<double, N> nominal = nominal_from_model<N>(model, friction);
   EstimatorFiles files;
   files.params = (dir / "model.params.json").string();
   files.robot = robot;
@@ -89,7 +85,7 @@ void expect_exact_external_torque(const EstimatorFiles& files) {
                    friction);
     for (int j = 0; j < N; ++j)
       truth[k][j] = 0.5 * (j + 1) * std::sin(2.0 * s.t + j);  // N·m
-    s.effort = rigid + friction - nominal.effort_per_newton_metre.cwiseProduct(truth[k]);
+    s.effort = rigid + friction - truth[k];
   }
   test::AllocationCounter counter;
   double worst = 0.0;

@@ -29,8 +29,8 @@ static_assert(compensator_memory<ConstantCompensator> == 1);
 static_assert(compensator_memory<ConstantCompensatorWithMemory> == 8);
 static_assert(compensator_memory<ZeroCompensator<double, kJoints>> == 1);
 
-constexpr double kNominalSigma = 100.0, kFusedSigma = 20.0;  // mA: bands 150 and 30
-constexpr double kExtrapolation = 300.0;                     // mA, the network's wrong answer
+constexpr double kNominalSigma = 100.0, kFusedSigma = 20.0;  // N·m: bands 150 and 30
+constexpr double kExtrapolation = 300.0;                     // N·m, the network's wrong answer
 constexpr int kAlarmSamples = 10;
 
 EstimatorParameters<double, kJoints> domain_parameters(double speed_limit) {
@@ -43,7 +43,7 @@ EstimatorParameters<double, kJoints> domain_parameters(double speed_limit) {
 }
 
 /// 0.5 s of joint 1 turning at `speed` (the others at rest, no pad touched) with the effort the
-/// nominal model predicts minus `push` mA on joint 1 (an external torque +push/K_t off the pads),
+/// nominal model predicts minus `push` N·m on joint 1 (an external torque +push off the pads),
 /// so τ_res = −push exactly. q̈ = 0 is given.
 std::vector<ArmSample> turning(double speed, double push) {
   const auto nominal = twin_nominal();
@@ -67,7 +67,7 @@ std::vector<ArmSample> turning(double speed, double push) {
 
 struct DomainRun {
   int alarms = 0, first_alarm = -1, outside = 0;
-  double last_fused = 0.0;  ///< joint 1's Fused external residual at the last sample (mA)
+  double last_fused = 0.0;  ///< joint 1's Fused external residual at the last sample (N·m)
 };
 
 DomainRun run(double speed, double push, double speed_limit) {
@@ -102,7 +102,7 @@ TEST(CompensatorDomain, FasterThanTheDomainTheFusedEstimateIsTheNominalOne) {
 }
 
 TEST(CompensatorDomain, APushOffThePadsStillAlarmsOutsideTheDomain) {
-  const double push = 400.0;  // mA beyond the nominal band 150
+  const double push = 400.0;  // N·m beyond the nominal band 150
   const DomainRun r = run(2.0, push, 1.0);
   EXPECT_NEAR(r.last_fused, -(push - 1.5 * kNominalSigma), 1e-6);
   EXPECT_EQ(r.first_alarm, kAlarmSamples - 1);
@@ -146,7 +146,7 @@ TEST(CompensatorDomain, BeyondTheAccelerationDomainTheNominalEstimateHoldsForThe
 
 // The wrench weighs a joint outside the domain as the nominal estimate it falls back to: on a
 // teaching log (a hand moves the arm by a pad), an estimator whose network answers nonsense
-// (300 mA) on every moving joint but whose domain ends at rest gives the same force and external
+// (300 N·m) on every moving joint but whose domain ends at rest gives the same force and external
 // torque as one with a silent network and σ_fused = σ_nominal — wherever no baseline was held at a
 // stop (that σ stays the in-domain one: a joint stops through the domain).
 TEST(CompensatorDomain, TheWrenchWeighsAJointOutsideTheDomainByTheNominalSigma) {

@@ -157,7 +157,8 @@ TEST_F(EstimatorParameterFile, EveryFieldSurvivesTheRoundTrip) {
   std::ifstream in(path("defaults.json"));
   const Json defaults = Json::parse(in).flatten(), changed = saved().flatten();
   for (const auto& [key, value] : defaults.items()) {
-    if (key == "/format" || key == "/version" || key == "/joints") continue;
+    if (key == "/format" || key == "/version" || key == "/joints" || key == "/torque_unit")
+      continue;
     EXPECT_NE(value, changed.at(key)) << key << " keeps its default in the fixture";
   }
 
@@ -242,21 +243,18 @@ TEST_F(EstimatorParameterFile, RefusesUnknownAndBadFieldsNamingThem) {
             std::string::npos)
       << load_error(j);
   j = full;
-  j["version"] = 3;
-  EXPECT_NE(load_error(j).find("version: is 3; this tpf reads up to version 2"), std::string::npos)
+  j["version"] = 4;
+  EXPECT_NE(load_error(j).find("version: is 4; this tpf reads up to version 3"), std::string::npos)
       << load_error(j);
-  // A version 1 file has no acceleration limit (and may not name one): it loads without one.
-  j = full;
-  j["version"] = 1;
-  EXPECT_NE(load_error(j).find("compensator_acceleration_limit"), std::string::npos)
-      << load_error(j);
-  j.erase("compensator_acceleration_limit");
-  ASSERT_EQ(load_error(j, "v1.estimator.json"), "");
-  const Parameters v1 = tpf::load_estimator_parameters<4>(path("v1.estimator.json"));
-  EXPECT_TRUE((v1.compensator_acceleration_limit.array() ==
-               Parameters{}.compensator_acceleration_limit.array())
-                  .all());
-  EXPECT_EQ(v1.compensator_speed_limit, every_field_changed().compensator_speed_limit);
+  // Versions 1 and 2 hold σ's and bands in the nominal model's effort unit (mA): refused, naming
+  // the field and the command that converts them.
+  for (const int old : {1, 2}) {
+    j = full;
+    j["version"] = old;
+    const std::string m = load_error(j);
+    EXPECT_NE(m.find("version: is " + std::to_string(old) + ": "), std::string::npos) << m;
+    EXPECT_NE(m.find("tpf upgrade"), std::string::npos) << m;
+  }
   EXPECT_THROW(tpf::load_estimator_parameters<4>(path("no-such-file.json")), tpf::Error);
 }
 

@@ -38,7 +38,7 @@ TEST(EstimatorTwin, StaticModelFreeEstimateMatchesTheObservableExternalTorque) {
   const offline::Log& log = static_contacts();
   const auto samples = samples_from_log(log);
   auto est = make_estimator();
-  const Vec scale = effort_per_newton_metre();
+  const Vec scale = milliamperes_per_newton_metre();
   const auto t = log.col("t");
   Vec fric_at_baseline = Vec::Zero(), sum2 = Vec::Zero(), count = Vec::Zero();
   Vec absorbed = Vec::Zero(), applied = Vec::Zero();
@@ -71,7 +71,7 @@ TEST(EstimatorTwin, StaticModelFreeEstimateMatchesTheObservableExternalTorque) {
     const Vec observable = truth_ma - friction_change;
     for (int j = 0; j < kJoints; ++j) {
       if (!(onset & (1u << j))) continue;
-      const double e = -tracker.static_external()[j] - observable[j];
+      const double e = -tracker.static_external()[j] * scale[j] - observable[j];  // mA
       sum2[j] += e * e;
       count[j] += 1;
       absorbed[j] += std::abs(friction_change[j]);
@@ -217,18 +217,19 @@ TEST(EstimatorTwin, TransitionSigmaCalibrationAndACompensatorOfKnownWeights) {
   const auto samples = samples_from_log(twin_log("excitation", 2, 60));
   auto est = make_estimator();
   const auto sigma = calibrate_transition_sigma(*est, samples);
+  const Vec sigma_ma = sigma.nominal.cwiseProduct(milliamperes_per_newton_metre());
   for (int j = 0; j < kJoints; ++j) {
     EXPECT_GT(sigma.samples[j], 100) << j;
     EXPECT_DOUBLE_EQ(sigma.nominal[j], sigma.fused[j]);
-    EXPECT_GT(sigma.nominal[j], 20.0);  // the friction the nominal model misses at break-away
-    EXPECT_LT(sigma.nominal[j], 1000.0);
+    EXPECT_GT(sigma_ma[j], 20.0);  // the friction the nominal model misses at break-away
+    EXPECT_LT(sigma_ma[j], 1000.0);
   }
-  std::cout << "[ simulated ] transition σ (mA): " << sigma.nominal.transpose() << "\n";
+  std::cout << "[ simulated ] transition σ (mA): " << sigma_ma.transpose() << "\n";
 
   // A TCN whose only non-zero weight is the low head's bias b: τ_TCN ≡ b.
   using SmallTcn = Tcn<double, kCompensatorInputsPerJoint * kJoints, 8, 2, 4, kJoints>;
   SmallTcn tcn;
-  const Vec b(30.0, -20.0, 10.0, 5.0);
+  const Vec b(0.15, -0.1, 0.05, 0.025);  // N·m
   tcn.weights().low_bias = b;
   auto params = twin_parameters();
   params.nominal_sigma = sigma.nominal;
@@ -255,7 +256,7 @@ TEST(EstimatorTwin, RebaseliningAtAStopBeatsTheStaleBaseline) {
   const auto sigma = calibrate_transition_sigma(*calibrating, excitation);
   const offline::Log& log = twin_log("teaching", 4, 60);
   const auto samples = samples_from_log(log);
-  const Vec scale = effort_per_newton_metre();
+  const Vec scale = milliamperes_per_newton_metre();
   Vec rmse[2];
   for (int policy = 0; policy < 2; ++policy) {
     auto p = twin_parameters();

@@ -64,7 +64,7 @@ TEST(LinkParameters, PredictEffortEqualsTheRegressorFormOnRandomStates) {
       Vec rigid, friction, rigid_ref, friction_ref;
       predict_effort(nominal, links, fast, s.q, s.dq, s.ddq, rigid, friction);
       predict_effort_by_regressor(nominal, reference, s.q, s.dq, s.ddq, rigid_ref, friction_ref);
-      // Efforts are in mA (hundreds to thousands): 1e-9 relative to the largest.
+      // 1e-9 relative to the largest torque (or 1 N·m).
       const double scale = std::max(1.0, rigid_ref.cwiseAbs().maxCoeff());
       EXPECT_LT((rigid - rigid_ref).cwiseAbs().maxCoeff(), 1e-9 * scale) << "state " << n;
       EXPECT_LT((friction - friction_ref).cwiseAbs().maxCoeff(), 1e-9 * scale) << "state " << n;

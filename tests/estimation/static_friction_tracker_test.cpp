@@ -19,7 +19,7 @@ const Vec2 kNoHeld = Vec2::Zero();
 
 TEST(StaticFrictionTracker, FrozenBaselineIsTheResidualJustBeforeTheOnsetNotAtDetection) {
   Tracker tracker;
-  const Vec2 c(120.0, -40.0);  // static friction the drives settled at (mA)
+  const Vec2 c(120.0, -40.0);  // static friction the drives settled at (any torque unit)
   const double t_on = 1.0, t_detect = 1.05;
   // The push starts at t_on and grows 800 mA/s on joint 0 and −300 mA/s on joint 1; the pad
   // detects it only at t_detect.

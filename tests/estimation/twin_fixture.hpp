@@ -15,6 +15,7 @@
 #include "support/arm_fixture.hpp"
 #include "tpf/estimation/estimator.hpp"
 #include "tpf/friction/friction_file.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace tpf::test {
 
@@ -38,9 +39,9 @@ inline const offline::Log& twin_log(const std::string& scenario, unsigned seed, 
 }
 
 /// Rows of a log as estimator samples of the fixed-size twin estimator (estimator_samples: effort
-/// = i<j> in mA, no q̈: the estimator derives it).
+/// = i<j> in mA converted to N·m with the arm's K_t, no q̈: the estimator derives it).
 inline std::vector<ArmSample> samples_from_log(const offline::Log& log) {
-  const auto rows = offline::estimator_samples<kJoints>(log, kPads);
+  const auto rows = offline::estimator_samples<kJoints>(log, arm(), kPads);
   std::vector<ArmSample> samples(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
     samples[r].t = rows[r].t;
@@ -61,33 +62,32 @@ inline const std::vector<ArmSample>& static_contact_samples() {
   return s;
 }
 
-/// The twin's nominal model in mA: the true rigid body and the memoryless Stribeck curve of
-/// data/arm4.friction.json converted to mA (the twin adds LuGre memory on top).
+/// The twin's nominal model (N·m): the true rigid body and the memoryless Stribeck curve of
+/// data/arm4.friction.json (the twin adds LuGre memory on top).
 inline NominalModel<double, kJoints> twin_nominal() {
-  auto f = load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json"));  // N·m
-  const Vec scale = effort_scale<kJoints>(arm(), "mA");
-  for (Vec* v : {&f.coulomb, &f.static_friction, &f.viscous, &f.load_coulomb, &f.load_viscous})
-    *v = v->cwiseProduct(scale);
-  return nominal_from_model<kJoints>(arm(), f, scale);
+  return nominal_from_model<kJoints>(
+      arm(), load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json")));
 }
 
 inline std::vector<Pad> twin_pads() {
   return load_pads(data_path("arm4.pads.json"), arm());
 }
 
+/// Per joint mA per N·m of the twin (1000/K_t): the tests state currents in mA, as the drive
+/// reports them, and the estimator computes in N·m.
+inline Vec milliamperes_per_newton_metre() {
+  return current_from_torque(arm(), Vec::Ones().eval());
+}
+
 /// Parameters for the twin: pad gain for the twin's 1.5 kPa/N on a 25 cm² pad, static dead band
-/// from the current noise.
+/// from the current noise (in N·m).
 inline EstimatorParameters<double, kJoints> twin_parameters() {
   EstimatorParameters<double, kJoints> p;
   p.skin.force_gain = 1.0 / (1.5 * 1000.0 * 0.0025);
   const double noise = std::sqrt(kCurrentNoiseMa * kCurrentNoiseMa + 1.0 / 12.0);
-  p.static_dead_band = static_dead_band_from_noise<double, kJoints>(Vec::Constant(noise), 5);
+  p.static_dead_band = static_dead_band_from_noise<double, kJoints>(
+      Vec::Constant(noise).cwiseQuotient(milliamperes_per_newton_metre()), 5);
   return p;
-}
-
-/// Per joint mA per N·m of the twin (1000/K_t).
-inline Vec effort_per_newton_metre() {
-  return effort_scale<kJoints>(arm(), "mA");
 }
 
 }  // namespace tpf::test

@@ -260,8 +260,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   const NominalModel<double, 4> nominal =
       load_nominal_model<4>(data("arm4.params.json"), data("arm4.robot.json"));
   for (int j = 0; j < 4; ++j) {
-    const double swing =
-        2.0 * nominal.friction.static_friction[j] / nominal.effort_per_newton_metre[j];
+    const double swing = 2.0 * nominal.friction.static_friction[j];
     EXPECT_NEAR(estimated[j], expected[j], swing + 0.25) << "joint " << j + 1;
     if (std::abs(expected[j]) > 0.5) {
       EXPECT_GT(estimated[j] * expected[j], 0.0) << "joint " << j + 1;

@@ -24,12 +24,13 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
   const offline::Log log = twin_log(150.0, 11);
   const auto id = offline::identify<kJoints>(log, arm());
   const auto& s = id.samples;
-  EXPECT_EQ(s.effort_unit, "mA");
+  EXPECT_EQ(s.units.unit, EffortUnit::Milliampere);
+  // The fit is in N·m; this test compares in mA, as the log and its gt_fric hold it.
+  const Vec ma = current_from_torque(arm(), Vec::Ones().eval());
   EXPECT_TRUE(id.consistency.consistent());
   // The truth: the robot file's rigid body (the twin has no payload here) and its friction file.
   const auto truth = nominal_from_model<kJoints>(
-      arm(), load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json")),
-      effort_scale<kJoints>(arm(), "mA"));
+      arm(), load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json")));
   ArmData d1, d2;
   Eigen::VectorXd se_rigid = Eigen::VectorXd::Zero(kJoints), ss_rigid = se_rigid;
   Eigen::VectorXd se_fric = se_rigid, ss_fric = se_rigid;
@@ -40,6 +41,7 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
     Vec r1, f1, r2, f2;
     predict_effort(id.nominal, d1, q, dq, ddq, r1, f1);
     predict_effort(truth, d2, q, dq, ddq, r2, f2);
+    r1 = r1.cwiseProduct(ma), f1 = f1.cwiseProduct(ma), r2 = r2.cwiseProduct(ma);
     for (int j = 0; j < kJoints; ++j) {
       se_rigid[j] += std::pow(r1[j] - r2[j], 2);
       ss_rigid[j] += r2[j] * r2[j];
@@ -55,7 +57,7 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
     const double friction_error = std::sqrt(se_fric[j] / ss_fric[j]);
     std::printf(
         "joint %d: rigid error %.3f %%, friction error %.3f %% (held-out), moving RMSE %.1f mA\n",
-        j + 1, 100 * rigid_error, 100 * friction_error, id.heldout[j][Regime::Moving].rmse);
+        j + 1, 100 * rigid_error, 100 * friction_error, id.heldout[j][Regime::Moving].rmse * ma[j]);
     // Within 3 % of the rigid torque, or within the current noise (6 mA) on the light wrist.
     const double count = static_cast<double>(s.size()) / 4.0;
     EXPECT_LT(std::sqrt(se_rigid[j] / count), std::max(0.03 * std::sqrt(ss_rigid[j] / count), 8.0))

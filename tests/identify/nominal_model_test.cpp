@@ -24,10 +24,10 @@ std::filesystem::path temp_path(const std::string& name) {
 
 Nominal twin_nominal() {
   const auto friction = load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json"));
-  return nominal_from_model<kJoints>(arm(), friction, effort_scale<kJoints>(arm(), "mA"));
+  return nominal_from_model<kJoints>(arm(), friction);
 }
 
-TEST(NominalModel, RigidPartOfTheTrueModelEqualsRneaInEffortUnits) {
+TEST(NominalModel, RigidPartOfTheTrueModelEqualsRnea) {
   const Nominal nominal = twin_nominal();
   EXPECT_LT(nominal.base_count, 11 * kJoints);
   EXPECT_GT(nominal.base_count, 10);
@@ -38,8 +38,7 @@ TEST(NominalModel, RigidPartOfTheTrueModelEqualsRneaInEffortUnits) {
     Vec rigid, friction;
     predict_effort(nominal, data, q, dq, ddq, rigid, friction);
     const Vec tau = rnea(arm(), reference, q, dq, ddq);
-    const Vec expected_ma = tau.cwiseProduct(arm().torque_constant.cwiseInverse()) * 1000.0;
-    EXPECT_LT((rigid - expected_ma).norm(), 1e-7 * expected_ma.norm()) << "state " << s;
+    EXPECT_LT((rigid - tau).norm(), 1e-7 * tau.norm()) << "state " << s;
     const Vec g = compute_gravity(arm(), reference, q).cwiseAbs();
     EXPECT_LT((friction - stribeck_friction(nominal.friction, dq, g)).norm(), 1e-12);
   }
@@ -102,7 +101,6 @@ TEST(NominalModel, PredictionIsAllocationFree) {
 
 TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   Nominal nominal = twin_nominal();
-  nominal.effort_unit = "mA";
   nominal.friction.load_coulomb[2] = 3.0;
   nominal.added.spring_stiffness[1] = 40.0;
   nominal.added.ripple_count = 1;
@@ -116,7 +114,6 @@ TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   save_nominal_model<kJoints>(path, nominal, "test", R"({"rmse": [1, 2, 3, 4]})");
   const Nominal loaded = load_nominal_model<kJoints>(path, data_path("arm4.robot.json"));
   std::filesystem::remove(path);
-  EXPECT_EQ(loaded.effort_unit, "mA");
   EXPECT_EQ(loaded.base_count, nominal.base_count);
   EXPECT_EQ(loaded.added.ripple_count, 1);
   EXPECT_TRUE(loaded.added.ripple[0].motor_side);
@@ -148,8 +145,7 @@ std::string load_error(const std::string& text) {
 }
 
 TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
-  Nominal nominal = twin_nominal();
-  nominal.effort_unit = "mA";
+  const Nominal nominal = twin_nominal();
   const auto path = temp_path("good.json");
   save_nominal_model<kJoints>(path, nominal);
   std::ifstream in(path);

@@ -1,4 +1,4 @@
-// The friction reference of a log with a joint torque sensor: effort − K·(τ_sensor + I_a·q̈) is the
+// The friction reference of a log with a joint torque sensor: effort − (τ_sensor + I_a·q̈) is the
 // friction itself, in files where the sensor varies; elsewhere the rigid-body prediction stays.
 #include "offline/identify/sensor_friction.hpp"
 
@@ -9,7 +9,7 @@
 namespace tpf::offline {
 namespace {
 
-constexpr double kScale = 100.0;    // mA per N·m
+constexpr double kScale = 100.0;    // mA per N·m: K_t = 1000/kScale N·m/A
 constexpr double kArmature = 0.5;   // kg·m²
 constexpr double kCoulomb = 120.0;  // mA
 constexpr double kViscous = 80.0;   // mA per rad/s
@@ -35,27 +35,26 @@ Log sensor_log() {
 
 TEST(SensorFriction, ReferenceIsTheSensorWhereItVariesAndTheFitFindsTheFriction) {
   const Log log = sensor_log();
-  const JointSamples s = extract_joint_samples(log);
+  const Eigen::VectorXd kt = Eigen::VectorXd::Constant(1, 1000.0 / kScale);
+  const JointSamples s = extract_joint_samples(log, kt);  // effort in N·m
   const Eigen::MatrixXd rigid = Eigen::MatrixXd::Constant(600, 1, -7.0);
-  const SensorFrictionReference r = sensor_friction_reference(
-      log, s, Eigen::VectorXd::Constant(1, kArmature), Eigen::VectorXd::Constant(1, kScale), rigid);
+  const SensorFrictionReference r =
+      sensor_friction_reference(log, s, Eigen::VectorXd::Constant(1, kArmature), rigid);
   ASSERT_TRUE(r.from_sensor[0]);
   for (int k = 0; k < 300; ++k)
-    EXPECT_NEAR(r.reference(k, 0), kScale * (log.values(k, 5) + kArmature * log.values(k, 3)), 1e-9)
-        << k;
+    EXPECT_NEAR(r.reference(k, 0), log.values(k, 5) + kArmature * log.values(k, 3), 1e-9) << k;
   for (int k = 300; k < 600; ++k)
     EXPECT_TRUE(std::isnan(r.reference(k, 0))) << "flat sensor in file 2, row " << k;
-  EXPECT_NEAR(r.coulomb[0], kCoulomb, 1e-6);
-  EXPECT_NEAR(r.viscous[0], kViscous, 1e-6);
+  EXPECT_NEAR(r.coulomb[0], kCoulomb / kScale, 1e-8);  // N·m
+  EXPECT_NEAR(r.viscous[0], kViscous / kScale, 1e-8);
   EXPECT_NE(r.note.find("joints 1"), std::string::npos) << r.note;
 
   // No sensor column: the rigid-body prediction is the reference, and the note says so.
   Log without = log;
   without.columns.pop_back();
   without.values.conservativeResize(600, 5);
-  const SensorFrictionReference none =
-      sensor_friction_reference(without, extract_joint_samples(without), Eigen::VectorXd::Zero(1),
-                                Eigen::VectorXd::Ones(1), rigid);
+  const SensorFrictionReference none = sensor_friction_reference(
+      without, extract_joint_samples(without, kt), Eigen::VectorXd::Zero(1), rigid);
   EXPECT_FALSE(none.from_sensor[0]);
   EXPECT_EQ(none.reference, rigid);
   EXPECT_NE(none.note.find("no joint has a usable sensor"), std::string::npos);

@@ -52,7 +52,7 @@ TEST(SingleJoint, TorqueLogRecoversThePendulumAndItsFriction) {
   truth.load_coulomb << 0.02;
   const auto model = load_robot<double, 1>(kRobot);
   const auto id = offline::identify<1>(pendulum_log(truth), model);
-  EXPECT_EQ(id.samples.effort_unit, "N*m");
+  EXPECT_EQ(id.samples.units.unit, EffortUnit::NewtonMetre);
   EXPECT_TRUE(id.consistency.consistent());
   const auto& f = id.nominal.friction;
   EXPECT_NEAR(f.coulomb[0], 0.3, 0.02);

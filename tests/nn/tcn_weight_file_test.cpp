@@ -120,9 +120,13 @@ TEST(TcnWeightFile, MissingTensorAndBadValuesAreNamed) {
   EXPECT_NE(load_error(path).find("7 values for shape [1, 8]"), std::string::npos);
 
   nlohmann::json version = json;
-  version["version"] = 2;
+  version["version"] = 3;
   write_json(path, version);
-  EXPECT_NE(load_error(path).find("version: unsupported version 2"), std::string::npos);
+  EXPECT_NE(load_error(path).find("version: unsupported version 3"), std::string::npos);
+  version["version"] = 1;  // torques in the training log's unit: refused, naming the converter
+  write_json(path, version);
+  EXPECT_NE(load_error(path).find("version: is 1"), std::string::npos);
+  EXPECT_NE(load_error(path).find("tpf upgrade"), std::string::npos);
 
   nlohmann::json std_zero = json;
   std_zero["normalisation"]["std"][1] = 0.0;

@@ -62,14 +62,14 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
   setup.nominal = diagnosis.nominal;
 
   // train a small compensator on the training log
-  setup.parameters = estimator_parameters_from_noise<N>(estimate_sensor_noise(training));
+  setup.parameters = estimator_parameters_from_noise<N>(
+      estimate_sensor_noise(training, setup.nominal.model.torque_constant));
   const std::vector<EstimatorTrace> traces{
-      replay_estimator(setup, estimator_samples<N>(training, 0))};
+      replay_estimator(setup, estimator_samples<N>(training, setup.nominal.model, 0))};
   CompensatorTrainingOptions training_options;
   training_options.per_joint = true;
   training_options.tcn.max_epochs = 2;
-  const CompensatorTraining trained =
-      train_compensator(traces, setup.nominal.effort_per_newton_metre, training_options);
+  const CompensatorTraining trained = train_compensator(traces, training_options);
   ASSERT_EQ(trained.results.size(), static_cast<std::size_t>(N));
   const auto dir = std::filesystem::temp_directory_path() /
                    ("tpf_any_arm_loop_" + std::to_string(N) + "_" + std::to_string(::getpid()));

@@ -62,7 +62,6 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
       {(o.out / "nominal.params.json").string(), data + "/arm4.robot.json",
        data + "/arm4.pads.json", (o.out / "arm4.estimator.json").string(),
        (o.out / "tcn.json").string()});
-  EXPECT_EQ(estimator->nominal().effort_unit, "mA");
   // The run-time loop's estimator parameters, as the demo calibrated them.
   const auto& p = estimator->parameters();
   EXPECT_EQ(Eigen::VectorXd(p.nominal_sigma), r.evaluation.calibration.sigma_nominal);

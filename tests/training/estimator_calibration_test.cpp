@@ -10,11 +10,11 @@
 #include <limits>
 
 #include "offline/calibrate/torque_alarm.hpp"
+#include "offline/replay/estimator_samples.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
-#include "offline/replay/estimator_samples.hpp"
-#include "tpf/estimation/estimator_parameter_file.hpp"
 #include "support/constants.hpp"
+#include "tpf/estimation/estimator_parameter_file.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -32,15 +32,17 @@ TEST(ArmCalibration, RunsEvaluatesStepsWithTheCompensator) {
   Log log = simulate_to_log(load_scenario(data("scenarios/excitation.json")), 11, 20.0);
   log.source = "excitation seed 11 (simulated)";
   EstimatorSetup<kArm4Joints> setup;
-  setup.nominal = load_nominal_model<kArm4Joints>(data("arm4.params.json"), data("arm4.robot.json"));
+  setup.nominal =
+      load_nominal_model<kArm4Joints>(data("arm4.params.json"), data("arm4.robot.json"));
   setup.pads = load_pads(data("arm4.pads.json"), setup.nominal.model);
   setup.weights = find_compensator_weights(data("weights/arm4.tcn.json"), kArm4Joints);
   const ArmParameters p = calibrate_estimator(setup, log, 1.5);
 
   // The steps, one by one, as tpf evaluate runs them.
   EstimatorSetup<kArm4Joints> steps = setup;
-  steps.parameters = estimator_parameters_from_noise<kArm4Joints>(estimate_sensor_noise(log), 1.5);
-  const auto samples = estimator_samples<kArm4Joints>(log, kArm4Pads);
+  steps.parameters = estimator_parameters_from_noise<kArm4Joints>(
+      estimate_sensor_noise(log, steps.nominal.model.torque_constant), 1.5);
+  const auto samples = estimator_samples<kArm4Joints>(log, steps.nominal.model, kArm4Pads);
   const auto sigma = calibrate_sigma(steps, samples, log.source);
   const EstimatorTrace with_bands = replay_estimator(steps, samples);
   const int alarm = calibrate_torque_alarm(with_bands);
@@ -80,10 +82,12 @@ TEST(ArmCalibration, RunsEvaluatesStepsWithTheCompensator) {
 // one (here), skipping rows the estimator skips (a NaN sample must not widen the domain).
 TEST(AccelerationEnvelope, IsTheLargestAccelerationTheEstimatorUsesPerJoint) {
   EstimatorSetup<kArm4Joints> setup;
-  setup.nominal = load_nominal_model<kArm4Joints>(data("arm4.params.json"), data("arm4.robot.json"));
+  setup.nominal =
+      load_nominal_model<kArm4Joints>(data("arm4.params.json"), data("arm4.robot.json"));
   setup.pads = load_pads(data("arm4.pads.json"), setup.nominal.model);
   SensorNoise noise;
-  noise.effort.setConstant(kArm4Joints, 5.0);
+  noise.effort.setConstant(kArm4Joints, 0.025);  // N·m
+  noise.effort_step.setConstant(kArm4Joints, 0.005);
   noise.pad_kpa = 0.05;
   setup.parameters = estimator_parameters_from_noise<kArm4Joints>(noise, 1.5);
   std::vector<ReplaySample<kArm4Joints>> samples(4);

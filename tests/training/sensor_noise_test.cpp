@@ -47,7 +47,10 @@ Log resting_log() {
 }
 
 TEST(SensorNoise, MatchesTheDrawnSigmaWithAPadOnItsRail) {
-  const tpf::offline::SensorNoise noise = tpf::offline::estimate_sensor_noise(resting_log());
+  // K_t = 1000 N·m/A: 1 mA reads as 1 N·m, so σ is in mA here.
+  const tpf::offline::SensorNoise noise =
+      tpf::offline::estimate_sensor_noise(resting_log(), Eigen::VectorXd::Constant(4, 1000.0));
+  EXPECT_EQ(noise.effort_step, Eigen::VectorXd::Ones(4));
   for (int j = 0; j < 4; ++j)  // √(6² + 1/12): the 1 mA rounding adds a little
     EXPECT_NEAR(noise.effort[j], 6.0, 0.4) << "joint " << j + 1;
   // Pooling pad 2's repeated zeros with pad 1 would give ≈ 0.01 kPa.

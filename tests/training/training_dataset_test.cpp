@@ -16,8 +16,8 @@
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "support/arm_fixture.hpp"
-#include "tpf/nn/load_tcn_weights.hpp"
 #include "support/constants.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -40,16 +40,17 @@ const Log& excitation_log() {
 EstimatorSetup<kArm4Joints> twin_setup() {
   EstimatorSetup<kArm4Joints> s;
   s.nominal = declared_nominal_model<kArm4Joints>(data_path("arm4.robot.json"),
-                                                 data_path("arm4.friction.json"));
+                                                  data_path("arm4.friction.json"));
   s.pads = load_pads(data_path("arm4.pads.json"), s.nominal.model);
-  s.parameters =
-      estimator_parameters_from_noise<kArm4Joints>(estimate_sensor_noise(excitation_log()));
+  s.parameters = estimator_parameters_from_noise<kArm4Joints>(
+      estimate_sensor_noise(excitation_log(), s.nominal.model.torque_constant));
   return s;
 }
 
 TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
   const EstimatorSetup<kArm4Joints> setup = twin_setup();
-  const auto samples = estimator_samples<kArm4Joints>(excitation_log(), kArm4Pads);
+  const auto samples =
+      estimator_samples<kArm4Joints>(excitation_log(), setup.nominal.model, kArm4Pads);
   const EstimatorTrace trace = replay_estimator(setup, samples);
   ASSERT_EQ(trace.rows(), excitation_log().rows());
   EXPECT_EQ(trace.contact.maxCoeff(), 0) << "no pad may switch on in a contact-free log";
@@ -58,7 +59,7 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
   // predict_effort, StaticFrictionTracker with contact = false, compensator_input with the
   // nominal friction of predict_effort.
   AccelerationFilter<double, kArm4Joints> filter(setup.parameters.acceleration_cutoff_hz,
-                                                setup.parameters.acceleration_damping);
+                                                 setup.parameters.acceleration_damping);
   StaticFrictionTracker<double, kArm4Joints> tracker(setup.parameters.static_friction);
   Data<double, kArm4Joints> data(setup.nominal.model);
   double t_prev = std::numeric_limits<double>::quiet_NaN();
@@ -76,7 +77,7 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
     tracker.update(s.t, s.dq, residual, false, std::numeric_limits<double>::infinity(),
                    Vec::Zero());
     const auto x = compensator_input<double, kArm4Joints>(s.q, s.dq, ddq,
-                                                         tracker.friction_estimate(), friction);
+                                                          tracker.friction_estimate(), friction);
     ASSERT_LT((trace.inputs.row(r).transpose() - x).cwiseAbs().maxCoeff(), 1e-9) << "row " << k;
     ASSERT_LT((trace.residual.row(r).transpose() - residual).cwiseAbs().maxCoeff(), 1e-9);
     for (int j = 0; j < kArm4Joints; ++j)
@@ -88,21 +89,20 @@ TEST(TrainingFeatures, EqualTheEstimatorsOwnComputationRowByRow) {
 
 TEST(TrainingFeatures, TargetIsTheResidualInNewtonMetresAndJointColumnsArePicked) {
   const EstimatorSetup<kArm4Joints> setup = twin_setup();
-  const EstimatorTrace trace =
-      replay_estimator(setup, estimator_samples<kArm4Joints>(excitation_log(), kArm4Pads));
-  const Eigen::VectorXd scale = setup.nominal.effort_per_newton_metre;
-  const TcnSequence all = training_sequence(trace, scale);
+  const EstimatorTrace trace = replay_estimator(
+      setup, estimator_samples<kArm4Joints>(excitation_log(), setup.nominal.model, kArm4Pads));
+  const TcnSequence all = training_sequence(trace);
   ASSERT_EQ(all.inputs.cols(), 20);
   ASSERT_EQ(all.residual.cols(), 4);
   for (int j = 0; j < kArm4Joints; ++j) {
-    EXPECT_LT((all.residual.col(j) * scale[j] - trace.residual.col(j)).cwiseAbs().maxCoeff(), 1e-9);
-    const TcnSequence one = training_sequence(trace, scale, j);
+    EXPECT_EQ(all.residual.col(j), trace.residual.col(j));
+    const TcnSequence one = training_sequence(trace, j);
     ASSERT_EQ(one.inputs.cols(), 5);
     for (int c = 0; c < 5; ++c)
       EXPECT_EQ(one.inputs.col(c), trace.inputs.col(c * kArm4Joints + j));
     EXPECT_LT((one.residual.col(0) - all.residual.col(j)).cwiseAbs().maxCoeff(), 1e-12);
   }
-  EXPECT_THROW(training_sequence(trace, scale.head(3)), Error);
+  EXPECT_THROW(training_sequence(trace, 4), Error);
 }
 
 TEST(TrainingFeatures, RegimeWeightsMarkRestAndTheBreakAwayWindow) {
@@ -197,7 +197,9 @@ TEST(TrainingFeatures, SamplesRefuseAWrongJointCount) {
   log.source = "three.csv";
   log.columns = {"t", "q1", "q2", "q3", "dq1", "dq2", "dq3", "i1", "i2", "i3"};
   log.values = Eigen::MatrixXd::Zero(2, 10);
-  EXPECT_THROW((estimator_samples<kArm4Joints>(log, kArm4Pads)), Error);
+  EXPECT_THROW((estimator_samples<kArm4Joints>(
+                   log, load_robot<double, kArm4Joints>(data_path("arm4.robot.json")), kArm4Pads)),
+               Error);
 }
 
 }  // namespace

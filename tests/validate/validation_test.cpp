@@ -89,22 +89,22 @@ TEST(Validate, ScoresAHeldOutLogExactly) {
   const auto robot = write_robot(dir);
   const auto model = load_robot<double, 1>(robot);
   StribeckParameters<double, 1> friction;
-  friction.coulomb << kCoulomb;
-  friction.static_friction << kCoulomb;
+  // The generator's friction is in mA; the model's in N·m (K_t = 2 N·m/A: 1 mA = 1/500 N·m).
+  friction.coulomb << kCoulomb / 500;
+  friction.static_friction << kCoulomb / 500;
   friction.stribeck_velocity << 0.1;
   friction.stribeck_exponent << 2.0;
-  friction.viscous << kViscous;
-  auto truth = nominal_from_model<1>(model, friction, effort_scale<1>(model, "mA"));
-  truth.effort_unit = "mA";
+  friction.viscous << kViscous / 500;
+  const auto truth = nominal_from_model<1>(model, friction);
   save_nominal_model<1>(dir / "p.json", truth);
   const auto nominal = load_nominal_model<1>(dir / "p.json", robot);
   write_log(dir / "a.csv", turntable_log(false));
   write_log(dir / "b.csv.gz", turntable_log(true));
   const Log log = read_logs(std::vector<std::filesystem::path>{dir / "a.csv", dir / "b.csv.gz"});
-  const JointSamples samples = extract_joint_samples(log);
+  const JointSamples samples = extract_joint_samples(log, model.torque_constant);
   std::vector<std::string> notes;
-  const Validation v = score_estimates(log, samples, {nominal_estimate<1>(nominal, samples, notes)},
-                                       nominal.effort_per_newton_metre);
+  const Validation v =
+      score_estimates(log, samples, {nominal_estimate<1>(nominal, samples, notes)});
 
   // Effort: ±30 mA on every sample, whatever the regime, in both files.
   const RegimeStats& s = v.effort[0][0];

@@ -16,17 +16,17 @@ template <typename S, int N>
 using CompensatorInput = Eigen::Matrix<S, kCompensatorInputsPerJoint * N, 1>;
 
 /// A streaming friction compensator for N joints: `step(x)` takes the 5N inputs of
-/// compensator_input and returns the N predicted friction residuals τ_TCN (the effort unit of the
-/// residual it was trained on); `reset(x)` prewarms its history with a steady input.
-/// tpf::Tcn<S, 5N, Hidden, Levels, Kernel, N> satisfies it, and so does ZeroCompensator.
+/// compensator_input and returns the N predicted friction residuals τ_TCN [N·m]; `reset(x)`
+/// prewarms its history with a steady input. tpf::Tcn<S, 5N, Hidden, Levels, Kernel, N> satisfies
+/// it, and so does ZeroCompensator.
 template <typename C, typename S, int N>
 concept FrictionCompensator = requires(C c, const CompensatorInput<S, N>& x) {
   { c.step(x) } -> std::convertible_to<Eigen::Matrix<S, N, 1>>;
   c.reset(x);
 };
 
-/// The compensator input x = [q; q̇; q̈; τ̂_fric,s; τ_fric,nom] (5N: rad, rad/s, rad/s², effort
-/// unit, effort unit), block c of N holding channel c of every joint, with
+/// The compensator input x = [q; q̇; q̈; τ̂_fric,s; τ_fric,nom] (5N: rad, rad/s, rad/s², N·m,
+/// N·m), block c of N holding channel c of every joint, with
 ///   τ̂_fric,s  = StaticFrictionTracker::friction_estimate() (the held friction, 0 while moving);
 ///   τ_fric,nom = the nominal model's friction at q̇ as predict_effort evaluates it,
 ///                [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇) + (b + α_v|G|)·q̇.

@@ -118,7 +118,7 @@ class Estimator {
     parameters_.fused_sigma = fused_sigma;
     update_sigmas();
   }
-  /// σ of the torque evidence the wrench weighs (effort unit): on a resting joint
+  /// σ of the torque evidence the wrench weighs [N·m]: on a resting joint
   /// √((static band/3)² + τ_s²/3) — the noise plus the push the friction may hold unseen (up to
   /// the break-away level τ_s, taken as uniform); on a moving joint σ_fused (σ_nominal when there
   /// is no fused σ; the wrench settings' torque_noise_nm when neither is calibrated), σ_nominal
@@ -292,11 +292,11 @@ class Estimator {
     for (int j = 0; j < N; ++j) {
       const bool at_rest = fixed.valid & (1u << j);
       const S r = at_rest ? tracker_.static_external()[j] : fused.residual[j];
-      evidence[j] = -r / nominal_.effort_per_newton_metre[j];
+      evidence[j] = -r;
       const S s = !at_rest             ? fused.sigma[j]
                   : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
                                        : static_sigma_[j];
-      sigma[j] = s / nominal_.effort_per_newton_metre[j];
+      sigma[j] = s;
     }
     out.wrench =
         estimate_contact_force(jacobian_, contact_frame_in_world(data_, g.link, g.normal), evidence,
@@ -305,7 +305,7 @@ class Estimator {
     out.wrench.point_world = point;
     if (skin_.contact_count() == 1 && out.wrench.force_world.allFinite()) {
       out.external.torque = jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
-      out.external.residual = -nominal_.effort_per_newton_metre.cwiseProduct(out.external.torque);
+      out.external.residual = -out.external.torque;
     }
     return out.wrench.valid ? 0u : std::uint32_t(kStatusWrenchUnobservable);
   }
@@ -335,7 +335,7 @@ class Estimator {
   }
 
   void update_sigmas() noexcept {
-    const Vector floor = parameters_.wrench.torque_noise_nm * nominal_.effort_per_newton_metre;
+    const Vector floor = Vector::Constant(parameters_.wrench.torque_noise_nm);
     const Vector noise = parameters_.static_dead_band / S(3);
     static_sigma_ = (noise.cwiseAbs2() + nominal_.friction.static_friction.cwiseAbs2() / S(3))
                         .cwiseSqrt()
@@ -368,7 +368,7 @@ class Estimator {
     for (int j = 0; j < N; ++j) {
       const bool ok = valid & (1u << j);
       e.residual[j] = ok ? residual[j] : S(0);
-      e.torque[j] = -e.residual[j] / nominal_.effort_per_newton_metre[j];
+      e.torque[j] = -e.residual[j];
     }
     e.valid = valid;
   }

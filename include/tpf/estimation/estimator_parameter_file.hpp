@@ -10,11 +10,12 @@
 
 namespace tpf {
 
-/// Loads an estimator parameter file (JSON, "format": "tpf-estimator", "version": 1) for N joints.
+/// Loads an estimator parameter file (JSON, "format": "tpf-estimator", "version": 3) for N joints.
 /// Every field of EstimatorParameters must be present: a missing, unknown, non-finite or
 /// out-of-range field, or a joint count other than N, throws tpf::Error "file: field: reason"
-/// (e.g. "arm4.estimator.json: skin.detector.on_level_kpa: missing"). Effort-unit fields are in
-/// the unit of the nominal model the file was calibrated with (mA for the arm4).
+/// (e.g. "arm4.estimator.json: skin.detector.on_level_kpa: missing"). Torques (σ's, dead bands)
+/// are in N·m; an older version (in the nominal model's effort unit) is refused, naming `tpf
+/// upgrade`.
 template <int N>
 EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::path& file);
 

@@ -10,7 +10,7 @@
 
 namespace tpf {
 
-/// Parameters of Estimator. Effort-unit quantities are in the nominal model's unit (mA or N·m).
+/// Parameters of Estimator. Torques (σ's, dead bands) in N·m.
 template <typename S, int N>
 struct EstimatorParameters {
   S sample_period_s = S(0.0025);  ///< nominal period (400 Hz)
@@ -31,8 +31,8 @@ struct EstimatorParameters {
   SkinSettings<S> skin;
   ContactForceSettings<S> wrench;
 
-  /// σ of the estimation error in the static-to-kinetic transition on contact-free data (effort
-  /// unit), from calibrate_transition_sigma: the proprioceptive (nominal) and fused (with TCN)
+  /// σ of the estimation error in the static-to-kinetic transition on contact-free data [N·m],
+  /// from calibrate_transition_sigma: the proprioceptive (nominal) and fused (with TCN)
   /// estimators' dead bands are dead_band_factor·σ.
   JointVector<S, N> nominal_sigma = JointVector<S, N>::Zero();
   JointVector<S, N> fused_sigma = JointVector<S, N>::Zero();
@@ -55,14 +55,14 @@ struct EstimatorParameters {
   /// is not. Chosen on a contact-free calibration log for a false-alarm rate
   /// (persistence_for_false_alarm_rate); 1 = every single exceedance alarms.
   int torque_alarm_samples = 1;
-  /// Half-width of the static model-free estimate's dead band (effort unit): a few times the
+  /// Half-width of the static model-free estimate's dead band [N·m]: a few times the
   /// effort noise, e.g. 3·σ_noise·√(1 + 1/n_window) (see static_dead_band_from_noise).
   JointVector<S, N> static_dead_band = JointVector<S, N>::Zero();
 };
 
-/// Static dead band from the effort noise σ (effort unit; e.g. 6 mA current noise with 1 mA steps
-/// → σ ≈ √(6² + 1/12)): Δτ_res = τ_res − mean of n samples has std σ·√(1 + 1/n), and the band is
-/// k times that (k = 3).
+/// Static dead band from the effort noise σ [N·m] (e.g. 6 mA current noise with 1 mA steps
+/// → σ ≈ √(6² + 1/12) mA, times K_t/1000): Δτ_res = τ_res − mean of n samples has std σ·√(1 + 1/n),
+/// and the band is k times that (k = 3).
 template <typename S, int N>
 JointVector<S, N> static_dead_band_from_noise(const JointVector<S, N>& noise, int window_samples,
                                               S k = S(3)) {

@@ -14,10 +14,11 @@ namespace tpf {
 /// (0: no skin).
 template <typename S, int N, int P>
 struct EstimatorSample {
-  S t = S(0);                                            ///< [s], must increase
-  JointVector<S, N> q = JointVector<S, N>::Zero();       ///< [rad]
-  JointVector<S, N> dq = JointVector<S, N>::Zero();      ///< [rad/s]
-  JointVector<S, N> effort = JointVector<S, N>::Zero();  ///< mA or N·m (the nominal model's unit)
+  S t = S(0);                                        ///< [s], must increase
+  JointVector<S, N> q = JointVector<S, N>::Zero();   ///< [rad]
+  JointVector<S, N> dq = JointVector<S, N>::Zero();  ///< [rad/s]
+  /// τ_meas [N·m]: joint torque the drive produces (motor current through torque_from_current)
+  JointVector<S, N> effort = JointVector<S, N>::Zero();
   /// Pad gauge pressure [kPa]; P = Eigen::Dynamic: empty until sized (the offline tools).
   Eigen::Matrix<S, P, 1> pressure = Eigen::Matrix<S, P, 1>::Zero(P == Eigen::Dynamic ? 0 : P);
   JointVector<S, N> ddq = JointVector<S, N>::Zero();  ///< [rad/s²], used only when has_ddq
@@ -33,15 +34,15 @@ enum class TorqueEstimator : std::uint8_t {
 inline constexpr int kTorqueEstimatorCount = 3;
 
 /// One external-torque estimate. Sign: τ_ext is what the environment applies to the robot, so
-/// residual = −effort_per_newton_metre·τ_ext (a push in +q lowers the effort).
+/// residual = −τ_ext (a push in +q lowers the effort).
 template <typename S, int N>
 struct ExternalTorque {
-  JointVector<S, N> residual = JointVector<S, N>::Zero();  ///< after the dead band, effort unit
+  JointVector<S, N> residual = JointVector<S, N>::Zero();  ///< after the dead band [N·m]
   JointVector<S, N> torque = JointVector<S, N>::Zero();    ///< τ_ext [N·m]
   std::uint32_t valid = 0;                                 ///< bit j: joint j has an estimate
 };
 
-/// Everything one update computes. Efforts in the nominal model's unit (mA or N·m).
+/// Everything one update computes. Torques in N·m.
 template <typename S, int N>
 struct EstimatorOutput {
   S t = S(0);

@@ -1,9 +1,9 @@
 // The nominal model of an arm as identified from a log: what `tpf identify` writes, `tpf diagnose`
 // extends and the run-time estimator loads.
 //
-// Effort unit: every effort below is in the unit of the log it was identified on (mA for a log
-// with i<j> columns, N·m for a log with tau<j>). The rigid-body base parameters are SI (kg, kg·m,
-// kg·m²) and predict N·m, converted with effort_per_newton_metre (1000/K_t for mA, 1 for N·m).
+// Units: SI throughout. The rigid-body base parameters are kg, kg·m, kg·m² (armature kg·m²), and
+// every torque (friction, added effects, the predicted effort) is in N·m, whatever the log it was
+// identified on held (a log's motor current is converted where it is read, effort_unit.hpp).
 // Sign convention: predicted effort is what the drive must produce, τ_meas = rigid + friction +
 // τ_res, with τ_res = −τ_ext + what the model lacks (external torque acts on the robot).
 #pragma once
@@ -32,8 +32,8 @@ struct RippleTerm {
   int joint = 0;            ///< 0-based joint index
   S cycles_per_rev = S(0);  ///< n, periods per revolution of θ
   bool motor_side = false;  ///< θ = gear_ratio·q (motor angle) instead of q
-  S sin_amplitude = S(0);   ///< effort unit
-  S cos_amplitude = S(0);   ///< effort unit
+  S sin_amplitude = S(0);   ///< [N·m]
+  S cos_amplitude = S(0);   ///< [N·m]
 };
 
 /// Effects that `tpf diagnose` found and added to the declared model, all memoryless functions of
@@ -47,28 +47,25 @@ struct AddedEffects {
   static constexpr int kMaxRippleTerms = 16;
   int ripple_count = 0;
   std::array<RippleTerm<S>, kMaxRippleTerms> ripple{};
-  JointVector<S, N> spring_stiffness = JointVector<S, N>::Zero();  ///< k: τ_j += k_j·q_j
-  JointVector<S, N> offset = JointVector<S, N>::Zero();            ///< c: τ_j += c_j (effort unit)
+  JointVector<S, N> spring_stiffness = JointVector<S, N>::Zero();  ///< k: τ_j += k_j·q_j [N·m/rad]
+  JointVector<S, N> offset = JointVector<S, N>::Zero();            ///< c: τ_j += c_j [N·m]
   JointMatrix<S, N> coupling_velocity = JointMatrix<S, N>::Zero();  ///< τ += C_v·q̇, zero diagonal
   JointMatrix<S, N> coupling_acceleration = JointMatrix<S, N>::Zero();  ///< τ += C_a·q̈, zero diag.
 };
 
-/// The identified model: the rigid body in base parameters, the friction, the unit conversion and
-/// the effects added by diagnosis.
+/// The identified model: the rigid body in base parameters, the friction and the effects added by
+/// diagnosis, all in SI (N·m).
 template <typename S, int N>
 struct NominalModel {
   Model<S, N> model;  ///< kinematics, URDF inertias, drives (torque_constant) from the robot file
   /// Identified rigid-body part (incl. armature): effort_rigid = Y(q,q̇,q̈).cols(base_columns)·
-  /// base_values, N·m, then times effort_per_newton_metre. Only the first base_count entries count.
+  /// base_values [N·m]. Only the first base_count entries count.
   int base_count = 0;
   std::array<int, regressor_columns<N>> base_columns{};
   Eigen::Matrix<S, regressor_columns<N>, 1> base_values =
       Eigen::Matrix<S, regressor_columns<N>, 1>::Zero();
-  /// Stribeck + viscous + load dependence (α_c, α_v on |G_j(q)| of `model`, N·m), effort unit.
+  /// Stribeck + viscous + load dependence (α_c, α_v on |G_j(q)| of `model`), N·m.
   StribeckParameters<S, N> friction;
-  /// Effort unit per N·m: 1000/K_t for a log in mA, 1 for a log in N·m.
-  JointVector<S, N> effort_per_newton_metre = JointVector<S, N>::Ones();
-  std::string effort_unit = "N*m";  ///< "mA" (log with i<j>) or "N*m" (log with tau<j>)
   AddedEffects<S, N> added;
 };
 
@@ -86,7 +83,7 @@ JointVector<S, N> rigid_body_torque(const NominalModel<S, N>& nominal, Data<S, N
   return tau;
 }
 
-/// Effort of the added memoryless effects (ripple, spring, offset, coupling), effort unit:
+/// Torque of the added memoryless effects (ripple, spring, offset, coupling) [N·m]:
 /// τ_j = Σ ripple_j(θ) + k_j q_j + c_j + Σ_k (C_v,jk q̇_k + C_a,jk q̈_k). Allocation-free.
 template <typename S, int N>
 JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
@@ -136,8 +133,8 @@ NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
   return links;
 }
 
-/// Predicted effort in the log's effort unit, split in two:
-///   rigid    = diag(effort_per_newton_metre)·Y_b(q,q̇,q̈)·π_b + added(q,q̇,q̈)
+/// Predicted effort (joint torque the drive must produce) [N·m], split in two:
+///   rigid    = Y_b(q,q̇,q̈)·π_b + added(q,q̇,q̈)
 ///              (rigid body incl. armature, plus ripple, spring, offset and coupling when added),
 ///   friction = stribeck_friction(nominal.friction, q̇, |G(q)|): Stribeck + viscous with load
 ///              dependence, direction asymmetry and neighbour load (see StribeckParameters),
@@ -153,8 +150,7 @@ void predict_effort(const NominalModel<S, N>& nominal, const NominalLinks<S, N>&
                     const NoDeduce<JointVector<S, N>>& dq, const NoDeduce<JointVector<S, N>>& ddq,
                     JointVector<S, N>& rigid, JointVector<S, N>& friction) noexcept {
   forward_kinematics(nominal.model, data, q);
-  rigid = nominal.effort_per_newton_metre.cwiseProduct(
-              link_parameter_torque(nominal.model, links.rigid, data, dq, ddq)) +
+  rigid = link_parameter_torque(nominal.model, links.rigid, data, dq, ddq) +
           added_effort(nominal, q, dq, ddq);
   JointVector<S, N> abs_gravity = JointVector<S, N>::Zero();
   if (links.load_dependent)
@@ -181,9 +177,7 @@ void predict_effort_by_regressor(const NominalModel<S, N>& nominal, Data<S, N>& 
                                  const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
                                  JointVector<S, N>& friction) {
   Regressor<S, N> Y;
-  rigid = nominal.effort_per_newton_metre.cwiseProduct(
-              rigid_body_torque(nominal, data, Y, q, dq, ddq)) +
-          added_effort(nominal, q, dq, ddq);
+  rigid = rigid_body_torque(nominal, data, Y, q, dq, ddq) + added_effort(nominal, q, dq, ddq);
   const JointVector<S, N> abs_gravity = compute_gravity(nominal.model, data, q).cwiseAbs();
   friction = stribeck_friction(nominal.friction, dq, abs_gravity);
 }
@@ -200,16 +194,12 @@ std::string regressor_column_name(int joints, int column);
 /// Start-up code (allocates).
 template <int N>
 NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
-                                           const StribeckParameters<double, N>& friction,
-                                           const JointVector<double, N>& effort_per_newton_metre);
+                                           const StribeckParameters<double, N>& friction);
 
-/// Effort unit conversion for a log's effort column prefix: "i" (mA) → 1000/K_t, "tau" → 1.
-template <int N>
-JointVector<double, N> effort_scale(const Model<double, N>& model, const std::string& effort_unit);
-
-/// Loads a parameter file (JSON, "format": "tpf-params", "version": 1) written by `tpf identify`
-/// / `tpf diagnose`, with the robot file it was identified for. Start-up code: throws tpf::Error
-/// "file: field: reason" on a missing/unknown field, a wrong size, a joint count that differs
+/// Loads a parameter file (JSON, "format": "tpf-params", "version": 2, torques in N·m) written by
+/// `tpf identify` / `tpf diagnose`, with the robot file it was identified for. Start-up code:
+/// throws tpf::Error "file: field: reason" on a version-1 file (efforts in the log's unit; `tpf
+/// upgrade` converts it), a missing/unknown field, a wrong size, a joint count that differs
 /// from N, an unknown base parameter name, a non-finite or out-of-range value, or an effect the
 /// run time cannot evaluate (non-zero thermal_viscous or effort_lead_s, named in the message).
 template <int N>

@@ -35,7 +35,7 @@ struct StaticFrictionSettings {
   StopPolicy stop_policy = StopPolicy::HoldLastEstimate;
 };
 
-/// Per joint j, with r = τ_res = τ_meas − τ_dyn − τ_fric(nominal) in the effort unit of the log
+/// Per joint j, with r = τ_res = τ_meas − τ_dyn − τ_fric(nominal) in N·m
 /// and static_j = |q̇_j| < v_s:
 ///  - moving joint: τ̂_fric,s = 0, no baseline;
 ///  - static, no pad in contact: the baseline tracks r (mean over the last baseline_window_s);
@@ -81,9 +81,9 @@ class StaticFrictionTracker {
     state_ = ContactState::Dynamic;
   }
 
-  /// One cycle. t [s], q̇ [rad/s], r = τ_res (effort unit), `contact`: a pad is in contact,
+  /// One cycle. t [s], q̇ [rad/s], r = τ_res [N·m], `contact`: a pad is in contact,
   /// `new_onset`: the earliest onset time [s] of pads that switched on at this cycle (+inf if
-  /// none), `held_external`: the moving estimator's last external residual r̂_ext (effort unit,
+  /// none), `held_external`: the moving estimator's last external residual r̂_ext [N·m],
   /// used by HoldLastEstimate when a joint stops in contact).
   void update(S t, const Vector& dq, const Vector& residual, bool contact, S new_onset,
               const Vector& held_external) noexcept {
@@ -151,7 +151,7 @@ class StaticFrictionTracker {
   }
 
   ContactState state() const noexcept { return state_; }
-  /// τ̂_fric,s: the baseline on static joints, 0 on moving ones (the TCN input), effort unit.
+  /// τ̂_fric,s: the baseline on static joints, 0 on moving ones (the TCN input) [N·m].
   const Vector& friction_estimate() const noexcept { return friction_; }
   /// Δr = r − τ̂_fric,s on static joints (0 on moving ones): the model-free external residual.
   const Vector& static_external() const noexcept { return external_; }

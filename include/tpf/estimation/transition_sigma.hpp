@@ -12,7 +12,7 @@
 
 namespace tpf {
 
-/// Per joint σ (effort unit) of the nominal residual τ_res and of the compensated residual
+/// Per joint σ [N·m] of the nominal residual τ_res and of the compensated residual
 /// τ_res − τ_TCN in the static-to-kinetic transition, and how many samples each rests on.
 template <typename S, int N>
 struct TransitionSigma {

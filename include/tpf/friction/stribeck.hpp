@@ -1,9 +1,8 @@
 // Stribeck + viscous joint friction, with the load-dependent form and a smooth variant for fitting.
 //
-// Units: the model is unit-agnostic. Velocities are in rad/s (output side); torques are in the
-// effort unit of the parameter file (N·m for the digital twin, mA when identified on a current
-// log). Sign convention: τ_f is the friction torque the drive must overcome, i.e. it has the sign
-// of q̇ and enters τ_meas = τ_dyn + τ_f + τ_res with a plus sign.
+// Units: velocities in rad/s (output side), torques in N·m. Sign convention: τ_f is the friction
+// torque the drive must overcome, i.e. it has the sign of q̇ and enters τ_meas = τ_dyn + τ_f + τ_res
+// with a plus sign.
 #pragma once
 
 #include <cmath>

@@ -15,8 +15,9 @@ struct TcnTensor {
   std::vector<double> values;
 };
 
-/// Contents of a weight file, sizes at run time. Format (version 1):
-///   { "format": "tpf-tcn-weights", "version": 1,
+/// Contents of a weight file, sizes at run time. Format (version 2: a compensator's torque
+/// inputs and outputs in N·m; version 1, in the training log's effort unit, is refused):
+///   { "format": "tpf-tcn-weights", "version": 2,
 ///     "architecture": { "inputs", "hidden", "levels", "kernel", "outputs",
 ///                       "activation": "relu", "dilations": [1, 2, …], "receptive_field" },
 ///     "normalisation": { "mean": [In], "std": [In] },      // x̃ = (x − mean)/std
@@ -27,7 +28,7 @@ struct TcnTensor {
 ///   head_low.weight / head_high.weight [Out, Hidden], head_low.bias / head_high.bias [Out].
 /// The weights act on the normalised input; the core folds the normalisation in when loading.
 struct TcnWeightFile {
-  static constexpr int kVersion = 1;
+  static constexpr int kVersion = 2;
 
   std::string path;  ///< where it was read from or written to, for error messages
   int inputs = 0;

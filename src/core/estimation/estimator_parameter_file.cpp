@@ -18,7 +18,7 @@ using OrderedJson = nlohmann::ordered_json;  // saved in the struct's order, for
 using Bound = json::Object::Bound;
 
 constexpr const char* kEstimatorFormat = "tpf-estimator";
-constexpr int kEstimatorVersion = 2;  // 2: compensator_acceleration_limit
+constexpr int kEstimatorVersion = 3;  // 3: torques in N·m; 2: compensator_acceleration_limit
 constexpr double kUnbounded = json::Object::kInfinity;
 constexpr int kMaxSamples = 100'000'000;
 
@@ -100,8 +100,17 @@ ContactForceSettings<double> read_wrench(json::Object o) {
 template <int N>
 EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::path& file) {
   json::Object top = json::Object::read_document(file, kEstimatorFormat, kEstimatorVersion);
+  const double version = top.number("version", 0, 1e9);
+  if (version < kEstimatorVersion)
+    top.fail("version",
+             "is " + std::to_string(static_cast<int>(version)) +
+                 ": σ's and dead bands in the nominal model's effort unit (mA for a model of "
+                 "currents); this tpf reads version 3, every torque in N*m. Convert the file with "
+                 "`tpf upgrade --estimator FILE --params PARAMS` (PARAMS: the "
+                 "version-1 parameter file it was calibrated with), or calibrate again");
   top.require_joints(N);
   top.text("source", "");
+  top.choice("torque_unit", "N*m", {"N*m"});
 
   EstimatorParameters<double, N> p;
   p.sample_period_s = positive(top, "sample_period_s", 1.0);
@@ -120,9 +129,7 @@ EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::
   p.torque_alarm_samples = top.integer("torque_alarm_samples", 1, kMaxSamples);
   top.joint_vector<N>("static_dead_band", p.static_dead_band, true, Bound::kNonNegative);
   top.joint_limits<N>("compensator_speed_limit", p.compensator_speed_limit);
-  // Version 1 files predate the acceleration limit: none, as they were calibrated.
-  if (top.number("version", 0, 1e9) >= 2)
-    top.joint_limits<N>("compensator_acceleration_limit", p.compensator_acceleration_limit);
+  top.joint_limits<N>("compensator_acceleration_limit", p.compensator_acceleration_limit);
   top.finish();
   return p;
 }
@@ -135,6 +142,7 @@ void save_estimator_parameters(const std::filesystem::path& file,
   j["version"] = kEstimatorVersion;
   j["joints"] = N;
   if (!source.empty()) j["source"] = source;
+  j["torque_unit"] = "N*m";
   j["sample_period_s"] = p.sample_period_s;
   j["max_gap_factor"] = p.max_gap_factor;
   j["position_margin_rad"] = p.position_margin_rad;

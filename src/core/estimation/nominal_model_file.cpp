@@ -19,7 +19,7 @@ namespace {
 using Json = nlohmann::json;
 
 constexpr const char* kParamsFormat = "tpf-params";
-constexpr int kParamsVersion = 1;
+constexpr int kParamsVersion = 2;  // 2: torques in N·m (1: in the log's effort unit)
 
 Json array_json(const auto& v) {
   Json a = Json::array();
@@ -81,12 +81,10 @@ BaseParameters rigid_body_base_parameters(const Model<double, N>& model) {
 
 template <int N>
 NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
-                                           const StribeckParameters<double, N>& friction,
-                                           const JointVector<double, N>& effort_per_newton_metre) {
+                                           const StribeckParameters<double, N>& friction) {
   NominalModel<double, N> nominal;
   nominal.model = model;
   nominal.friction = friction;
-  nominal.effort_per_newton_metre = effort_per_newton_metre;
   const BaseParameters base = rigid_body_base_parameters(model);
   const Eigen::VectorXd pi =
       dynamic_parameters(model, JointVector<double, N>::Zero(), JointVector<double, N>::Zero())
@@ -101,26 +99,22 @@ NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
 }
 
 template <int N>
-JointVector<double, N> effort_scale(const Model<double, N>& model, const std::string& effort_unit) {
-  if (effort_unit == "N*m") return JointVector<double, N>::Ones();
-  if (effort_unit == "mA") return model.torque_constant.cwiseInverse() * 1000.0;
-  throw Error("effort unit must be \"mA\" or \"N*m\", got \"" + effort_unit + "\"");
-}
-
-template <int N>
 NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
                                            const std::filesystem::path& robot_file) {
   using Bound = json::Object::Bound;
   json::Object top = json::Object::read_document(params_file, kParamsFormat, kParamsVersion);
+  if (top.number("version", 0, 1e9) < kParamsVersion)
+    top.fail("version",
+             "is 1: friction and added effects in the log's effort unit (mA for a log of "
+             "currents); this tpf reads version 2, every torque in N*m. Convert the file with "
+             "`tpf upgrade --params FILE` (or identify again)");
   top.require_joints(N);
   top.text("robot", "");
   top.text("source", "");
+  top.choice("torque_unit", "N*m", {"N*m"});
 
   NominalModel<double, N> nominal;
   nominal.model = load_robot<double, N>(robot_file);
-  nominal.effort_unit = top.choice("effort_unit", "", {"mA", "N*m"});
-  top.joint_vector<N>("effort_per_newton_metre", nominal.effort_per_newton_metre, true,
-                      Bound::kPositive);
 
   std::vector<json::Object> rigid = top.children("rigid_body");
   if (!top.has("rigid_body")) top.fail("rigid_body", "missing");
@@ -219,8 +213,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
   j["robot"] = nominal.model.name;
   j["joints"] = N;
   if (!source.empty()) j["source"] = source;
-  j["effort_unit"] = nominal.effort_unit;
-  j["effort_per_newton_metre"] = array_json(nominal.effort_per_newton_metre);
+  j["torque_unit"] = "N*m";
 
   // Names and combinations of the base parameters, from the model's own base-parameter map.
   const BaseParameters base = rigid_body_base_parameters(nominal.model);
@@ -279,9 +272,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
 #define TPF_INSTANTIATE_NOMINAL_MODEL(N)                                                        \
   template BaseParameters rigid_body_base_parameters<N>(const Model<double, N>&);               \
   template NominalModel<double, N> nominal_from_model<N>(const Model<double, N>&,               \
-                                                         const StribeckParameters<double, N>&,  \
-                                                         const JointVector<double, N>&);        \
-  template JointVector<double, N> effort_scale<N>(const Model<double, N>&, const std::string&); \
+                                                         const StribeckParameters<double, N>&); \
   template NominalModel<double, N> load_nominal_model<N>(const std::filesystem::path&,          \
                                                          const std::filesystem::path&);         \
   template void save_nominal_model<N>(const std::filesystem::path&,                             \

@@ -153,8 +153,14 @@ TcnWeightFile read_tcn_weight_file(const std::string& path) {
   if (format != kTcnFormat)
     fail(path, "format", "expected \"tpf-tcn-weights\", got " + format.dump());
   const nlohmann::json& version = member(json, "version", path, "version");
+  if (version == 1)
+    fail(path, "version",
+         "is 1: a compensator's torque inputs (τ̂_fric,s, τ_fric,nom) and outputs in the training "
+         "log's effort unit (mA for a log of currents); this tpf reads version 2, in N*m. Convert "
+         "the files with `tpf upgrade --weights PATH --params PARAMS` (PARAMS: the "
+         "version-1 parameter file it was trained with), or train again");
   if (version != TcnWeightFile::kVersion) {
-    fail(path, "version", "unsupported version " + version.dump() + " (this build reads 1)");
+    fail(path, "version", "unsupported version " + version.dump() + " (this build reads 2)");
   }
 
   TcnWeightFile file;

@@ -11,15 +11,16 @@ namespace tpf::offline {
 template <int N>
 EstimatorParameters<double, N> calibrate_estimator(EstimatorSetup<N> setup, const Log& log,
                                                    double pad_gain_kpa_per_n) {
-  setup.parameters =
-      estimator_parameters_from_noise<N>(estimate_sensor_noise(log), pad_gain_kpa_per_n);
+  setup.parameters = estimator_parameters_from_noise<N>(
+      estimate_sensor_noise(log, setup.nominal.model.torque_constant), pad_gain_kpa_per_n);
   calibrate_with_compensator(setup, log);
   return setup.parameters;
 }
 
 template <int N>
 TransitionSigma<double, N> calibrate_with_compensator(EstimatorSetup<N>& setup, const Log& log) {
-  const auto samples = estimator_samples<N>(log, static_cast<int>(setup.pads.size()));
+  const auto samples =
+      estimator_samples<N>(log, setup.nominal.model, static_cast<int>(setup.pads.size()));
   EstimatorParameters<double, N>& p = setup.parameters;
   p.compensator_speed_limit = speed_envelope(samples);
   // The acceleration limit is this log's own envelope, read off the pass below: no row of the log
@@ -32,11 +33,10 @@ TransitionSigma<double, N> calibrate_with_compensator(EstimatorSetup<N>& setup, 
   return sigma;
 }
 
-#define TPF_INSTANTIATE_CALIBRATION(N)                                                  \
-  template EstimatorParameters<double, N> calibrate_estimator<N>(EstimatorSetup<N>,     \
-                                                                 const Log&, double);   \
-  template TransitionSigma<double, N> calibrate_with_compensator<N>(EstimatorSetup<N>&, \
-                                                                    const Log&);
+#define TPF_INSTANTIATE_CALIBRATION(N)                                                          \
+  template EstimatorParameters<double, N> calibrate_estimator<N>(EstimatorSetup<N>, const Log&, \
+                                                                 double);                       \
+  template TransitionSigma<double, N> calibrate_with_compensator<N>(EstimatorSetup<N>&, const Log&);
 TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_CALIBRATION)
 #undef TPF_INSTANTIATE_CALIBRATION
 

@@ -6,14 +6,12 @@ namespace tpf::offline {
 
 TcnParameters baseline_start(const TcnArchitecture& a, std::uint64_t seed,
                              const Eigen::VectorXd& input_mean, const Eigen::VectorXd& input_std,
-                             const Eigen::VectorXi& baseline_input,
-                             const Eigen::VectorXd& target_scale) {
+                             const Eigen::VectorXi& baseline_input) {
   const int outputs = a.outputs;
-  if (a.hidden < 2 * outputs || baseline_input.size() != outputs ||
-      target_scale.size() != outputs || input_mean.size() != a.inputs ||
+  if (a.hidden < 2 * outputs || baseline_input.size() != outputs || input_mean.size() != a.inputs ||
       input_std.size() != a.inputs)
     throw Error::at("baseline start", 0, "architecture",
-                    "needs hidden ≥ 2·outputs and one baseline input and scale per output");
+                    "needs hidden ≥ 2·outputs and one baseline input per output");
   TcnParameters p = init_tcn_parameters(a, seed);
   if (p.blocks.empty() || p.blocks[0].projection.size() == 0)
     throw Error::at("baseline start", 0, "architecture",
@@ -40,10 +38,10 @@ TcnParameters baseline_start(const TcnArchitecture& a, std::uint64_t seed,
   }
   for (int o = 0; o < outputs; ++o) {
     const int c = baseline_input[o];
-    const double gain = input_std[c] / target_scale[o];
+    const double gain = input_std[c];
     p.low_weight(o, 2 * o) = gain;
     p.low_weight(o, 2 * o + 1) = -gain;
-    p.low_bias[o] = input_mean[c] / target_scale[o];
+    p.low_bias[o] = input_mean[c];
     p.high_bias[o] = 0.0;
   }
   return p;

@@ -12,17 +12,14 @@ namespace tpf::offline {
 /// per output o carry the baseline input x_b(o) = τ̂_fric,s of that joint unchanged to the heads:
 ///   block 0:  u±_o = ReLU(±x̃_b(o)),  x̃ = (x − mean)/std (the trainer's normalisation);
 ///   blocks ≥ 1: those channels have zero taps and bias, so the identity skip keeps ReLU(u) = u;
-///   low head: y_o = (std_b/target_scale_o)·(u+_o − u−_o) + mean_b/target_scale_o =
-///   τ̂/target_scale_o.
+///   low head: y_o = std_b·(u+_o − u−_o) + mean_b = τ̂.
 /// The network thus starts as the model-free static estimate (exact at rest, where the target is
 /// the held friction) and training only has to learn what the baseline misses (break-away, the
 /// moving residual). baseline_input[o] is the input column of output o's τ̂_fric,s (3N + o for the
-/// all-joints network, 3 for a per-joint one); target_scale[o] divides the residual in the
-/// training target (effort_per_newton_metre). Needs hidden ≥ 2·outputs. Throws tpf::Error
+/// all-joints network, 3 for a per-joint one). Needs hidden ≥ 2·outputs. Throws tpf::Error
 /// otherwise.
 TcnParameters baseline_start(const TcnArchitecture& architecture, std::uint64_t seed,
                              const Eigen::VectorXd& input_mean, const Eigen::VectorXd& input_std,
-                             const Eigen::VectorXi& baseline_input,
-                             const Eigen::VectorXd& target_scale);
+                             const Eigen::VectorXi& baseline_input);
 
 }  // namespace tpf::offline

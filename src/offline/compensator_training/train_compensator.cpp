@@ -2,24 +2,22 @@
 
 #include <chrono>
 
-#include "offline/compensator_training/tcn_parameters.hpp"
 #include "offline/compensator_training/baseline_start.hpp"
+#include "offline/compensator_training/tcn_parameters.hpp"
 #include "offline/compensator_training/training_dataset.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
-                                      const Eigen::VectorXd& effort_per_newton_metre,
                                       const CompensatorTrainingOptions& options,
                                       const TcnProgressCallback& progress) {
   if (options.per_joint && options.joint_hidden != kPerJointHiddenSmall &&
       options.joint_hidden != kPerJointHiddenLarge)
-    throw Error::at("compensator training", 0, "joint_hidden",
-                    std::to_string(options.joint_hidden) +
-                        " channels; per-joint networks are compiled for " +
-                        std::to_string(kPerJointHiddenSmall) + " or " +
-                        std::to_string(kPerJointHiddenLarge));
+    throw Error::at(
+        "compensator training", 0, "joint_hidden",
+        std::to_string(options.joint_hidden) + " channels; per-joint networks are compiled for " +
+            std::to_string(kPerJointHiddenSmall) + " or " + std::to_string(kPerJointHiddenLarge));
   if (traces.empty()) throw Error("compensator training: no log to train on");
   const int joints = static_cast<int>(traces.front().dq.cols());
   const auto start = std::chrono::steady_clock::now();
@@ -31,7 +29,7 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     TcnDataset dataset;
     TcnTrainOptions o = options.tcn;
     for (const EstimatorTrace& trace : traces) {
-      TcnSequence sequence = training_sequence(trace, effort_per_newton_metre, joint);
+      TcnSequence sequence = training_sequence(trace, joint);
       sequence.weight = regime_weights(trace, joint, options.static_weight,
                                        options.static_to_kinetic_weight, options.regimes);
       dataset.sequences.push_back(std::move(sequence));
@@ -47,21 +45,16 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     TcnTrainer trainer(dataset, o);
     out.training_windows += trainer.training_windows();
     out.validation_windows += trainer.validation_windows();
-    const Eigen::VectorXd scale = options.per_joint
-                                      ? Eigen::VectorXd::Constant(1, effort_per_newton_metre[joint])
-                                      : effort_per_newton_metre;
     Eigen::VectorXi baseline(o.architecture.outputs);
     for (int k = 0; k < o.architecture.outputs; ++k)
       baseline[k] = options.per_joint ? 3 : 3 * joints + k;
     TcnTrainResult result =
         options.start_from_baseline
             ? trainer.train(baseline_start(o.architecture, o.seed, trainer.input_mean(),
-                                           trainer.input_std(), baseline, scale),
+                                           trainer.input_std(), baseline),
                             progress)
             : trainer.train(progress);
-    TcnParameters best = result.best;
-    scale_tcn_outputs(best, scale);
-    out.files.push_back(to_weight_file(best));
+    out.files.push_back(to_weight_file(result.best));
     out.results.push_back(std::move(result));
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

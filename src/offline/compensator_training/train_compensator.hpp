@@ -1,12 +1,12 @@
 // Training the arm's friction compensator from contact-free logs: estimator traces → TCN dataset
-// → TcnTrainer → weight files in the effort unit.
+// → TcnTrainer → weight files (torque inputs and outputs in N·m).
 #pragma once
 
 #include <filesystem>
 #include <vector>
 
-#include "offline/regimes/regime.hpp"
 #include "offline/compensator_training/tcn_trainer.hpp"
+#include "offline/regimes/regime.hpp"
 #include "offline/replay/replay_estimator.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
 
@@ -34,7 +34,7 @@ struct CompensatorTrainingOptions {
 
 struct CompensatorTraining {
   CompensatorLayout layout = CompensatorLayout::AllJoints;
-  std::vector<TcnWeightFile> files;     ///< one, or one per joint; heads in the effort unit
+  std::vector<TcnWeightFile> files;     ///< one, or one per joint; outputs in N·m
   std::vector<TcnTrainResult> results;  ///< per network
   std::size_t training_windows = 0, validation_windows = 0;
   double seconds = 0.0;  ///< wall-clock training time
@@ -43,9 +43,8 @@ struct CompensatorTraining {
 /// Trains on the traces of contact-free logs (training_sequence of each, weighted by
 /// regime_weights), with the trainer's zero-phase split, Adam, held-out blocks and early stopping;
 /// per joint, each network gets max_epochs and max_seconds/N. The joint count N is the traces'.
-/// The best parameters are scaled to the effort unit (scale_tcn_outputs).
+/// Inputs and outputs in N·m (the traces' units).
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
-                                      const Eigen::VectorXd& effort_per_newton_metre,
                                       const CompensatorTrainingOptions& options,
                                       const TcnProgressCallback& progress = {});
 

@@ -6,23 +6,21 @@
 
 namespace tpf::offline {
 
-TcnSequence training_sequence(const EstimatorTrace& trace,
-                              const Eigen::VectorXd& effort_per_newton_metre, int joint) {
+TcnSequence training_sequence(const EstimatorTrace& trace, int joint) {
   const Eigen::Index n = trace.residual.cols();
   constexpr int channels = kCompensatorInputsPerJoint;
-  if (trace.inputs.cols() != channels * n || effort_per_newton_metre.size() != n || joint >= n)
-    throw Error::at("estimator trace", 0, "columns",
-                    "inputs, residual and effort scale sizes disagree");
+  if (trace.inputs.cols() != channels * n || joint >= n)
+    throw Error::at("estimator trace", 0, "columns", "inputs and residual sizes disagree");
   TcnSequence s;
   if (joint < 0) {
     s.inputs = trace.inputs;
-    s.residual = trace.residual * effort_per_newton_metre.cwiseInverse().asDiagonal();
+    s.residual = trace.residual;
     return s;
   }
   s.inputs.resize(trace.rows(), channels);
   for (int c = 0; c < channels; ++c)
     s.inputs.col(c) = trace.inputs.col(c * n + joint);
-  s.residual = trace.residual.col(joint) / effort_per_newton_metre[joint];
+  s.residual = trace.residual.col(joint);
   return s;
 }
 

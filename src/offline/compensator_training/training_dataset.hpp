@@ -4,8 +4,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "offline/regimes/regime.hpp"
 #include "offline/compensator_training/tcn_trainer.hpp"
+#include "offline/regimes/regime.hpp"
 #include "offline/replay/estimator_trace.hpp"
 
 namespace tpf::offline {
@@ -14,13 +14,11 @@ namespace tpf::offline {
 ///   inputs   = the compensator inputs the estimator built, x = [q; q̇; q̈; τ̂_fric,s; τ_fric,nom]
 ///              (T × 5N), or for joint ≥ 0 that joint's five columns
 ///              [q_j, q̇_j, q̈_j, τ̂_fric,s,j, τ_fric,nom,j] (T × 5);
-///   residual = τ_res / effort_per_newton_metre = (τ_meas − predict_effort(q, q̇, q̈)) [N·m]
-///              (T × N, or T × 1 for one joint): the friction the nominal model misses.
-/// Rows the estimator skipped stay NaN: the trainer cuts the sequence there. Training in N·m keeps
-/// the targets O(1) for Adam; scale_tcn_outputs converts the trained heads back to the effort unit.
-/// Throws tpf::Error when the sizes disagree.
-TcnSequence training_sequence(const EstimatorTrace& trace,
-                              const Eigen::VectorXd& effort_per_newton_metre, int joint = -1);
+///   residual = τ_res = τ_meas − predict_effort(q, q̇, q̈) [N·m] (T × N, or T × 1 for one
+///              joint): the friction the nominal model misses (O(1) in N·m, as Adam likes it).
+/// Rows the estimator skipped stay NaN: the trainer cuts the sequence there. Throws tpf::Error
+/// when the sizes disagree.
+TcnSequence training_sequence(const EstimatorTrace& trace, int joint = -1);
 
 /// Per-sample loss weights that emphasise the regimes the nominal model gets most wrong, from the
 /// one regime labelling of the offline tools (label_regimes on each joint's t, q̇ with `regimes`;
@@ -32,8 +30,9 @@ TcnSequence training_sequence(const EstimatorTrace& trace,
 Eigen::MatrixXd regime_weights(const EstimatorTrace& trace, int joint, double static_weight,
                                double static_to_kinetic_weight, const RegimeOptions& regimes = {});
 
-/// Multiplies output o of both heads (weights and bias) by scale[o]: a network trained on
-/// residual/scale then predicts the residual itself (the heads are linear, so this is exact).
+/// Multiplies output o of both heads (weights and bias) by scale[o]: the network then predicts
+/// scale[o] times its output o (the heads are linear, so this is exact; `tpf upgrade` converts
+/// the outputs of old weight files from mA to N·m with it).
 void scale_tcn_outputs(TcnParameters& parameters, const Eigen::VectorXd& scale);
 
 }  // namespace tpf::offline

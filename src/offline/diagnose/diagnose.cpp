@@ -285,7 +285,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   selection.regimes = {false, true, true};
 
   say("diagnose: pass 1/4: declared model");
-  const EffectDesign<N> declared(model, setup.base, setup.effort_scale, s, {}, threshold);
+  const EffectDesign<N> declared(model, setup.base, s, {}, threshold);
   const DeclaredFit fit = fit_declared(declared, s, selection);
   selection.joint_weights = fit.joint_weights;
 
@@ -300,7 +300,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
 
   say("diagnose: pass 3/4: candidate effects");
   const CandidateInputs inputs = candidate_inputs(model, s, analysis, fit);
-  const EffectDesign<N> design(model, setup.base, setup.effort_scale, s, inputs, threshold);
+  const EffectDesign<N> design(model, setup.base, s, inputs, threshold);
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
   EffectSelection sel =
@@ -319,8 +319,6 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   out.effect_terms = std::move(p.terms);
   NominalModel<double, N>& nominal = out.nominal;
   nominal.model = model;
-  nominal.effort_unit = s.effort_unit;
-  nominal.effort_per_newton_metre = setup.effort_scale;
   nominal.base_count = setup.base.size();
   bool load_selected = false;
   const StribeckParameters<double, N> linear =

@@ -32,7 +32,7 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
     text = "Found: " + g.title +
            format_sentence(
                " — removes %.1f %% of the held-out residual sum of squares; "
-               "coefficients ",
+               "coefficients (N·m per unit of the term) ",
                100 * c.improvements[0]) +
            coefficients + " (" + (g.column_names.size() == 1 ? g.column_names[0] : g.key) + ").";
   } else {
@@ -64,11 +64,14 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
   return text;
 }
 
-// Regimes the written model does worse in than the declared one, explained.
+// Regimes the written model does worse in than the declared one, explained (RMSE in the log's
+// unit).
 void add_worsened_regimes(const EffectDiagnosis& d, std::vector<std::string>& findings) {
+  const DriveUnits& u = d.samples.units;
   for (int j = 0; j < d.joints(); ++j)
     for (Regime r : {Regime::Static, Regime::StaticToKinetic, Regime::Moving}) {
-      const double before = d.written_before[j][r].rmse, after = d.written_after[j][r].rmse;
+      const double before = u.to_effort(j, d.written_before[j][r].rmse);
+      const double after = u.to_effort(j, d.written_after[j][r].rmse);
       if (!(after > 1.02 * before)) continue;
       findings.push_back(
           "Joint " + std::to_string(j + 1) + ", " + std::string(regime_name(r)) +
@@ -104,12 +107,13 @@ void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
   }
 }
 
-// What no candidate explains: held-out RMSE over 3× the noise floor at rest.
+// What no candidate explains: held-out RMSE over 3× the noise floor at rest (in the log's unit).
 void add_unexplained(const EffectDiagnosis& d, std::vector<std::string>& findings) {
   for (int j = 0; j < d.joints(); ++j) {
-    const double moving = d.after[j][2].rmse();
-    const double still = d.after[j][0].rmse();
-    const double floor = d.noise_floor[j];
+    const DriveUnits& u = d.samples.units;
+    const double moving = u.to_effort(j, d.after[j][2].rmse());
+    const double still = u.to_effort(j, d.after[j][0].rmse());
+    const double floor = u.to_effort(j, d.noise_floor[j]);
     if (std::isfinite(floor) && moving > 3 * floor)
       findings.push_back("Left unexplained on joint " + std::to_string(j + 1) +
                          format_sentence(": moving held-out RMSE %.3g is %.1f× the noise floor at "

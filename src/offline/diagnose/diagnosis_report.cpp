@@ -29,24 +29,29 @@ Series heldout_series(const JointSamples& s, const std::string& name, const Eige
 
 std::string diagnosis_json(const EffectDiagnosis& d) {
   const int N = d.joints();
+  // Fitted in N·m; reported in the log's unit (mA for a log of currents). Coefficients stay SI.
+  const DriveUnits& u = d.samples.units;
   nlohmann::json j;
   j["format"] = "tpf-diagnosis";
   j["version"] = 1;
   j["source"] = d.samples.source;
   j["simulated"] = d.samples.simulated;
-  j["effort_unit"] = d.samples.effort_unit;
+  j["effort_unit"] = u.name();
   nlohmann::json joints = nlohmann::json::array();
   for (int i = 0; i < N; ++i) {
     nlohmann::json joint;
     joint["joint"] = i + 1;
-    joint["noise_floor"] = d.noise_floor[i];
+    joint["noise_floor"] = u.to_effort(i, d.noise_floor[i]);
     for (int r = 0; r < 4; ++r) {
       const ResidualSums& b = d.before[i][r];
       const ResidualSums& a = d.after[i][r];
       joint["heldout"][kRegimeNames[r]] = {
-          {"count", b.count},      {"rmse_before", b.rmse()},
-          {"std_before", b.std()}, {"rmse_after", a.rmse()},
-          {"std_after", a.std()},  {"rmse_change_percent", percent_change(b.rmse(), a.rmse())}};
+          {"count", b.count},
+          {"rmse_before", u.to_effort(i, b.rmse())},
+          {"std_before", u.to_effort(i, b.std())},
+          {"rmse_after", u.to_effort(i, a.rmse())},
+          {"std_after", u.to_effort(i, a.std())},
+          {"rmse_change_percent", percent_change(b.rmse(), a.rmse())}};
     }
     joints.push_back(joint);
   }
@@ -97,8 +102,8 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   for (int jt = 0; jt < N; ++jt) {
     nlohmann::json row;
     for (Regime r : {Regime::Static, Regime::StaticToKinetic, Regime::Moving})
-      row[std::string(regime_name(r))] = {{"before", d.written_before[jt][r].rmse},
-                                          {"after", d.written_after[jt][r].rmse}};
+      row[std::string(regime_name(r))] = {{"before", u.to_effort(jt, d.written_before[jt][r].rmse)},
+                                          {"after", u.to_effort(jt, d.written_after[jt][r].rmse)}};
     written.push_back(row);
   }
   j["written_model_heldout_rmse"] = written;
@@ -117,9 +122,14 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
 void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::path& html) {
   const int N = d.joints();
   const JointSamples& s = d.samples;
+  // Fitted in N·m; shown in the log's unit (mA for a log of currents).
+  const DriveUnits& u = s.units;
+  const std::string unit = u.name();
+  const Eigen::MatrixXd residual_before = u.to_effort(d.residual_before);
+  const Eigen::MatrixXd residual_after = u.to_effort(d.residual_after);
   HtmlReport page("tpf diagnose: " + s.source);
   if (s.simulated) page.mark_simulated();
-  page.subtitle("effort unit " + s.effort_unit + "; held-out = every 4th 5 s block, never fitted");
+  page.subtitle("effort unit " + unit + "; held-out = every 4th 5 s block, never fitted");
   page.heading("Findings");
   page.list(d.findings);
   if (!d.notes.empty()) page.list(d.notes);
@@ -133,12 +143,13 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
     for (int r = 0; r < 4; ++r) {
       const ResidualSums& b = d.before[i][r];
       const ResidualSums& a = d.after[i][r];
-      table.rows.push_back({std::to_string(i + 1), kRegimeNames[r], format_fixed(b.count, 0),
-                            format_number(b.rmse()), format_number(b.std()),
-                            format_number(a.rmse()), format_number(a.std()),
-                            format_percent_change(b.rmse(), a.rmse())});
+      table.rows.push_back(
+          {std::to_string(i + 1), kRegimeNames[r], format_fixed(b.count, 0),
+           format_number(u.to_effort(i, b.rmse())), format_number(u.to_effort(i, b.std())),
+           format_number(u.to_effort(i, a.rmse())), format_number(u.to_effort(i, a.std())),
+           format_percent_change(b.rmse(), a.rmse())});
     }
-  table.caption = "Residual = effort − model, " + s.effort_unit + ", held-out samples.";
+  table.caption = "Residual = effort − model, " + unit + ", held-out samples.";
   page.table(table);
   std::vector<std::string> groups;
   BarSeries before{"before", {}, ""}, after{"after", {}, ""};
@@ -147,11 +158,11 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
       std::string label = "j";  // appended piecewise: GCC 12 -Wrestrict false positive on a + b + c
       label.append(std::to_string(i + 1)).append(" ").append(kRegimeNames[r]);
       groups.push_back(label);
-      before.values.push_back(d.before[i][r].rmse());
-      after.values.push_back(d.after[i][r].rmse());
+      before.values.push_back(u.to_effort(i, d.before[i][r].rmse()));
+      after.values.push_back(u.to_effort(i, d.after[i][r].rmse()));
     }
-  page.figure(bar_chart({"Held-out RMSE per joint and regime", "", s.effort_unit, 900, 320, true},
-                        groups, {before, after}));
+  page.figure(bar_chart({"Held-out RMSE per joint and regime", "", unit, 900, 320, true}, groups,
+                        {before, after}));
 
   page.heading("Evidence: every candidate tried");
   Table evidence;
@@ -167,20 +178,20 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
 
   for (int i = 0; i < N; ++i) {
     page.figure(line_plot({"Joint " + std::to_string(i + 1) + ": residual over time (held-out)",
-                           "t [s]", s.effort_unit, 900, 260, false},
-                          {heldout_series(s, "before", s.t, d.residual_before.col(i)),
-                           heldout_series(s, "after", s.t, d.residual_after.col(i))}));
+                           "t [s]", unit, 900, 260, false},
+                          {heldout_series(s, "before", s.t, residual_before.col(i)),
+                           heldout_series(s, "after", s.t, residual_after.col(i))}));
   }
   for (std::size_t e = 0; e < d.selected.size(); ++e) {
     const FeatureGroup& g = d.groups[d.selected[e]];
     const int i = g.joint < 0 ? N - 1 : g.joint;
-    const Eigen::VectorXd term = d.effect_terms[e].col(i);
-    page.figure(scatter_plot({g.title + ": residual against the fitted term",
-                              "fitted term [" + s.effort_unit + "]",
-                              "residual [" + s.effort_unit + "]", 900, 320, false},
-                             {heldout_series(s, "before", term, d.residual_before.col(i)),
-                              heldout_series(s, "after", term, d.residual_after.col(i))}),
-                "Before, the residual follows the term (slope 1); after adding it, it is flat.");
+    const Eigen::VectorXd term = d.effect_terms[e].col(i) / u.newton_metres_per_unit(i);
+    page.figure(
+        scatter_plot({g.title + ": residual against the fitted term", "fitted term [" + unit + "]",
+                      "residual [" + unit + "]", 900, 320, false},
+                     {heldout_series(s, "before", term, residual_before.col(i)),
+                      heldout_series(s, "after", term, residual_after.col(i))}),
+        "Before, the residual follows the term (slope 1); after adding it, it is flat.");
   }
   page.heading("Numbers");
   page.preformatted(diagnosis_json(d));

@@ -6,11 +6,13 @@
 #include "offline/sim/simulate.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/common/joint_counts.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
 namespace {
 
-/// Column indices of a simulated log row for an N-joint estimator sample with `pads` pads.
+/// Column indices of a simulated log row (currents i<j> in mA) for an N-joint estimator sample
+/// with `pads` pads; the current becomes torque with the model's K_t.
 template <int N>
 struct RowLayout {
   int t = 0;
@@ -31,7 +33,7 @@ struct RowLayout {
     for (int k = 0; k < pads; ++k)
       p.push_back(at(indexed_name("p", k + 1)));
   }
-  ReplaySample<N> sample(std::span<const double> row) const {
+  ReplaySample<N> sample(std::span<const double> row, const Model<double, N>& model) const {
     ReplaySample<N> s;
     s.t = row[t];
     for (int j = 0; j < N; ++j) {
@@ -39,6 +41,7 @@ struct RowLayout {
       s.dq[j] = row[dq[j]];
       s.effort[j] = row[i[j]];
     }
+    s.effort = torque_from_current(model, s.effort);
     s.pressure.resize(static_cast<Eigen::Index>(p.size()));
     for (std::size_t k = 0; k < p.size(); ++k)
       s.pressure[static_cast<Eigen::Index>(k)] = row[p[k]];
@@ -126,7 +129,7 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
     std::vector<TwinVector> estimates;
     SteppedEstimator<N> estimator(setup);
     const auto source = [&](std::span<const double> row) -> TwinVector {
-      const auto& out = estimator.update(layout.sample(row));
+      const auto& out = estimator.update(layout.sample(row, setup.nominal.model));
       const TwinVector tau =
           mode == 0 ? out.estimate(TorqueEstimator::Proprioceptive).torque : out.external.torque;
       estimates.push_back(tau);

@@ -15,12 +15,10 @@ using Vec = Eigen::VectorXd;
 
 /// τ̂_ext [N·m] of each modality per row (T × N): tactile J_vᵀ(−F_n·n), the proprioceptive
 /// estimate, and the estimator's fused answer (EstimatorOutput::external).
-std::array<Eigen::MatrixXd, kModalityCount> external_torques(const EstimatorTrace& tr,
-                                                             const Vec& scale) {
-  const Eigen::MatrixXd to_nm = -scale.cwiseInverse().asDiagonal().toDenseMatrix();
-  return {tr.torque_tactile,
-          tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)] * to_nm,
-          tr.external * to_nm};
+std::array<Eigen::MatrixXd, kModalityCount> external_torques(const EstimatorTrace& tr) {
+  // τ_ext = −residual (ExternalTorque).
+  return {tr.torque_tactile, -tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)],
+          -tr.external};
 }
 
 /// Per row: does the modality say "contact"? Tactile: a pad; proprioceptive: any joint outside
@@ -66,11 +64,11 @@ void contact_metrics(const Log& log, const EstimatorTrace& tr, Evaluation& ev) {
     ev.force[m] = force_error(*estimate[m], force, rows);
 }
 
-void teaching_metrics(const Log& log, const EstimatorTrace& tr, const Vec& scale, Evaluation& ev) {
-  const int joints = static_cast<int>(scale.size());
+void teaching_metrics(const Log& log, const EstimatorTrace& tr, Evaluation& ev) {
+  const int joints = ev.joints;
   const Eigen::MatrixXd truth = columns(log, "gt_tau_ext", joints);
   const Eigen::VectorXd gt_contact = log.col("gt_contact");
-  const auto torque = external_torques(tr, scale);
+  const auto torque = external_torques(tr);
   ev.teaching_torque = torque;
   ev.teaching_truth = truth;
   TeachingErrors& te = ev.teaching;
@@ -119,15 +117,21 @@ const char* modality_name(Modality m) {
   return "?";
 }
 
-/// What calibration set, per joint, for the report.
+/// What calibration set, per joint, for the report: σ's and bands in the effort unit of `u`.
 template <int N>
-Calibration calibration_of(const EstimatorParameters<double, N>& p) {
+Calibration calibration_of(const EstimatorParameters<double, N>& p, const DriveUnits& u) {
+  const auto in_unit = [&](const JointVector<double, N>& tau) {
+    Vec e(N);
+    for (int j = 0; j < N; ++j)
+      e[j] = u.to_effort(j, tau[j]);
+    return e;
+  };
   Calibration c;
-  c.sigma_nominal = p.nominal_sigma;
-  c.sigma_fused = p.fused_sigma;
-  c.proprioceptive_band = p.dead_band_factor * p.nominal_sigma;
-  c.fusion_moving_band = p.dead_band_factor * p.fused_sigma;
-  c.fusion_static_band = p.static_dead_band;
+  c.sigma_nominal = in_unit(p.nominal_sigma);
+  c.sigma_fused = in_unit(p.fused_sigma);
+  c.proprioceptive_band = in_unit(p.dead_band_factor * p.nominal_sigma);
+  c.fusion_moving_band = in_unit(p.dead_band_factor * p.fused_sigma);
+  c.fusion_static_band = in_unit(p.static_dead_band);
   c.compensator_speed_limit = p.compensator_speed_limit;
   c.compensator_acceleration_limit = p.compensator_acceleration_limit;
   c.torque_alarm_samples = p.torque_alarm_samples;
@@ -146,18 +150,22 @@ Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
   Evaluation ev;
   ev.joints = N;
   ev.has_skin = !setup.pads.empty();
-  const Vec scale = setup.nominal.effort_per_newton_metre;
+  ev.units = drive_units(setup.nominal.model,
+                         effort_unit_of_column(logs.excitation.front()->effort_prefix()));
   const int pads = static_cast<int>(setup.pads.size());
 
   say("evaluate: calibrating the dead bands on " + logs.calibration->source);
   calibrate_with_compensator(setup, *logs.calibration);
-  ev.calibration = calibration_of(setup.parameters);
+  ev.calibration = calibration_of(setup.parameters, ev.units);
 
   std::vector<ResidualRecording> recordings;
   for (const Log* log : logs.excitation) {
     say("evaluate: estimator over " + log->source);
-    EstimatorTrace tr = replay_estimator(setup, estimator_samples<N>(*log, pads));
-    recordings.push_back({tr.t, tr.dq, tr.residual, tr.residual - tr.compensation});
+    EstimatorTrace tr =
+        replay_estimator(setup, estimator_samples<N>(*log, setup.nominal.model, pads));
+    // Table I in the logs' unit (mA for logs of currents), as the original reports it.
+    recordings.push_back({tr.t, tr.dq, ev.units.to_effort(tr.residual),
+                          ev.units.to_effort(tr.residual - tr.compensation)});
     ev.excitation_rows += tr.rows();
     if (recordings.size() == 1) ev.excitation_trace = std::move(tr);
   }
@@ -169,14 +177,16 @@ Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
       throw Error::at(logs.contacts->source, 0, "pads",
                       "a static-contacts log scores the skin, and this arm has no pad layout");
     say("evaluate: estimator over " + logs.contacts->source);
-    ev.contacts_trace = replay_estimator(setup, estimator_samples<N>(*logs.contacts, pads));
+    ev.contacts_trace =
+        replay_estimator(setup, estimator_samples<N>(*logs.contacts, setup.nominal.model, pads));
     contact_metrics(*logs.contacts, ev.contacts_trace, ev);
     ev.has_contacts = true;
   }
   if (logs.teaching) {
     say("evaluate: estimator over " + logs.teaching->source);
-    ev.teaching_trace = replay_estimator(setup, estimator_samples<N>(*logs.teaching, pads));
-    teaching_metrics(*logs.teaching, ev.teaching_trace, scale, ev);
+    ev.teaching_trace =
+        replay_estimator(setup, estimator_samples<N>(*logs.teaching, setup.nominal.model, pads));
+    teaching_metrics(*logs.teaching, ev.teaching_trace, ev);
     ev.has_teaching = true;
   }
   if (logs.teaching_scenario) {

@@ -14,6 +14,7 @@
 #include "offline/log/log.hpp"
 #include "offline/replay/replay_estimator.hpp"
 #include "tpf/estimation/transition_sigma.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
 
@@ -38,8 +39,9 @@ struct EvaluationLogs {
 };
 
 /// What the calibration log set, per joint (N entries each).
+/// σ's and bands in the excitation logs' effort unit (Evaluation::units: mA for logs of currents).
 struct Calibration {
-  Eigen::VectorXd sigma_nominal, sigma_fused;      ///< transition σ (effort unit)
+  Eigen::VectorXd sigma_nominal, sigma_fused;      ///< transition σ
   Eigen::VectorXd proprioceptive_band;             ///< 1.5·σ_nominal
   Eigen::VectorXd fusion_moving_band;              ///< 1.5·σ_fused
   Eigen::VectorXd fusion_static_band;              ///< the model-free static band
@@ -61,6 +63,9 @@ struct TeachingErrors {
 struct Evaluation {
   int joints = 0;
   bool has_skin = false;  ///< the estimator has pads (else the tactile rows say "no skin")
+  /// The excitation logs' effort unit: Table I, the calibration's σ's and bands and the report's
+  /// residual plots are in it (the estimator computes in N·m; the traces below are N·m).
+  DriveUnits units;
   /// What every estimator ran with, calibrated on the calibration log.
   Calibration calibration;
   std::vector<ResidualRow> table;  ///< Table I on the held-out excitation logs

@@ -66,13 +66,16 @@ std::string fmt(double x, int digits = 3) {
   return format_number(x, digits);
 }
 
-/// Residual samples of one joint and regime from the first excitation trace, for histograms.
+/// Residual samples of one joint and regime from the first excitation trace, for histograms, in
+/// the log's unit (ev.units).
 std::vector<HistogramSeries> error_distributions(const Evaluation& ev, Regime regime) {
   const EstimatorTrace& tr = ev.excitation_trace;
+  const Eigen::MatrixXd residual = ev.units.to_effort(tr.residual);
+  const Eigen::MatrixXd compensated = ev.units.to_effort(tr.residual - tr.compensation);
   std::vector<double> a, b;
   for (int j = 0; j < ev.joints; ++j) {
-    const Eigen::VectorXd nominal = tr.residual.col(j);
-    const Eigen::VectorXd comp = tr.residual.col(j) - tr.compensation.col(j);
+    const Eigen::VectorXd nominal = residual.col(j);
+    const Eigen::VectorXd comp = compensated.col(j);
     const auto labels = label_regimes(tr.t, tr.dq.col(j), {}, &nominal, &comp,
                                       ev.calibration.fusion_static_band[j] / 3.0);
     for (Eigen::Index k = 0; k < tr.rows(); ++k) {
@@ -88,8 +91,15 @@ std::vector<HistogramSeries> error_distributions(const Evaluation& ev, Regime re
   return {{"nominal", v(a), ""}, {"nominal + TCN", v(b), ""}};
 }
 
-/// Joint `j`'s residual in ±0.3 s around its first motion onsets (stacked on a relative time axis).
-std::vector<Series> onset_series(const EstimatorTrace& tr, int j, int onsets) {
+/// Joint `j`'s residual in ±0.3 s around its first motion onsets (stacked on a relative time axis),
+/// in the log's unit (`units`).
+std::vector<Series> onset_series(const EstimatorTrace& trace, const DriveUnits& units, int j,
+                                 int onsets) {
+  EstimatorTrace tr;
+  tr.t = trace.t;
+  tr.dq = trace.dq;
+  tr.residual = units.to_effort(trace.residual);
+  tr.compensation = units.to_effort(trace.compensation);
   std::vector<Series> out;
   int found = 0;
   for (Eigen::Index k = 1; k < tr.rows() && found < onsets; ++k) {
@@ -130,7 +140,7 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
   page.figure(line_plot({"Joint " + std::to_string(focus_joint(ev) + 1) +
                              " current residual around motion onsets",
                          "time from onset [s]", "residual [mA]"},
-                        onset_series(ev.excitation_trace, focus_joint(ev), 3)),
+                        onset_series(ev.excitation_trace, ev.units, focus_joint(ev), 3)),
               "Like the original's figure: the nominal model's residual jumps at break-away; the "
               "TCN-compensated one stays near zero.");
 

@@ -10,8 +10,9 @@
 namespace tpf::offline {
 
 /// One contact-free recording: per row t [s], q̇ (T × N), the nominal residual τ_res and the
-/// compensated residual τ_res − τ_TCN (T × N, effort unit). On contact-free data both are
-/// estimation errors (the true external torque is 0). NaN rows are skipped.
+/// compensated residual τ_res − τ_TCN (T × N, one unit: Table I passes the log's, mA). On
+/// contact-free data both are estimation errors (the true external torque is 0). NaN rows are
+/// skipped.
 struct ResidualRecording {
   Eigen::VectorXd t;
   Eigen::MatrixXd dq;

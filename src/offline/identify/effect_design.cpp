@@ -47,12 +47,10 @@ void EffectDesign<N>::add_group(FeatureKind kind, std::string key, std::string t
 
 template <int N>
 EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameters& base,
-                              const Eigen::VectorXd& effort_per_newton_metre,
                               const JointSamples& samples, CandidateInputs candidates,
                               double static_velocity)
     : model_(model),
       base_columns_(base.independent),
-      scale_(effort_per_newton_metre),
       candidates_(std::move(candidates)),
       static_velocity_(static_velocity),
       has_temperature_(samples.temperature.cols() == N) {
@@ -166,7 +164,7 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
       switch (groups_[g].kind) {
         case K::Rigid:
           for (int col : base_columns_)
-            *out++ = ws.Y(j, col) * scale_[j];
+            *out++ = ws.Y(j, col);
           break;
         case K::Friction:
           *out++ = sign;
@@ -175,7 +173,7 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
           break;
         case K::Payload:
           for (int p = 0; p < 10; ++p)
-            *out++ = ws.Y(j, 10 * (N - 1) + p) * scale_[j];
+            *out++ = ws.Y(j, 10 * (N - 1) + p);
           break;
         case K::LoadFriction: {
           const double load = candidates_.abs_gravity(k, j);

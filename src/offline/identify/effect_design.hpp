@@ -53,13 +53,13 @@ struct CandidateInputs {
   Eigen::MatrixXd prediction_rate;  ///< d(declared prediction)/dt per sample and joint, or empty
   Eigen::MatrixXd abs_gravity;      ///< |G_j(q)| per sample and joint [N·m] (gravity_load)
   double reference_temperature = 25.0;  ///< °C
-  /// Per joint: the declared fit's viscous coefficient b_j (effort unit·s/rad), which the
+  /// Per joint: the declared fit's viscous coefficient b_j [N·m·s/rad], which the
   /// every-joint thermal candidate scales; empty = no every-joint thermal candidate.
   Eigen::VectorXd viscous;
 };
 
-/// Features of every joint row of the samples, for an N-joint model. Rigid columns are scaled by
-/// effort_per_newton_metre so that their coefficients are SI base parameters.
+/// Features of every joint row of the samples (effort in N·m), for an N-joint model: the rigid
+/// columns' coefficients are SI base parameters, every other coefficient is in N·m per feature.
 /// Row j of sample k (moving = |q̇_j| ≥ threshold, s = sgn(q̇_j) when moving else 0, h = held sign
 /// at rest else 0, |G| = |G_j(q)| of the robot file's model [N·m]):
 ///   declared: Y_b(q,q̇,q̈)·e_j | s, q̇_j, h
@@ -77,8 +77,7 @@ template <int N>
 class EffectDesign {
  public:
   EffectDesign(const Model<double, N>& model, const BaseParameters& base,
-               const Eigen::VectorXd& effort_per_newton_metre, const JointSamples& samples,
-               CandidateInputs candidates, double static_velocity);
+               const JointSamples& samples, CandidateInputs candidates, double static_velocity);
 
   int features() const { return features_; }
   const std::vector<FeatureGroup>& groups() const { return groups_; }
@@ -103,7 +102,6 @@ class EffectDesign {
 
   Model<double, N> model_;
   std::vector<int> base_columns_;
-  Eigen::VectorXd scale_;
   CandidateInputs candidates_;
   double static_velocity_;
   bool has_temperature_;

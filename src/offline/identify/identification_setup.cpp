@@ -11,12 +11,8 @@ namespace tpf::offline {
 template <int N>
 IdentificationSetup<N> prepare_identification(const Log& log, const Model<double, N>& model,
                                               const SampleOptions& options) {
-  IdentificationSetup<N> setup{extract_joint_samples(log, options), {}, {}};
-  if (setup.samples.joints() != N)
-    throw Error::at(log.source, 0, "",
-                    "the log has " + std::to_string(setup.samples.joints()) +
-                        " joints, the robot file " + std::to_string(N));
-  setup.effort_scale = effort_scale<N>(model, setup.samples.effort_unit);
+  IdentificationSetup<N> setup{
+      extract_joint_samples(log, model.torque_constant.template cast<double>(), options), {}};
   setup.base = rigid_body_base_parameters(model);
   return setup;
 }

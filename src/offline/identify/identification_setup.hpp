@@ -11,13 +11,12 @@ namespace tpf::offline {
 
 template <int N>
 struct IdentificationSetup {
-  JointSamples samples;
-  JointVector<double, N> effort_scale;  ///< effort per N·m: 1000/K_t (mA) or 1 (N·m)
-  BaseParameters base;                  ///< rigid-body base parameters of the robot file's model
+  JointSamples samples;  ///< effort in N·m
+  BaseParameters base;   ///< rigid-body base parameters of the robot file's model
 };
 
-/// extract_joint_samples(log), then: the log must have exactly N joints (tpf::Error naming the
-/// log otherwise), effort_scale for the log's effort unit, rigid_body_base_parameters(model).
+/// extract_joint_samples(log) with the model's torque constants (the log must have exactly N
+/// joints: tpf::Error naming the log otherwise), rigid_body_base_parameters(model).
 template <int N>
 IdentificationSetup<N> prepare_identification(const Log& log, const Model<double, N>& model,
                                               const SampleOptions& options);

@@ -227,8 +227,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
-  const EffectDesign<N> design(model, base, setup.effort_scale, s, {},
-                               options.samples.regimes.static_velocity);
+  const EffectDesign<N> design(model, base, s, {}, options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);
   FitSelection selection;
   selection.regimes = {false, true, true};  // moving samples only
@@ -253,8 +252,6 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
 
   NominalModel<double, N>& nominal = out.nominal;
   nominal.model = model;
-  nominal.effort_unit = s.effort_unit;
-  nominal.effort_per_newton_metre = setup.effort_scale;
   nominal.base_count = base.size();
   Eigen::VectorXd rigid_theta = Eigen::VectorXd::Zero(design.features());
   StribeckParameters<double, N> linear;
@@ -282,8 +279,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     for (int i = 0; i < nominal.base_count; ++i)
       if (nominal.base_columns[i] >= 10 * N && nominal.base_columns[i] < 11 * N)
         armature[nominal.base_columns[i] - 10 * N] = nominal.base_values[i];
-    SensorFrictionReference sensor =
-        sensor_friction_reference(log, s, armature, Eigen::VectorXd(setup.effort_scale), rigid);
+    SensorFrictionReference sensor = sensor_friction_reference(log, s, armature, rigid);
     friction_reference = std::move(sensor.reference);
     for (int j = 0; j < N; ++j)
       if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {
@@ -327,7 +323,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                     "friction cannot push the motion, so the effort does not follow sgn(q̇) and "
                     "q̇ as the model has them (an offset, a direction asymmetry or a delay can do "
                     "this: run tpf diagnose); the curve is fitted from 0",
-                    j + 1, linear.coulomb[j], linear.viscous[j], s.effort_unit.c_str());
+                    j + 1, linear.coulomb[j], linear.viscous[j], "N*m");
       out.consistency.problems.push_back(text);
     }
   return out;

@@ -21,7 +21,7 @@ struct IdentifyOptions {
   bool fit_load_friction = true;           ///< α_c, α_v free in the nonlinear friction fit
   int friction_samples_per_joint = 20000;  ///< subsample of moving training samples for Ceres
   /// Fit the friction of each joint whose joint torque sensor varies (tau_sensor<j>, a file at a
-  /// time) against the sensor: target effort − scale·(τ_sensor + I_a·q̈), the drive loss behind
+  /// time) against the sensor: target K_t·i − (τ_sensor + I_a·q̈) [N·m], the drive loss behind
   /// the gear, instead of effort − rigid-body prediction (joints without a usable sensor keep the
   /// latter). The rigid body is fitted from the effort as before.
   bool friction_from_sensor = false;

@@ -8,13 +8,18 @@
 
 namespace tpf::offline {
 
-JointSamples extract_joint_samples(const Log& log, const SampleOptions& options) {
+JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque_constant,
+                                   const SampleOptions& options) {
   JointSamples s;
   s.source = log.source;
   const int n_joints = log.joint_count();
   if (n_joints < 1) throw Error::at(log.source, 0, "q1", "the log has no joint columns");
+  if (torque_constant.size() != n_joints)
+    throw Error::at(log.source, 0, "",
+                    "the log has " + std::to_string(n_joints) + " joints, the robot file " +
+                        std::to_string(torque_constant.size()));
   const std::string prefix = log.effort_prefix();
-  s.effort_unit = prefix == "i" ? "mA" : "N*m";
+  s.units = {effort_unit_of_column(prefix), torque_constant};
   s.simulated = log.meta.get("source").value_or("").find("simulated") != std::string::npos;
   const Eigen::Index n = log.rows();
   s.t = log.col("t");
@@ -29,7 +34,7 @@ JointSamples extract_joint_samples(const Log& log, const SampleOptions& options)
   for (int j = 1; j <= n_joints; ++j) {
     s.q.col(j - 1) = log.col(indexed_name("q", j));
     s.dq.col(j - 1) = log.col(indexed_name("dq", j));
-    s.effort.col(j - 1) = log.col(indexed_name(prefix, j));
+    s.effort.col(j - 1) = log.col(indexed_name(prefix, j)) * s.units.newton_metres_per_unit(j - 1);
     const std::string acc = indexed_name("ddq", j);
     s.ddq.col(j - 1) =
         log.has(acc) ? Eigen::VectorXd(log.col(acc))

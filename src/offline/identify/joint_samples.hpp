@@ -8,6 +8,7 @@
 
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
 
@@ -23,11 +24,12 @@ struct SampleOptions {
   bool hold_out = true;
 };
 
-/// Samples × joints matrices of one log (column j = joint j+1). Effort in the log's unit.
+/// Samples × joints matrices of one log (column j = joint j+1). Effort in N·m: a log of motor
+/// currents is converted as it is read (`units`, which also converts back for reports).
 struct JointSamples {
-  std::string source;       ///< log path, for messages
-  std::string effort_unit;  ///< "mA" (i<j>) or "N*m" (tau<j>)
-  bool simulated = false;   ///< metadata 'source' says simulated
+  std::string source;      ///< log path, for messages
+  DriveUnits units;        ///< the log's effort unit (mA for i<j>, N·m for tau<j>) and K_t
+  bool simulated = false;  ///< metadata 'source' says simulated
   Eigen::VectorXd t;
   Eigen::MatrixXd q, dq, ddq, effort;
   Eigen::MatrixXd temperature;               ///< temp<j> in °C; 0 columns when the log has none
@@ -45,8 +47,11 @@ struct JointSamples {
 };
 
 /// Extracts the joint samples of `log`: q<j>, dq<j>, ddq<j> (or derive_acceleration of dq<j>),
-/// the effort i<j> or tau<j>, temp<j> when every joint has one. Throws tpf::Error naming the log
-/// when required columns are missing or there are fewer than 100 valid samples.
-JointSamples extract_joint_samples(const Log& log, const SampleOptions& options = {});
+/// the effort i<j> or tau<j> converted to N·m with `torque_constant` (the robot file's K_t per
+/// joint, drive_units), temp<j> when every joint has one. Throws tpf::Error naming the log when
+/// required columns are missing, K_t has another joint count, or there are fewer than 100 valid
+/// samples.
+JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque_constant,
+                                   const SampleOptions& options = {});
 
 }  // namespace tpf::offline

@@ -19,7 +19,6 @@ bool sensor_friction_moving(const JointSamples& s, Eigen::Index k, int j) {
 
 SensorFrictionReference sensor_friction_reference(const Log& log, const JointSamples& s,
                                                   const Eigen::VectorXd& armature,
-                                                  const Eigen::VectorXd& scale,
                                                   const Eigen::MatrixXd& rigid) {
   const int joints = s.joints();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -47,7 +46,7 @@ SensorFrictionReference sensor_friction_reference(const Log& log, const JointSam
       for (Eigen::Index k = begin; k < end; ++k) {
         const double tau = log.values(k, column);
         if (!s.valid[static_cast<std::size_t>(k)] || !std::isfinite(tau)) continue;
-        out.reference(k, j) = scale[j] * (tau + armature[j] * s.ddq(k, j));
+        out.reference(k, j) = tau + armature[j] * s.ddq(k, j);
         if (!sensor_friction_moving(s, k, j)) continue;
         const Eigen::Vector2d phi(s.dq(k, j) > 0 ? 1.0 : -1.0, s.dq(k, j));
         A += phi * phi.transpose();
@@ -66,7 +65,7 @@ SensorFrictionReference sensor_friction_reference(const Log& log, const JointSam
   out.note = used.empty() ? "friction from the torque sensor: no joint has a usable sensor; "
                             "the friction is fitted against the rigid-body prediction"
                           : "friction fitted against the torque sensor on joints " + used +
-                                ": target effort − K·(τ_sensor + I_a·q̈)";
+                                ": target K_t·i − (τ_sensor + I_a·q̈)";
   return out;
 }
 

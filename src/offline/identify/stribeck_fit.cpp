@@ -34,6 +34,9 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
   options.max_num_iterations = 50;
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
+  // Stop on the relative tolerances only: the absolute gradient tolerance would make the fit
+  // depend on the unit of the torques (it is reached 10⁴–10⁵ times sooner in N·m than in mA).
+  options.gradient_tolerance = 0.0;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   StribeckFit fit{{x[0], x[1], x[2], x[3], x[4], x[5], x[6]}, {}};

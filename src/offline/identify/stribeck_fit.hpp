@@ -7,7 +7,7 @@
 
 namespace tpf::offline {
 
-/// Parameters of one joint, effort unit (see tpf::StribeckParameters).
+/// Parameters of one joint, N·m (see tpf::StribeckParameters).
 struct JointStribeck {
   double coulomb = 0, static_friction = 0, stribeck_velocity = 0.05, stribeck_exponent = 1.5;
   double viscous = 0, load_coulomb = 0, load_viscous = 0;

@@ -9,13 +9,12 @@
 namespace tpf::offline {
 
 /// The model the robot files declare: rigid body and armature of the robot file (as base
-/// parameters) and the memoryless Stribeck + load friction of the friction file, in the effort
-/// unit `effort_prefix` ("i": mA via 1000/K_t, "tau": N·m). It is the starting point of
-/// identification, and what the pipeline uses when no identified tpf-params file is given.
-/// Compiled for N = 1 … kMaxJoints.
+/// parameters) and the memoryless Stribeck + load friction of the friction file (which must be in
+/// N·m; tpf::Error naming the file otherwise). It is the starting point of identification, and
+/// what the pipeline uses when no identified tpf-params file is given. Compiled for N = 1 …
+/// kMaxJoints.
 template <int N>
 NominalModel<double, N> declared_nominal_model(const std::filesystem::path& robot_file,
-                                               const std::filesystem::path& friction_file,
-                                               const std::string& effort_prefix = "i");
+                                               const std::filesystem::path& friction_file);
 
 }  // namespace tpf::offline

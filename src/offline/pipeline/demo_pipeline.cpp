@@ -186,10 +186,10 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   // 4. Train.
   say("[4/6] train: estimator features on the training log, then the TCN (" +
       std::to_string(o.training_epochs) + " epochs per network at most)");
-  setup.parameters =
-      estimator_parameters_from_noise<kDemoJoints>(estimate_sensor_noise(training_log));
-  const std::vector<EstimatorTrace> traces{
-      replay_estimator(setup, estimator_samples<kDemoJoints>(training_log, pads))};
+  setup.parameters = estimator_parameters_from_noise<kDemoJoints>(
+      estimate_sensor_noise(training_log, setup.nominal.model.torque_constant));
+  const std::vector<EstimatorTrace> traces{replay_estimator(
+      setup, estimator_samples<kDemoJoints>(training_log, setup.nominal.model, pads))};
   CompensatorTrainingOptions training;
   training.per_joint = o.per_joint;
   training.joint_hidden = o.joint_hidden;
@@ -199,19 +199,17 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   training.tcn.threads = o.threads;
   training.tcn.seed = o.training_seed;
   int last_epoch = 0;
-  result.training = train_compensator(
-      traces, setup.nominal.effort_per_newton_metre, training, [&](const TcnTrainProgress& p) {
-        if (p.epoch - last_epoch >= 5 || p.last) {
-          last_epoch = p.epoch;
-          char line[200];
-          std::snprintf(
-              line, sizeof line,
-              "train: epoch %d, loss %.4g, held-out %.4g (best %.4g), %.0f s, ~%.0f s left",
-              p.epoch, p.train_loss, p.validation_loss, p.best_validation_loss, p.elapsed_seconds,
-              p.remaining_seconds);
-          say(line);
-        }
-      });
+  result.training = train_compensator(traces, training, [&](const TcnTrainProgress& p) {
+    if (p.epoch - last_epoch >= 5 || p.last) {
+      last_epoch = p.epoch;
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "train: epoch %d, loss %.4g, held-out %.4g (best %.4g), %.0f s, ~%.0f s left",
+                    p.epoch, p.train_loss, p.validation_loss, p.best_validation_loss,
+                    p.elapsed_seconds, p.remaining_seconds);
+      say(line);
+    }
+  });
   const auto weights = o.out / "tcn.json";
   write_compensator(result.training, weights);
   setup.weights = find_compensator_weights(weights, kDemoJoints);
@@ -229,8 +227,8 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   logs.teaching_scenario = &teaching;
   logs.teaching_seed = o.teaching_seed;
   logs.teaching_duration_s = o.teaching_s;
-  setup.parameters =
-      estimator_parameters_from_noise<kDemoJoints>(estimate_sensor_noise(jobs[3].log));
+  setup.parameters = estimator_parameters_from_noise<kDemoJoints>(
+      estimate_sensor_noise(jobs[3].log, setup.nominal.model.torque_constant));
   result.evaluation = evaluate(setup, logs, say);
   // The run-time loop's estimator parameters as calibrated here (tpf_arm_loop --estimator).
   save_estimator_parameters<kDemoJoints>(o.out / "arm4.estimator.json", setup.parameters,

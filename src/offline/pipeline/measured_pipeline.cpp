@@ -36,10 +36,10 @@ std::string joined_file_names(const std::vector<std::string>& names) {
 }
 
 /// Samples with nothing held out: the held-out data are other files.
-JointSamples samples_without_holdout(const Log& log) {
+JointSamples samples_without_holdout(const Log& log, const Model<double, kMeasuredJoints>& model) {
   SampleOptions options;
   options.hold_out = false;
-  return extract_joint_samples(log, options);
+  return extract_joint_samples(log, model.torque_constant, options);
 }
 
 Identification<kMeasuredJoints> identify_on_every_sample(
@@ -120,7 +120,8 @@ Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std:
   return m;
 }
 
-/// Per joint: RMSE of the log's effort less the estimate's over the valid samples.
+/// Per joint: RMSE of the log's effort less the estimate's over the valid samples, in the log's
+/// unit (mA for a log of currents).
 std::vector<double> effort_rmse_per_joint(const JointSamples& s, const EffortEstimate& e) {
   std::vector<double> out;
   for (int j = 0; j < s.joints(); ++j) {
@@ -129,7 +130,7 @@ std::vector<double> effort_rmse_per_joint(const JointSamples& s, const EffortEst
       const double r = s.effort(k, j) - e.effort(k, j);
       if (s.valid[static_cast<std::size_t>(k)] && std::isfinite(r)) sum += r * r, ++n;
     }
-    out.push_back(n > 0 ? std::sqrt(sum / n) : std::nan(""));
+    out.push_back(n > 0 ? s.units.to_effort(j, std::sqrt(sum / n)) : std::nan(""));
   }
   return out;
 }
@@ -156,12 +157,13 @@ EstimatorSetup<kMeasuredJoints> train_measured_compensator(
     CompensatorTraining& training, const std::function<void(const std::string&)>& say) {
   EstimatorSetup<kMeasuredJoints> setup;
   setup.nominal = nominal;
-  setup.parameters = estimator_parameters_from_noise<kMeasuredJoints>(estimate_sensor_noise(fit));
+  setup.parameters = estimator_parameters_from_noise<kMeasuredJoints>(
+      estimate_sensor_noise(fit, nominal.model.torque_constant));
   std::vector<EstimatorTrace> traces{
-      replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, 0))};
+      replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, nominal.model, 0))};
   for (int j = 0; j < static_cast<int>(sensor_target.cols()); ++j)
     if (sensor_target.col(j).array().isFinite().any())
-      traces[0].residual.col(j) = sensor_target.col(j) * nominal.effort_per_newton_metre[j];
+      traces[0].residual.col(j) = sensor_target.col(j);
   CompensatorTrainingOptions options;
   options.per_joint = true;
   options.joint_hidden = o.joint_hidden;
@@ -173,15 +175,14 @@ EstimatorSetup<kMeasuredJoints> train_measured_compensator(
   options.tcn.threads = o.threads;
   options.tcn.seed = o.seed;
   int last = 0;
-  training = train_compensator(
-      traces, nominal.effort_per_newton_metre, options, [&](const TcnTrainProgress& p) {
-        if (p.epoch - last < 10 && !p.last) return;
-        last = p.last ? 0 : p.epoch;
-        char line[160];
-        std::snprintf(line, sizeof line, "measured: train: epoch %d, held-out loss %.4g", p.epoch,
-                      p.validation_loss);
-        say(line);
-      });
+  training = train_compensator(traces, options, [&](const TcnTrainProgress& p) {
+    if (p.epoch - last < 10 && !p.last) return;
+    last = p.last ? 0 : p.epoch;
+    char line[160];
+    std::snprintf(line, sizeof line, "measured: train: epoch %d, held-out loss %.4g", p.epoch,
+                  p.validation_loss);
+    say(line);
+  });
   const auto weights = o.out / weight_file;
   write_compensator(training, weights);
   setup.weights = find_compensator_weights(weights, kMeasuredJoints);
@@ -190,10 +191,10 @@ EstimatorSetup<kMeasuredJoints> train_measured_compensator(
 
 /// K_t·i − d − τ_sensor of `estimate` (or Kt only when null) on the scoring log.
 Eigen::MatrixXd sensor_residual_of(const Log& log, const JointSamples& s,
-                                   const EffortEstimate* estimate, const Eigen::VectorXd& kt) {
+                                   const EffortEstimate* estimate) {
   SensorSide side{&log, &s,
                   estimate ? estimate->drive_loss : Eigen::MatrixXd::Zero(s.size(), s.joints())};
-  return sensor_residual(side, kt);
+  return sensor_residual(side);
 }
 
 Eigen::VectorXd time_within_file(const Log& log, const JointSamples& s) {
@@ -209,12 +210,11 @@ Eigen::VectorXd time_within_file(const Log& log, const JointSamples& s) {
 /// `e` with the current through causal_low_pass of time constant tau[j] on joint j: the drive
 /// loss less (LP(K_t·i) − K_t·i), so that K_t·i − d becomes LP(K_t·i) − d.
 EffortEstimate low_passed_estimate(const EffortEstimate& e, const Log& log, const JointSamples& s,
-                                   const Eigen::VectorXd& tau, const Eigen::VectorXd& kt) {
+                                   const Eigen::VectorXd& tau) {
   EffortEstimate out = e;
   for (Eigen::Index j = 0; j < tau.size(); ++j) {
     const Eigen::VectorXd effort = s.effort.col(j);
-    out.drive_loss.col(j) -=
-        (causal_low_pass(s.t, effort, tau[j], log.file_starts) - effort) / kt[j];
+    out.drive_loss.col(j) -= causal_low_pass(s.t, effort, tau[j], log.file_starts) - effort;
   }
   return out;
 }
@@ -222,21 +222,21 @@ EffortEstimate low_passed_estimate(const EffortEstimate& e, const Log& log, cons
 /// Per joint, the time constant (0: none) that minimises the RMSE of `e` against the sensor on
 /// the fitting side.
 Eigen::VectorXd choose_low_pass_time_constants(const Log& log, const JointSamples& s,
-                                               const EffortEstimate& e, const Eigen::VectorXd& kt) {
-  const Eigen::MatrixXd residual = sensor_residual({&log, &s, e.drive_loss}, kt);
+                                               const EffortEstimate& e) {
+  const Eigen::MatrixXd residual = sensor_residual({&log, &s, e.drive_loss});
   const auto rmse = [](const Eigen::VectorXd& r) {
     double sum = 0, n = 0;
     for (Eigen::Index k = 0; k < r.size(); ++k)
       if (std::isfinite(r[k])) sum += r[k] * r[k], ++n;
     return n > 0 ? std::sqrt(sum / n) : 0.0;
   };
-  Eigen::VectorXd best = Eigen::VectorXd::Zero(kt.size());
-  for (Eigen::Index j = 0; j < kt.size(); ++j) {
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(s.joints());
+  for (Eigen::Index j = 0; j < s.joints(); ++j) {
     const Eigen::VectorXd effort = s.effort.col(j);
     double lowest = rmse(residual.col(j));
     for (double tau : kCurrentLowPassTimeConstants) {
-      const double now = rmse(
-          residual.col(j) + (causal_low_pass(s.t, effort, tau, log.file_starts) - effort) / kt[j]);
+      const double now =
+          rmse(residual.col(j) + (causal_low_pass(s.t, effort, tau, log.file_starts) - effort));
       if (now < lowest) lowest = now, best[j] = tau;
     }
   }
@@ -247,8 +247,7 @@ Eigen::VectorXd choose_low_pass_time_constants(const Log& log, const JointSample
 struct MeasuredData {
   Model<double, kMeasuredJoints> model;
   Log fit, score;
-  JointSamples fit_samples, score_samples;
-  Eigen::VectorXd kt;  ///< effort per N·m
+  JointSamples fit_samples, score_samples;  ///< effort in N·m
 };
 
 using Say = std::function<void(const std::string&)>;
@@ -261,7 +260,6 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
   say("measured: identify on " + joined_file_names(o.fitting));
   identified =
       identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false, say).nominal;
-  d.kt = identified.effort_per_newton_metre;
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", identified,
                                       d.fit.source + " (MEASURED)");
   std::vector<EffortEstimate> estimates{
@@ -277,10 +275,9 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
   estimates.back().name = "friction against the sensor";
   const EffortEstimate on_fit =
       nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored);
-  result.low_pass_time_constants =
-      choose_low_pass_time_constants(d.fit, d.fit_samples, on_fit, d.kt);
-  estimates.push_back(low_passed_estimate(estimates[1], d.score, d.score_samples,
-                                          result.low_pass_time_constants, d.kt));
+  result.low_pass_time_constants = choose_low_pass_time_constants(d.fit, d.fit_samples, on_fit);
+  estimates.push_back(
+      low_passed_estimate(estimates[1], d.score, d.score_samples, result.low_pass_time_constants));
   estimates.back().name = "+ current low-pass";
   return estimates;
 }
@@ -341,7 +338,7 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
       &d.fit, &d.fit_samples,
       nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored).drive_loss};
   const EstimatorSetup<kMeasuredJoints> sensor_setup =
-      train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side, d.kt),
+      train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side),
                                  "gen3.tcn-sensor.json", result.sensor_training, say);
   estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, d.score, estimates[1]));
   estimates.back().name = "friction against the sensor + compensator trained against it";
@@ -357,7 +354,7 @@ MeasuredTraces plot_traces(const MeasuredData& d, const std::vector<EffortEstima
   tr.dq = d.score_samples.dq;
   const auto add = [&](const std::string& name, const EffortEstimate* e) {
     tr.names.push_back(name);
-    tr.residual.push_back(sensor_residual_of(d.score, d.score_samples, e, d.kt));
+    tr.residual.push_back(sensor_residual_of(d.score, d.score_samples, e));
   };
   add("Kt only", nullptr);
   add("after identification", &estimates[0]);
@@ -386,14 +383,13 @@ MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
   // The low-pass chosen on this split's fitting files (the scoring files of the forward one).
   time_constants = choose_low_pass_time_constants(
       d.score, d.score_samples,
-      nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, notes), d.kt);
-  estimates.push_back(
-      low_passed_estimate(estimates[1], d.fit, d.fit_samples, time_constants, d.kt));
+      nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, notes));
+  estimates.push_back(low_passed_estimate(estimates[1], d.fit, d.fit_samples, time_constants));
   estimates.back().name = "+ current low-pass";
   MeasuredSplit split;
   split.fitted_on = joined_file_names(o.scoring);
   split.scored_on = joined_file_names(o.fitting);
-  split.validation = score_estimates(d.fit, d.fit_samples, estimates, d.kt);
+  split.validation = score_estimates(d.fit, d.fit_samples, estimates);
   split.columns = measured_split_columns(split.validation);
   return split;
 }
@@ -418,10 +414,9 @@ MeasuredResult run_measured(const MeasuredOptions& o,
                  read_measured_files(o, o.fitting),
                  read_measured_files(o, o.scoring),
                  {},
-                 {},
                  {}};
-  d.fit_samples = samples_without_holdout(d.fit);
-  d.score_samples = samples_without_holdout(d.score);
+  d.fit_samples = samples_without_holdout(d.fit, d.model);
+  d.score_samples = samples_without_holdout(d.score, d.model);
 
   Gen3Model identified, sensor_model;
   std::vector<EffortEstimate> estimates =
@@ -431,7 +426,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   say("measured: score on " + joined_file_names(o.scoring) + " against the torque sensor");
   result.forward.fitted_on = joined_file_names(o.fitting);
   result.forward.scored_on = joined_file_names(o.scoring);
-  result.forward.validation = score_estimates(d.score, d.score_samples, estimates, d.kt);
+  result.forward.validation = score_estimates(d.score, d.score_samples, estimates);
   result.forward.validation.notes = result.notes;
   result.forward.columns = measured_split_columns(result.forward.validation);
 
@@ -442,12 +437,11 @@ MeasuredResult run_measured(const MeasuredOptions& o,
       &d.fit, &d.fit_samples,
       nominal_estimate<kMeasuredJoints>(identified, d.fit_samples, ignored).drive_loss};
   const SensorSide held_side{&d.score, &d.score_samples, estimates.front().drive_loss};
-  result.candidates =
-      sensor_candidates(fit_side, held_side, d.kt, Eigen::VectorXd(d.model.gear_ratio));
+  result.candidates = sensor_candidates(fit_side, held_side, Eigen::VectorXd(d.model.gear_ratio));
   result.traces = plot_traces(d, estimates, o.run_training);
   if (o.run_reverse)
     result.reverse = reverse_stage(o, d, result.reverse_low_pass_time_constants, say);
-  result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}}, d.kt);
+  result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}});
   result.facts.outside_share = outside_range_share(d.fit_samples, d.score_samples);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -127,7 +127,7 @@ std::string low_pass_sentence(const MeasuredResult& r) {
   for (Eigen::Index j = 0; j < r.low_pass_time_constants.size(); ++j)
     taus += (j ? " / " : " ") + format_number(1000 * r.low_pass_time_constants[j], 3);
   return "'friction against the sensor': identify --friction-from-sensor, each joint's friction "
-         "fitted against its torque sensor (effort − K·(τ_sensor + I_a·q̈)) instead of against "
+         "fitted against its torque sensor (K_t·i − (τ_sensor + I_a·q̈)) instead of against "
          "the effort less a rigid body that 8.8 s cannot identify. '+ current low-pass': the "
          "same with the motor current through a causal first-order low-pass, time constant "
          "chosen per joint on the fitting files (joints 1–7, ms:" +

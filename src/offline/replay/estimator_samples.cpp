@@ -4,11 +4,13 @@
 
 #include "tpf/common/error.hpp"
 #include "tpf/common/joint_counts.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
 
 template <int N>
-std::vector<ReplaySample<N>> estimator_samples(const Log& log, int P) {
+std::vector<ReplaySample<N>> estimator_samples(const Log& log, const Model<double, N>& model,
+                                               int P) {
   if (log.joint_count() != N) {
     throw Error::at(log.source, 0, "columns",
                     "the log has " + std::to_string(log.joint_count()) + " joints, expected " +
@@ -21,6 +23,7 @@ std::vector<ReplaySample<N>> estimator_samples(const Log& log, int P) {
                         std::to_string(P));
   }
   const std::string effort = log.effort_prefix();
+  const bool current = effort_unit_of_column(effort) == EffortUnit::Milliampere;
   const int t = log.column("t");
   std::array<int, N> q{}, dq{}, e{};
   for (int j = 0; j < N; ++j) {
@@ -41,6 +44,7 @@ std::vector<ReplaySample<N>> estimator_samples(const Log& log, int P) {
       s.dq[j] = log.values(r, dq[j]);
       s.effort[j] = log.values(r, e[j]);
     }
+    if (current) s.effort = torque_from_current(model, s.effort);
     s.pressure.resize(P);
     for (int k = 0; k < P; ++k) {
       const int c = p[static_cast<std::size_t>(k)];
@@ -50,8 +54,9 @@ std::vector<ReplaySample<N>> estimator_samples(const Log& log, int P) {
   return samples;
 }
 
-#define TPF_INSTANTIATE_ESTIMATOR_SAMPLES(N) \
-  template std::vector<ReplaySample<N>> estimator_samples<N>(const Log&, int);
+#define TPF_INSTANTIATE_ESTIMATOR_SAMPLES(N)                                                      \
+  template std::vector<ReplaySample<N>> estimator_samples<N>(const Log&, const Model<double, N>&, \
+                                                             int);
 TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_ESTIMATOR_SAMPLES)
 #undef TPF_INSTANTIATE_ESTIMATOR_SAMPLES
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tpf/common/joint_counts.hpp"
+#include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -71,15 +72,21 @@ const EstimatorOutput<double, N>& SteppedEstimator<N>::update(
   return estimator_->update(sample);
 }
 
-SensorNoise estimate_sensor_noise(const Log& log) {
+SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_constant) {
   SensorNoise noise;
   const std::string effort = log.effort_prefix();
+  if (torque_constant.size() != log.joint_count())
+    throw Error::at(log.source, 0, "", "torque constants for another joint count");
+  const DriveUnits units{effort_unit_of_column(effort), torque_constant};
   const double rate = log.meta.rate_hz();
   const double period = std::isfinite(rate) ? 1.0 / rate : 0.0025;
   const int joints = log.joint_count();
   noise.effort.resize(joints);
-  for (int j = 0; j < joints; ++j)
-    noise.effort[j] = effort_noise(log, effort, j + 1, period);
+  noise.effort_step.resize(joints);
+  for (int j = 0; j < joints; ++j) {
+    noise.effort[j] = units.to_torque(j, effort_noise(log, effort, j + 1, period));
+    noise.effort_step[j] = units.to_torque(j, 1.0);
+  }
   noise.pad_kpa = pad_noise(log);
   return noise;
 }
@@ -88,13 +95,14 @@ template <int N>
 EstimatorParameters<double, N> estimator_parameters_from_noise(const SensorNoise& noise,
                                                                double pad_gain_kpa_per_n) {
   EstimatorParameters<double, N> p;
-  if (noise.effort.size() != N)
+  if (noise.effort.size() != N || noise.effort_step.size() != N)
     throw Error("sensor noise of " + std::to_string(noise.effort.size()) + " joints for a " +
                 std::to_string(N) + "-joint estimator");
   const int window =
       static_cast<int>(std::lround(p.static_friction.baseline_window_s / p.sample_period_s));
-  // The effort is rounded to 1 unit: its variance adds 1/12.
-  const JointVector<double, N> sigma = (noise.effort.array().square() + 1.0 / 12.0).sqrt().matrix();
+  // The effort is rounded to 1 unit of the log: its variance adds step²/12.
+  const JointVector<double, N> sigma =
+      (noise.effort.array().square() + noise.effort_step.array().square() / 12.0).sqrt().matrix();
   p.static_dead_band = static_dead_band_from_noise<double, N>(sigma, window);
   if (noise.pad_kpa > 0)
     p.skin.detector = detector_settings_from_noise(noise.pad_kpa, p.sample_period_s, 0.0105);

@@ -56,19 +56,22 @@ class SteppedEstimator {
 
 /// Sensor noise the parameters are derived from.
 struct SensorNoise {
-  Eigen::VectorXd effort;  ///< per joint, effort unit
-  double pad_kpa = 0.0;    ///< raw pad pressure noise [kPa]
+  Eigen::VectorXd effort;       ///< per joint [N·m]
+  Eigen::VectorXd effort_step;  ///< per joint: the log's effort resolution, 1 unit (1 mA) [N·m]
+  double pad_kpa = 0.0;         ///< raw pad pressure noise [kPa]
 };
 
 /// Noise read off a log: per joint, the robust std of the first difference of the effort over
-/// consecutive static rows (|q̇_j| < 1e-4 rad/s), divided by √2, σ = 1.4826·MAD(Δe)/√2; the pads'
+/// consecutive static rows (|q̇_j| < 1e-4 rad/s), divided by √2, σ = 1.4826·MAD(Δe)/√2, in N·m
+/// (a log in mA converted with `torque_constant`, the robot file's K_t per joint); the pads'
 /// likewise over all pairs of rows of every pad column where both readings are off the sensor's
 /// rails (0, full scale: clipped readings repeat and would bias σ low; contacts are rare and slow
 /// against the noise); 0 without pads.
 /// Throws tpf::Error naming the log when a joint never rests.
-SensorNoise estimate_sensor_noise(const Log& log);
+SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_constant);
 
-/// Parameters from the noise: static dead band 3σ·√(1 + 1/5) (static_dead_band_from_noise with
+/// Parameters from the noise: σ² = noise² + step²/12 (the effort's rounding), static dead band
+/// 3σ·√(1 + 1/5) (static_dead_band_from_noise with
 /// the tracker's 12.5 ms = 5-sample window), pad hysteresis levels from the pad noise
 /// (detector_settings_from_noise, 12-bit ADC step 0.0105 kPa), pad force gain for
 /// `pad_gain_kpa_per_n` on the 25 cm² reference pad. The transition σ stay 0 until calibrated.

@@ -51,7 +51,6 @@ MeasuredFile one_file_facts(const Log& log, const JointSamples& s, std::size_t f
 
 /// The files of `log` whose motion repeats an earlier file's.
 std::vector<RepeatedMotion> find_repeated_motions(const Log& log, const JointSamples& s,
-                                                  const Eigen::VectorXd& kt,
                                                   const MeasuredFactsOptions& o) {
   std::vector<RepeatedMotion> out;
   for (std::size_t a = 0; a < log.file_count(); ++a)
@@ -65,7 +64,7 @@ std::vector<RepeatedMotion> find_repeated_motions(const Log& log, const JointSam
       RepeatedMotion r{a, b, worst, {}};
       for (int j = 0; j < s.joints(); ++j) {
         const Eigen::VectorXd d =
-            (s.effort.col(j).segment(a0, a1 - a0) - s.effort.col(j).segment(b0, b1 - b0)) / kt[j];
+            s.effort.col(j).segment(a0, a1 - a0) - s.effort.col(j).segment(b0, b1 - b0);
         r.torque_rms_difference.push_back(std::sqrt(d.squaredNorm() / d.size()));
       }
       out.push_back(r);
@@ -92,11 +91,10 @@ std::string facts_joint_list(const std::vector<int>& joints) {
 }  // namespace
 
 MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
-                             const Eigen::VectorXd& effort_per_newton_metre,
                              const MeasuredFactsOptions& o) {
   MeasuredFacts facts;
   facts.options = o;
-  const int joints = static_cast<int>(effort_per_newton_metre.size());
+  const int joints = logs.empty() ? 0 : logs.front().samples->joints();
   std::vector<double> sum(joints, 0.0), count(joints, 0.0), noisy(joints, 0.0);
   std::vector<double> current2(joints, 0.0), current_n(joints, 0.0), sensor2(joints, 0.0),
       sensor_n(joints, 0.0);
@@ -107,7 +105,7 @@ MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
     const std::size_t first = facts.files.size();
     for (std::size_t f = 0; f < log.file_count(); ++f)
       facts.files.push_back(one_file_facts(log, s, f, sensors, o));
-    for (RepeatedMotion r : find_repeated_motions(log, s, effort_per_newton_metre, o)) {
+    for (RepeatedMotion r : find_repeated_motions(log, s, o)) {
       r.first += first;
       r.second += first;
       facts.repeats.push_back(r);
@@ -115,9 +113,8 @@ MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
     for (std::size_t f = 0; f < log.file_count(); ++f) {
       const auto [begin, end] = log.file_rows(f);
       for (int j = 0; j < joints; ++j) {
-        add_second_differences_of(
-            s.effort.col(j).segment(begin, end - begin) / effort_per_newton_metre[j], current2[j],
-            current_n[j]);
+        add_second_differences_of(s.effort.col(j).segment(begin, end - begin), current2[j],
+                                  current_n[j]);
         if (sensor_usable(sensors, f, j))
           add_second_differences_of(
               log.col(indexed_name("tau_sensor", j + 1)).segment(begin, end - begin), sensor2[j],

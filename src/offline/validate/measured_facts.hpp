@@ -64,10 +64,9 @@ struct LogWithSamples {
   const JointSamples* samples = nullptr;
 };
 
-/// The facts of every file of `logs`, with the effort converted to N·m by
-/// effort_per_newton_metre (repeated motions are looked for within each log).
+/// The facts of every file of `logs` (the samples' effort in N·m; repeated motions are looked
+/// for within each log).
 MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
-                             const Eigen::VectorXd& effort_per_newton_metre,
                              const MeasuredFactsOptions& options = {});
 
 /// The facts as plain sentences for the report ("opti_traj_testing2: 2.3 s, …").

@@ -111,10 +111,10 @@ Eigen::VectorXd sensor_shifted(const SensorSide& side, const Eigen::VectorXd& r,
 /// The residual with the current through causal_low_pass of time constant `tau` [s]:
 /// r + (LP(K_t·i) − K_t·i).
 Eigen::VectorXd current_low_passed(const SensorSide& side, const Eigen::VectorXd& r, int j,
-                                   double tau, double kt) {
+                                   double tau) {
   const JointSamples& s = *side.samples;
   const Eigen::VectorXd e = s.effort.col(j);
-  return r + (causal_low_pass(s.t, e, tau, side.log->file_starts) - e) / kt;
+  return r + (causal_low_pass(s.t, e, tau, side.log->file_starts) - e);
 }
 
 /// Restricts a to the rows where b is finite.
@@ -154,7 +154,7 @@ struct CandidateEffect {
 
 }  // namespace
 
-Eigen::MatrixXd sensor_residual(const SensorSide& side, const Eigen::VectorXd& kt) {
+Eigen::MatrixXd sensor_residual(const SensorSide& side) {
   const Log& log = *side.log;
   const JointSamples& s = *side.samples;
   const int joints = s.joints();
@@ -168,7 +168,7 @@ Eigen::MatrixXd sensor_residual(const SensorSide& side, const Eigen::VectorXd& k
       const auto [begin, end] = log.file_rows(f);
       for (Eigen::Index k = begin; k < end; ++k)
         if (s.valid[static_cast<std::size_t>(k)])
-          r(k, j) = s.effort(k, j) / kt[j] - side.drive_loss(k, j) - log.values(k, sensor);
+          r(k, j) = s.effort(k, j) - side.drive_loss(k, j) - log.values(k, sensor);
     }
   }
   return r;
@@ -176,11 +176,10 @@ Eigen::MatrixXd sensor_residual(const SensorSide& side, const Eigen::VectorXd& k
 
 std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
                                                const SensorSide& held_side,
-                                               const Eigen::VectorXd& kt,
                                                const Eigen::VectorXd& gear_ratio,
                                                const SensorCandidateOptions& o) {
-  const Eigen::MatrixXd r_fit = sensor_residual(fit_side, kt);
-  const Eigen::MatrixXd r_held = sensor_residual(held_side, kt);
+  const Eigen::MatrixXd r_fit = sensor_residual(fit_side);
+  const Eigen::MatrixXd r_held = sensor_residual(held_side);
   const JointSamples& fs = *fit_side.samples;
   const JointSamples& hs = *held_side.samples;
   const bool thermal = fs.temperature.cols() == fs.joints() && hs.temperature.cols() == hs.joints();
@@ -208,13 +207,13 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
          ""},
         {"kt_error", "torque constant error (K_t·i scaled)", 1,
          [&](const JointSamples& s, Eigen::Index k, int jj) {
-           return CandidateFeatureVector::Constant(1, s.effort(k, jj) / kt[jj]);
+           return CandidateFeatureVector::Constant(1, s.effort(k, jj));
          },
          ""},
         {"load_friction", "load-dependent friction (|K_t·i|·sgn q̇)", 1,
          [&](const JointSamples& s, Eigen::Index k, int jj) {
            return CandidateFeatureVector::Constant(
-               1, std::abs(s.effort(k, jj) / kt[jj]) * motion_direction(s, k, jj));
+               1, std::abs(s.effort(k, jj)) * motion_direction(s, k, jj));
          },
          ""},
         {"held_friction", "friction held at rest (last direction of motion)", 1,
@@ -306,15 +305,15 @@ std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit_side,
     // its time constant chosen in-file.
     double best_tau = 0.0, best_low = base_fit;
     for (double tau : kCurrentLowPassTimeConstants) {
-      const double now = fitted_candidate_rms(fs, current_low_passed(fit_side, rf, j, tau, kt[j]),
-                                              fs, rf, j, base, 2, nullptr)
+      const double now = fitted_candidate_rms(fs, current_low_passed(fit_side, rf, j, tau), fs, rf,
+                                              j, base, 2, nullptr)
                              .first;
       if (now < best_low) best_low = now, best_tau = tau;
     }
     if (best_tau > 0) {
-      const auto [low_fit, low_held] = fitted_candidate_rms(
-          fs, current_low_passed(fit_side, rf, j, best_tau, kt[j]), hs,
-          current_low_passed(held_side, rh, j, best_tau, kt[j]), j, base, 2, nullptr);
+      const auto [low_fit, low_held] =
+          fitted_candidate_rms(fs, current_low_passed(fit_side, rf, j, best_tau), hs,
+                               current_low_passed(held_side, rh, j, best_tau), j, base, 2, nullptr);
       out.push_back(
           {"current_low_pass", "current noise: causal low-pass of K_t·i", j,
            format_sentence("time constant %.0f ms (chosen in-file from 2–200 ms)", 1000 * best_tau),

@@ -46,15 +46,13 @@ struct SensorCandidate {
   double heldout_change() const { return heldout_after / heldout_before - 1.0; }
 };
 
-/// K_t·i − d − τ_sensor per sample and joint [N·m] (effort / effort_per_newton_metre for K_t·i),
-/// NaN where the sample is invalid or the joint's sensor does not vary in its file.
-Eigen::MatrixXd sensor_residual(const SensorSide& side,
-                                const Eigen::VectorXd& effort_per_newton_metre);
+/// K_t·i − d − τ_sensor per sample and joint [N·m] (the samples' effort is K_t·i), NaN where
+/// the sample is invalid or the joint's sensor does not vary in its file.
+Eigen::MatrixXd sensor_residual(const SensorSide& side);
 
 /// Every candidate on every joint whose sensor varies in both sides. `gear_ratio` places the
 /// strain-wave gear's ripple (1 and 2 periods per motor revolution).
 std::vector<SensorCandidate> sensor_candidates(const SensorSide& fit, const SensorSide& heldout,
-                                               const Eigen::VectorXd& effort_per_newton_metre,
                                                const Eigen::VectorXd& gear_ratio,
                                                const SensorCandidateOptions& options = {});
 

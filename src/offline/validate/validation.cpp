@@ -62,9 +62,7 @@ EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const Jo
     const JointVector<double, N> ddq = samples.ddq.row(k).transpose();
     predict_effort(nominal, links, data, q, dq, ddq, rigid, friction);
     e.effort.row(k) = (rigid + friction).transpose();
-    e.drive_loss.row(k) =
-        (friction.cwiseQuotient(nominal.effort_per_newton_metre) + armature.cwiseProduct(ddq))
-            .transpose();
+    e.drive_loss.row(k) = (friction + armature.cwiseProduct(ddq)).transpose();
   }
   return e;
 }
@@ -72,31 +70,30 @@ EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const Jo
 template <int N>
 EffortEstimate compensated_estimate(const EstimatorSetup<N>& setup, const Log& log,
                                     const EffortEstimate& nominal) {
-  const EstimatorTrace trace = replay_estimator(setup, estimator_samples<N>(log, 0));
+  const EstimatorTrace trace =
+      replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0));
   EffortEstimate e;
   e.name = "with the compensator";
   e.effort = nominal.effort + trace.compensation;
-  e.drive_loss =
-      nominal.drive_loss +
-      trace.compensation * setup.nominal.effort_per_newton_metre.cwiseInverse().asDiagonal();
+  e.drive_loss = nominal.drive_loss + trace.compensation;
   return e;
 }
 
 Validation score_estimates(const Log& log, const JointSamples& samples,
-                           const std::vector<EffortEstimate>& estimates,
-                           const Eigen::VectorXd& effort_per_newton_metre) {
+                           const std::vector<EffortEstimate>& estimates) {
   const int joints = samples.joints();
   if (log.rows() != samples.size())
     throw Error(log.source + ": the samples are not this log's (" + std::to_string(samples.size()) +
                 " for " + std::to_string(log.rows()) + " rows)");
   Validation v;
-  v.effort_unit = samples.effort_unit;
+  v.effort_unit = samples.units.name();
   v.simulated = samples.simulated;
   for (std::size_t f = 0; f < log.file_count(); ++f)
     v.files.push_back(log.file_path(f));
   for (const EffortEstimate& e : estimates) {
     v.estimate_names.push_back(e.name);
-    const Eigen::MatrixXd residual = samples.effort - e.effort;
+    // In the log's unit: what a person compares with the log (mA for a log of currents).
+    const Eigen::MatrixXd residual = samples.units.to_effort(samples.effort - e.effort);
     std::vector<RegimeStats> per_joint;
     for (int j = 0; j < joints; ++j)
       per_joint.push_back(
@@ -132,7 +129,7 @@ Validation score_estimates(const Log& log, const JointSamples& samples,
       for (Eigen::Index k = begin; k < end; ++k) {
         const double tau_sensor = log.values(k, sensor);
         if (!samples.valid[static_cast<std::size_t>(k)] || std::isnan(tau_sensor)) continue;
-        const double drive = samples.effort(k, j) / effort_per_newton_metre[j];
+        const double drive = samples.effort(k, j);
         kt[k] = drive - tau_sensor;
         if (maker >= 0) mk[k] = log.values(k, maker) - tau_sensor;
         for (std::size_t e = 0; e < estimates.size(); ++e)
@@ -293,8 +290,8 @@ std::string validation_json(const Validation& v) {
 
 #define TPF_INSTANTIATE_VALIDATION(N)                                                              \
   template EffortEstimate nominal_estimate<N>(const NominalModel<double, N>&, const JointSamples&, \
-                                              std::vector<std::string>&);            \
-  template EffortEstimate compensated_estimate<N>(const EstimatorSetup<N>&, const Log&,             \
+                                              std::vector<std::string>&);                          \
+  template EffortEstimate compensated_estimate<N>(const EstimatorSetup<N>&, const Log&,            \
                                                   const EffortEstimate&);
 TPF_INSTANTIATE_VALIDATION(1)
 TPF_INSTANTIATE_VALIDATION(2)

@@ -19,7 +19,7 @@ namespace tpf::offline {
 /// (The nominal model is one; a compensated model is another, built the same way.)
 struct EffortEstimate {
   std::string name;  ///< e.g. "nominal model"
-  /// Predicted effort in the log's unit (samples × joints; NaN where not predicted).
+  /// Predicted effort [N·m] (samples × joints; NaN where not predicted).
   Eigen::MatrixXd effort;
   /// The part of the drive torque the joint torque sensor does not see, N·m: the gear's friction
   /// and the rotor's inertia, d = friction(q̇, |G(q)|, T) + I_a·q̈ (samples × joints).
@@ -40,7 +40,7 @@ struct SensorScore {
 
 /// The validation of some estimates on one (possibly several-file) log.
 struct Validation {
-  std::string effort_unit;  ///< of the log
+  std::string effort_unit;  ///< of the log: the effort residuals below are in it
   bool simulated = false;
   std::vector<std::string> estimate_names;
   std::vector<std::string> files;  ///< the log's file paths (Log::file_path)
@@ -55,7 +55,7 @@ struct Validation {
 
 /// The nominal model's estimate on `samples`, as the run-time estimator evaluates it (every effect
 /// the parameter file holds; the loader refuses those it cannot evaluate): effort = rigid +
-/// friction, drive_loss = friction / effort_per_newton_metre + I_a·q̈ with I_a the identified base
+/// friction, drive_loss = friction + I_a·q̈ with I_a the identified base
 /// parameter of column "Ia<j>" (0, and a note, where the identification grouped it with a link
 /// inertia).
 template <int N>
@@ -64,7 +64,7 @@ EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const Jo
 
 /// The nominal model with the friction compensator as the run-time estimator runs it (the setup's
 /// estimator over `log`, no skin): effort = nominal.effort + τ_TCN, drive_loss = nominal.drive_loss
-/// + τ_TCN / effort_per_newton_metre (the network learns what the nominal model leaves of the
+/// + τ_TCN (the network learns what the nominal model leaves of the
 /// drive's effort on contact-free logs). The compensator's output on every row the estimator
 /// took (NaN where it skipped one); its domain is not applied.
 template <int N>
@@ -72,11 +72,10 @@ EffortEstimate compensated_estimate(const EstimatorSetup<N>& setup, const Log& l
                                     const EffortEstimate& nominal);
 
 /// Scores `estimates` on `samples` of `log` (every sample is held out): effort residual per
-/// joint and regime, per file, and against tau_sensor<j>, the effort converted to N·m by
-/// effort / effort_per_newton_metre (K_t·i for a log in mA).
+/// joint and regime and per file, in the log's unit (mA for a log of currents: samples.units),
+/// and against tau_sensor<j> in N·m (the samples' effort: K_t·i for a log in mA).
 Validation score_estimates(const Log& log, const JointSamples& samples,
-                           const std::vector<EffortEstimate>& estimates,
-                           const Eigen::VectorXd& effort_per_newton_metre);
+                           const std::vector<EffortEstimate>& estimates);
 
 /// The plain-text table validate prints.
 std::string validation_text(const Validation& v);

@@ -22,7 +22,7 @@ import torch
 from torch import nn
 
 FORMAT = "tpf-tcn-weights"
-VERSION = 1
+VERSION = 2  # torque inputs and outputs of a compensator in N·m
 
 
 class TpfBlock(nn.Module):
@@ -76,7 +76,7 @@ class TpfTcn(nn.Module):
 
 
 def export_tpf_weights(model, path):
-    """Writes `model` (a TpfTcn, weights and normalisation) as a tpf weight file (version 1)."""
+    """Writes `model` (a TpfTcn, weights and normalisation) as a tpf weight file (version 2)."""
     tensors = {}
     for name, value in model.state_dict().items():
         if name in ("mean", "std"):
