@@ -17,6 +17,8 @@
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/estimator_status.hpp"
+#include "tpf/model/effort_unit.hpp"
+#include "tpf/model/load_robot.hpp"
 
 namespace tpf::arm {
 namespace {
@@ -37,6 +39,12 @@ EstimatorFiles arm4_files() {
 }
 
 /// The arm at rest at q = (0, 0.3, −0.4, 0), pads unloaded (currents set by the caller).
+/// The arm's model: its torque constants turn the estimator's N·m into the drives' mA.
+const Model<double, 4>& arm4() {
+  static const Model<double, 4> model = load_robot<double, 4>(data("arm4.robot.json"));
+  return model;
+}
+
 CycleSample resting(std::uint64_t n) {
   CycleSample s;
   s.cycle = n;
@@ -54,9 +62,10 @@ TEST(EstimatorHook, FlagsFaultyCyclesAndDoesNotAllocate) {
   EXPECT_NE(hook.description().find("per-joint networks of 16 channels"), std::string::npos);
   CycleSample s = resting(0);
   hook.update(s);  // start-up of the filters and the networks
-  // Feed the rigid-body effort the model predicts at rest as the measured current.
+  // Feed the rigid-body effort the model predicts at rest as the measured current (mA).
+  const JointVector<double, 4> current = current_from_torque(arm4(), hook.output().effort_rigid);
   for (int j = 0; j < 4; ++j)
-    s.i[static_cast<std::size_t>(j)] = hook.output().effort_rigid[j];
+    s.i[static_cast<std::size_t>(j)] = current[j];
 
   test::AllocationCounter allocations;
   for (std::uint64_t n = 1; n < 60; ++n) {
@@ -83,8 +92,9 @@ TEST(EstimatorHook, FlagsFaultyCyclesAndDoesNotAllocate) {
   ASSERT_EQ(hook.trace().size(), 60u);
   EXPECT_EQ(hook.trace()[20].status, kStatusNonFiniteInput);
   EXPECT_DOUBLE_EQ(hook.trace()[59].t, 59 * 0.0025);
-  // The current went in as the effort in mA: at rest with the predicted current the nominal
-  // residual is 0 (no friction is predicted at q̇ = 0), so the proprioceptive estimate is 0.
+  // The current went in through the robot file's K_t: at rest with the predicted current the
+  // nominal residual is 0 (no friction is predicted at q̇ = 0), so the proprioceptive estimate
+  // is 0.
   const auto& out = hook.output();
   EXPECT_LT(out.residual.cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_EQ(out.estimate(TorqueEstimator::Proprioceptive).torque.cwiseAbs().maxCoeff(), 0.0);
@@ -99,7 +109,7 @@ struct TempFile {
   std::filesystem::path path;
 };
 
-/// The proprioceptive estimate (after its dead band, mA) of the arm at rest whose currents exceed
+/// The proprioceptive estimate (after its dead band, N·m) of the arm at rest whose currents exceed
 /// the model's by `offset_ma` on every joint, from a hook with estimator parameter file `file`.
 JointVector<double, 4> proprioceptive_at_rest(const std::string& file, double offset_ma) {
   EstimatorFiles f = arm4_files();
@@ -108,8 +118,9 @@ JointVector<double, 4> proprioceptive_at_rest(const std::string& file, double of
   EXPECT_NE(hook.description().find("parameters " + file), std::string::npos);
   CycleSample s = resting(0);
   hook.update(s);
+  const JointVector<double, 4> current = current_from_torque(arm4(), hook.output().effort_rigid);
   for (int j = 0; j < 4; ++j)
-    s.i[static_cast<std::size_t>(j)] = hook.output().effort_rigid[j] + offset_ma;
+    s.i[static_cast<std::size_t>(j)] = current[j] + offset_ma;
   for (std::uint64_t n = 1; n < 40; ++n) {
     s.cycle = n;
     s.t = 0.0025 * static_cast<double>(n);
@@ -120,19 +131,21 @@ JointVector<double, 4> proprioceptive_at_rest(const std::string& file, double of
 }
 
 TEST(EstimatorHook, TheEstimatorFileSetsTheDeadBands) {
-  // The shipped file's proprioceptive dead band is 1.5·σ_nominal per joint: a 300 mA residual
-  // passes it by 300 − 1.5·σ_j where σ_j < 200 mA and not at all elsewhere.
+  // The shipped file's proprioceptive dead band is 1.5·σ_nominal per joint (N·m): a 300 mA
+  // residual, K_t·0.3 N·m, passes it by that less 1.5·σ_j where σ_j < 200 mA and not elsewhere.
   const auto shipped = load_estimator_parameters<4>(data("arm4.estimator.json"));
   const JointVector<double, 4> band = shipped.dead_band_factor * shipped.nominal_sigma;
+  const JointVector<double, 4> push =
+      torque_from_current(arm4(), JointVector<double, 4>::Constant(300.0).eval());
   const JointVector<double, 4> r = proprioceptive_at_rest(data("arm4.estimator.json"), 300.0);
   for (int j = 0; j < 4; ++j)
-    EXPECT_NEAR(r[j], std::max(300.0 - band[j], 0.0), 1e-6) << "joint " << j + 1;
+    EXPECT_NEAR(r[j], std::max(push[j] - band[j], 0.0), 1e-6) << "joint " << j + 1;
   EXPECT_GT(r.maxCoeff(), 0.0);  // the data file has a joint with σ < 200 mA
 
   // The same file with every σ_nominal at 1000 mA: no joint leaves its band.
   TempFile wide("tpf_hook_wide_band");
   auto p = shipped;
-  p.nominal_sigma.setConstant(1000.0);
+  p.nominal_sigma = torque_from_current(arm4(), JointVector<double, 4>::Constant(1000.0).eval());
   save_estimator_parameters<4>(wide.path, p, "test: wide dead bands");
   EXPECT_EQ(proprioceptive_at_rest(wide.path.string(), 300.0).cwiseAbs().maxCoeff(), 0.0);
 }

@@ -62,10 +62,17 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
       {(o.out / "nominal.params.json").string(), data + "/arm4.robot.json",
        data + "/arm4.pads.json", (o.out / "arm4.estimator.json").string(),
        (o.out / "tcn.json").string()});
-  // The run-time loop's estimator parameters, as the demo calibrated them.
+  // The run-time loop's estimator parameters (N·m), as the demo calibrated them (its report
+  // shows them in the log's mA).
   const auto& p = estimator->parameters();
-  EXPECT_EQ(Eigen::VectorXd(p.nominal_sigma), r.evaluation.calibration.sigma_nominal);
-  EXPECT_EQ(Eigen::VectorXd(p.fused_sigma), r.evaluation.calibration.sigma_fused);
+  const auto& c = r.evaluation.calibration;
+  EXPECT_STREQ(r.evaluation.units.name(), "mA");
+  for (int j = 0; j < 4; ++j) {
+    EXPECT_NEAR(r.evaluation.units.to_effort(j, p.nominal_sigma[j]), c.sigma_nominal[j],
+                1e-9 * c.sigma_nominal[j]);
+    EXPECT_NEAR(r.evaluation.units.to_effort(j, p.fused_sigma[j]), c.sigma_fused[j],
+                1e-9 * c.sigma_fused[j]);
+  }
   EXPECT_EQ(p.torque_alarm_samples, r.evaluation.calibration.torque_alarm_samples);
   ASSERT_EQ(r.training.results.size(), 4u);
   for (const auto& t : r.training.results)
