@@ -51,11 +51,34 @@ void PerJoint(benchmark::State& state) {
   run<S>(state, *c);
 }
 
+/// The same per-joint networks stepped one after another (what PerJointTcnCompensator::step did
+/// before it interleaved them, Tcn::step_together): the same results, bit for bit.
+template <typename S, int Hidden>
+void PerJointOneAfterAnother(benchmark::State& state) {
+  using Bank = tpf::PerJointTcnCompensator<S, kJoints, Hidden, 4>;
+  auto c = std::make_unique<Bank>();
+  for (int j = 0; j < kJoints; ++j)
+    tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j).weights());
+  tpf::CompensatorInput<S, kJoints> x = tpf::CompensatorInput<S, kJoints>::LinSpaced(-0.5, 0.5);
+  c->reset(x);
+  S t = 0;
+  for (auto _ : state) {
+    x(0) = t;
+    for (int j = 0; j < kJoints; ++j)
+      benchmark::DoNotOptimize(c->network(j).step(Bank::joint_input(x, j)).data());
+    t += S(1e-3);
+  }
+}
+
 BENCHMARK(AllJoints<float>)->Name("Compensator/all_joints_32ch/float");
 BENCHMARK(AllJoints<double>)->Name("Compensator/all_joints_32ch/double");
 BENCHMARK(PerJoint<float, 16>)->Name("Compensator/per_joint_16ch/float");
 BENCHMARK(PerJoint<double, 16>)->Name("Compensator/per_joint_16ch/double");
 BENCHMARK(PerJoint<float, 32>)->Name("Compensator/per_joint_32ch/float");
 BENCHMARK(PerJoint<double, 32>)->Name("Compensator/per_joint_32ch/double");
+BENCHMARK(PerJointOneAfterAnother<float, 16>)
+    ->Name("Compensator/per_joint_16ch/float/one_after_another");
+BENCHMARK(PerJointOneAfterAnother<double, 32>)
+    ->Name("Compensator/per_joint_32ch/double/one_after_another");
 
 }  // namespace

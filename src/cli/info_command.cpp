@@ -52,6 +52,7 @@ void print_summary(const std::string& robot_file) {
   const JointVector<double, kJoints> q = sample_pose(model);
   const JointVector<double, kJoints> g = compute_gravity(model, data, q);
   const JointMatrix<double, kJoints> M = compute_mass_matrix(model, data, q);
+  forward_kinematics(model, data, q);  // the pads' world poses below
   std::printf("\nat q = [%s] rad:\n", joint_list(q, "%.2f").c_str());
   for (int j = 0; j < kJoints; ++j) {
     std::printf("  %s: gravity %8.3f N·m = %7.1f mA   M_jj %.4f kg·m² (%.0f %% armature)\n",

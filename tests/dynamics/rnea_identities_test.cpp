@@ -30,6 +30,8 @@ TEST(Rnea, MassMatrixIsSymmetricPositiveDefiniteAndEqualsRneaColumns) {
     const Vec q = rs.vector(3.0);
     const JointMatrix<double, kJoints> M = compute_mass_matrix(arm(), data, q);
     EXPECT_LT((M - M.transpose()).norm(), 1e-14);
+    for (int k = 1; k <= kJoints; ++k)  // the composite inertias are built symmetric, exactly
+      EXPECT_TRUE(data.composite_inertia[k] == data.composite_inertia[k].transpose()) << k;
     const double smallest =
         Eigen::SelfAdjointEigenSolver<JointMatrix<double, kJoints>>(M).eigenvalues().minCoeff();
     EXPECT_GT(smallest, 0.0);

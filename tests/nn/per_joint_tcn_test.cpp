@@ -1,6 +1,7 @@
 // PerJointTcnCompensator: network j sees exactly joint j's inputs and its output is τ_TCN,j.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 
 #include "support/allocation_counter.hpp"
@@ -78,6 +79,47 @@ TEST(PerJointTcn, FloatNetworksMatchTheDoubleOnesToFloatPrecision) {
   EXPECT_GT(largest, 0.1);
   EXPECT_GT(worst, 0.0);             // it really ran in float
   EXPECT_LT(worst, 1e-5 * largest);  // ≈ 2^-24 per operation, a few hundred operations deep
+}
+
+// The networks step together, interleaved (Tcn::step_together): bit for bit what stepping each
+// alone gives, for the shipped shape (float, 16 channels, 4 levels) with 4 and 7 joints (7 leaves
+// a group remainder), across a non-finite sample, with no allocation.
+template <int Joints>
+void expect_interleaved_equals_alone() {
+  using Bank = PerJointTcnCompensator<double, Joints, 16, 4, float>;
+  const offline::TcnArchitecture a{kCompensatorInputsPerJoint, 16, 4, 4, 1};
+  auto bank = std::make_unique<Bank>();
+  auto alone = std::make_unique<std::array<typename Bank::Network, Joints>>();
+  for (int j = 0; j < Joints; ++j) {
+    const offline::TcnParameters p = test::random_tcn_parameters(a, 70 + j);
+    test::load_parameters(p, bank->network(j));
+    test::load_parameters(p, (*alone)[j]);
+  }
+  Eigen::MatrixXd raw = test::random_inputs(kCompensatorInputsPerJoint * Joints, 120, 71);
+  raw(Joints + 1, 60) = std::numeric_limits<double>::quiet_NaN();
+  bank->reset(raw.col(0));
+  for (int j = 0; j < Joints; ++j)
+    (*alone)[j].reset(Bank::joint_input(raw.col(0), j));
+  double largest = 0.0;
+  for (Eigen::Index t = 1; t < raw.cols(); ++t) {
+    const typename Bank::Input x = raw.col(t);
+    test::AllocationCounter allocations;
+    const typename Bank::Output& y = bank->step(x);
+    EXPECT_EQ(allocations.count(), 0u);
+    for (int j = 0; j < Joints; ++j) {
+      const float expected = (*alone)[j].step(Bank::joint_input(x, j))[0];
+      EXPECT_EQ(y[j], static_cast<double>(expected)) << "t = " << t << ", joint " << j;
+      EXPECT_EQ(bank->network(j).low(), (*alone)[j].low());
+      largest = std::max(largest, std::abs(y[j]));
+    }
+  }
+  EXPECT_EQ(bank->network(1).skipped_inputs(), 1);
+  EXPECT_GT(largest, 0.1);
+}
+
+TEST(PerJointTcn, InterleavedStepEqualsEachNetworkAloneBitForBit) {
+  expect_interleaved_equals_alone<4>();
+  expect_interleaved_equals_alone<7>();
 }
 
 }  // namespace

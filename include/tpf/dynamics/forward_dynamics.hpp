@@ -13,7 +13,7 @@ const JointVector<S, N>& forward_dynamics(const Model<S, N>& model, Data<S, N>& 
                                           const NoDeduce<JointVector<S, N>>& q,
                                           const NoDeduce<JointVector<S, N>>& dq,
                                           const NoDeduce<JointVector<S, N>>& tau) {
-  compute_mass_matrix(model, data, q);  // also runs forward_kinematics
+  compute_mass_matrix(model, data, q);  // also runs joint_transforms
   detail::newton_euler_passes(model, data, dq, JointVector<S, N>::Zero().eval(),
                               Vector3<S>(-model.gravity));
   data.mass_factor.compute(data.M);

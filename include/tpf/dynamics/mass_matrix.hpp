@@ -14,11 +14,12 @@ namespace tpf {
 ///   h_k = h_{o,k} + m_{k+1} p + h',  I_k = I_{o,k} + R I_{k+1} Rᵀ + 2(p·v)·1 − p vᵀ − v pᵀ
 /// (the parallel-axis theorem for a body whose centre of mass is not at its origin). Column i is
 /// the wrench z_i × h_i, I_i z_i that a unit q̈_i demands of composite body i, carried down to
-/// each joint j ≤ i: M_ji = z_j · n_j. Runs forward_kinematics. Allocation-free.
+/// each joint j ≤ i: M_ji = z_j · n_j. Runs joint_transforms (data.liMi at q; data.oMi is left as
+/// it was: forward_kinematics gives the link poses). Allocation-free.
 template <typename S, int N>
 const JointMatrix<S, N>& compute_mass_matrix(const Model<S, N>& model, Data<S, N>& data,
                                              const NoDeduce<JointVector<S, N>>& q) noexcept {
-  forward_kinematics(model, data, q);
+  joint_transforms(model, data, q);
   const ModelConstants<S, N>& c = model.constants;
   data.composite_first_moment[N] = c.first_moment[N];
   data.composite_inertia[N] = c.inertia_about_origin[N];
@@ -28,13 +29,20 @@ const JointMatrix<S, N>& compute_mass_matrix(const Model<S, N>& model, Data<S, N
     const S m = c.subtree_mass[k + 1];
     const Vector3<S> h = R * data.composite_first_moment[k + 1];
     const Vector3<S> v = S(0.5) * m * p + h;
+    // R I Rᵀ, 2(p·v)·1 − p vᵀ − v pᵀ and I_o are symmetric: the lower triangle, then mirrored.
     const Matrix3<S> RI = R * data.composite_inertia[k + 1];
+    const Matrix3<S>& Io = c.inertia_about_origin[k];
+    const S pv2 = S(2) * p.dot(v);
     Matrix3<S>& I = data.composite_inertia[k];
-    I.noalias() = RI * R.transpose();
-    I += c.inertia_about_origin[k];
-    I.diagonal().array() += S(2) * p.dot(v);
-    I.noalias() -= p * v.transpose();
-    I.noalias() -= v * p.transpose();
+    for (int col = 0; col < 3; ++col)
+      for (int row = col; row < 3; ++row) {
+        const S rir = RI(row, 0) * R(col, 0) + RI(row, 1) * R(col, 1) + RI(row, 2) * R(col, 2);
+        I(row, col) =
+            rir + Io(row, col) + (row == col ? pv2 : S(0)) - p[row] * v[col] - v[row] * p[col];
+      }
+    I(0, 1) = I(1, 0);
+    I(0, 2) = I(2, 0);
+    I(1, 2) = I(2, 1);
     data.composite_first_moment[k] = c.first_moment[k] + m * p + h;
   }
   for (int i = N; i >= 1; --i) {

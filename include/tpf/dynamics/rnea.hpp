@@ -1,6 +1,7 @@
 // Inverse dynamics by the recursive Newton–Euler algorithm, with armature.
 #pragma once
 
+#include "tpf/common/small_products.hpp"
 #include "tpf/kinematics/forward_kinematics.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/model.hpp"
@@ -15,14 +16,16 @@ namespace detail {
 template <typename S, int N>
 void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
                                 JointVector<S, N>& tau) noexcept {
-  for (int k = N; k >= 1; --k) {
-    if (k < N) {
-      const Matrix3<S>& R = data.liMi[k + 1].R;
-      const Vector3<S> f_child = R * data.force[k + 1];
-      data.force[k] += f_child;
-      data.moment[k] += R * data.moment[k + 1] + data.liMi[k + 1].p.cross(f_child);
-    }
-    tau(k - 1) = model.axes[k - 1].dot(data.moment[k]);
+  Vector3<S> f = data.force[N], n = data.moment[N];
+  tau(N - 1) = model.axes[N - 1].dot(n);
+  for (int k = N - 1; k >= 1; --k) {
+    const Matrix3<S>& R = data.liMi[k + 1].R;
+    const Vector3<S> f_child = R * f;
+    n = data.moment[k] + (R * n + data.liMi[k + 1].p.cross(f_child));
+    f = data.force[k] + f_child;
+    data.force[k] = f;
+    data.moment[k] = n;
+    tau(k - 1) = model.axes[k - 1].dot(n);
   }
 }
 
@@ -36,29 +39,30 @@ void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
                          const NoDeduce<JointVector<S, N>>& ddq,
                          const NoDeduce<Vector3<S>>& a0) noexcept {
   const ModelConstants<S, N>& c = model.constants;
-  data.omega[0].setZero();
-  data.domega[0].setZero();
-  data.acc[0] = a0;
+  // The recursion runs on locals (registers), not through data's arrays: storing ω, ω̇, a and
+  // reading them back a link later put a store-to-load round trip on the critical path.
+  Vector3<S> w = Vector3<S>::Zero(), dw = Vector3<S>::Zero(), a = a0;
+  data.omega[0] = w;
+  data.domega[0] = dw;
+  data.acc[0] = a;
   for (int k = 1; k <= N; ++k) {
     const Matrix3<S>& R = data.liMi[k].R;
     const Vector3<S>& p = data.liMi[k].p;
     const Vector3<S>& z = model.axes[k - 1];
-    const Vector3<S>& w0 = data.omega[k - 1];
     const Vector3<S> joint_rate = z * dq(k - 1);
-    const Vector3<S> w_parent = R.transpose() * w0;
-    const Vector3<S> origin_acc =
-        data.acc[k - 1] + data.domega[k - 1].cross(p) + w0.cross(w0.cross(p));
-    data.omega[k] = w_parent + joint_rate;
-    data.domega[k] =
-        R.transpose() * data.domega[k - 1] + z * ddq(k - 1) + w_parent.cross(joint_rate);
-    data.acc[k] = R.transpose() * origin_acc;
+    const Vector3<S> origin_acc = a + dw.cross(p) + w.cross(w.cross(p));
+    const Vector3<S> w_parent = R.transpose() * w;
+    dw = R.transpose() * dw + z * ddq(k - 1) + w_parent.cross(joint_rate);
+    w = w_parent + joint_rate;
+    a = R.transpose() * origin_acc;
+    data.omega[k] = w;
+    data.domega[k] = dw;
+    data.acc[k] = a;
 
     const Vector3<S>& h = c.first_moment[k];
     const Matrix3<S>& I = c.inertia_about_origin[k];
-    const Vector3<S>& w = data.omega[k];
-    const Vector3<S>& dw = data.domega[k];
-    data.force[k] = model.inertias[k].mass * data.acc[k] + dw.cross(h) + w.cross(w.cross(h));
-    data.moment[k] = I * dw + w.cross(I * w) + h.cross(data.acc[k]);
+    data.force[k] = model.inertias[k].mass * a + dw.cross(h) + w.cross(w.cross(h));
+    data.moment[k] = I * dw + w.cross(I * w) + h.cross(a);
   }
   newton_euler_backward_pass(model, data, data.tau);
 }
@@ -118,17 +122,21 @@ const JointVector<S, N>& compute_gravity(const Model<S, N>& model, Data<S, N>& d
                                          const NoDeduce<JointVector<S, N>>& q) noexcept {
   joint_transforms(model, data, q);
   const ModelConstants<S, N>& c = model.constants;
-  data.acc[0] = -model.gravity;
-  for (int k = 1; k <= N; ++k)
-    data.acc[k].noalias() = data.liMi[k].R.transpose() * data.acc[k - 1];
-  data.composite_first_moment[N] = c.first_moment[N];
-  data.g(N - 1) = model.axes[N - 1].dot(c.first_moment[N].cross(data.acc[N]));
+  // Both recursions run on locals, each value stored once (no store-to-load round trip).
+  Vector3<S> a = -model.gravity;
+  data.acc[0] = a;
+  for (int k = 1; k <= N; ++k) {
+    a = detail::rotate_back(data.liMi[k].R, a);
+    data.acc[k] = a;
+  }
+  Vector3<S> H = c.first_moment[N];
+  data.composite_first_moment[N] = H;
+  data.g(N - 1) = detail::dot(model.axes[N - 1], detail::cross(H, a));
   for (int k = N - 1; k >= 1; --k) {
     const Transform<S>& child = data.liMi[k + 1];
-    Vector3<S>& H = data.composite_first_moment[k];
-    H.noalias() = child.R * data.composite_first_moment[k + 1];
-    H += c.first_moment[k] + c.subtree_mass[k + 1] * child.p;
-    data.g(k - 1) = model.axes[k - 1].dot(H.cross(data.acc[k]));
+    H = detail::rotate(child.R, H) + (c.first_moment[k] + c.subtree_mass[k + 1] * child.p);
+    data.composite_first_moment[k] = H;
+    data.g(k - 1) = detail::dot(model.axes[k - 1], detail::cross(H, data.acc[k]));
   }
   return data.g;
 }

@@ -27,9 +27,15 @@ class PerJointTcnCompensator {
   static constexpr int kReceptiveField = Network::kReceptiveField;
 
   /// τ_TCN,j = network_j(x_j) for every joint.
+  /// The networks step together, interleaved (Tcn::step_together): the same result as stepping
+  /// each in turn, bit for bit, in less time.
   const Output& step(const Input& x) noexcept {
+    std::array<typename Network::Input, N> inputs;
     for (int j = 0; j < N; ++j)
-      output_[j] = static_cast<S>(networks_[j].step(joint_input(x, j))[0]);
+      inputs[j] = joint_input(x, j);
+    Network::step_together(networks_, inputs);
+    for (int j = 0; j < N; ++j)
+      output_[j] = static_cast<S>(networks_[j].output()[0]);
     return output_;
   }
   /// Prewarms every network with its part of the steady input x̄.

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <type_traits>
+#include <utility>
 
 #include "tpf/nn/tcn_architecture.hpp"
 #include "tpf/nn/tcn_weights.hpp"
@@ -113,6 +116,27 @@ class Tcn {
     return output_;
   }
 
+  /// Steps M networks of this shape together, network n on inputs[n]; then nets[n].output() is
+  /// what nets[n].step(inputs[n]) would return, bit for bit: each network performs the same
+  /// operations in the same order, interleaved with the others column by column. One network's
+  /// step is a chain of dependent multiply-adds that leaves the vector units waiting on their
+  /// latency; the networks' chains are independent, so interleaved they overlap
+  /// (docs/performance.md). Groups of kInterleave networks at a time, as many as keep their
+  /// accumulators in half the vector registers. Allocation-free.
+  template <std::size_t M>
+  static void step_together(std::array<Tcn, M>& nets, const std::array<Input, M>& inputs) noexcept {
+    for (std::size_t first = 0; first < M; first += kInterleave) {
+      if constexpr (M % kInterleave == 0) {
+        step_group<kInterleave>(&nets[first], &inputs[first]);
+      } else {
+        if (first + kInterleave <= M)
+          step_group<kInterleave>(&nets[first], &inputs[first]);
+        else
+          step_rest<M % kInterleave>(&nets[first], &inputs[first]);
+      }
+    }
+  }
+
   /// Low-frequency part of the last output [N·m].
   const Output& low() const noexcept { return low_; }
   /// High-frequency part of the last output [N·m].
@@ -171,6 +195,101 @@ class Tcn {
         for (int c = 0; c < columns; ++c)
           z.noalias() += w[j].col(c) * x[j][c];
     }
+  }
+
+  /// Vector registers one Hidden-vector accumulator takes.
+  static constexpr int kVectorsPerHidden =
+      (Hidden * int(sizeof(S)) + kVectorBytes - 1) / kVectorBytes;
+  /// Networks stepped together: as many as keep one accumulator each in half the registers (the
+  /// interleaved loops keep one accumulator per network live, see add_taps_together), 1 to 8.
+  static constexpr std::size_t kInterleave =
+      std::size_t(std::clamp(kVectorRegisters / 2 / kVectorsPerHidden, 1, 8));
+
+  template <std::size_t G>
+  static void step_rest(Tcn* nets, const Input* inputs) noexcept {
+    if constexpr (G > 0) step_group<G>(nets, inputs);
+  }
+
+  /// step() of G networks, interleaved (see step_together).
+  template <std::size_t G>
+  static void step_group(Tcn* nets, const Input* inputs) noexcept {
+    std::array<std::array<const S*, Kernel>, G> columns;
+    std::array<HiddenVector, G> z;
+    for (std::size_t n = 0; n < G; ++n) {
+      Tcn& t = nets[n];
+      const bool finite = inputs[n].allFinite();
+      t.skipped_inputs_ += finite ? 0 : 1;
+      if (finite) t.last_input_ = inputs[n];
+      const int head = t.heads_[0];
+      t.input_history_.col(head) = t.last_input_;
+      for (int j = 0; j < Kernel; ++j)
+        columns[n][j] = t.input_history_.col(wrap(head - j, Kernel)).data();
+      z[n].noalias() = t.weights_.input_bias + t.weights_.input_projection * t.last_input_;
+      t.heads_[0] = next(head, Kernel);
+    }
+    add_taps_together<G>(
+        z, nets, columns, [](const Tcn& t) -> const auto& { return t.weights_.input_taps; });
+    for (std::size_t n = 0; n < G; ++n)
+      nets[n].hidden_ = z[n].cwiseMax(S(0));
+
+    for (int l = 1; l < Levels; ++l) {
+      const int length = Shape::history_length(l);
+      const int dilation = Shape::dilation(l);
+      for (std::size_t n = 0; n < G; ++n) {
+        Tcn& t = nets[n];
+        const int head = t.heads_[l];
+        t.history_column(l, head) = t.hidden_;
+        for (int j = 0; j < Kernel; ++j)
+          columns[n][j] = t.history_column(l, wrap(head - j * dilation, length)).data();
+        z[n] = t.weights_.bias[l - 1] + t.hidden_;
+        t.heads_[l] = next(head, length);
+      }
+      add_taps_together<G>(
+          z, nets, columns, [l](const Tcn& t) -> const auto& { return t.weights_.taps[l - 1]; });
+      for (std::size_t n = 0; n < G; ++n)
+        nets[n].hidden_ = z[n].cwiseMax(S(0));
+    }
+    for (std::size_t n = 0; n < G; ++n)
+      nets[n].apply_heads();
+  }
+
+  /// add_taps of G networks (network n: z[n] += Σ_j W_j·x_j with W = taps(nets[n]), x = x[n]),
+  /// each in add_taps' order of operations. The per-tap form runs tap by tap: tap j's partial sum
+  /// over the columns, then z += partial, is the same arithmetic as add_taps' K partial sums added
+  /// to z in tap order, with one live accumulator per network instead of K.
+  template <std::size_t G, typename Taps>
+  static void add_taps_together(std::array<HiddenVector, G>& z, const Tcn* nets,
+                                const std::array<std::array<const S*, Kernel>, G>& x,
+                                Taps taps) noexcept {
+    using Matrix = std::remove_cvref_t<decltype(taps(nets[0])[0])>;
+    constexpr int columns = Matrix::ColsAtCompileTime;
+    std::array<const Matrix*, G> w;
+    if constexpr (kAccumulatorPerTap) {
+      for (int j = 0; j < Kernel; ++j) {
+        for_each<G>([&](auto n) { w[n] = &taps(nets[n])[j]; });
+        std::array<HiddenVector, G> partial;
+        for_each<G>([&](auto n) { partial[n].noalias() = w[n]->col(0) * x[n][j][0]; });
+        for (int c = 1; c < columns; ++c)
+          for_each<G>([&](auto n) { partial[n].noalias() += w[n]->col(c) * x[n][j][c]; });
+        for_each<G>([&](auto n) { z[n] += partial[n]; });
+      }
+    } else {
+      for (int j = 0; j < Kernel; ++j) {
+        for_each<G>([&](auto n) { w[n] = &taps(nets[n])[j]; });
+        for (int c = 0; c < columns; ++c)
+          for_each<G>([&](auto n) { z[n].noalias() += w[n]->col(c) * x[n][j][c]; });
+      }
+    }
+  }
+
+  /// f(n) for n = 0 … G−1 as compile-time constants, unrolled: the networks' accumulators then
+  /// stay in registers instead of an array in memory.
+  template <std::size_t G, typename F>
+  [[gnu::always_inline]] static void for_each(F&& f) noexcept {
+    [&]<std::size_t... n>(std::index_sequence<n...>) {
+      (f(std::integral_constant<std::size_t, n>{}), ...);
+    }
+    (std::make_index_sequence<G>{});
   }
 
   void apply_heads() noexcept {
