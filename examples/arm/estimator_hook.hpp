@@ -76,6 +76,11 @@ class EstimatorHook {
   const CycleEstimate& estimate() const noexcept { return estimate_; }
   const EstimatorStatistics& statistics() const noexcept { return statistics_; }
   std::span<const EstimateRecord> trace() const noexcept { return trace_; }
+  /// The estimator's parameters (dead bands, σ), as loaded.
+  const EstimatorParameters<double, kArmJoints>& parameters() const noexcept {
+    return std::visit(
+        [](const auto& e) -> const auto& { return e->parameters(); }, estimator_);
+  }
   /// One line on what was loaded (for the start-up print).
   const std::string& description() const noexcept { return description_; }
 

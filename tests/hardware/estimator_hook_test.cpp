@@ -17,6 +17,7 @@
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/estimator_status.hpp"
+#include "tpf/estimation/proprioceptive_estimate.hpp"
 #include "tpf/model/effort_unit.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -97,7 +98,7 @@ TEST(EstimatorHook, FlagsFaultyCyclesAndDoesNotAllocate) {
   // is 0.
   const auto& out = hook.output();
   EXPECT_LT(out.residual.cwiseAbs().maxCoeff(), 1e-9);
-  EXPECT_EQ(out.estimate(TorqueEstimator::Proprioceptive).torque.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(proprioceptive_estimate(out, hook.parameters()).torque.cwiseAbs().maxCoeff(), 0.0);
 }
 
 /// A file in the temporary folder, removed at the end of the test.
@@ -127,7 +128,7 @@ JointVector<double, 4> proprioceptive_at_rest(const std::string& file, double of
     hook.update(s);
   }
   EXPECT_EQ(hook.output().status, kStatusOk);
-  return hook.output().estimate(TorqueEstimator::Proprioceptive).residual;
+  return proprioceptive_estimate(hook.output(), hook.parameters()).residual;
 }
 
 TEST(EstimatorHook, TheEstimatorFileSetsTheDeadBands) {

@@ -33,7 +33,7 @@ namespace tpf {
 ///  3. skin: filtered pressure, hysteresis, contact flags and onset times (Skin);
 ///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
 ///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s, τ_fric) (compensator_input; τ_fric is step 2's);
-///  6. three estimates (TorqueEstimator), each with its dead band, and the combined one (Fused
+///  6. two estimates (TorqueEstimator), each with its dead band, and the combined one (Fused
 ///     is the nominal residual on joints outside the compensator's speed or acceleration domain,
 ///     and for the network's input window after);
 ///  7. contact force at the most loaded pad (estimate_contact_force), contact frame z = normal;
@@ -223,16 +223,12 @@ class Estimator {
     bool outside_band = false;  ///< the combined estimate is outside its dead band somewhere
   };
 
-  /// 6. External torque three ways and combined: StaticModelFree on resting joints, Fused
+  /// 6. External torque two ways and combined: StaticModelFree on resting joints, Fused
   /// elsewhere (the nominal residual and band on joints outside the compensator's domain).
   FusedEvidence estimate_external_torque(const Sample& sample, const Vector& ddq,
                                          std::uint32_t& status) noexcept {
     Output& out = output_;
     constexpr std::uint32_t all = N == 32 ? ~0u : (1u << N) - 1;
-    set_estimate(
-        TorqueEstimator::Proprioceptive,
-        dead_band(out.residual, Vector(parameters_.dead_band_factor * parameters_.nominal_sigma)),
-        all);
     set_estimate(TorqueEstimator::StaticModelFree,
                  dead_band(tracker_.static_external(), parameters_.static_dead_band),
                  tracker_.valid_mask());

@@ -25,13 +25,14 @@ struct EstimatorSample {
   bool has_ddq = false;
 };
 
-/// The three external-torque estimators, comparable side by side.
+/// The two external-torque estimates the estimator combines (EstimatorOutput::external). The
+/// proprioceptive-only baseline an evaluation compares them with is not computed per cycle:
+/// proprioceptive_estimate (proprioceptive_estimate.hpp) derives it from an output.
 enum class TorqueEstimator : std::uint8_t {
-  Proprioceptive,   ///< τ_meas − τ_dyn − τ_fric(nominal), dead band k·σ_nominal
   StaticModelFree,  ///< Δτ_res = τ_res − τ̂_fric,s on static joints, noise dead band
   Fused,            ///< τ_meas − (τ_dyn + τ_fric + τ_TCN), dead band 1.5·σ_fused
 };
-inline constexpr int kTorqueEstimatorCount = 3;
+inline constexpr int kTorqueEstimatorCount = 2;
 
 /// One external-torque estimate. Sign: τ_ext is what the environment applies to the robot, so
 /// residual = −τ_ext (a push in +q lowers the effort).

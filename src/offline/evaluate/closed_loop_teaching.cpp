@@ -6,6 +6,7 @@
 #include "offline/sim/simulate.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/common/joint_counts.hpp"
+#include "tpf/estimation/proprioceptive_estimate.hpp"
 #include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
@@ -131,7 +132,7 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
     const auto source = [&](std::span<const double> row) -> TwinVector {
       const auto& out = estimator.update(layout.sample(row, setup.nominal.model));
       const TwinVector tau =
-          mode == 0 ? out.estimate(TorqueEstimator::Proprioceptive).torque : out.external.torque;
+          mode == 0 ? proprioceptive_estimate(out, setup.parameters).torque : out.external.torque;
       estimates.push_back(tau);
       return tau;
     };

@@ -17,16 +17,14 @@ using Vec = Eigen::VectorXd;
 /// estimate, and the estimator's fused answer (EstimatorOutput::external).
 std::array<Eigen::MatrixXd, kModalityCount> external_torques(const EstimatorTrace& tr) {
   // τ_ext = −residual (ExternalTorque).
-  return {tr.torque_tactile, -tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)],
-          -tr.external};
+  return {tr.torque_tactile, -tr.proprioceptive, -tr.external};
 }
 
 /// Per row: does the modality say "contact"? Tactile: a pad; proprioceptive: any joint outside
 /// its band; fusion: the estimator's EstimatorOutput::contact — a pad, or the combined estimate
 /// outside its band for parameters.torque_alarm_samples cycles in a row.
 std::array<Eigen::VectorXi, kModalityCount> detections(const EstimatorTrace& tr) {
-  return {tr.contact.cwiseMax(0),
-          any_joint_outside_band(tr.estimates[static_cast<int>(TorqueEstimator::Proprioceptive)]),
+  return {tr.contact.cwiseMax(0), any_joint_outside_band(tr.proprioceptive),
           tr.estimator_contact.cwiseMax(0)};
 }
 

@@ -10,6 +10,7 @@
 
 #include "offline/replay/recording_compensator.hpp"
 #include "tpf/estimation/estimator.hpp"
+#include "tpf/estimation/proprioceptive_estimate.hpp"
 #include "tpf/kinematics/forward_kinematics.hpp"
 
 namespace tpf::offline {
@@ -25,6 +26,9 @@ struct EstimatorTrace {
   /// Per TorqueEstimator: the external residual after its dead band, T × N; NaN where the
   /// estimator gave no estimate (StaticModelFree on moving joints).
   std::array<Eigen::MatrixXd, kTorqueEstimatorCount> estimates;
+  /// T × N: the proprioceptive-only baseline's residual after its dead band
+  /// (proprioceptive_estimate of each row's output).
+  Eigen::MatrixXd proprioceptive;
   Eigen::MatrixXd external;           ///< T × N, EstimatorOutput::external.residual (the fusion)
   Eigen::VectorXi state;              ///< ContactState as int
   Eigen::VectorXi contact;            ///< skin: 1 while a pad is in contact
@@ -78,6 +82,7 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
   tr.compensation = tr.dq;
   for (auto& e : tr.estimates)
     e = tr.dq;
+  tr.proprioceptive = tr.dq;
   tr.external = tr.dq;
   tr.state = Eigen::VectorXi::Constant(T, -1);
   tr.contact = tr.state;
@@ -112,6 +117,8 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
         tr.estimates[static_cast<std::size_t>(e)](r, j) =
             (est.valid & (1u << j)) ? double(est.residual[j]) : nan;
     }
+    const ExternalTorque<S, N> proprio = proprioceptive_estimate(out, estimator.parameters());
+    tr.proprioceptive.row(r) = proprio.residual.transpose().template cast<double>();
     tr.external.row(r) = out.external.residual.transpose().template cast<double>();
     tr.state[r] = static_cast<int>(out.state);
     const auto& skin = estimator.skin();
@@ -133,9 +140,8 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
       tr.torque_tactile.row(r) = (J.template topRows<3>().transpose().template cast<double>() *
                                   tr.force_tactile.row(r).transpose())
                                      .transpose();
-      const auto& proprio = out.estimate(TorqueEstimator::Proprioceptive).torque;
       const ContactForce<S> f = estimate_contact_force(
-          J, contact_frame_in_world(data, g.link, g.normal), proprio, S(0), no_prior);
+          J, contact_frame_in_world(data, g.link, g.normal), proprio.torque, S(0), no_prior);
       tr.force_proprioceptive.row(r) = f.force_world.transpose().template cast<double>();
     }
   }
