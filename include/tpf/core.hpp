@@ -13,6 +13,7 @@
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/load_estimator.hpp"
 #include "tpf/estimation/nominal_model.hpp"
+#include "tpf/estimation/proprioceptive_estimate.hpp"
 #include "tpf/kinematics/contact_frame.hpp"
 #include "tpf/kinematics/forward_kinematics.hpp"
 #include "tpf/kinematics/point_jacobian.hpp"
