@@ -33,51 +33,48 @@ Nominal bare_model() {
   return nominal;
 }
 
-/// Writes random coefficients of family Family for every joint into `nominal`.
+/// Random coefficients θ_j of family Family for every joint j, written into `nominal` through
+/// Family::write (as diagnose writes a fit); returns them.
 template <typename Family>
-void write_random(Nominal& nominal, std::mt19937_64& rng, const offline::CandidateInputs& inputs,
-                  int columns) {
+std::vector<std::vector<double>> write_random(Nominal& nominal, std::mt19937_64& rng,
+                                              const offline::CandidateInputs& inputs, int columns) {
   StribeckParameters<double, kJoints> linear;
   Eigen::VectorXd payload = Eigen::VectorXd::Zero(11 * kJoints);
   const BaseParameters base;
   offline::WrittenModel<kJoints> written{nominal, linear, payload, base, inputs, false};
   std::uniform_real_distribution<double> u(-2.0, 2.0);
+  std::vector<std::vector<double>> theta(kJoints, std::vector<double>(columns));
   for (int j = 0; j < kJoints; ++j) {
-    std::vector<double> c(columns);
-    for (double& x : c)
+    for (double& x : theta[j])
       x = u(rng);
-    Family::template write<kJoints>(c.data(), j, written);
+    Family::template write<kJoints>(theta[j].data(), j, written);
   }
+  return theta;
 }
 
-/// At random states, Family's columns of joint j times the coefficients θ_j written for it through
-/// Family::write are the run-time torque of joint j (τ_j = φ_j·θ_j), and remove_group takes it
-/// out again.
+/// At random states, Family's columns of joint j times the coefficients θ_j written for it are
+/// the run-time torque of joint j (τ_j = φ_j·θ_j), and remove_group takes it out again.
 template <typename Family>
 void expect_columns_times_coefficients_are_the_torque(int columns) {
   std::mt19937_64 rng(7);
   const offline::CandidateInputs inputs = ripple_inputs();
-  const std::vector<int> no_base;
-  const offline::JointSamples samples;
+  const std::vector<int> no_base_columns;
+  const offline::JointSamples no_samples;
+  const Regressor<double, kJoints> Y = Regressor<double, kJoints>::Zero();
+  const Vec at_rest = Vec::Zero();
   for (int trial = 0; trial < 20; ++trial) {
     Nominal nominal = bare_model();
-    StribeckParameters<double, kJoints> linear;
-    Eigen::VectorXd payload = Eigen::VectorXd::Zero(11 * kJoints);
-    const BaseParameters base;
-    offline::WrittenModel<kJoints> written{nominal, linear, payload, base, inputs, false};
-    std::uniform_real_distribution<double> u(-2.0, 2.0);
-    std::vector<std::vector<double>> theta(kJoints, std::vector<double>(columns));
-    for (int j = 0; j < kJoints; ++j) {
-      for (double& x : theta[j])
-        x = u(rng);
-      Family::template write<kJoints>(theta[j].data(), j, written);
-    }
+    const auto theta = write_random<Family>(nominal, rng, inputs, columns);
     const Vec q = random_vector<kJoints>(rng, 3.0), dq = random_vector<kJoints>(rng, 2.0),
               ddq = random_vector<kJoints>(rng, 5.0);
-    const Regressor<double, kJoints> Y = Regressor<double, kJoints>::Zero();
-    const Vec none = Vec::Zero();
-    const offline::SampleRow<kJoints> row{
-        {q, dq, ddq, nominal.model.gear_ratio}, Y, none, none, no_base, inputs, samples, 0};
+    const offline::SampleRow<kJoints> row{{q, dq, ddq, nominal.model.gear_ratio},
+                                          Y,
+                                          at_rest,
+                                          at_rest,
+                                          no_base_columns,
+                                          inputs,
+                                          no_samples,
+                                          0};
     const Vec tau = added_effort(nominal, q, dq, ddq);
     for (int j = 0; j < kJoints; ++j) {
       std::vector<double> phi(columns);
@@ -107,6 +104,29 @@ TEST(NominalModel, CouplingColumnsTimesCoefficientsAreItsRunTimeTorque) {
 TEST(NominalModel, RippleColumnsTimesCoefficientsAreItsRunTimeTorque) {
   expect_columns_times_coefficients_are_the_torque<offline::OutputRippleColumns>(2);
   expect_columns_times_coefficients_are_the_torque<offline::MotorRippleColumns>(2);
+}
+
+TEST(NominalModel, EachAddedEffectIsTheTorqueItsHeaderStates) {
+  const Vec q(0.3, -0.7, 1.1, 0.2), dq(0.5, -1.5, 0.25, 2.0), ddq(-3.0, 1.0, 4.0, -0.5);
+  Nominal nominal = bare_model();
+  auto torque_of = [&](const Nominal& m) { return added_effort(m, q, dq, ddq); };
+  Nominal spring = nominal;
+  spring.added.get<JointSpring>().stiffness[2] = 3.0;
+  EXPECT_EQ(torque_of(spring), Vec(0, 0, 3.0 * 1.1, 0));
+  Nominal offset = nominal;
+  offset.added.get<JointOffset>().offset[1] = -0.4;
+  EXPECT_EQ(torque_of(offset), Vec(0, -0.4, 0, 0));
+  Nominal coupling = nominal;
+  coupling.added.get<MotionCoupling>().velocity(0, 3) = 0.5;
+  coupling.added.get<MotionCoupling>().acceleration(0, 2) = 0.25;
+  coupling.added.get<MotionCoupling>().acceleration(3, 1) = -2.0;
+  const Vec expected(0.5 * 2.0 + 0.25 * 4.0, 0, 0, -2.0 * 1.0);
+  EXPECT_LT((torque_of(coupling) - expected).norm(), 1e-15);
+  Nominal ripple = nominal;
+  ripple.added.get<PositionRipple>().add({1, 3.0, true, 0.2, -0.1});
+  const double phase = 3.0 * 120.0 * -0.7;  // n·G·q on the motor side
+  const double tau = 0.2 * std::sin(phase) - 0.1 * std::cos(phase);
+  EXPECT_LT((torque_of(ripple) - Vec(0, tau, 0, 0)).norm(), 1e-12);
 }
 
 /// Family's random coefficients written, saved, loaded: the same torque at random states (and the

@@ -191,6 +191,18 @@ TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
                   {1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
             }).find("the diagonal must be zero"),
             std::string::npos);
+  // A joint's own motion is the rigid body's: a coupling diagonal would be silently dropped.
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["added_effects"]["coupling_acceleration"] = {
+                  {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0.5, 0}, {0, 0, 0, 0}};
+            }).find("added_effects.coupling_acceleration: the diagonal must be zero"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) {
+              const nlohmann::json term = {
+                  {"joint", 5}, {"cycles_per_rev", 3.0}, {"sin", 0.1}, {"cos", 0.0}};
+              j["added_effects"]["ripple"] = nlohmann::json::array({term});
+            }).find("added_effects.ripple[0].joint"),
+            std::string::npos);
   EXPECT_NE(load_error("{\"format\": \"tpf-params\",\n oops").find("bad.json:2"),
             std::string::npos);
 }
