@@ -61,8 +61,8 @@ JointVector<S, N> rigid_body_torque(const NominalModel<S, N>& nominal, Data<S, N
   return tau;
 }
 
-/// Torque of the added memoryless effects (ripple, spring, offset, coupling: RunTimeEffects,
-/// tpf/effects/) [N·m]. Allocation-free.
+/// Torque of the added memoryless effects (RunTimeEffects, tpf/effects/) [N·m]:
+/// τ_j = k_j q_j + c_j + Σ_k≠j (C_v,jk q̇_k + C_a,jk q̈_k) + Σ ripple terms of j. Allocation-free.
 template <typename S, int N>
 JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
                                const NoDeduce<JointVector<S, N>>& q,
