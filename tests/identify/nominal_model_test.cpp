@@ -46,11 +46,10 @@ TEST(NominalModel, RigidPartOfTheTrueModelEqualsRnea) {
 
 TEST(NominalModel, AddedEffectsEnterTheRigidPart) {
   Nominal nominal = twin_nominal();
-  nominal.added.spring_stiffness[1] = 40.0;
-  nominal.added.offset[1] = -5.0;
-  nominal.added.ripple_count = 1;
-  nominal.added.ripple[0] = {2, 12.0, false, 30.0, -10.0};
-  nominal.added.coupling_velocity(0, 1) = 7.0;
+  nominal.added.get<JointSpring>().stiffness[1] = 40.0;
+  nominal.added.get<JointOffset>().offset[1] = -5.0;
+  nominal.added.get<PositionRipple>().add({2, 12.0, false, 30.0, -10.0});
+  nominal.added.get<MotionCoupling>().velocity(0, 1) = 7.0;
   ArmData data;
   const Vec q(0.1, 0.2, 0.3, 0.4), dq(0.5, -0.5, 0.0, 0.2), ddq = Vec::Zero();
   Vec rigid, friction, rigid0, friction0;
@@ -102,11 +101,10 @@ TEST(NominalModel, PredictionIsAllocationFree) {
 TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   Nominal nominal = twin_nominal();
   nominal.friction.load_coulomb[2] = 3.0;
-  nominal.added.spring_stiffness[1] = 40.0;
-  nominal.added.ripple_count = 1;
-  nominal.added.ripple[0] = {3, 50.0, true, 1.0, 2.0};
-  nominal.added.coupling_acceleration(2, 0) = 0.25;
-  nominal.added.offset[0] = -2.0;
+  nominal.added.get<JointSpring>().stiffness[1] = 40.0;
+  nominal.added.get<PositionRipple>().add({3, 50.0, true, 1.0, 2.0});
+  nominal.added.get<MotionCoupling>().acceleration(2, 0) = 0.25;
+  nominal.added.get<JointOffset>().offset[0] = -2.0;
   nominal.friction.coulomb_asymmetry[1] = 0.5 * nominal.friction.coulomb[1];
   nominal.friction.neighbour_load_coulomb(0, 1) = 0.3;
   nominal.friction.neighbour_load_viscous(2, 3) = 0.1;
@@ -115,8 +113,8 @@ TEST(NominalModel, ParameterFileRoundTripPredictsTheSame) {
   const Nominal loaded = load_nominal_model<kJoints>(path, data_path("arm4.robot.json"));
   std::filesystem::remove(path);
   EXPECT_EQ(loaded.base_count, nominal.base_count);
-  EXPECT_EQ(loaded.added.ripple_count, 1);
-  EXPECT_TRUE(loaded.added.ripple[0].motor_side);
+  EXPECT_EQ(loaded.added.get<PositionRipple>().count, 1);
+  EXPECT_TRUE(loaded.added.get<PositionRipple>().terms[0].motor_side);
   EXPECT_EQ(loaded.friction.neighbour_load_coulomb, nominal.friction.neighbour_load_coulomb);
   ArmData data;
   RandomStates states(5);
@@ -192,6 +190,18 @@ TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
               j["friction"]["neighbour_load_coulomb"] = {
                   {1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
             }).find("the diagonal must be zero"),
+            std::string::npos);
+  // A joint's own motion is the rigid body's: a coupling diagonal would be silently dropped.
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["added_effects"]["coupling_acceleration"] = {
+                  {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0.5, 0}, {0, 0, 0, 0}};
+            }).find("added_effects.coupling_acceleration: the diagonal must be zero"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) {
+              const nlohmann::json term = {
+                  {"joint", 5}, {"cycles_per_rev", 3.0}, {"sin", 0.1}, {"cos", 0.0}};
+              j["added_effects"]["ripple"] = nlohmann::json::array({term});
+            }).find("added_effects.ripple[0].joint"),
             std::string::npos);
   EXPECT_NE(load_error("{\"format\": \"tpf-params\",\n oops").find("bad.json:2"),
             std::string::npos);

@@ -132,11 +132,10 @@ NominalModel<double, kJoints> model_with_effects() {
       arm(), load_stribeck_parameters<double, kJoints>(data_path("arm4.friction.json")));
   nominal.friction.coulomb_asymmetry[1] = 0.1;
   nominal.friction.neighbour_load_coulomb(0, 2) = 0.02;
-  nominal.added.spring_stiffness[1] = 0.4;
-  nominal.added.offset[2] = -0.3;
-  nominal.added.coupling_velocity(3, 0) = 0.05;
-  nominal.added.ripple_count = 1;
-  nominal.added.ripple[0] = {1, 8.0, false, 0.12, -0.04};
+  nominal.added.get<JointSpring>().stiffness[1] = 0.4;
+  nominal.added.get<JointOffset>().offset[2] = -0.3;
+  nominal.added.get<MotionCoupling>().velocity(3, 0) = 0.05;
+  nominal.added.get<PositionRipple>().add({1, 8.0, false, 0.12, -0.04});
   return nominal;
 }
 

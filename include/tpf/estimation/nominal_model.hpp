@@ -17,6 +17,7 @@
 #include "tpf/dynamics/base_parameters.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/dynamics/rnea.hpp"
+#include "tpf/effects/added_effects.hpp"
 #include "tpf/estimation/link_parameters.hpp"
 #include "tpf/friction/stribeck.hpp"
 #include "tpf/kinematics/forward_kinematics.hpp"
@@ -24,34 +25,6 @@
 #include "tpf/model/model.hpp"
 
 namespace tpf {
-
-/// One position-periodic ripple term of joint j (gear meshing, cogging):
-/// τ_j += a_sin·sin(n·θ) + a_cos·cos(n·θ), θ = q_j (output side) or G_j·q_j (motor side).
-template <typename S>
-struct RippleTerm {
-  int joint = 0;            ///< 0-based joint index
-  S cycles_per_rev = S(0);  ///< n, periods per revolution of θ
-  bool motor_side = false;  ///< θ = gear_ratio·q (motor angle) instead of q
-  S sin_amplitude = S(0);   ///< [N·m]
-  S cos_amplitude = S(0);   ///< [N·m]
-};
-
-/// Effects that `tpf diagnose` found and added to the declared model, all memoryless functions of
-/// (q, q̇, q̈), so that the run time evaluates them (added_effort). Zero = absent. An unmodelled
-/// payload is folded into the base parameters; load-dependent, direction-asymmetric and
-/// neighbour-load friction into StribeckParameters. Effects the run time cannot evaluate
-/// (temperature-dependent friction: no temperature input; a delay: no past samples) are reported
-/// by diagnosis, not written, and a parameter file holding them is refused.
-template <typename S, int N>
-struct AddedEffects {
-  static constexpr int kMaxRippleTerms = 16;
-  int ripple_count = 0;
-  std::array<RippleTerm<S>, kMaxRippleTerms> ripple{};
-  JointVector<S, N> spring_stiffness = JointVector<S, N>::Zero();  ///< k: τ_j += k_j·q_j [N·m/rad]
-  JointVector<S, N> offset = JointVector<S, N>::Zero();            ///< c: τ_j += c_j [N·m]
-  JointMatrix<S, N> coupling_velocity = JointMatrix<S, N>::Zero();  ///< τ += C_v·q̇, zero diagonal
-  JointMatrix<S, N> coupling_acceleration = JointMatrix<S, N>::Zero();  ///< τ += C_a·q̈, zero diag.
-};
 
 /// The identified model: the rigid body in base parameters, the friction and the effects added by
 /// diagnosis, all in SI (N·m).
@@ -66,6 +39,11 @@ struct NominalModel {
       Eigen::Matrix<S, regressor_columns<N>, 1>::Zero();
   /// Stribeck + viscous + load dependence (α_c, α_v on |G_j(q)| of `model`), N·m.
   StribeckParameters<S, N> friction;
+  /// The memoryless effects diagnosis added (tpf/effects/added_effects.hpp). An unmodelled
+  /// payload is folded into the base parameters; load-dependent, direction-asymmetric and
+  /// neighbour-load friction into `friction`. Effects the run time cannot evaluate
+  /// (OfflineOnlyEffects) are reported by diagnosis, not written, and a file holding them is
+  /// refused.
   AddedEffects<S, N> added;
 };
 
@@ -83,24 +61,14 @@ JointVector<S, N> rigid_body_torque(const NominalModel<S, N>& nominal, Data<S, N
   return tau;
 }
 
-/// Torque of the added memoryless effects (ripple, spring, offset, coupling) [N·m]:
-/// τ_j = Σ ripple_j(θ) + k_j q_j + c_j + Σ_k (C_v,jk q̇_k + C_a,jk q̈_k). Allocation-free.
+/// Torque of the added memoryless effects (RunTimeEffects, tpf/effects/) [N·m]:
+/// τ_j = k_j q_j + c_j + Σ_k≠j (C_v,jk q̇_k + C_a,jk q̈_k) + Σ ripple terms of j. Allocation-free.
 template <typename S, int N>
 JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
                                const NoDeduce<JointVector<S, N>>& q,
                                const NoDeduce<JointVector<S, N>>& dq,
-                               const NoDeduce<JointVector<S, N>>& ddq) {
-  using std::cos, std::sin;
-  const AddedEffects<S, N>& a = nominal.added;
-  JointVector<S, N> tau = a.spring_stiffness.cwiseProduct(q) + a.offset + a.coupling_velocity * dq +
-                          a.coupling_acceleration * ddq;
-  for (int i = 0; i < a.ripple_count; ++i) {
-    const RippleTerm<S>& r = a.ripple[i];
-    const S theta = r.motor_side ? nominal.model.gear_ratio[r.joint] * q[r.joint] : q[r.joint];
-    tau[r.joint] += r.sin_amplitude * sin(r.cycles_per_rev * theta) +
-                    r.cos_amplitude * cos(r.cycles_per_rev * theta);
-  }
-  return tau;
+                               const NoDeduce<JointVector<S, N>>& ddq) noexcept {
+  return nominal.added.torque({q, dq, ddq, nominal.model.gear_ratio});
 }
 
 /// The nominal model in link form for the per-cycle path (computed once at start-up):

@@ -158,44 +158,10 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
   }
   f.finish();
 
-  json::Object a = top.child("added_effects");
-  AddedEffects<double, N>& e = nominal.added;
-  a.joint_vector<N>("spring_stiffness", e.spring_stiffness, false);
-  a.joint_vector<N>("offset", e.offset, false);
-  // Files of the 4-DoF demo name the offset "spring_offset" (the spring's k·q + offset).
-  JointVector<double, N> spring_offset = JointVector<double, N>::Zero();
-  a.joint_vector<N>("spring_offset", spring_offset, false);
-  e.offset += spring_offset;
-  a.joint_matrix<N>("coupling_velocity", e.coupling_velocity);
-  a.joint_matrix<N>("coupling_acceleration", e.coupling_acceleration);
-  // Effects the run time cannot evaluate: accepted only when absent (zero).
-  JointVector<double, N> thermal = JointVector<double, N>::Zero();
-  a.joint_vector<N>("thermal_viscous", thermal, false);
-  a.number("reference_temperature", 25.0, -273.15, 1e4);
-  if (thermal.any())
-    a.fail("thermal_viscous",
-           "temperature-dependent friction is not evaluated by the run-time nominal model (it "
-           "has no temperature input); set it to 0 or remove it to use the file without it");
-  if (a.number("effort_lead_s", 0.0, -1.0, 1.0) != 0.0)
-    a.fail("effort_lead_s",
-           "a delay between effort and motion is not evaluated by the run-time nominal model "
-           "(it keeps no past samples); set it to 0 or remove it to use the file without it");
-  std::vector<json::Object> ripple = a.children("ripple");
-  if (ripple.size() > AddedEffects<double, N>::kMaxRippleTerms)
-    a.fail("ripple", "must be an array of at most " +
-                         std::to_string(AddedEffects<double, N>::kMaxRippleTerms) + " terms");
-  for (std::size_t i = 0; i < ripple.size(); ++i) {
-    json::Object& r = ripple[i];
-    RippleTerm<double>& t = e.ripple[i];
-    t.joint = r.integer("joint", 1, N) - 1;
-    t.cycles_per_rev = r.number("cycles_per_rev", 1e-9, json::Object::kInfinity);
-    t.motor_side = r.boolean("motor_side", t.motor_side);
-    t.sin_amplitude = r.number("sin", -json::Object::kInfinity, json::Object::kInfinity);
-    t.cos_amplitude = r.number("cos", -json::Object::kInfinity, json::Object::kInfinity);
-    r.finish();
-  }
-  e.ripple_count = static_cast<int>(ripple.size());
-  a.finish();
+  json::Object added = top.child("added_effects");
+  nominal.added.for_each([&added](auto& effect) { effect.read(added); });
+  for_each_offline_only_effect([&added]<typename Effect>() { Effect::template refuse<N>(added); });
+  added.finish();
 
   if (top.has("fit")) top.child("fit");  // free-form fit quality, for people
   top.finish();
@@ -245,19 +211,9 @@ void save_nominal_model(const std::filesystem::path& params_file,
                    {"neighbour_load_coulomb", matrix_to_json<N>(p.neighbour_load_coulomb)},
                    {"neighbour_load_viscous", matrix_to_json<N>(p.neighbour_load_viscous)}};
 
-  const AddedEffects<double, N>& e = nominal.added;
-  Json ripple = Json::array();
-  for (int i = 0; i < e.ripple_count; ++i)
-    ripple.push_back({{"joint", e.ripple[i].joint + 1},
-                      {"cycles_per_rev", e.ripple[i].cycles_per_rev},
-                      {"motor_side", e.ripple[i].motor_side},
-                      {"sin", e.ripple[i].sin_amplitude},
-                      {"cos", e.ripple[i].cos_amplitude}});
-  j["added_effects"] = {{"ripple", ripple},
-                        {"spring_stiffness", array_json(e.spring_stiffness)},
-                        {"offset", array_json(e.offset)},
-                        {"coupling_velocity", matrix_to_json<N>(e.coupling_velocity)},
-                        {"coupling_acceleration", matrix_to_json<N>(e.coupling_acceleration)}};
+  Json added = Json::object();
+  nominal.added.for_each([&added](const auto& effect) { effect.write(added); });
+  j["added_effects"] = added;
   if (!fit_quality_json.empty()) {
     try {
       j["fit"] = Json::parse(fit_quality_json);

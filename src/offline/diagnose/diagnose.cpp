@@ -6,6 +6,7 @@
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
 #include "offline/diagnose/residual_analysis.hpp"
+#include "offline/effects/effect_columns.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "tpf/common/joint_counts.hpp"
 #include "tpf/dynamics/regressor.hpp"
@@ -13,12 +14,12 @@
 namespace tpf::offline {
 namespace {
 
-/// θ's coefficients of the groups of one kind, zero elsewhere.
-Eigen::VectorXd only_kind(const std::vector<FeatureGroup>& groups, const Eigen::VectorXd& theta,
-                          FeatureKind kind) {
+/// θ's coefficients of the groups of the family type Family, zero elsewhere.
+template <typename Family>
+Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen::VectorXd& theta) {
   Eigen::VectorXd part = Eigen::VectorXd::Zero(theta.size());
   for (const FeatureGroup& g : groups)
-    if (g.kind == kind)
+    if (g.key == Family::key)
       for (int c : g.columns)
         part[c] = theta[c];
   return part;
@@ -50,11 +51,12 @@ DeclaredFit fit_declared(const EffectDesign<N>& declared, const JointSamples& s,
   selection.joint_weights = fit.joint_weights;
   theta = fit_columns(grams, declared.declared_columns(), selection);
   const std::vector<Eigen::MatrixXd> predictions =
-      declared.predict_each(s, {theta, only_kind(declared.groups(), theta, FeatureKind::Rigid)});
+      declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
   fit.residual = s.effort - predictions[0];
   fit.viscous.resize(N);
   for (const FeatureGroup& g : declared.groups())
-    if (g.kind == FeatureKind::Friction) fit.viscous[g.joint] = std::max(theta[g.columns[1]], 0.0);
+    if (g.key == JointFrictionColumns::key)
+      fit.viscous[g.joint] = std::max(theta[g.columns[JointFrictionColumns::kViscous]], 0.0);
   fit.rigid_prediction = predictions[1];
   return fit;
 }
@@ -115,13 +117,11 @@ EffectPredictions predict_effects(const EffectDesign<N>& design, const EffectDia
   }
   Eigen::VectorXd non_friction = sel.theta_written;
   for (const FeatureGroup& g : d.groups)
-    if (g.kind == FeatureKind::Friction || g.kind == FeatureKind::LoadFriction ||
-        g.kind == FeatureKind::Thermal || g.kind == FeatureKind::Delay ||
-        g.kind == FeatureKind::Asymmetry || g.kind == FeatureKind::NeighbourLoad)
+    if (g.written_to == WrittenTo::kFriction || g.written_to == WrittenTo::kNothing)
       for (int c : g.columns)
         non_friction[c] = 0.0;
   thetas.push_back(non_friction);
-  thetas.push_back(only_kind(d.groups, sel.theta_declared, FeatureKind::Rigid));
+  thetas.push_back(only_family<RigidBodyColumns>(d.groups, sel.theta_declared));
   std::vector<Eigen::MatrixXd> p = design.predict_each(d.samples, thetas);
   EffectPredictions out;
   out.selected = std::move(p[0]);
@@ -134,8 +134,9 @@ EffectPredictions predict_effects(const EffectDesign<N>& design, const EffectDia
 }
 
 /// The linear model of the groups `theta` holds as a nominal model: rigid body (+ a payload
-/// folded into it), friction levels, and the effects the run time evaluates. Returns the linear
-/// friction the curves start from; `load_selected` when load-dependent friction is in it.
+/// folded into it), friction levels, and the effects the run time evaluates (each group written
+/// by its effect type). Returns the linear friction the curves start from; `load_selected` when
+/// load-dependent friction is in it.
 template <int N>
 StribeckParameters<double, N> write_effects(const std::vector<FeatureGroup>& groups,
                                             const Eigen::VectorXd& theta,
@@ -144,61 +145,13 @@ StribeckParameters<double, N> write_effects(const std::vector<FeatureGroup>& gro
                                             NominalModel<double, N>& nominal, bool& load_selected) {
   Eigen::VectorXd payload = Eigen::VectorXd::Zero(11 * N);
   StribeckParameters<double, N> linear;
-  load_selected = false;
-  for (const FeatureGroup& g : groups) {
-    const int j = g.joint;
-    auto value = [&](int i) { return theta[g.columns[i]]; };
-    if (g.kind == FeatureKind::Rigid) {
-      for (int i = 0; i < base.size(); ++i)
-        nominal.base_columns[i] = base.independent[i];
-    } else if (g.kind == FeatureKind::Friction) {
-      linear.coulomb[j] = linear.static_friction[j] = std::max(value(0), 0.0);
-      linear.viscous[j] = std::max(value(1), 0.0);
-    } else if (g.kind == FeatureKind::Payload) {
-      for (int i = 0; i < 10; ++i)
-        payload[10 * (N - 1) + i] = value(i);
-    } else if (g.kind == FeatureKind::LoadFriction) {
-      linear.load_coulomb[j] = std::max(value(0), 0.0);
-      linear.load_viscous[j] = std::max(value(1), 0.0);
-      load_selected = load_selected || value(0) != 0.0 || value(1) != 0.0;
-    } else if (g.kind == FeatureKind::Ripple || g.kind == FeatureKind::RippleMotor) {
-      if (value(0) == 0.0 && value(1) == 0.0) continue;
-      RippleTerm<double>& t = nominal.added.ripple[nominal.added.ripple_count++];
-      t.joint = j;
-      t.motor_side = g.kind == FeatureKind::RippleMotor;
-      t.cycles_per_rev = t.motor_side ? inputs.ripple_motor_cycles[j] : inputs.ripple_cycles[j];
-      t.sin_amplitude = value(0);
-      t.cos_amplitude = value(1);
-    } else if (g.kind == FeatureKind::Thermal || g.kind == FeatureKind::Delay) {
-      // Not evaluated at run time: reported (claims), not written.
-    } else if (g.kind == FeatureKind::Spring) {
-      nominal.added.spring_stiffness[j] = value(0);
-    } else if (g.kind == FeatureKind::Offset) {
-      nominal.added.offset[j] = value(0);
-    } else if (g.kind == FeatureKind::Asymmetry) {
-      linear.coulomb_asymmetry[j] = value(0);
-      linear.viscous_asymmetry[j] = value(1);
-    } else if (g.kind == FeatureKind::NeighbourLoad) {
-      int i = 0;
-      for (int k = 0; k < N; ++k)
-        if (k != j) {
-          linear.neighbour_load_coulomb(j, k) = value(i++);
-          linear.neighbour_load_viscous(j, k) = value(i++);
-        }
-    } else if (g.kind == FeatureKind::Coupling) {
-      int i = 0;
-      for (int k = 0; k < N; ++k)
-        if (k != j) {
-          nominal.added.coupling_velocity(j, k) = value(i++);
-          nominal.added.coupling_acceleration(j, k) = value(i++);
-        }
-    }
-  }
-  const Eigen::VectorXd payload_base = base.project(payload);
+  WrittenModel<N> written{nominal, linear, payload, base, inputs, false};
   for (const FeatureGroup& g : groups)
-    if (g.kind == FeatureKind::Rigid)
-      for (int i = 0; i < base.size(); ++i)
-        nominal.base_values[i] = theta[g.columns[i]] + payload_base[i];
+    write_group(g, theta, written);
+  const Eigen::VectorXd payload_base = base.project(payload);
+  for (int i = 0; i < base.size(); ++i)
+    nominal.base_values[i] += payload_base[i];
+  load_selected = written.load_selected;
   return linear;
 }
 
@@ -214,13 +167,15 @@ NominalModel<double, N> declared_nominal(const NominalModel<double, N>& written,
   NominalModel<double, N> declared = written;
   declared.added = AddedEffects<double, N>{};
   StribeckParameters<double, N> linear;
+  using Friction = JointFrictionColumns;
   for (const FeatureGroup& g : groups) {
-    if (g.kind == FeatureKind::Rigid) {
+    if (g.key == RigidBodyColumns::key) {
       for (int i = 0; i < base.size(); ++i)
         declared.base_values[i] = theta_declared[g.columns[i]];
-    } else if (g.kind == FeatureKind::Friction) {
-      linear.coulomb[g.joint] = linear.static_friction[g.joint] = theta_declared[g.columns[0]];
-      linear.viscous[g.joint] = theta_declared[g.columns[1]];
+    } else if (g.key == Friction::key) {
+      linear.coulomb[g.joint] = linear.static_friction[g.joint] =
+          theta_declared[g.columns[Friction::kCoulomb]];
+      linear.viscous[g.joint] = theta_declared[g.columns[Friction::kViscous]];
     }
   }
   declared.friction =
@@ -242,12 +197,12 @@ CadPayloadCheck check_cad_payload(const Model<double, N>& model, const BaseParam
   Eigen::VectorXd cad = Eigen::VectorXd::Zero(design.features());
   std::vector<int> friction_columns, payload_columns;
   for (const FeatureGroup& g : groups) {
-    if (g.kind == FeatureKind::Rigid)
+    if (g.key == RigidBodyColumns::key)
       for (int i = 0; i < base.size(); ++i)
         cad[g.columns[i]] = cad_values[i];
-    if (g.kind == FeatureKind::Friction)
+    if (g.key == JointFrictionColumns::key)  // the sliding levels, not the friction held at rest
       friction_columns.insert(friction_columns.end(), g.columns.begin(), g.columns.begin() + 2);
-    if (g.kind == FeatureKind::Payload) payload_columns = g.columns;
+    if (g.key == PayloadColumns::key) payload_columns = g.columns;
   }
   std::vector<int> with_payload = friction_columns;
   with_payload.insert(with_payload.end(), payload_columns.begin(), payload_columns.end());

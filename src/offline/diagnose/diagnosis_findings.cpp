@@ -52,7 +52,7 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
             coefficients +
             "); a log with more range of motion, both directions and rests tells them apart.";
   }
-  if (!c.written && (g.kind == FeatureKind::Delay || g.kind == FeatureKind::Thermal))
+  if (!c.written && g.written_to == WrittenTo::kNothing)
     text +=
         " Not written to the parameter file: the run-time nominal model cannot evaluate it "
         "(it keeps no past samples / has no temperature input); the 'written' table "

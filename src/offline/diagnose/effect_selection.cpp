@@ -30,10 +30,6 @@ std::pair<double, double> heldout_sse(const RegimeTable& t, int joint, const Eig
 
 namespace {
 
-bool is_ripple(const FeatureGroup& g) {
-  return g.kind == FeatureKind::Ripple || g.kind == FeatureKind::RippleMotor;
-}
-
 // Σ_j w_j Σ_(selected regimes) of the training Grams: [φ; y; 1] over every joint row.
 Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& selection) {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(grams.features + 2, grams.features + 2);
@@ -121,10 +117,9 @@ class ForwardSelection {
     // judged on top of them (over a short range a sine is one or the other).
     std::vector<int> reference = columns_;
     std::vector<int> reference_model = model;
-    if (is_ripple(group))
+    for (const std::string& beside : group.judged_beside)
       for (const FeatureGroup& other : groups_)
-        if (other.joint == group.joint &&
-            (other.kind == FeatureKind::Offset || other.kind == FeatureKind::Spring))
+        if (other.joint == group.joint && other.key == beside)
           for (int c : other.columns)
             if (std::find(reference.begin(), reference.end(), c) == reference.end()) {
               reference.push_back(c);
@@ -243,11 +238,10 @@ class ForwardSelection {
   /// cannot be told from the declared model (a spring beside gravity's mx) is reported, not
   /// written.
   bool writable(const Claim& claim) const {
-    const FeatureKind kind = groups_[claim.groups[0]].kind;
     bool beside_declared = false;
     for (int g : claim.groups)
       beside_declared = beside_declared || groups_[g].declared;
-    return kind != FeatureKind::Delay && kind != FeatureKind::Thermal && !beside_declared;
+    return groups_[claim.groups[0]].written_to != WrittenTo::kNothing && !beside_declared;
   }
 
   std::vector<int> written_columns(const EffectSelection& out) const {
@@ -283,9 +277,9 @@ class ForwardSelection {
     at_rest.regimes = {true, false, false};
     std::vector<int> held;
     for (const FeatureGroup& g : groups_)
-      if ((g.kind == FeatureKind::Friction || g.kind == FeatureKind::LoadFriction) &&
-          std::find(used.begin(), used.end(), g.columns[2]) != used.end())
-        held.push_back(g.columns[2]);
+      if (g.held_column >= 0 &&
+          std::find(used.begin(), used.end(), g.columns[g.held_column]) != used.end())
+        held.push_back(g.columns[g.held_column]);
     return refit_columns(grams_, held, moving_theta, at_rest);
   }
 

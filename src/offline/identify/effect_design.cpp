@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
+#include "offline/effects/effect_columns.hpp"
 #include "offline/identify/parallel_halves.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/regressor.hpp"
@@ -12,10 +14,6 @@
 
 namespace tpf::offline {
 namespace {
-
-std::string joint_name(int j) {
-  return "joint " + std::to_string(j + 1);
-}
 
 int regime_index(Regime r) {
   return static_cast<int>(r);
@@ -31,18 +29,39 @@ struct EffectDesign<N>::Workspace {
 };
 
 template <int N>
-void EffectDesign<N>::add_group(FeatureKind kind, std::string key, std::string title, int joint,
-                                std::vector<std::string> column_names) {
-  FeatureGroup group{kind,
-                     std::move(key),
-                     std::move(title),
-                     joint,
-                     kind == FeatureKind::Rigid || kind == FeatureKind::Friction,
-                     {},
-                     std::move(column_names)};
+void EffectDesign<N>::add_group(FeatureGroup group, FillColumns fill) {
   for (std::size_t c = 0; c < group.column_names.size(); ++c)
     group.columns.push_back(features_++);
   groups_.push_back(std::move(group));
+  fills_.push_back(fill);
+}
+
+template <int N>
+template <typename Families>
+void EffectDesign<N>::add_families(const DesignContext& context) {
+  const bool declared = std::is_same_v<Families, DeclaredColumns>;
+  auto offer = [&]<typename Family>(int joint) {
+    if (!Family::offered(context, joint)) return;
+    GroupSpec spec = Family::group(context, joint);
+    add_group({std::string(Family::key),
+               std::move(spec.title),
+               joint,
+               declared,
+               Family::written_to,
+               spec.held_column,
+               std::move(spec.judged_beside),
+               {},
+               std::move(spec.column_names)},
+              &Family::template fill<N>);
+  };
+  for_each_family<Families>([&]<typename Family>() {
+    if (Family::kSharedGroupFirst) offer.template operator()<Family>(-1);
+  });
+  for (int j = 0; j < N; ++j)
+    for_each_family<Families>([&]<typename Family>() { offer.template operator()<Family>(j); });
+  for_each_family<Families>([&]<typename Family>() {
+    if (!Family::kSharedGroupFirst) offer.template operator()<Family>(-1);
+  });
 }
 
 template <int N>
@@ -54,80 +73,18 @@ EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameter
       candidates_(std::move(candidates)),
       static_velocity_(static_velocity),
       has_temperature_(samples.temperature.cols() == N) {
-  using K = FeatureKind;
-  std::vector<std::string> rigid;
-  for (int c : base_columns_)
-    rigid.push_back(regressor_column_name(N, c));
-  add_group(K::Rigid, "rigid", "rigid body (base parameters, armature)", -1, rigid);
-  for (int j = 0; j < N; ++j) {
-    const std::string n = std::to_string(j + 1);
-    add_group(K::Friction, "friction", "Coulomb and viscous friction, " + joint_name(j), j,
-              {"fc" + n, "fv" + n, "rest" + n});
-  }
+  const DesignContext context{N, base_columns_, candidates_, has_temperature_};
+  add_families<DeclaredColumns>(context);
   if (candidates_.enabled) {
     if (candidates_.abs_gravity.rows() != samples.size() || candidates_.abs_gravity.cols() != N)
       throw Error::at(samples.source, 0, "", "candidate library: |G(q)| per sample is missing");
-    std::vector<std::string> payload;
-    for (int c = 0; c < 10; ++c)
-      payload.push_back("payload_" + regressor_column_name(N, 10 * (N - 1) + c));
-    add_group(K::Payload, "payload", "unmodelled payload on the last link", -1, payload);
-    for (int j = 0; j < N; ++j) {
-      const std::string n = std::to_string(j + 1);
-      add_group(K::LoadFriction, "load_friction", "load-dependent friction, " + joint_name(j), j,
-                {"alpha_c" + n, "alpha_v" + n, "alpha_rest" + n});
-      if (candidates_.ripple_cycles.size() == N && candidates_.ripple_cycles[j] > 0) {
-        char title[96];
-        std::snprintf(title, sizeof title, "position ripple, %s (%g periods/rev of q)",
-                      joint_name(j).c_str(), candidates_.ripple_cycles[j]);
-        add_group(K::Ripple, "ripple", title, j, {"ripple_sin" + n, "ripple_cos" + n});
-      }
-      if (candidates_.ripple_motor_cycles.size() == N && candidates_.ripple_motor_cycles[j] > 0) {
-        char title[96];
-        std::snprintf(title, sizeof title, "motor-angle ripple, %s (%g periods/motor rev)",
-                      joint_name(j).c_str(), candidates_.ripple_motor_cycles[j]);
-        add_group(K::RippleMotor, "ripple_motor", title, j, {"motor_sin" + n, "motor_cos" + n});
-      }
-      if (has_temperature_)
-        add_group(K::Thermal, "thermal", "temperature-dependent friction, " + joint_name(j), j,
-                  {"beta_v" + n});
-      add_group(K::Offset, "offset", "constant offset, " + joint_name(j), j, {"offset" + n});
-      add_group(K::Asymmetry, "asymmetric_friction",
-                "direction-asymmetric friction (Coulomb, viscous), " + joint_name(j), j,
-                {"asym_c" + n, "asym_v" + n});
-      add_group(K::Spring, "spring", "joint spring or cable torque (k·q), " + joint_name(j), j,
-                {"k" + n});
-      if (candidates_.prediction_rate.cols() == N)
-        add_group(K::Delay, "delay", "delay between effort and motion, " + joint_name(j), j,
-                  {"lead_s" + n});
-      if (N > 1) {
-        std::vector<std::string> coupling;
-        for (int k = 0; k < N; ++k)
-          if (k != j) {
-            coupling.push_back("cv" + n + "_" + std::to_string(k + 1));
-            coupling.push_back("ca" + n + "_" + std::to_string(k + 1));
-          }
-        add_group(K::Coupling, "coupling", "coupling from other joints' motion, " + joint_name(j),
-                  j, coupling);
-        std::vector<std::string> neighbour;
-        for (int k = 0; k < N; ++k)
-          if (k != j) {
-            neighbour.push_back("beta" + n + "_" + std::to_string(k + 1));
-            neighbour.push_back("gamma" + n + "_" + std::to_string(k + 1));
-          }
-        add_group(K::NeighbourLoad, "neighbour_load_friction",
-                  "friction growing with the other joints' load |G_k|, " + joint_name(j), j,
-                  neighbour);
-      }
-    }
-    if (candidates_.prediction_rate.cols() == N && N > 1)
-      add_group(K::Delay, "delay", "delay between effort and motion, every joint (one lead)", -1,
-                {"lead_s"});
-    if (has_temperature_ && candidates_.viscous.size() == N && N > 1)
-      add_group(K::Thermal, "thermal",
-                "temperature-dependent friction, every joint (one relative change of the viscous "
-                "friction per °C)",
-                -1, {"beta_v"});
+    add_families<CandidateColumns>(context);
   }
+  index_joint_groups();
+}
+
+template <int N>
+void EffectDesign<N>::index_joint_groups() {
   local_.assign(N, {});
   joint_groups_.assign(N, {});
   for (int j = 0; j < N; ++j) {
@@ -150,84 +107,23 @@ std::vector<int> EffectDesign<N>::declared_columns() const {
 
 template <int N>
 void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws) const {
-  using K = FeatureKind;
   const JointVector<double, N> q = s.q.row(k).transpose();
   const JointVector<double, N> dq = s.dq.row(k).transpose();
   const JointVector<double, N> ddq = s.ddq.row(k).transpose();
   compute_regressor(model_, ws.data, q, dq, ddq, ws.Y);
+  JointVector<double, N> direction, held;
   for (int j = 0; j < N; ++j) {
     const bool moving = std::abs(dq[j]) >= static_velocity_;
-    const double sign = moving ? (dq[j] > 0 ? 1.0 : -1.0) : 0.0;
-    const double held = moving ? 0.0 : s.held_sign(k, j);
+    direction[j] = moving ? (dq[j] > 0 ? 1.0 : -1.0) : 0.0;
+    held[j] = moving ? 0.0 : s.held_sign(k, j);
+  }
+  const SampleRow<N> row{
+      {q, dq, ddq, model_.gear_ratio}, ws.Y, direction, held, base_columns_, candidates_, s, k};
+  for (int j = 0; j < N; ++j) {
     double* out = &ws.local(j, 0);  // row-major workspace: this joint's local features
     for (int g : joint_groups_[j]) {
-      switch (groups_[g].kind) {
-        case K::Rigid:
-          for (int col : base_columns_)
-            *out++ = ws.Y(j, col);
-          break;
-        case K::Friction:
-          *out++ = sign;
-          *out++ = dq[j];
-          *out++ = held;
-          break;
-        case K::Payload:
-          for (int p = 0; p < 10; ++p)
-            *out++ = ws.Y(j, 10 * (N - 1) + p);
-          break;
-        case K::LoadFriction: {
-          const double load = candidates_.abs_gravity(k, j);
-          *out++ = load * sign;
-          *out++ = load * dq[j];
-          *out++ = load * held;
-          break;
-        }
-        case K::Ripple: {
-          const double a = candidates_.ripple_cycles[j] * q[j];
-          *out++ = std::sin(a);
-          *out++ = std::cos(a);
-          break;
-        }
-        case K::RippleMotor: {
-          const double a = candidates_.ripple_motor_cycles[j] * model_.gear_ratio[j] * q[j];
-          *out++ = std::sin(a);
-          *out++ = std::cos(a);
-          break;
-        }
-        case K::Thermal:
-          *out++ = (s.temperature(k, j) - candidates_.reference_temperature) * dq[j] *
-                   (groups_[g].joint < 0 ? candidates_.viscous[j] : 1.0);
-          break;
-        case K::Spring:
-          *out++ = q[j];
-          break;
-        case K::Offset:
-          *out++ = 1.0;
-          break;
-        case K::Asymmetry:
-          *out++ = std::abs(sign);
-          *out++ = std::abs(dq[j]);
-          break;
-        case K::NeighbourLoad:
-          for (int o = 0; o < N; ++o)
-            if (o != j) {
-              *out++ = candidates_.abs_gravity(k, o) * sign;
-              *out++ = candidates_.abs_gravity(k, o) * dq[j];
-            }
-          break;
-        case K::Delay: {
-          const double rate = candidates_.prediction_rate(k, j);
-          *out++ = std::isfinite(rate) ? rate : 0.0;
-          break;
-        }
-        case K::Coupling:
-          for (int o = 0; o < N; ++o)
-            if (o != j) {
-              *out++ = dq[o];
-              *out++ = ddq[o];
-            }
-          break;
-      }
+      fills_[g](row, j, out);
+      out += groups_[g].columns.size();
     }
   }
 }

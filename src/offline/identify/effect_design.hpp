@@ -1,62 +1,23 @@
 // The design matrix of identification and diagnosis: the declared model (rigid-body base
 // parameters incl. armature, Coulomb and viscous friction, the friction held at rest) and a
-// library of candidate physical effects, each a small named family of regressor columns.
+// library of candidate physical effects, each a small named family of regressor columns of one
+// effect type (offline/effects/effect_columns.hpp registers them).
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "offline/effects/candidate_inputs.hpp"
+#include "offline/effects/design_context.hpp"
+#include "offline/effects/feature_group.hpp"
+#include "offline/effects/sample_row.hpp"
 #include "offline/identify/gram_fit.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
 #include "tpf/model/model.hpp"
 
 namespace tpf::offline {
-
-/// The physical family a group of columns belongs to (FeatureGroup::key spells it out).
-enum class FeatureKind {
-  Rigid,
-  Friction,
-  Payload,
-  LoadFriction,
-  Ripple,
-  RippleMotor,
-  Thermal,
-  Spring,
-  Delay,
-  Coupling,
-  Offset,
-  Asymmetry,
-  NeighbourLoad
-};
-
-/// One named family of columns. Per-joint families act on that joint's effort only.
-struct FeatureGroup {
-  FeatureKind kind = FeatureKind::Rigid;
-  std::string key;    ///< rigid, friction, load_friction, ripple, ripple_motor, payload, thermal,
-                      ///< spring, delay, coupling, offset, asymmetric_friction,
-                      ///< neighbour_load_friction
-  std::string title;  ///< e.g. "load-dependent friction, joint 2"
-  int joint = -1;     ///< 0-based; −1 = every joint's effort (payload; delay of every joint)
-  bool declared = false;
-  std::vector<int> columns;  ///< global feature indices
-  std::vector<std::string> column_names;
-};
-
-/// What the candidate library needs from a first fit of the declared model.
-struct CandidateInputs {
-  bool enabled = false;
-  Eigen::VectorXd ripple_cycles;  ///< per joint: periods per output revolution, 0 = none (also
-                                  ///< when the motion covers less than one period)
-  Eigen::VectorXd ripple_motor_cycles;  ///< per joint: periods per motor revolution, 0 = none
-  Eigen::MatrixXd prediction_rate;  ///< d(declared prediction)/dt per sample and joint, or empty
-  Eigen::MatrixXd abs_gravity;      ///< |G_j(q)| per sample and joint [N·m] (gravity_load)
-  double reference_temperature = 25.0;  ///< °C
-  /// Per joint: the declared fit's viscous coefficient b_j [N·m·s/rad], which the
-  /// every-joint thermal candidate scales; empty = no every-joint thermal candidate.
-  Eigen::VectorXd viscous;
-};
 
 /// Features of every joint row of the samples (effort in N·m), for an N-joint model: the rigid
 /// columns' coefficients are SI base parameters, every other coefficient is in N·m per feature.
@@ -73,6 +34,8 @@ struct CandidateInputs {
 ///   delay: d(rigid-body prediction_j)/dt (coefficient = the effort's lead over the motion, s),
 ///          one group per joint and one for every joint at once (one shared lead)
 ///   coupling: q̇_k, q̈_k for every k ≠ j
+/// Each family's columns are its effect type's fill(); those of an added effect are the basis
+/// functions of its run-time torque (tpf/effects/), so a fit and the run time agree.
 template <int N>
 class EffectDesign {
  public:
@@ -95,10 +58,16 @@ class EffectDesign {
 
  private:
   struct Workspace;
-  /// Fills the local features of every joint row of sample k into `local` (N × max local size).
+  /// Fills of one family: its columns of joint row `joint` of a sample.
+  using FillColumns = void (*)(const SampleRow<N>&, int joint, double* out);
+  /// Fills the local features of every joint row of sample k into `ws.local` (N × max local).
   void fill(const JointSamples& samples, Eigen::Index k, Workspace& ws) const;
-  void add_group(FeatureKind kind, std::string key, std::string title, int joint,
-                 std::vector<std::string> column_names);
+  /// Adds the groups the family types of the tuple `Families` offer, in registration order.
+  template <typename Families>
+  void add_families(const DesignContext& context);
+  void add_group(FeatureGroup group, FillColumns fill);
+  /// local_, joint_groups_ and max_local_ of the groups.
+  void index_joint_groups();
 
   Model<double, N> model_;
   std::vector<int> base_columns_;
@@ -107,6 +76,7 @@ class EffectDesign {
   bool has_temperature_;
   int features_ = 0;
   std::vector<FeatureGroup> groups_;
+  std::vector<FillColumns> fills_;              ///< per group
   std::vector<std::vector<int>> local_;         ///< per joint: local index → global feature
   std::vector<std::vector<int>> joint_groups_;  ///< per joint: the groups acting on it, in order
   int max_local_ = 0;

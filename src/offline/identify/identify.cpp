@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <random>
 
+#include "offline/effects/effect_columns.hpp"
 #include "offline/identify/effect_design.hpp"
 #include "offline/identify/gram_fit.hpp"
 #include "offline/identify/identification_setup.hpp"
@@ -233,9 +234,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   selection.regimes = {false, true, true};  // moving samples only
   std::vector<int> columns;
   for (const FeatureGroup& g : design.groups())
-    if (g.kind == FeatureKind::Rigid)
+    if (g.key == RigidBodyColumns::key)
       columns.insert(columns.end(), g.columns.begin(), g.columns.end());
-    else if (g.kind == FeatureKind::Friction)
+    else if (g.key == JointFrictionColumns::key)  // the sliding levels, not the friction at rest
       columns.insert(columns.end(), g.columns.begin(), g.columns.begin() + 2);
   Eigen::VectorXd theta = fit_columns(grams, columns, selection);
   out.joint_weights.resize(N);
@@ -255,17 +256,18 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   nominal.base_count = base.size();
   Eigen::VectorXd rigid_theta = Eigen::VectorXd::Zero(design.features());
   StribeckParameters<double, N> linear;
+  using Friction = JointFrictionColumns;
   for (const FeatureGroup& g : design.groups()) {
-    if (g.kind == FeatureKind::Rigid) {
+    if (g.key == RigidBodyColumns::key) {
       for (int i = 0; i < base.size(); ++i) {
         nominal.base_columns[i] = base.independent[i];
         nominal.base_values[i] = theta[g.columns[i]];
         rigid_theta[g.columns[i]] = theta[g.columns[i]];
       }
-    } else if (g.kind == FeatureKind::Friction) {
-      linear.coulomb[g.joint] = theta[g.columns[0]];
-      linear.static_friction[g.joint] = theta[g.columns[0]];
-      linear.viscous[g.joint] = theta[g.columns[1]];
+    } else if (g.key == Friction::key) {
+      linear.coulomb[g.joint] = theta[g.columns[Friction::kCoulomb]];
+      linear.static_friction[g.joint] = theta[g.columns[Friction::kCoulomb]];
+      linear.viscous[g.joint] = theta[g.columns[Friction::kViscous]];
     }
   }
 

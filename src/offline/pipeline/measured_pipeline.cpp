@@ -7,6 +7,7 @@
 
 #include "offline/common/data_files.hpp"
 #include "offline/diagnose/diagnose.hpp"
+#include "offline/effects/effect_columns.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/replay/estimator_samples.hpp"
@@ -69,42 +70,6 @@ std::vector<MeasuredColumn> measured_split_columns(const Validation& v) {
   return columns;
 }
 
-/// Removes one effect diagnose selected from the written model (its parameters set to 0).
-void remove_diagnosed_effect(Gen3Model& m, const FeatureGroup& g) {
-  const int j = g.joint;
-  switch (g.kind) {
-    case FeatureKind::Spring:
-      m.added.spring_stiffness[j] = 0;
-      break;
-    case FeatureKind::Offset:
-      m.added.offset[j] = 0;
-      break;
-    case FeatureKind::Ripple:
-    case FeatureKind::RippleMotor:
-      for (int i = 0; i < m.added.ripple_count; ++i)
-        if (m.added.ripple[i].joint == j &&
-            m.added.ripple[i].motor_side == (g.kind == FeatureKind::RippleMotor))
-          m.added.ripple[i].sin_amplitude = m.added.ripple[i].cos_amplitude = 0;
-      break;
-    case FeatureKind::Coupling:
-      m.added.coupling_velocity.row(j).setZero();
-      m.added.coupling_acceleration.row(j).setZero();
-      break;
-    case FeatureKind::Asymmetry:
-      m.friction.coulomb_asymmetry[j] = m.friction.viscous_asymmetry[j] = 0;
-      break;
-    case FeatureKind::NeighbourLoad:
-      m.friction.neighbour_load_coulomb.row(j).setZero();
-      m.friction.neighbour_load_viscous.row(j).setZero();
-      break;
-    case FeatureKind::LoadFriction:
-      m.friction.load_coulomb[j] = m.friction.load_viscous[j] = 0;
-      break;
-    default:  // rigid, friction, payload (in the base parameters), delay, thermal (not written)
-      break;
-  }
-}
-
 /// Diagnose's written model with only its first `keep` written effects (the later ones removed),
 /// and the titles of the written effects in selection order.
 Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t keep,
@@ -115,7 +80,7 @@ Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std:
     if (!d.claims[e].written) continue;
     const FeatureGroup& g = d.groups[static_cast<std::size_t>(d.selected[e])];
     if (titles) titles->push_back(g.title);
-    if (written++ >= keep) remove_diagnosed_effect(m, g);
+    if (written++ >= keep) remove_group(g, m);
   }
   return m;
 }

@@ -90,6 +90,8 @@ Json upgrade_params(const std::filesystem::path& path, std::vector<double>& k) {
     for (const char* key : {"neighbour_load_coulomb", "neighbour_load_viscous"})
       divide_rows(f, key, k, path, "friction.");
   }
+  // The fields a version-1 file can hold are a closed set (what tpf wrote before version 2):
+  // effects registered since (tpf/effects/added_effects.hpp) are born in N·m.
   if (j.contains("added_effects")) {
     Json& a = j["added_effects"];
     for (const char* key : {"spring_stiffness", "offset", "spring_offset", "thermal_viscous"})

@@ -1,0 +1,64 @@
+// Torque on a joint from the other joints' motion, τ_j += Σ_k≠j (C_v,jk·q̇_k + C_a,jk·q̈_k)
+// (C_v in N·m·s/rad, C_a in N·m·s²/rad): an added effect.
+#pragma once
+
+#include <string_view>
+
+#include "tpf/effects/effect_fields.hpp"
+#include "tpf/effects/linear_effect.hpp"
+
+namespace tpf {
+
+template <typename S, int N>
+struct MotionCoupling {
+  static constexpr std::string_view key = "coupling";  ///< diagnose's name of the effect
+  static constexpr int kColumns = 2 * (N - 1);         ///< basis functions per joint
+
+  JointMatrix<S, N> velocity = JointMatrix<S, N>::Zero();      ///< C_v, zero diagonal
+  JointMatrix<S, N> acceleration = JointMatrix<S, N>::Zero();  ///< C_a, zero diagonal
+
+  /// φ_j = q̇_k, q̈_k for every k ≠ j, in that order.
+  static void basis(const EffectInput<S, N>& x, int joint, S* columns) noexcept {
+    for (int k = 0; k < N; ++k)
+      if (k != joint) {
+        *columns++ = x.dq[k];
+        *columns++ = x.ddq[k];
+      }
+  }
+  void coefficients(int joint, S* out) const noexcept {
+    for (int k = 0; k < N; ++k)
+      if (k != joint) {
+        *out++ = velocity(joint, k);
+        *out++ = acceleration(joint, k);
+      }
+  }
+  void set_coefficients(int joint, const S* in) noexcept {
+    for (int k = 0; k < N; ++k)
+      if (k != joint) {
+        velocity(joint, k) = *in++;
+        acceleration(joint, k) = *in++;
+      }
+  }
+  void add_torque(const EffectInput<S, N>& x, JointVector<S, N>& tau) const noexcept {
+    add_linear_effect_torque(*this, x, tau);
+  }
+
+  /// Parameter file, "added_effects": "coupling_velocity", "coupling_acceleration": N rows of N
+  /// (optional; the diagonal must be zero, a joint's own motion is the rigid body's).
+  template <typename Fields>
+  void read(Fields& added) {
+    added.template joint_matrix<N>("coupling_velocity", velocity);
+    added.template joint_matrix<N>("coupling_acceleration", acceleration);
+    for (int j = 0; j < N; ++j)
+      if (velocity(j, j) != S(0) || acceleration(j, j) != S(0))
+        added.fail(velocity(j, j) != S(0) ? "coupling_velocity" : "coupling_acceleration",
+                   "the diagonal must be zero (a joint's own motion is the rigid body's)");
+  }
+  template <typename Json>
+  void write(Json& added) const {
+    added["coupling_velocity"] = joint_rows<S, N>(velocity);
+    added["coupling_acceleration"] = joint_rows<S, N>(acceleration);
+  }
+};
+
+}  // namespace tpf

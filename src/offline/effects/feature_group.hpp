@@ -1,0 +1,33 @@
+// One named family of regressor columns of the design matrix: the declared model's or a candidate
+// effect's, for one joint or for every joint.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tpf::offline {
+
+/// Where a family's coefficients go in the parameter file diagnose writes.
+enum class WrittenTo {
+  kRigidBody,     ///< the base parameters (the rigid body; a payload folds into it)
+  kFriction,      ///< the friction model (StribeckParameters)
+  kAddedEffects,  ///< an added effect the run time evaluates (tpf/effects/added_effects.hpp)
+  kNothing        ///< not evaluated at run time (OfflineOnlyEffects): reported, not written
+};
+
+/// One named family of columns. Per-joint families act on that joint's effort only.
+struct FeatureGroup {
+  std::string key;    ///< the effect type's key: rigid, friction, load_friction, ripple, …
+  std::string title;  ///< e.g. "load-dependent friction, joint 2"
+  int joint = -1;     ///< 0-based; −1 = every joint's effort (payload; delay of every joint)
+  bool declared = false;
+  WrittenTo written_to = WrittenTo::kNothing;
+  int held_column = -1;  ///< index in `columns` of the friction held at rest, −1 = none
+  /// Keys of its joint's families it is judged on top of (a periodic effect must explain what an
+  /// offset and a slope cannot: over a short range a sine is one or the other).
+  std::vector<std::string> judged_beside;
+  std::vector<int> columns;  ///< global feature indices, consecutive
+  std::vector<std::string> column_names;
+};
+
+}  // namespace tpf::offline

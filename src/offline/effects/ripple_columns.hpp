@@ -1,0 +1,54 @@
+// Base of OutputRippleColumns and MotorRippleColumns: one ripple term of the run-time
+// PositionRipple per joint, its frequency found by the residual analysis (CandidateInputs).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "offline/effects/design_context.hpp"
+#include "offline/effects/feature_group.hpp"
+#include "offline/effects/sample_row.hpp"
+#include "offline/effects/written_model.hpp"
+#include "tpf/effects/position_ripple.hpp"
+
+namespace tpf::offline {
+
+template <bool MotorSide>
+struct RippleColumns {
+  static constexpr WrittenTo written_to = WrittenTo::kAddedEffects;
+  static constexpr bool kSharedGroupFirst = false;
+
+  /// Periods per revolution of θ found for `joint`, 0 = none.
+  static double cycles(const CandidateInputs& inputs, int joint) {
+    const Eigen::VectorXd& c = MotorSide ? inputs.ripple_motor_cycles : inputs.ripple_cycles;
+    return joint >= 0 && joint < c.size() ? c[joint] : 0.0;
+  }
+  static bool offered(const DesignContext& c, int joint) {
+    const Eigen::VectorXd& n = MotorSide ? c.inputs.ripple_motor_cycles : c.inputs.ripple_cycles;
+    return joint >= 0 && n.size() == c.joints && n[joint] > 0;
+  }
+  /// Judged on top of its joint's offset and spring (a short stretch of sine is one or the other).
+  static std::vector<std::string> judged_beside() { return {"offset", "spring"}; }
+
+  /// The term of `joint` with the amplitudes a_sin, a_cos.
+  static RippleTerm<double> term(const CandidateInputs& inputs, int joint, double a_sin = 0,
+                                 double a_cos = 0) {
+    return {joint, cycles(inputs, joint), MotorSide, a_sin, a_cos};
+  }
+  template <int N>
+  static void fill(const SampleRow<N>& row, int joint, double* out) {
+    PositionRipple<double, N>::basis(row.motion, term(row.inputs, joint), out);
+  }
+  template <int N>
+  static void write(const double* coefficients, int joint, WrittenModel<N>& out) {
+    if (coefficients[0] == 0.0 && coefficients[1] == 0.0) return;
+    out.nominal.added.template get<PositionRipple>().add(
+        term(out.inputs, joint, coefficients[0], coefficients[1]));
+  }
+  template <int N>
+  static void remove(int joint, NominalModel<double, N>& nominal) {
+    nominal.added.template get<PositionRipple>().clear(joint, MotorSide);
+  }
+};
+
+}  // namespace tpf::offline
