@@ -4,6 +4,7 @@
 #include <ctime>
 #include <limits>
 
+#include "offline/log/log.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::arm {
@@ -12,12 +13,12 @@ std::vector<std::string> recorded_column_names(const RecordedColumns& c) {
   std::vector<std::string> names{"t"};
   for (const char* quantity : {"q", "dq", "i"})
     for (std::size_t j = 1; j <= c.joints; ++j)
-      names.push_back(quantity + std::to_string(j));
+      names.push_back(offline::indexed_name(quantity, static_cast<int>(j)));
   for (std::size_t k = 1; k <= c.pads; ++k)
-    names.push_back("p" + std::to_string(k));
+    names.push_back(offline::indexed_name("p", static_cast<int>(k)));
   if (c.estimates) {
     for (std::size_t j = 1; j <= c.joints; ++j)
-      names.push_back("est_tau_ext" + std::to_string(j));
+      names.push_back(offline::indexed_name("est_tau_ext", static_cast<int>(j)));
     for (const char* name : {"est_contact", "est_pad", "est_fx", "est_fy", "est_fz", "est_status"})
       names.emplace_back(name);
   }

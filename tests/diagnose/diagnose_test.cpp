@@ -105,7 +105,9 @@ TEST(Diagnose, NamesTemperatureDependentFriction) {
   for (const auto& c : d.claims) {
     EXPECT_LT(c.coefficients[0], 0.0);
     EXPECT_FALSE(c.written);
-    if (d.groups[c.groups[0]].joint == -1) EXPECT_NEAR(c.coefficients[0], -0.012, 0.004);
+    if (d.groups[c.groups[0]].joint == -1) {
+      EXPECT_NEAR(c.coefficients[0], -0.012, 0.004);
+    }
   }
   // The every-joint form (one relative coefficient, b_j·(T_j − T_ref)·q̇_j) is tried beside the
   // per-joint ones and the data favour it (held-out gain over every joint, BIC down), though its

@@ -133,14 +133,16 @@ TEST(CompensatorDomain, BeyondTheAccelerationDomainTheNominalEstimateHoldsForThe
     const bool outside = k >= kStop && k < kStop + 8;
     EXPECT_EQ(bool(out.status & kStatusOutsideCompensatorDomain), outside) << "cycle " << k;
     const auto& fused = out.estimate(TorqueEstimator::Fused).residual;
-    if (k == kStop)  // τ_res = −M·q̈ there: whatever it is, not the network's answer
+    if (k == kStop) {  // τ_res = −M·q̈ there: whatever it is, not the network's answer
       EXPECT_EQ(fused[0], dead_band(out.residual, Vec(Vec::Constant(1.5 * kNominalSigma)))[0]);
-    else if (outside)  // d(τ_res = 0, 150): the nominal estimate, while in the network's window
+    } else if (outside) {  // d(τ_res = 0, 150): the nominal estimate, in the network's window
       EXPECT_EQ(fused[0], 0.0) << "cycle " << k;
-    else
+    } else {
       EXPECT_NEAR(fused[0], -(kExtrapolation - 1.5 * kFusedSigma), 1e-6) << "cycle " << k;
-    if (k != kStop)  // (at kStop joint 2's τ_res carries the coupling M₂₁·q̈₁)
+    }
+    if (k != kStop) {  // (at kStop joint 2's τ_res carries the coupling M₂₁·q̈₁)
       EXPECT_NEAR(fused[1], -(kExtrapolation - 1.5 * kFusedSigma), 1e-6) << "cycle " << k;
+    }
   }
 }
 

@@ -53,10 +53,11 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
   // identify, then diagnose (its model is the nominal model of the loop)
   const Model<double, N> model = load_robot<double, N>(data(robot));
   const Identification<N> identified = identify(training, model, {});
-  if (fit_bar > 0)  // the twin's drive holds the rigid body the robot file declares
+  if (fit_bar > 0) {  // the twin's drive holds the rigid body the robot file declares
     EXPECT_TRUE(identified.consistency.consistent())
         << robot << ": "
         << (identified.consistency.problems.empty() ? "" : identified.consistency.problems[0]);
+  }
   const Diagnosis<N> diagnosis = diagnose(training, model, {});
   EstimatorSetup<N> setup;
   setup.nominal = diagnosis.nominal;
@@ -91,9 +92,10 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
   for (const ResidualRow& row : ev.table) {
     if (row.joint < 0 || row.regime != Regime::Moving || row.nominal.count == 0) continue;
     EXPECT_TRUE(std::isfinite(row.nominal.rmse) && std::isfinite(row.compensated.rmse));
-    if (fit_bar > 0)
+    if (fit_bar > 0) {
       EXPECT_LT(row.nominal.rmse, fit_bar * effort_rms(held_out, row.joint))
           << robot << " joint " << row.joint + 1;
+    }
   }
   EXPECT_NE(evaluation_json(ev).find("\"tactile_n\": \"no skin\""), std::string::npos);
 
