@@ -228,7 +228,7 @@ class Estimator {
   FusedEvidence estimate_external_torque(const Sample& sample, const Vector& ddq,
                                          std::uint32_t& status) noexcept {
     Output& out = output_;
-    constexpr std::uint32_t all = N == 32 ? ~0u : (1u << N) - 1;
+    constexpr std::uint32_t all = kEveryJoint<N>;
     set_estimate(TorqueEstimator::StaticModelFree,
                  dead_band(tracker_.static_external(), parameters_.static_dead_band),
                  tracker_.valid_mask());

@@ -34,6 +34,10 @@ enum class TorqueEstimator : std::uint8_t {
 };
 inline constexpr int kTorqueEstimatorCount = 2;
 
+/// The valid mask of an estimate on every joint of an N-joint arm (bit j: joint j).
+template <int N>
+inline constexpr std::uint32_t kEveryJoint = N == 32 ? ~0u : (1u << N) - 1;
+
 /// One external-torque estimate. Sign: τ_ext is what the environment applies to the robot, so
 /// residual = −τ_ext (a push in +q lowers the effort).
 template <typename S, int N>

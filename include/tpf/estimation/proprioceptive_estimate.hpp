@@ -18,7 +18,7 @@ ExternalTorque<S, N> proprioceptive_estimate(const EstimatorOutput<S, N>& out,
   e.residual = dead_band(out.residual,
                          JointVector<S, N>(parameters.dead_band_factor * parameters.nominal_sigma));
   e.torque = -e.residual;
-  e.valid = N == 32 ? ~0u : (1u << N) - 1;
+  e.valid = kEveryJoint<N>;
   return e;
 }
 

@@ -9,6 +9,7 @@
 #include "offline/effects/feature_group.hpp"
 #include "offline/effects/sample_row.hpp"
 #include "offline/effects/written_model.hpp"
+#include "offline/report/text_format.hpp"
 #include "tpf/effects/position_ripple.hpp"
 
 namespace tpf::offline {
@@ -25,10 +26,20 @@ struct RippleColumns {
   }
   static bool offered(const DesignContext& c, int joint) {
     const Eigen::VectorXd& n = MotorSide ? c.inputs.ripple_motor_cycles : c.inputs.ripple_cycles;
-    return joint >= 0 && n.size() == c.joints && n[joint] > 0;
+    return n.size() == c.joints && cycles(c.inputs, joint) > 0;
   }
-  /// Judged on top of its joint's offset and spring (a short stretch of sine is one or the other).
-  static std::vector<std::string> judged_beside() { return {"offset", "spring"}; }
+  /// Titled with its frequency; judged on top of its joint's offset and spring (a short stretch
+  /// of sine is one or the other).
+  static GroupSpec group(const DesignContext& c, int joint) {
+    const std::string n = joint_suffix(joint);
+    const char* side = MotorSide ? "motor-angle ripple, " : "position ripple, ";
+    const char* period = MotorSide ? " (%g periods/motor rev)" : " (%g periods/rev of q)";
+    const std::string prefix = MotorSide ? "motor_" : "ripple_";
+    return {side + joint_title(joint) + format_sentence(period, cycles(c.inputs, joint)),
+            {prefix + "sin" + n, prefix + "cos" + n},
+            -1,
+            {"offset", "spring"}};
+  }
 
   /// The term of `joint` with the amplitudes a_sin, a_cos.
   static RippleTerm<double> term(const CandidateInputs& inputs, int joint, double a_sin = 0,
