@@ -72,11 +72,12 @@ ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
     JointMatrix<double, N> M;
     for (int i = 0; i < N; ++i)
       M.col(i) = rigid_body_torque(nominal, data, Y, q, zero, JointVector<double, N>::Unit(i)) - g;
-    const JointMatrix<double, N> sym = 0.5 * (M + M.transpose());
-    min_eigen = std::min(min_eigen, Eigen::SelfAdjointEigenSolver<JointMatrix<double, N>>(
-                                        sym, Eigen::EigenvaluesOnly)
-                                        .eigenvalues()
-                                        .minCoeff());
+    // At run-time size: one eigensolver for every joint count (a check, not a hot path).
+    const Eigen::MatrixXd sym = 0.5 * (M + M.transpose());
+    min_eigen = std::min(min_eigen,
+                         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(sym, Eigen::EigenvaluesOnly)
+                             .eigenvalues()
+                             .minCoeff());
   }
   check.min_mass_eigenvalue = min_eigen;
   check.checks.push_back("mass matrix M(q) (rigid body + armature) positive definite at 200 poses");
