@@ -145,7 +145,7 @@ void PointJacobian_tpf(benchmark::State& state) {
   tpf::Jacobian<double, N> J;
   std::size_t i = 0;
   for (auto _ : state) {
-    tpf::forward_kinematics(r.model, d, r.q[i++ % kPool]);
+    tpf::forward_kinematics(r.model, d, r.q[i++ % kPool], r.point_link);
     tpf::point_jacobian(r.model, d, r.point_link, d.oMi[r.point_link].apply(r.point), J);
     benchmark::DoNotOptimize(J.data());
   }

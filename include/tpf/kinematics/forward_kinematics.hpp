@@ -23,6 +23,19 @@ inline void joint_transform(const Model<S, N>& model, Data<S, N>& data, int k, S
   data.liMi[k].p = model.joint_placements[k - 1].p;
 }
 
+/// data.axis_world[k] = oMi[k].R · axis_k: a column of the rotation when the axis is a coordinate
+/// axis (the same numbers as the product, whose other terms are exact zeros).
+template <typename S, int N>
+inline void world_axis(const Model<S, N>& model, Data<S, N>& data, int k) noexcept {
+  const int a = model.constants.axis_coordinate[k - 1];
+  if (a > 0)
+    data.axis_world[k] = data.oMi[k].R.col(a - 1);
+  else if (a < 0)
+    data.axis_world[k] = -data.oMi[k].R.col(-a - 1);
+  else
+    data.axis_world[k].noalias() = data.oMi[k].R * model.axes[k - 1];
+}
+
 }  // namespace detail
 
 /// The joint transforms alone, data.liMi[k] = placement_k · Rot(axis_k, q_k) (link k in link k−1)
@@ -36,21 +49,24 @@ void joint_transforms(const Model<S, N>& model, Data<S, N>& data,
     detail::joint_transform(model, data, k, q(k - 1));
 }
 
-/// Link poses for joint positions q [rad]: data.liMi[k] (as joint_transforms),
+/// Link poses for joint positions q [rad], from the base to link `last_link` (every link by
+/// default; a Jacobian at a point of link k needs links 1..k): data.liMi[k] (as joint_transforms),
 /// data.oMi[k] = data.oMi[k−1] · data.liMi[k] (oMi[0] = identity, the base is the world frame), and
-/// data.axis_world[k] = oMi[k].R · axis_k. Allocation-free.
+/// data.axis_world[k] = oMi[k].R · axis_k. Links beyond `last_link` keep what they held.
+/// Allocation-free.
 template <typename S, int N>
 void forward_kinematics(const Model<S, N>& model, Data<S, N>& data,
-                        const NoDeduce<JointVector<S, N>>& q) noexcept {
+                        const NoDeduce<JointVector<S, N>>& q, int last_link = N) noexcept {
   assert(model.constants_current() && "Model::update_constants() after editing the model");
+  assert(last_link >= 0 && last_link <= N);
   data.oMi[0] = Transform<S>{};
-  for (int k = 1; k <= N; ++k) {
+  for (int k = 1; k <= last_link; ++k) {
     detail::joint_transform(model, data, k, q(k - 1));
     const Transform<S>& parent = data.oMi[k - 1];
     data.oMi[k].R.noalias() = parent.R * data.liMi[k].R;
     data.oMi[k].p.noalias() = parent.R * data.liMi[k].p;
     data.oMi[k].p += parent.p;
-    data.axis_world[k].noalias() = data.oMi[k].R * model.axes[k - 1];
+    detail::world_axis(model, data, k);
   }
 }
 

@@ -21,6 +21,9 @@ struct ModelConstants {
   std::array<Vector3<S>, N + 1> first_moment;          ///< h = m·c per link [kg·m].
   std::array<Matrix3<S>, N + 1> inertia_about_origin;  ///< I_o per link [kg·m²].
   std::array<S, N + 2> subtree_mass{};  ///< Σ_{j ≥ k} m_j: links k..N ([N + 1] = 0) [kg].
+  /// ±(i + 1) when joint k's axis is ±e_i (its world axis is then ± a column of the link's
+  /// rotation, no product), 0 for any other axis.
+  std::array<int, N> axis_coordinate{};
 
   std::array<Transform<S>, N> placements_used;  ///< the sources of the constants above
   std::array<Vector3<S>, N> axes_used;
@@ -69,6 +72,10 @@ struct Model {
       const Matrix3<S> K = skew(axes[k]);
       c.rotation_sine[k] = joint_placements[k].R * K;
       c.rotation_versine[k] = c.rotation_sine[k] * K;
+      c.axis_coordinate[k] = 0;
+      for (int i = 0; i < 3; ++i)
+        if (axes[k] == Vector3<S>::Unit(i) || axes[k] == -Vector3<S>::Unit(i))
+          c.axis_coordinate[k] = axes[k][i] > S(0) ? i + 1 : -(i + 1);
     }
     c.subtree_mass[N + 1] = S(0);
     for (int k = N; k >= 0; --k) {
