@@ -30,6 +30,13 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     TcnTrainOptions o = options.tcn;
     for (const EstimatorTrace& trace : traces) {
       TcnSequence sequence = training_sequence(trace, joint);
+      for (int c : options.masked_inputs) {
+        if (c < 0 || c >= kCompensatorInputsPerJoint)
+          throw Error::at("compensator training", 0, "masked_inputs",
+                          "channel " + std::to_string(c) + " is not a compensator input");
+        for (int k = 0; k < (options.per_joint ? 1 : joints); ++k)
+          sequence.inputs.col(options.per_joint ? c : c * joints + k).setZero();
+      }
       sequence.weight = regime_weights(trace, joint, options.static_weight,
                                        options.static_to_kinetic_weight, options.regimes);
       dataset.sequences.push_back(std::move(sequence));
@@ -54,6 +61,11 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                            trainer.input_std(), baseline),
                             progress)
             : trainer.train(progress);
+    std::vector<int> masked;
+    for (int c : options.masked_inputs)
+      for (int k = 0; k < (options.per_joint ? 1 : joints); ++k)
+        masked.push_back(options.per_joint ? c : c * joints + k);
+    mask_tcn_inputs(result.best, masked);
     out.files.push_back(to_weight_file(result.best));
     out.results.push_back(std::move(result));
   }

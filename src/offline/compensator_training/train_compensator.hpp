@@ -12,6 +12,9 @@
 
 namespace tpf::offline {
 
+/// Channel of q_j in a joint's compensator input.
+inline constexpr int kPositionInput = 0;
+
 struct CompensatorTrainingOptions {
   /// Trainer options; the architecture is set from the layout (inputs, outputs, hidden, levels =
   /// the networks the tools are compiled for, replay_estimator.hpp). max_seconds is the whole
@@ -27,6 +30,11 @@ struct CompensatorTrainingOptions {
   /// times a moving sample.
   double static_to_kinetic_weight = 10.0;
   double static_weight = 3.0;
+  /// Input channels per joint (0 q, 1 q̇, 2 q̈, 3 τ̂_fric,s, 4 τ_fric,nom) the networks must not
+  /// see: held at 0 in training and removed from block 0 of the written networks
+  /// (mask_tcn_inputs), so the output does not depend on them. {kPositionInput}: friction memory
+  /// that does not depend on where the joint is (tpf train --no-position-input).
+  std::vector<int> masked_inputs;
   /// Labelling of the regimes for the weights (the static-to-kinetic window after |q̇| crosses
   /// static_velocity lasts fallback_transition_s).
   RegimeOptions regimes;

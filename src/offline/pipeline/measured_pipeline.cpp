@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "offline/common/data_files.hpp"
@@ -132,10 +133,24 @@ EstimatorSetup<kMeasuredJoints> train_measured_compensator(
   CompensatorTrainingOptions options;
   options.per_joint = true;
   options.joint_hidden = o.joint_hidden;
+  options.masked_inputs = o.compensator_masked_inputs;
+  if (const char* m = std::getenv("TPF_H2_MASK")) {  // EXPERIMENT
+    options.masked_inputs.clear();
+    for (const char* c = m; *c; ++c)
+      if (*c >= '0' && *c <= '4') options.masked_inputs.push_back(*c - '0');
+  }
+  if (const char* m = std::getenv("TPF_H2_HIDDEN")) options.joint_hidden = std::atoi(m);
+  if (const char* m = std::getenv("TPF_H2_LR")) options.tcn.adam.learning_rate = std::atof(m);
+  if (const char* m = std::getenv("TPF_H2_VAL")) options.tcn.validation_fraction = std::atof(m);
+  if (const char* m = std::getenv("TPF_H2_BLOCK")) options.tcn.validation_block_windows = std::atoi(m);
+  if (const char* m = std::getenv("TPF_H2_WIN")) options.tcn.window_outputs = std::atoi(m);
+  if (const char* m = std::getenv("TPF_H2_SKW")) options.static_to_kinetic_weight = std::atof(m);
+  if (const char* m = std::getenv("TPF_H2_SW")) options.static_weight = std::atof(m);
   // Against the sensor the static-friction estimate τ̂_fric,s (τ_res frozen at rest) holds the
   // rigid body's error, not friction: start from a random network, not from predicting it.
   options.start_from_baseline = sensor_target.cols() == 0;
   options.tcn.max_epochs = o.training_epochs;
+  if (const char* m = std::getenv("TPF_H2_EPOCHS")) options.tcn.max_epochs = std::atoi(m);
   options.tcn.max_seconds = 0.0;
   options.tcn.threads = o.threads;
   options.tcn.seed = o.seed;
@@ -284,6 +299,21 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
         "with or without them, so they get no column of their own.";
 }
 
+// EXPERIMENT: outside the fitting range of q, the memoryless model.
+void h2_domain(const MeasuredData& d, const EffortEstimate& nominal, EffortEstimate& e) {
+  if (!std::getenv("TPF_H2_DOMAIN")) return;
+  for (Eigen::Index j = 0; j < d.fit_samples.q.cols(); ++j) {
+    const double lo = d.fit_samples.q.col(j).minCoeff(), hi = d.fit_samples.q.col(j).maxCoeff();
+    for (Eigen::Index k = 0; k < d.score_samples.size(); ++k) {
+      const double q = d.score_samples.q(k, j);
+      if (q < lo || q > hi) {
+        e.effort(k, j) = nominal.effort(k, j);
+        e.drive_loss(k, j) = nominal.drive_loss(k, j);
+      }
+    }
+  }
+}
+
 /// Stage 3: the per-joint compensators on the fitting files, scored through validate's path:
 /// over the identified model on the current residual, and over the sensor-fitted friction
 /// against the sensor.
@@ -295,6 +325,7 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
   const EstimatorSetup<kMeasuredJoints> setup =
       train_measured_compensator(o, d.fit, identified, {}, "gen3.tcn.json", result.training, say);
   estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, d.score, estimates[0]));
+  h2_domain(d, estimates[0], estimates.back());
   estimates.back().name = "with the compensator";
   say("measured: the same networks over the sensor-fitted friction, trained against the "
       "torque sensor (K_t·i − d − τ_sensor)");
@@ -306,6 +337,7 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
       train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side),
                                  "gen3.tcn-sensor.json", result.sensor_training, say);
   estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, d.score, estimates[1]));
+  h2_domain(d, estimates[1], estimates.back());
   estimates.back().name = "friction against the sensor + compensator trained against it";
 }
 

@@ -39,6 +39,8 @@ struct MeasuredOptions {
   int friction_samples_per_joint = IdentifyOptions{}.friction_samples_per_joint;
   int training_epochs = 40;  ///< per network (reproducible: an epoch budget)
   int joint_hidden = kPerJointHiddenSmall;
+  /// Compensator inputs the networks do not see (CompensatorTrainingOptions::masked_inputs).
+  std::vector<int> compensator_masked_inputs;
   std::uint64_t seed = 1;
   int threads = 2;
   /// The target: the current-based joint torque this much closer to the sensor than the
