@@ -9,6 +9,14 @@
 
 namespace tpf::offline {
 
+int compensator_input_channel(std::string_view name) {
+  for (int c = 0; c < kCompensatorInputsPerJoint; ++c)
+    if (name == kCompensatorInputNames[static_cast<std::size_t>(c)]) return c;
+  throw Error::at("compensator training", 0, "input",
+                  std::string(name) + " is not a compensator input (q, dq, ddq, static-friction, "
+                                      "nominal-friction)");
+}
+
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const CompensatorTrainingOptions& options,
                                       const TcnProgressCallback& progress) {
@@ -55,8 +63,12 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     Eigen::VectorXi baseline(o.architecture.outputs);
     for (int k = 0; k < o.architecture.outputs; ++k)
       baseline[k] = options.per_joint ? 3 : 3 * joints + k;
+    // The baseline start predicts τ̂_fric,s: not when the networks do not see it.
+    bool sees_static_friction = true;
+    for (int c : options.masked_inputs)
+      sees_static_friction = sees_static_friction && c != kStaticFrictionInput;
     TcnTrainResult result =
-        options.start_from_baseline
+        options.start_from_baseline && sees_static_friction
             ? trainer.train(baseline_start(o.architecture, o.seed, trainer.input_mean(),
                                            trainer.input_std(), baseline),
                             progress)

@@ -1,9 +1,9 @@
 #include "offline/pipeline/measured_pipeline.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 
 #include "offline/common/data_files.hpp"
@@ -15,6 +15,7 @@
 #include "offline/replay/replay_estimator.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
+#include "offline/validate/noise_floor.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -134,23 +135,10 @@ EstimatorSetup<kMeasuredJoints> train_measured_compensator(
   options.per_joint = true;
   options.joint_hidden = o.joint_hidden;
   options.masked_inputs = o.compensator_masked_inputs;
-  if (const char* m = std::getenv("TPF_H2_MASK")) {  // EXPERIMENT
-    options.masked_inputs.clear();
-    for (const char* c = m; *c; ++c)
-      if (*c >= '0' && *c <= '4') options.masked_inputs.push_back(*c - '0');
-  }
-  if (const char* m = std::getenv("TPF_H2_HIDDEN")) options.joint_hidden = std::atoi(m);
-  if (const char* m = std::getenv("TPF_H2_LR")) options.tcn.adam.learning_rate = std::atof(m);
-  if (const char* m = std::getenv("TPF_H2_VAL")) options.tcn.validation_fraction = std::atof(m);
-  if (const char* m = std::getenv("TPF_H2_BLOCK")) options.tcn.validation_block_windows = std::atoi(m);
-  if (const char* m = std::getenv("TPF_H2_WIN")) options.tcn.window_outputs = std::atoi(m);
-  if (const char* m = std::getenv("TPF_H2_SKW")) options.static_to_kinetic_weight = std::atof(m);
-  if (const char* m = std::getenv("TPF_H2_SW")) options.static_weight = std::atof(m);
   // Against the sensor the static-friction estimate τ̂_fric,s (τ_res frozen at rest) holds the
   // rigid body's error, not friction: start from a random network, not from predicting it.
   options.start_from_baseline = sensor_target.cols() == 0;
   options.tcn.max_epochs = o.training_epochs;
-  if (const char* m = std::getenv("TPF_H2_EPOCHS")) options.tcn.max_epochs = std::atoi(m);
   options.tcn.max_seconds = 0.0;
   options.tcn.threads = o.threads;
   options.tcn.seed = o.seed;
@@ -299,21 +287,6 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
         "with or without them, so they get no column of their own.";
 }
 
-// EXPERIMENT: outside the fitting range of q, the memoryless model.
-void h2_domain(const MeasuredData& d, const EffortEstimate& nominal, EffortEstimate& e) {
-  if (!std::getenv("TPF_H2_DOMAIN")) return;
-  for (Eigen::Index j = 0; j < d.fit_samples.q.cols(); ++j) {
-    const double lo = d.fit_samples.q.col(j).minCoeff(), hi = d.fit_samples.q.col(j).maxCoeff();
-    for (Eigen::Index k = 0; k < d.score_samples.size(); ++k) {
-      const double q = d.score_samples.q(k, j);
-      if (q < lo || q > hi) {
-        e.effort(k, j) = nominal.effort(k, j);
-        e.drive_loss(k, j) = nominal.drive_loss(k, j);
-      }
-    }
-  }
-}
-
 /// Stage 3: the per-joint compensators on the fitting files, scored through validate's path:
 /// over the identified model on the current residual, and over the sensor-fitted friction
 /// against the sensor.
@@ -325,7 +298,6 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
   const EstimatorSetup<kMeasuredJoints> setup =
       train_measured_compensator(o, d.fit, identified, {}, "gen3.tcn.json", result.training, say);
   estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, d.score, estimates[0]));
-  h2_domain(d, estimates[0], estimates.back());
   estimates.back().name = "with the compensator";
   say("measured: the same networks over the sensor-fitted friction, trained against the "
       "torque sensor (K_t·i − d − τ_sensor)");
@@ -337,7 +309,6 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
       train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side),
                                  "gen3.tcn-sensor.json", result.sensor_training, say);
   estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, d.score, estimates[1]));
-  h2_domain(d, estimates[1], estimates.back());
   estimates.back().name = "friction against the sensor + compensator trained against it";
 }
 
@@ -391,6 +362,47 @@ MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
   return split;
 }
 
+/// Names of the memoryless models among the forward columns (no compensator, no current filter).
+constexpr std::array<const char*, 3> kMemorylessColumns{
+    "after identification", "friction against the sensor", "diagnose's model"};
+constexpr const char* kSensorCompensatorColumn =
+    "friction against the sensor + compensator trained against it";
+
+/// The best memoryless model per joint on the scoring files and the floor of its residual.
+MeasuredFloor measured_floor(const MeasuredData& d, const MeasuredSplit& split,
+                             const std::vector<EffortEstimate>& estimates, double cutoff_hz,
+                             double target) {
+  MeasuredFloor f;
+  f.cutoff_hz = cutoff_hz;
+  f.target = target;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const int compensator = measured_column(split, kSensorCompensatorColumn);
+  for (std::size_t j = 0; j < split.validation.sensor.size(); ++j) {
+    int best = -1;
+    for (const char* name : kMemorylessColumns) {
+      const int c = measured_column(split, name);
+      if (c >= 0 && std::isfinite(split.columns[c].rmse[j]) &&
+          (best < 0 || split.columns[c].rmse[j] < split.columns[best].rmse[j]))
+        best = c;
+    }
+    f.best_name.push_back(best < 0 ? "" : split.columns[best].name);
+    f.best_rmse.push_back(best < 0 ? nan : split.columns[best].rmse[j]);
+    f.compensator_rmse.push_back(compensator < 0 ? nan : split.columns[compensator].rmse[j]);
+    if (best < 0) {
+      f.floor.push_back(nan);
+      f.model_high.push_back(nan);
+      continue;
+    }
+    // Columns 0, 1 are the maker and Kt only; estimate e is column e + 2.
+    const EffortEstimate& e = estimates[static_cast<std::size_t>(best - 2)];
+    const Eigen::MatrixXd r = sensor_residual_of(d.score, d.score_samples, &e).col(j);
+    const Eigen::MatrixXd loss = e.drive_loss.col(static_cast<Eigen::Index>(j));
+    f.floor.push_back(high_frequency_rms(d.score, d.score_samples.t, r, cutoff_hz)[0]);
+    f.model_high.push_back(high_frequency_rms(d.score, d.score_samples.t, loss, cutoff_hz)[0]);
+  }
+  return f;
+}
+
 }  // namespace
 
 int measured_column(const MeasuredSplit& split, const std::string& name) {
@@ -426,6 +438,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   result.forward.validation = score_estimates(d.score, d.score_samples, estimates);
   result.forward.validation.notes = result.notes;
   result.forward.columns = measured_split_columns(result.forward.validation);
+  result.floor = measured_floor(d, result.forward, estimates, o.floor_cutoff_hz, o.compensator_target);
 
   // What the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");
