@@ -13,8 +13,9 @@ int compensator_input_channel(std::string_view name) {
   for (int c = 0; c < kCompensatorInputsPerJoint; ++c)
     if (name == kCompensatorInputNames[static_cast<std::size_t>(c)]) return c;
   throw Error::at("compensator training", 0, "input",
-                  std::string(name) + " is not a compensator input (q, dq, ddq, static-friction, "
-                                      "nominal-friction)");
+                  std::string(name) +
+                      " is not a compensator input (q, dq, ddq, static-friction, "
+                      "nominal-friction)");
 }
 
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,

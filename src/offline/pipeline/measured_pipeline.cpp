@@ -438,7 +438,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   result.forward.validation = score_estimates(d.score, d.score_samples, estimates);
   result.forward.validation.notes = result.notes;
   result.forward.columns = measured_split_columns(result.forward.validation);
-  result.floor = measured_floor(d, result.forward, estimates, o.floor_cutoff_hz, o.compensator_target);
+  result.floor =
+      measured_floor(d, result.forward, estimates, o.floor_cutoff_hz, o.compensator_target);
 
   // What the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");

@@ -83,12 +83,12 @@ struct MeasuredTraces {
 /// 1 − floor/best.
 struct MeasuredFloor {
   double cutoff_hz = 0.0;
-  double target = 0.0;  ///< MeasuredOptions::compensator_target
-  std::vector<std::string> best_name;  ///< the best memoryless column per joint
-  std::vector<double> best_rmse;       ///< its RMSE [N·m] (NaN: no usable sensor)
+  double target = 0.0;                   ///< MeasuredOptions::compensator_target
+  std::vector<std::string> best_name;    ///< the best memoryless column per joint
+  std::vector<double> best_rmse;         ///< its RMSE [N·m] (NaN: no usable sensor)
   std::vector<double> compensator_rmse;  ///< "… + compensator trained against it" (NaN: none)
   std::vector<double> floor;             ///< RMS of the best model's residual above cutoff_hz
-  std::vector<double> model_high;  ///< RMS of that model's drive loss d above cutoff_hz
+  std::vector<double> model_high;        ///< RMS of that model's drive loss d above cutoff_hz
 };
 
 struct MeasuredResult {

@@ -135,22 +135,23 @@ Table compensator_floor_table(const MeasuredFloor& f) {
               "its d above " + cut + " [N·m]",
               "most a model below " + cut + " can gain",
               "target reachable"};
-  t.caption = "On the held-out files. The floor is the part of the best memoryless model's "
-              "residual K_t·i − d − τ_sensor above " +
-              cut +
-              " (zero-phase 2nd-order Butterworth, per file): the current's noise, which no "
-              "model of the motion predicts (the model's own d has little there). A model whose "
-              "output stays below " +
-              cut + " removes at most the rest: RMSE ≥ floor, a gain of at most 1 − floor/RMSE.";
+  t.caption =
+      "On the held-out files. The floor is the part of the best memoryless model's "
+      "residual K_t·i − d − τ_sensor above " +
+      cut +
+      " (zero-phase 2nd-order Butterworth, per file): the current's noise, which no "
+      "model of the motion predicts (the model's own d has little there). A model whose "
+      "output stays below " +
+      cut + " removes at most the rest: RMSE ≥ floor, a gain of at most 1 − floor/RMSE.";
   for (std::size_t j = 0; j < f.best_rmse.size(); ++j) {
     if (!std::isfinite(f.best_rmse[j])) continue;
     const double best = f.best_rmse[j], gain = 1.0 - f.floor[j] / best;
-    t.rows.push_back({std::to_string(j + 1), f.best_name[j], format_fixed(best, 3),
-                      std::isfinite(f.compensator_rmse[j]) ? rmse_cell(best, f.compensator_rmse[j])
-                                                           : "–",
-                      format_fixed((1.0 - target) * best, 3), format_fixed(f.floor[j], 3),
-                      format_fixed(f.model_high[j], 3), format_sentence("%.1f %%", 100 * gain),
-                      gain >= target ? "yes" : "no"});
+    t.rows.push_back(
+        {std::to_string(j + 1), f.best_name[j], format_fixed(best, 3),
+         std::isfinite(f.compensator_rmse[j]) ? rmse_cell(best, f.compensator_rmse[j]) : "–",
+         format_fixed((1.0 - target) * best, 3), format_fixed(f.floor[j], 3),
+         format_fixed(f.model_high[j], 3), format_sentence("%.1f %%", 100 * gain),
+         gain >= target ? "yes" : "no"});
   }
   return t;
 }
@@ -163,8 +164,7 @@ std::string compensator_floor_sentence(const MeasuredFloor& f) {
       (1.0 - f.floor[j] / f.best_rmse[j] >= target ? open : closed)
           .push_back(std::to_string(j + 1));
   return "The current's noise leaves room for a compensator " +
-         format_sentence("%.0f %%", 100 * target) +
-         " below the best memoryless model on joints " +
+         format_sentence("%.0f %%", 100 * target) + " below the best memoryless model on joints " +
          (open.empty() ? std::string("none") : joined(open, ", ")) + " and none on joints " +
          (closed.empty() ? std::string("none") : joined(closed, ", ")) +
          ": there no model of the motion can meet that target on these files.";
@@ -362,6 +362,8 @@ void add_compensator_section(HtmlReport& page, const MeasuredResult& r, const Me
       r.training.results.empty()
           ? 0
           : static_cast<long>(tcn_parameter_count(r.training.results.front().best.architecture));
+  const std::size_t windows =
+      r.training.results.empty() ? 0 : r.training.training_windows / r.training.results.size();
   page.paragraph(
       "Compensator: one " + std::to_string(o.joint_hidden) +
       "-channel network per joint, trained by tpf train's machinery on the fitting files (" +
@@ -376,15 +378,14 @@ void add_compensator_section(HtmlReport& page, const MeasuredResult& r, const Me
       "network that sees only its own joint cannot predict. The last column sits on the "
       "friction fitted against the sensor and learns K_t·i − d − τ_sensor wherever the sensor "
       "varies (best epochs" +
-      epochs(r.sensor_training) +
-      "). Inputs the networks do not see:" +
-      masked +
+      epochs(r.sensor_training) + "). Inputs the networks do not see:" + masked +
       " (held at 0 in training and removed from the networks): the held-out files move where "
       "the fitting files never went (below), and against the sensor τ̂_fric,s holds the rigid "
       "body's error, not friction. " +
-      std::to_string(parameters) + " coefficients per network against " +
-      std::to_string(r.training.training_windows) + " training windows of " +
-      std::to_string(TcnTrainOptions{}.window_outputs) + " outputs over all joints.");
+      std::to_string(parameters) + " coefficients per network against " + std::to_string(windows) +
+      " training windows of " + std::to_string(TcnTrainOptions{}.window_outputs) +
+      " strongly correlated samples each; a best epoch of 1 or 2 means that training made the "
+      "fitting files' own held-out block worse from the start.");
 }
 
 /// diagnose's findings on the fitting files and its effects against the held-out current.
