@@ -21,10 +21,10 @@ namespace tpf::test {
 namespace {
 
 using MaskedPlanarCompensator =
-    PerJointTcnCompensator<double, 2, kPerJointHiddenSmall, kCompensatorLevels>;
+    PerJointTcnCompensator<double, 2, offline::kPerJointHiddenSmall, kCompensatorLevels>;
 
-// The estimator's trace over a 60 s generator log (rigid body not identified: the networks
-// learn the whole effort, which depends strongly on q through gravity).
+// The estimator's trace over a 60 s generator log (default estimator parameters; rigid body not
+// identified: the networks learn the whole effort, which depends strongly on q through gravity).
 const offline::EstimatorTrace& planar_trace() {
   static const offline::EstimatorTrace trace = [] {
     PlanarArmPlant plant;
@@ -33,8 +33,6 @@ const offline::EstimatorTrace& planar_trace() {
     const offline::Log log = generate_planar_log(plant);
     EstimatorSetup<2> setup;
     setup.nominal.model = load_robot<double, 2>(planar_robot_file());
-    setup.parameters = offline::estimator_parameters_from_noise<2>(
-        offline::estimate_sensor_noise(log, setup.nominal.model.torque_constant));
     return offline::replay_estimator(setup,
                                      offline::estimator_samples<2>(log, setup.nominal.model, 0));
   }();

@@ -307,6 +307,7 @@ std::string measured_headline(const MeasuredResult& r, double target) {
   }
   text += measured_target_sentence(r.forward, target) + "\n";
   text += low_pass_sentence(r) + "\n";
+  if (!r.floor.best_rmse.empty()) text += compensator_floor_sentence(r.floor) + "\n";
   if (!r.diagnosis_heldout.empty()) text += diagnosis_transfer_sentence(r) + "\n";
   std::vector<std::string> claimed;
   for (const SensorCandidate& c : r.candidates)
