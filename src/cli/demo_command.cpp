@@ -45,6 +45,11 @@ void register_demo_command(CLI::App& app) {
   cmd->add_option("--measured-epochs", o->measured.training_epochs,
                   "training budget of the measured compensator: epochs per network")
       ->capture_default_str();
+  cmd->add_flag_callback(
+      "--measured-every-input", [o] { o->measured.compensator_masked_inputs.clear(); },
+      "the measured compensator sees every input (q and τ̂_fric,s too; by default it does not: "
+      "the held-out files move outside the fitting files' range of q, and against the sensor "
+      "τ̂_fric,s holds the rigid body's error)");
   cmd->callback([o, out] {
     o->out = *out;
     if (!o->run_twin && !o->run_measured)

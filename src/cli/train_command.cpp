@@ -28,6 +28,7 @@ struct TrainCommandOptions {
   double static_to_kinetic_weight =
       tpf::offline::CompensatorTrainingOptions{}.static_to_kinetic_weight;
   double static_weight = tpf::offline::CompensatorTrainingOptions{}.static_weight;
+  std::vector<std::string> without;
   tpf::offline::TcnTrainOptions tcn;
 };
 
@@ -60,6 +61,8 @@ void run_train(TrainCommandOptions o) {
   options.joint_hidden = o.joint_hidden;
   options.static_to_kinetic_weight = o.static_to_kinetic_weight;
   options.static_weight = o.static_weight;
+  for (const std::string& name : o.without)
+    options.masked_inputs.push_back(compensator_input_channel(name));
   const CompensatorTraining result = train_compensator(
       traces, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
   for (const std::string& p : write_compensator(result, o.out))
@@ -125,6 +128,13 @@ void register_train_command(CLI::App& app) {
   cmd->add_option("--rest-weight", o->static_weight,
                   "Loss weight of static samples (moving samples weigh 1)")
       ->capture_default_str();
+  cmd->add_option("--without-input", o->without,
+                  "A joint input the networks must not see (repeatable): q, dq, ddq, "
+                  "static-friction, nominal-friction. Held at 0 in training and removed from the "
+                  "written networks, whose output then does not depend on it; e.g. q: friction "
+                  "memory independent of where the joint is, for data that do not cover the "
+                  "joint's range")
+      ->check(CLI::IsMember({"q", "dq", "ddq", "static-friction", "nominal-friction"}));
   cmd->add_flag("--quiet", o->quiet, "No progress bar");
   cmd->callback([o] { run_train(*o); });
 }

@@ -99,6 +99,29 @@ void expect_report_and_json(const std::filesystem::path& out, const MeasuredResu
   EXPECT_EQ(json.at("candidates").size(), r.candidates.size());
 }
 
+// The floor: the best memoryless model's residual above 20 Hz is the current's noise (its own d
+// has a fraction of it there), and on joints 1, 3, 4, 5 it leaves less than the compensator
+// target's 30 % to gain (measured 17.6–25.3 %).
+void expect_noise_floor(const std::filesystem::path& out, const MeasuredFloor& f) {
+  ASSERT_EQ(f.best_rmse.size(), 7u);
+  EXPECT_EQ(f.cutoff_hz, 20.0);
+  for (std::size_t j = 0; j < 6; ++j) {
+    EXPECT_GT(f.floor[j], 0.3 * f.best_rmse[j]) << "joint " << j + 1;
+    EXPECT_LT(f.floor[j], f.best_rmse[j]) << "joint " << j + 1;
+    EXPECT_LT(f.model_high[j], 0.5 * f.floor[j]) << "joint " << j + 1;
+    EXPECT_TRUE(std::isnan(f.compensator_rmse[j])) << "no compensator trained here";
+  }
+  for (std::size_t j : {0u, 2u, 3u, 4u})
+    EXPECT_LT(1.0 - f.floor[j] / f.best_rmse[j], f.target) << "joint " << j + 1;
+  EXPECT_TRUE(std::isnan(f.best_rmse[6])) << "joint 7's sensor is flat";
+  const auto json = nlohmann::json::parse(read_measured_text(out / "measured.json"));
+  const auto& joints = json.at("compensator_floor").at("joints");
+  ASSERT_EQ(joints.size(), 7u);
+  EXPECT_DOUBLE_EQ(joints.at(1).at("floor_rmse").get<double>(), f.floor[1]);
+  EXPECT_FALSE(joints.at(0).at("target_reachable").get<bool>());
+  EXPECT_NE(read_measured_text(out / "measured.html").find("noise floor"), std::string::npos);
+}
+
 TEST(MeasuredLoop, BeatsKtOnlyHeldOutByFileAndReportsIt) {
   DemoOptions o;
   o.out =
@@ -115,6 +138,7 @@ TEST(MeasuredLoop, BeatsKtOnlyHeldOutByFileAndReportsIt) {
   expect_claims_only_where_the_heldout_error_falls(r.candidates);
   expect_facts_from_the_files(r.facts);
   expect_report_and_json(o.out, r);
+  expect_noise_floor(o.out, r.floor);
   std::filesystem::remove_all(o.out);
 }
 

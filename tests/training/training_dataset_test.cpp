@@ -152,6 +152,57 @@ TEST(TrainingFeatures, ScaledHeadsScaleTheStreamingOutputExactly) {
   }
 }
 
+TEST(TrainingFeatures, MaskedInputIsIgnoredAndExactWhereItWasHeldAtZero) {
+  using JointTcn = Tcn<double, kCompensatorInputsPerJoint, 16, 4>;
+  TcnArchitecture a;
+  a.inputs = kCompensatorInputsPerJoint;
+  a.hidden = 16;
+  TcnParameters p = init_tcn_parameters(a, 5);
+  p.input_mean = Eigen::VectorXd::LinSpaced(a.inputs, -1.0, 1.0);
+  p.input_std = Eigen::VectorXd::LinSpaced(a.inputs, 0.5, 2.0);
+  p.input_mean[0] = 0.0;  // as the trainer normalises a channel held at 0
+  p.input_std[0] = 1.0;
+  TcnParameters masked = p;
+  mask_tcn_inputs(masked, {0});
+  auto plain = std::make_unique<JointTcn>(), without = std::make_unique<JointTcn>(),
+       shifted = std::make_unique<JointTcn>();
+  tcn_weights_from_file(to_weight_file(p), plain->weights());
+  tcn_weights_from_file(to_weight_file(masked), without->weights());
+  tcn_weights_from_file(to_weight_file(masked), shifted->weights());
+  plain->reset(JointTcn::Input::Zero());
+  without->reset(JointTcn::Input::Zero());
+  JointTcn::Input steady = JointTcn::Input::Zero();
+  steady[0] = 2.0;  // only q differs
+  shifted->reset(steady);
+  double moved = 0.0;
+  for (int k = 0; k < 80; ++k) {
+    JointTcn::Input x = JointTcn::Input::LinSpaced(0.1 * k, 0.3 * k + 1.0).array().sin();
+    x[0] = 0.0;
+    // Where q was held at 0 (the training data), masking changes nothing.
+    EXPECT_EQ(without->step(x)[0], plain->step(x)[0]);
+    // Any other q: the masked network's output is the same, bit for bit.
+    JointTcn::Input y = x;
+    y[0] = 3.0 * std::sin(0.7 * k) + 2.0;
+    EXPECT_EQ(shifted->step(y)[0], without->output()[0]);
+    moved = std::max(moved, std::abs(plain->output()[0]));
+  }
+  EXPECT_GT(moved, 0.0);
+  // The unmasked network does move with q, so the checks above can fail.
+  auto seeing = std::make_unique<JointTcn>();
+  tcn_weights_from_file(to_weight_file(p), seeing->weights());
+  JointTcn::Input x = JointTcn::Input::Constant(0.5);
+  seeing->reset(x);
+  const double at_zero = seeing->step(x)[0];
+  x[0] = 2.0;
+  EXPECT_NE(seeing->step(x)[0], at_zero);
+
+  EXPECT_THROW(mask_tcn_inputs(masked, {kCompensatorInputsPerJoint}), Error);
+  TcnArchitecture square = a;
+  square.hidden = a.inputs;  // no input projection: its identity skip would still pass q
+  TcnParameters no_projection = init_tcn_parameters(square, 1);
+  EXPECT_THROW(mask_tcn_inputs(no_projection, {0}), Error);
+}
+
 TEST(TrainingFeatures, WeightFilesOfTheOldFourInputSizeAreRefusedNamingTheFile) {
   // Per-joint files written before τ_fric,nom joined the input (4 inputs per joint).
   const auto dir =

@@ -9,6 +9,15 @@
 
 namespace tpf::offline {
 
+int compensator_input_channel(std::string_view name) {
+  for (int c = 0; c < kCompensatorInputsPerJoint; ++c)
+    if (name == kCompensatorInputNames[static_cast<std::size_t>(c)]) return c;
+  throw Error::at("compensator training", 0, "input",
+                  std::string(name) +
+                      " is not a compensator input (q, dq, ddq, static-friction, "
+                      "nominal-friction)");
+}
+
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const CompensatorTrainingOptions& options,
                                       const TcnProgressCallback& progress) {
@@ -30,6 +39,13 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     TcnTrainOptions o = options.tcn;
     for (const EstimatorTrace& trace : traces) {
       TcnSequence sequence = training_sequence(trace, joint);
+      for (int c : options.masked_inputs) {
+        if (c < 0 || c >= kCompensatorInputsPerJoint)
+          throw Error::at("compensator training", 0, "masked_inputs",
+                          "channel " + std::to_string(c) + " is not a compensator input");
+        for (int k = 0; k < (options.per_joint ? 1 : joints); ++k)
+          sequence.inputs.col(options.per_joint ? c : c * joints + k).setZero();
+      }
       sequence.weight = regime_weights(trace, joint, options.static_weight,
                                        options.static_to_kinetic_weight, options.regimes);
       dataset.sequences.push_back(std::move(sequence));
@@ -48,12 +64,21 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     Eigen::VectorXi baseline(o.architecture.outputs);
     for (int k = 0; k < o.architecture.outputs; ++k)
       baseline[k] = options.per_joint ? 3 : 3 * joints + k;
+    // The baseline start predicts τ̂_fric,s: not when the networks do not see it.
+    bool sees_static_friction = true;
+    for (int c : options.masked_inputs)
+      sees_static_friction = sees_static_friction && c != kStaticFrictionInput;
     TcnTrainResult result =
-        options.start_from_baseline
+        options.start_from_baseline && sees_static_friction
             ? trainer.train(baseline_start(o.architecture, o.seed, trainer.input_mean(),
                                            trainer.input_std(), baseline),
                             progress)
             : trainer.train(progress);
+    std::vector<int> masked;
+    for (int c : options.masked_inputs)
+      for (int k = 0; k < (options.per_joint ? 1 : joints); ++k)
+        masked.push_back(options.per_joint ? c : c * joints + k);
+    mask_tcn_inputs(result.best, masked);
     out.files.push_back(to_weight_file(result.best));
     out.results.push_back(std::move(result));
   }

@@ -2,7 +2,9 @@
 // → TcnTrainer → weight files (torque inputs and outputs in N·m).
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 #include "offline/compensator_training/tcn_trainer.hpp"
@@ -11,6 +13,19 @@
 #include "tpf/nn/tcn_weight_file.hpp"
 
 namespace tpf::offline {
+
+/// Channel of q_j in a joint's compensator input.
+inline constexpr int kPositionInput = 0;
+/// Channel of τ̂_fric,s,j (the static-friction estimate) in a joint's compensator input.
+inline constexpr int kStaticFrictionInput = 3;
+
+/// Names of a joint's compensator inputs by channel: q, dq, ddq, static-friction,
+/// nominal-friction (what tpf train --without-input takes).
+inline constexpr std::array<const char*, kCompensatorInputsPerJoint> kCompensatorInputNames{
+    "q", "dq", "ddq", "static-friction", "nominal-friction"};
+
+/// The channel of an input named as in kCompensatorInputNames; throws tpf::Error otherwise.
+int compensator_input_channel(std::string_view name);
 
 struct CompensatorTrainingOptions {
   /// Trainer options; the architecture is set from the layout (inputs, outputs, hidden, levels =
@@ -21,12 +36,18 @@ struct CompensatorTrainingOptions {
   /// Hidden channels of a per-joint network: kPerJointHiddenSmall or kPerJointHiddenLarge (the
   /// all-joints network has kAllJointsHidden).
   int joint_hidden = kPerJointHiddenSmall;
-  /// Start from baseline_start (the network predicts τ̂_fric,s) instead of a random network.
+  /// Start from baseline_start (the network predicts τ̂_fric,s) instead of a random network
+  /// (ignored when static-friction is a masked input).
   bool start_from_baseline = true;
   /// Per-sample loss weights by regime (regime_weights): break-away and rest count this many
   /// times a moving sample.
   double static_to_kinetic_weight = 10.0;
   double static_weight = 3.0;
+  /// Input channels per joint (0 q, 1 q̇, 2 q̈, 3 τ̂_fric,s, 4 τ_fric,nom) the networks must not
+  /// see: held at 0 in training and removed from block 0 of the written networks
+  /// (mask_tcn_inputs), so the output does not depend on them. E.g. {kPositionInput}: friction
+  /// memory that does not depend on where the joint is (tpf train --without-input q).
+  std::vector<int> masked_inputs;
   /// Labelling of the regimes for the weights (the static-to-kinetic window after |q̇| crosses
   /// static_velocity lasts fallback_transition_s).
   RegimeOptions regimes;

@@ -52,4 +52,21 @@ void scale_tcn_outputs(TcnParameters& p, const Eigen::VectorXd& scale) {
   p.high_bias = p.high_bias.cwiseProduct(scale);
 }
 
+void mask_tcn_inputs(TcnParameters& p, const std::vector<int>& channels) {
+  for (int c : channels) {
+    if (c < 0 || c >= p.architecture.inputs || p.blocks.empty())
+      throw Error::at("tcn parameters", 0, "inputs",
+                      "masked channel " + std::to_string(c) + " out of range");
+    TcnBlockParameters& first = p.blocks.front();
+    if (first.projection.size() == 0)
+      throw Error::at("tcn parameters", 0, "inputs",
+                      "cannot mask an input of a network without an input projection");
+    for (auto& w : first.taps)
+      w.col(c).setZero();
+    first.projection.col(c).setZero();
+    p.input_mean[c] = 0.0;
+    p.input_std[c] = 1.0;
+  }
+}
+
 }  // namespace tpf::offline

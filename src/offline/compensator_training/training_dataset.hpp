@@ -35,4 +35,11 @@ Eigen::MatrixXd regime_weights(const EstimatorTrace& trace, int joint, double st
 /// the outputs of old weight files from mA to N·m with it).
 void scale_tcn_outputs(TcnParameters& parameters, const Eigen::VectorXd& scale);
 
+/// Removes input channel c of `parameters` for every c in `channels`: zeroes its columns in block
+/// 0 (every tap and the projection) and sets its normalisation to mean 0, std 1. The network's
+/// output then does not depend on that input at all. Exact on data where the channel was held at
+/// 0 (what train_compensator trains a masked channel on). Throws tpf::Error for a channel out of
+/// range.
+void mask_tcn_inputs(TcnParameters& parameters, const std::vector<int>& channels);
+
 }  // namespace tpf::offline

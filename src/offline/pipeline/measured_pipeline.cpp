@@ -1,5 +1,6 @@
 #include "offline/pipeline/measured_pipeline.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include "offline/replay/replay_estimator.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
+#include "offline/validate/noise_floor.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -132,6 +134,7 @@ EstimatorSetup<kMeasuredJoints> train_measured_compensator(
   CompensatorTrainingOptions options;
   options.per_joint = true;
   options.joint_hidden = o.joint_hidden;
+  options.masked_inputs = o.compensator_masked_inputs;
   // Against the sensor the static-friction estimate τ̂_fric,s (τ_res frozen at rest) holds the
   // rigid body's error, not friction: start from a random network, not from predicting it.
   options.start_from_baseline = sensor_target.cols() == 0;
@@ -359,6 +362,47 @@ MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
   return split;
 }
 
+/// Names of the memoryless models among the forward columns (no compensator, no current filter).
+constexpr std::array<const char*, 3> kMemorylessColumns{
+    "after identification", "friction against the sensor", "diagnose's model"};
+constexpr const char* kSensorCompensatorColumn =
+    "friction against the sensor + compensator trained against it";
+
+/// The best memoryless model per joint on the scoring files and the floor of its residual.
+MeasuredFloor measured_floor(const MeasuredData& d, const MeasuredSplit& split,
+                             const std::vector<EffortEstimate>& estimates, double cutoff_hz,
+                             double target) {
+  MeasuredFloor f;
+  f.cutoff_hz = cutoff_hz;
+  f.target = target;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const int compensator = measured_column(split, kSensorCompensatorColumn);
+  for (std::size_t j = 0; j < split.validation.sensor.size(); ++j) {
+    int best = -1;
+    for (const char* name : kMemorylessColumns) {
+      const int c = measured_column(split, name);
+      if (c >= 0 && std::isfinite(split.columns[c].rmse[j]) &&
+          (best < 0 || split.columns[c].rmse[j] < split.columns[best].rmse[j]))
+        best = c;
+    }
+    f.best_name.push_back(best < 0 ? "" : split.columns[best].name);
+    f.best_rmse.push_back(best < 0 ? nan : split.columns[best].rmse[j]);
+    f.compensator_rmse.push_back(compensator < 0 ? nan : split.columns[compensator].rmse[j]);
+    if (best < 0) {
+      f.floor.push_back(nan);
+      f.model_high.push_back(nan);
+      continue;
+    }
+    // Columns 0, 1 are the maker and Kt only; estimate e is column e + 2.
+    const EffortEstimate& e = estimates[static_cast<std::size_t>(best - 2)];
+    const Eigen::MatrixXd r = sensor_residual_of(d.score, d.score_samples, &e).col(j);
+    const Eigen::MatrixXd loss = e.drive_loss.col(static_cast<Eigen::Index>(j));
+    f.floor.push_back(high_frequency_rms(d.score, d.score_samples.t, r, cutoff_hz)[0]);
+    f.model_high.push_back(high_frequency_rms(d.score, d.score_samples.t, loss, cutoff_hz)[0]);
+  }
+  return f;
+}
+
 }  // namespace
 
 int measured_column(const MeasuredSplit& split, const std::string& name) {
@@ -394,6 +438,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   result.forward.validation = score_estimates(d.score, d.score_samples, estimates);
   result.forward.validation.notes = result.notes;
   result.forward.columns = measured_split_columns(result.forward.validation);
+  result.floor =
+      measured_floor(d, result.forward, estimates, o.floor_cutoff_hz, o.compensator_target);
 
   // What the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");

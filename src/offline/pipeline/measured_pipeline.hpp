@@ -39,11 +39,20 @@ struct MeasuredOptions {
   int friction_samples_per_joint = IdentifyOptions{}.friction_samples_per_joint;
   int training_epochs = 40;  ///< per network (reproducible: an epoch budget)
   int joint_hidden = kPerJointHiddenSmall;
+  /// Compensator inputs the networks do not see (CompensatorTrainingOptions::masked_inputs):
+  /// q (the held-out files move where the fitting files never went) and τ̂_fric,s (against the
+  /// sensor it holds the rigid body's error, not friction).
+  std::vector<int> compensator_masked_inputs{kPositionInput, kStaticFrictionInput};
+  /// Cut-off [Hz] above which the residual counts as noise a model of the motion cannot reach
+  /// (MeasuredFloor).
+  double floor_cutoff_hz = 20.0;
   std::uint64_t seed = 1;
   int threads = 2;
   /// The target: the current-based joint torque this much closer to the sensor than the
   /// maker's own current-based torque.
   double target_reduction = 0.60;
+  /// The compensator's target: this much below the best memoryless model's RMSE.
+  double compensator_target = 0.30;
 };
 
 /// One column of a measured table: an estimate's RMSE against the sensor on the held-out files.
@@ -67,6 +76,21 @@ struct MeasuredTraces {
   std::vector<Eigen::MatrixXd> residual;  ///< per name
 };
 
+/// Per joint, on the held-out files: the best memoryless model, the compensator trained against
+/// the sensor, and the error floor set by the current's noise. The floor is the RMS of the best
+/// memoryless model's residual K_t·i − d − τ_sensor above cutoff_hz; a model whose output has no
+/// content there cannot go below it, so it can beat the best memoryless model by at most
+/// 1 − floor/best.
+struct MeasuredFloor {
+  double cutoff_hz = 0.0;
+  double target = 0.0;                   ///< MeasuredOptions::compensator_target
+  std::vector<std::string> best_name;    ///< the best memoryless column per joint
+  std::vector<double> best_rmse;         ///< its RMSE [N·m] (NaN: no usable sensor)
+  std::vector<double> compensator_rmse;  ///< "… + compensator trained against it" (NaN: none)
+  std::vector<double> floor;             ///< RMS of the best model's residual above cutoff_hz
+  std::vector<double> model_high;        ///< RMS of that model's drive loss d above cutoff_hz
+};
+
 struct MeasuredResult {
   MeasuredSplit forward, reverse;  ///< reverse.columns empty when not run
   std::vector<std::string> diagnosis_findings, diagnosis_notes;
@@ -82,6 +106,7 @@ struct MeasuredResult {
   Eigen::VectorXd low_pass_time_constants;
   Eigen::VectorXd reverse_low_pass_time_constants;  ///< the same, chosen for the reverse split
   MeasuredFacts facts;
+  MeasuredFloor floor;
   CompensatorTraining training;         ///< on the current residual (tpf train's target)
   CompensatorTraining sensor_training;  ///< on K_t·i − d − τ_sensor where the sensor varies
   MeasuredTraces traces;

@@ -122,6 +122,54 @@ std::string diagnosis_transfer_sentence(const MeasuredResult& r) {
          "(few reversals, motions outside the fitting files' range).";
 }
 
+Table compensator_floor_table(const MeasuredFloor& f) {
+  const double target = f.target;
+  Table t;
+  const std::string cut = format_number(f.cutoff_hz, 3) + " Hz";
+  t.header = {"joint",
+              "best memoryless model",
+              "its RMSE [N·m]",
+              "compensator trained against the sensor [N·m] (change)",
+              "target −" + format_number(100 * target, 3) + " % [N·m]",
+              "its residual above " + cut + " (floor) [N·m]",
+              "its d above " + cut + " [N·m]",
+              "most a model below " + cut + " can gain",
+              "target reachable"};
+  t.caption =
+      "On the held-out files. The floor is the part of the best memoryless model's "
+      "residual K_t·i − d − τ_sensor above " +
+      cut +
+      " (zero-phase 2nd-order Butterworth, per file): the current's noise, which no "
+      "model of the motion predicts (the model's own d has little there). A model whose "
+      "output stays below " +
+      cut + " removes at most the rest: RMSE ≥ floor, a gain of at most 1 − floor/RMSE.";
+  for (std::size_t j = 0; j < f.best_rmse.size(); ++j) {
+    if (!std::isfinite(f.best_rmse[j])) continue;
+    const double best = f.best_rmse[j], gain = 1.0 - f.floor[j] / best;
+    t.rows.push_back(
+        {std::to_string(j + 1), f.best_name[j], format_fixed(best, 3),
+         std::isfinite(f.compensator_rmse[j]) ? rmse_cell(best, f.compensator_rmse[j]) : "–",
+         format_fixed((1.0 - target) * best, 3), format_fixed(f.floor[j], 3),
+         format_fixed(f.model_high[j], 3), format_sentence("%.1f %%", 100 * gain),
+         gain >= target ? "yes" : "no"});
+  }
+  return t;
+}
+
+std::string compensator_floor_sentence(const MeasuredFloor& f) {
+  const double target = f.target;
+  std::vector<std::string> open, closed;
+  for (std::size_t j = 0; j < f.best_rmse.size(); ++j)
+    if (std::isfinite(f.best_rmse[j]))
+      (1.0 - f.floor[j] / f.best_rmse[j] >= target ? open : closed)
+          .push_back(std::to_string(j + 1));
+  return "The current's noise leaves room for a compensator " +
+         format_sentence("%.0f %%", 100 * target) + " below the best memoryless model on joints " +
+         (open.empty() ? std::string("none") : joined(open, ", ")) + " and none on joints " +
+         (closed.empty() ? std::string("none") : joined(closed, ", ")) +
+         ": there no model of the motion can meet that target on these files.";
+}
+
 std::string low_pass_sentence(const MeasuredResult& r) {
   std::string taus;
   for (Eigen::Index j = 0; j < r.low_pass_time_constants.size(); ++j)
@@ -259,6 +307,7 @@ std::string measured_headline(const MeasuredResult& r, double target) {
   }
   text += measured_target_sentence(r.forward, target) + "\n";
   text += low_pass_sentence(r) + "\n";
+  if (!r.floor.best_rmse.empty()) text += compensator_floor_sentence(r.floor) + "\n";
   if (!r.diagnosis_heldout.empty()) text += diagnosis_transfer_sentence(r) + "\n";
   std::vector<std::string> claimed;
   for (const SensorCandidate& c : r.candidates)
@@ -305,6 +354,17 @@ void add_compensator_section(HtmlReport& page, const MeasuredResult& r, const Me
       text.append(" ").append(std::to_string(n.best_epoch));
     return text;
   };
+  std::string masked;
+  for (int c : o.compensator_masked_inputs)
+    masked += std::string(masked.empty() ? " " : ", ") +
+              kCompensatorInputNames[static_cast<std::size_t>(c)];
+  if (masked.empty()) masked = " none";
+  const long parameters =
+      r.training.results.empty()
+          ? 0
+          : static_cast<long>(tcn_parameter_count(r.training.results.front().best.architecture));
+  const std::size_t windows =
+      r.training.results.empty() ? 0 : r.training.training_windows / r.training.results.size();
   page.paragraph(
       "Compensator: one " + std::to_string(o.joint_hidden) +
       "-channel network per joint, trained by tpf train's machinery on the fitting files (" +
@@ -319,9 +379,14 @@ void add_compensator_section(HtmlReport& page, const MeasuredResult& r, const Me
       "network that sees only its own joint cannot predict. The last column sits on the "
       "friction fitted against the sensor and learns K_t·i − d − τ_sensor wherever the sensor "
       "varies (best epochs" +
-      epochs(r.sensor_training) +
-      "). Both take q as an input, and the held-out files move where the fitting files never "
-      "went (below), so the networks extrapolate.");
+      epochs(r.sensor_training) + "). Inputs the networks do not see:" + masked +
+      " (held at 0 in training and removed from the networks): the held-out files move where "
+      "the fitting files never went (below), and against the sensor τ̂_fric,s holds the rigid "
+      "body's error, not friction. " +
+      std::to_string(parameters) + " coefficients per network against " + std::to_string(windows) +
+      " training windows of " + std::to_string(TcnTrainOptions{}.window_outputs) +
+      " strongly correlated samples each; a best epoch of 1 or 2 means that training made the "
+      "fitting files' own held-out block worse from the start.");
 }
 
 /// diagnose's findings on the fitting files and its effects against the held-out current.
@@ -358,6 +423,11 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
   page.paragraph(low_pass_sentence(r));
   if (!r.reverse.columns.empty()) add_reverse_section(page, r, o);
   if (!r.training.results.empty()) add_compensator_section(page, r, o);
+  if (!r.floor.best_rmse.empty()) {
+    page.heading("The compensator against the best memoryless model, and the noise floor", 3);
+    page.table(compensator_floor_table(r.floor));
+    page.paragraph(compensator_floor_sentence(r.floor));
+  }
   if (!r.diagnosis_heldout.empty()) add_diagnosis_section(page, r);
   page.heading("What the residual holds: candidates against the sensor");
   page.table(candidate_table(r));
@@ -425,6 +495,21 @@ std::string measured_json(const MeasuredResult& r, double target) {
                     {"effort_on_scoring_files", effort},
                     {"findings", r.diagnosis_findings},
                     {"not_seen_by_the_sensor", r.diagnosis_unseen}};
+  if (!r.floor.best_rmse.empty()) {
+    json floor{{"cutoff_hz", r.floor.cutoff_hz}, {"target_below_best", r.floor.target}};
+    for (std::size_t k = 0; k < r.floor.best_rmse.size(); ++k) {
+      const double most = 1.0 - r.floor.floor[k] / r.floor.best_rmse[k];
+      floor["joints"].push_back({{"joint", k + 1},
+                                 {"best_memoryless", r.floor.best_name[k]},
+                                 {"best_rmse", number(r.floor.best_rmse[k])},
+                                 {"compensator_rmse", number(r.floor.compensator_rmse[k])},
+                                 {"floor_rmse", number(r.floor.floor[k])},
+                                 {"model_above_cutoff_rmse", number(r.floor.model_high[k])},
+                                 {"most_reduction", number(most)},
+                                 {"target_reachable", most >= r.floor.target}});
+    }
+    j["compensator_floor"] = floor;
+  }
   j["facts"] = measured_fact_lines(r.facts);
   return j.dump(2);
 }

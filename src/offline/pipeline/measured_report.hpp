@@ -26,6 +26,13 @@ std::string diagnosis_transfer_sentence(const MeasuredResult& result);
 /// The candidates tested against the sensor: held-out change per joint, claimed or not.
 Table candidate_table(const MeasuredResult& result);
 
+/// Per joint: the best memoryless model, the compensator against it, the compensator target and
+/// the noise floor (MeasuredFloor, its target) with the most any model of the motion could gain.
+Table compensator_floor_table(const MeasuredFloor& floor);
+
+/// Joints (1-based) on which the floor leaves room for the compensator target, as a sentence.
+std::string compensator_floor_sentence(const MeasuredFloor& floor);
+
 /// What the sensor-fitted friction and the current low-pass columns are, with the time constants
 /// chosen.
 std::string low_pass_sentence(const MeasuredResult& result);

@@ -238,9 +238,9 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
     for (std::size_t j = 0; j < facts.outside_share.size(); ++j)
       line += (j ? " / " : " ") + format_sentence("%.0f %%", 100 * facts.outside_share[j]);
     lines.push_back(line +
-                    ". A model of q (the rigid body, a position ripple, the compensator, whose "
-                    "inputs include q) extrapolates there; the compensator's domain at run time "
-                    "bounds q̇ and q̈, not q.");
+                    ". A model of q (the rigid body, a position ripple, a compensator that sees "
+                    "q) extrapolates there, so the measured compensator does not see q; the "
+                    "compensator's domain at run time bounds q̇ and q̈, not q.");
   }
   for (const RepeatedMotion& r : facts.repeats) {
     std::string line =

@@ -1,0 +1,36 @@
+#include "offline/validate/noise_floor.hpp"
+
+#include <cmath>
+
+#include "offline/signal/acceleration.hpp"
+
+namespace tpf::offline {
+
+std::vector<double> high_frequency_rms(const Log& log, const Eigen::VectorXd& t,
+                                       const Eigen::MatrixXd& x, double cutoff_hz) {
+  Eigen::MatrixXd high = Eigen::MatrixXd::Constant(x.rows(), x.cols(), std::nan(""));
+  for (std::size_t f = 0; f < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    const Eigen::Index n = end - begin;
+    if (n < 3) continue;
+    for (Eigen::Index j = 0; j < x.cols(); ++j) {
+      const Eigen::VectorXd part = x.col(j).segment(begin, n);
+      high.col(j).segment(begin, n) =
+          part - zero_phase_low_pass(t.segment(begin, n), part, cutoff_hz);
+    }
+  }
+  return finite_rms(high);
+}
+
+std::vector<double> finite_rms(const Eigen::MatrixXd& x) {
+  std::vector<double> out;
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    double sum = 0, count = 0;
+    for (Eigen::Index k = 0; k < x.rows(); ++k)
+      if (std::isfinite(x(k, j))) sum += x(k, j) * x(k, j), ++count;
+    out.push_back(count > 0 ? std::sqrt(sum / count) : std::nan(""));
+  }
+  return out;
+}
+
+}  // namespace tpf::offline

@@ -1,0 +1,21 @@
+// The error floor of a model of the drive loss from the motion: the part of the residual
+// K_t·i − d − τ_sensor above a cut-off that the motion does not reach (the current's noise).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "offline/log/log.hpp"
+
+namespace tpf::offline {
+
+/// Per column of `x` (samples × joints, rows = log's rows): RMS over the finite samples of
+/// x − zero_phase_low_pass(x, cutoff_hz), the low-pass run within each file of `log` (and each
+/// NaN-free stretch) on the times `t`; NaN for a column without finite samples.
+std::vector<double> high_frequency_rms(const Log& log, const Eigen::VectorXd& t,
+                                       const Eigen::MatrixXd& x, double cutoff_hz);
+
+/// Per column: RMS over the finite samples (NaN when none).
+std::vector<double> finite_rms(const Eigen::MatrixXd& x);
+
+}  // namespace tpf::offline
