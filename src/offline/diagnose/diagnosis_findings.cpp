@@ -135,6 +135,7 @@ void add_unexplained(const EffectDiagnosis& d, std::vector<std::string>& finding
 std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
                                             const DiagnoseOptions& options) {
   std::vector<std::string> findings;
+  if (!d.heldout_split.empty()) findings.push_back(d.heldout_split);
   if (d.cad_payload.claimed) findings.push_back(payload_finding(d.cad_payload));
   const bool untransferred =
       std::any_of(d.trials.begin(), d.trials.end(),
