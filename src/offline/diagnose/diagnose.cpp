@@ -318,6 +318,10 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   const FileSplit split = split_by_file(log, out.samples, options.repeat_tolerance);
   out.heldout_split = split_sentence(log, split, options.repeat_tolerance);
   const JointSamples& s = out.samples;
+  std::vector<char> training(s.heldout.size());
+  for (std::size_t k = 0; k < training.size(); ++k)
+    training[k] = !s.heldout[k];
+  out.fit_range = position_range(s, training);
   const double threshold = options.samples.regimes.static_velocity;
   FitSelection selection;  // fit on moving samples: friction at rest has memory
   selection.regimes = {false, true, true};

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "offline/identify/effect_design.hpp"
@@ -33,9 +34,6 @@ struct DiagnoseOptions {
   /// Several files: two files repeat one motion when the RMS of Δq over their common length is
   /// below this on every joint [rad] (repeated_motions); such files are held out together.
   double repeat_tolerance = 0.01;
-  /// An effect that extrapolates in q is tested outside the fit's range of q on a held-out group
-  /// with at least this many moving samples of its joint there.
-  double min_outside_samples = 1;
   ProgressLine progress;
 };
 
@@ -127,6 +125,8 @@ struct EffectDiagnosis {
   /// The held-out split in a sentence: which files are held out, and which are grouped because
   /// they repeat one motion (empty for a one-file log).
   std::string heldout_split;
+  /// Per joint: [min, max] of q over the selection's training samples.
+  std::vector<std::pair<double, double>> fit_range;
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
   std::vector<std::string> notes;     ///< skipped candidates and why
   CadPayloadCheck cad_payload;

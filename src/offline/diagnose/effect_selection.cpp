@@ -161,7 +161,7 @@ class ForwardSelection {
     if (trial.extrapolates)
       for (const OutsideFold& fold : outside_) {
         const double samples = moving_heldout_count(fold.grams, group.joint);
-        if (samples < options_.min_outside_samples) continue;
+        if (samples <= 0) continue;  // the group never leaves the range: not a test
         const double gain = fold_improvement(fold.grams, reference, trial_columns, group.joint);
         if (!(gain >= trial.outside_improvement)) {
           trial.outside_improvement = gain;
