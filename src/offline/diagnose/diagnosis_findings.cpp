@@ -67,8 +67,11 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
                                   g.joint + 1.0, d.fit_range[g.joint].first,
                                   d.fit_range[g.joint].second)
                 : format_sentence(" Its term extrapolates in q: on the %.0f held-out samples "
-                                  "outside the range of q the fit saw it removes %.1f %%.",
-                                  t->outside_samples, 100 * t->outside_improvement);
+                                  "of ",
+                                  t->outside_samples) +
+                      t->outside_file +
+                      format_sentence(" outside the range of q the fit saw it removes %.1f %%.",
+                                      100 * t->outside_improvement);
   if (!c.written && g.written_to == WrittenTo::kNothing)
     text +=
         " Not written to the parameter file: the run-time nominal model cannot evaluate it "
