@@ -127,8 +127,9 @@ std::string split_sentence(const Log& log, const FileSplit& split, double tolera
   const std::vector<std::size_t>& held = split.groups[split.selection_group];
   std::string text = "Held out by file: " + file_names(log, held) + " (fitted on the other files)";
   if (split.groups.size() == 1)
-    return text + "; every file repeats one motion, so no other file is held out in turn and the "
-                  "held-out test is not independent of the fit.";
+    return text +
+           "; every file repeats one motion, so no other file is held out in turn and the "
+           "held-out test is not independent of the fit.";
   text += "; for the transfer test, in turn:";
   for (std::size_t g = 0; g < split.groups.size(); ++g)
     if (g != split.selection_group) {
@@ -139,10 +140,10 @@ std::string split_sentence(const Log& log, const FileSplit& split, double tolera
   for (const RepeatedMotion& r : split.repeats)
     text += std::string(" ") + file_names(log, {r.second}) + " repeats the motion of " +
             file_names(log, {r.first}) +
-            format_sentence(" (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
-                            "joint, below %.2g rad)",
-                            static_cast<double>(r.common_samples), r.rms_position_difference,
-                            tolerance) +
+            format_sentence(
+                " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
+                "joint, below %.2g rad)",
+                static_cast<double>(r.common_samples), r.rms_position_difference, tolerance) +
             ", so they are held out together: a fit on one would be scored on its own motion.";
   return text;
 }

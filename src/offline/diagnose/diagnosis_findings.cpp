@@ -61,14 +61,15 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
   }
   if (const CandidateTrial* t = selected_trial(d, c); t && t->extrapolates)
     text += std::isnan(t->outside_improvement)
-                ? format_sentence(" Its term extrapolates in q; no held-out file left the range "
-                                  "of q_%.0f the fit saw (%.3g … %.3g rad), so transfer outside "
-                                  "that range is not tested.",
-                                  g.joint + 1.0, d.fit_range[g.joint].first,
-                                  d.fit_range[g.joint].second)
-                : format_sentence(" Its term extrapolates in q: on the %.0f held-out samples "
-                                  "of ",
-                                  t->outside_samples) +
+                ? format_sentence(
+                      " Its term extrapolates in q; no held-out file left the range "
+                      "of q_%.0f the fit saw (%.3g … %.3g rad), so transfer outside "
+                      "that range is not tested.",
+                      g.joint + 1.0, d.fit_range[g.joint].first, d.fit_range[g.joint].second)
+                : format_sentence(
+                      " Its term extrapolates in q: on the %.0f held-out samples "
+                      "of ",
+                      t->outside_samples) +
                       t->outside_file +
                       format_sentence(" outside the range of q the fit saw it removes %.1f %%.",
                                       100 * t->outside_improvement);
@@ -180,10 +181,9 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
   if (!d.heldout_split.empty()) findings.push_back(d.heldout_split);
   if (d.cad_payload.claimed) findings.push_back(payload_finding(d.cad_payload));
   const bool untransferred =
-      std::any_of(d.trials.begin(), d.trials.end(),
-                  [&](const CandidateTrial& t) {
-                    return t.fails_transfer(options) || t.fails_outside(options);
-                  });
+      std::any_of(d.trials.begin(), d.trials.end(), [&](const CandidateTrial& t) {
+        return t.fails_transfer(options) || t.fails_outside(options);
+      });
   if (d.selected.empty())
     findings.push_back(
         "No candidate effect is claimed: none lowers the held-out residual by the threshold (" +

@@ -181,7 +181,8 @@ std::vector<std::vector<std::size_t>> repeated_motion_groups(
 std::vector<std::pair<double, double>> position_range(const JointSamples& s,
                                                       const std::vector<char>& rows) {
   std::vector<std::pair<double, double>> range(
-      s.joints(), {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()});
+      s.joints(),
+      {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()});
   for (Eigen::Index k = 0; k < s.size(); ++k) {
     const auto i = static_cast<std::size_t>(k);
     if (!s.valid[i] || (!rows.empty() && !rows[i])) continue;
