@@ -157,7 +157,7 @@ class ForwardSelection {
         trial.transfer_file = fold.file;
       }
     }
-    trial.extrapolates = group.extrapolates_in_q;
+    trial.extrapolates = group.extrapolates_in_q && group.joint >= 0;
     if (trial.extrapolates)
       for (const OutsideFold& fold : outside_) {
         const double samples = moving_heldout_count(fold.grams, group.joint);
