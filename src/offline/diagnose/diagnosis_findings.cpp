@@ -108,12 +108,22 @@ void add_worsened_regimes(const EffectDiagnosis& d, std::vector<std::string>& fi
     }
 }
 
-// Candidates that passed on the held-out file but made another file worse, once each.
+/// Whether `title` is named by a claim (added to the model in some round, or an alternative of
+/// an ambiguous claim).
+bool selected_in_a_round(const EffectDiagnosis& d, const std::string& title) {
+  for (const Claim& c : d.claims)
+    for (int g : c.groups)
+      if (d.groups[g].title == title) return true;
+  return false;
+}
+
+// Candidates that passed on the held-out file but made another file worse, once each (not those
+// a claim names: tried again in a later round, on a larger model, they passed).
 void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
                        std::vector<std::string>& findings) {
   std::vector<std::string> said;
   for (const CandidateTrial& t : d.trials) {
-    if (!t.fails_transfer(options)) continue;
+    if (!t.fails_transfer(options) || selected_in_a_round(d, t.title)) continue;
     if (std::find(said.begin(), said.end(), t.title) != said.end()) continue;
     said.push_back(t.title);
     findings.push_back(
@@ -134,7 +144,7 @@ void add_not_extrapolating(const EffectDiagnosis& d, const DiagnoseOptions& opti
                            std::vector<std::string>& findings) {
   std::vector<std::string> said;
   for (const CandidateTrial& t : d.trials) {
-    if (!t.fails_outside(options)) continue;
+    if (!t.fails_outside(options) || selected_in_a_round(d, t.title)) continue;
     if (std::find(said.begin(), said.end(), t.title) != said.end()) continue;
     said.push_back(t.title);
     findings.push_back(
