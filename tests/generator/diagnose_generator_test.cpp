@@ -360,6 +360,25 @@ TEST(Generator, AnEffectOfTwoRepeatedRunsIsNotClaimed) {
   EXPECT_EQ(outcome(d, "spring", 2), Outcome::Missed) << describe(d);
 }
 
+TEST(Generator, FilesThatAllRepeatOneMotionAreNotHeldOutByFile) {
+  // The run and its repeat alone: no file is independent of the other, so the log is split in
+  // interleaved blocks as one file is, and the finding says why.
+  std::vector<PlanarArmPlant> plants = repeated_run_plants({0.0, 1.5, 1.5});
+  plants.erase(plants.begin());
+  const offline::Log log = several_file_log(plants, "alike");
+  const auto d = offline::diagnose<2>(log, planar_model());
+  std::printf("  [one motion twice] %s\n    %s\n", describe(d).c_str(), d.heldout_split.c_str());
+  EXPECT_EQ(d.samples.heldout_file, 0);
+  EXPECT_NE(d.heldout_split.find("Not held out by file"), std::string::npos) << d.heldout_split;
+  for (std::size_t f = 0; f < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    const auto held =
+        std::count(d.samples.heldout.begin() + begin, d.samples.heldout.begin() + end, char{1});
+    EXPECT_GT(held, 0) << "file " << f + 1;
+    EXPECT_LT(held, end - begin) << "file " << f + 1;
+  }
+}
+
 TEST(Generator, ASpringOfEveryFileIsClaimedAndTestedOutsideTheRange) {
   // The same files with the spring in every one: it is the arm's, it transfers between the two
   // motions, and each motion leaves the other's range of q2 (centres 0.9 and 0.1 rad), where the

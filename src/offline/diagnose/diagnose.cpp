@@ -107,44 +107,61 @@ std::vector<char> rows_of(const Log& log, const std::vector<std::size_t>& files,
   return rows;
 }
 
-/// Groups the files of a log held out by file and holds out the last file's group in `s` (when
-/// it is not every file: then the last file alone, and nothing transfers).
-FileSplit split_by_file(const Log& log, JointSamples& s, double repeat_tolerance) {
+/// Groups the files of a log held out by file and holds out the last file's group in `s`; when
+/// every file repeats one motion, no file is independent of another: the log is split in
+/// interleaved blocks, as one file is.
+FileSplit split_by_file(const Log& log, JointSamples& s, const DiagnoseOptions& options) {
   FileSplit split;
   if (s.heldout_file == 0) return split;
-  split.repeats = repeated_motions(log, s, repeat_tolerance);
+  split.repeats = repeated_motions(log, s, options.repeat_tolerance);
   split.groups = repeated_motion_groups(log.file_count(), split.repeats);
   for (std::size_t g = 0; g < split.groups.size(); ++g)
     if (split.groups[g].back() + 1 == log.file_count()) split.selection_group = g;
-  if (split.groups.size() > 1)
+  if (split.groups.size() > 1) {
     s.heldout = rows_of(log, split.groups[split.selection_group], s.heldout.size());
+  } else {
+    s.heldout = interleaved_heldout_blocks(s.t, options.samples);
+    s.heldout_file = 0;
+  }
   return split;
 }
 
 /// The held-out split in a sentence, with the repeated motions that grouped files.
-std::string split_sentence(const Log& log, const FileSplit& split, double tolerance) {
+std::string split_sentence(const Log& log, const FileSplit& split, const JointSamples& s,
+                           const DiagnoseOptions& o) {
   if (split.groups.empty()) return {};
-  const std::vector<std::size_t>& held = split.groups[split.selection_group];
-  std::string text = "Held out by file: " + file_names(log, held) + " (fitted on the other files)";
-  if (split.groups.size() == 1)
-    return text +
-           "; every file repeats one motion, so no other file is held out in turn and the "
-           "held-out test is not independent of the fit.";
-  text += "; for the transfer test, in turn:";
-  for (std::size_t g = 0; g < split.groups.size(); ++g)
-    if (g != split.selection_group) {
-      text += text.back() == ':' ? " " : "; ";
-      text += file_names(log, split.groups[g]);
-    }
-  text += ".";
+  const double heldout_share =
+      static_cast<double>(std::count(s.heldout.begin(), s.heldout.end(), 1)) /
+      static_cast<double>(std::max<std::size_t>(s.heldout.size(), 1));
+  std::string text;
+  if (split.groups.size() == 1) {
+    text = format_sentence(
+        "Not held out by file: every file repeats one motion, so a fit on some would be scored "
+        "on their own motion; the files are split as one log, in interleaved %g s blocks, 1 in "
+        "%.0f held out (%.0f %% of the samples).",
+        o.samples.block_s, o.samples.heldout_every, 100 * heldout_share);
+  } else {
+    const std::vector<std::size_t>& held = split.groups[split.selection_group];
+    text = "Held out by file: " + file_names(log, held) + " (fitted on the other files)";
+    text += "; for the transfer test, in turn:";
+    for (std::size_t g = 0; g < split.groups.size(); ++g)
+      if (g != split.selection_group) {
+        text += text.back() == ':' ? " " : "; ";
+        text += file_names(log, split.groups[g]);
+      }
+    text += ".";
+  }
   for (const RepeatedMotion& r : split.repeats)
-    text += std::string(" ") + file_names(log, {r.second}) + " repeats the motion of " +
-            file_names(log, {r.first}) +
-            format_sentence(
-                " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
-                "joint, below %.2g rad)",
-                static_cast<double>(r.common_samples), r.rms_position_difference, tolerance) +
-            ", so they are held out together: a fit on one would be scored on its own motion.";
+    text +=
+        std::string(" ") + file_names(log, {r.second}) + " repeats the motion of " +
+        file_names(log, {r.first}) +
+        format_sentence(
+            " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
+            "joint, below %.2g rad)",
+            static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance) +
+        (split.groups.size() > 1
+             ? ", so they are held out together: a fit on one would be scored on its own motion."
+             : ".");
   return text;
 }
 
@@ -316,8 +333,8 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   Diagnosis<N> out;
   IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
   out.samples = std::move(setup.samples);
-  const FileSplit split = split_by_file(log, out.samples, options.repeat_tolerance);
-  out.heldout_split = split_sentence(log, split, options.repeat_tolerance);
+  const FileSplit split = split_by_file(log, out.samples, options);
+  out.heldout_split = split_sentence(log, split, out.samples, options);
   const JointSamples& s = out.samples;
   std::vector<char> training(s.heldout.size());
   for (std::size_t k = 0; k < training.size(); ++k)
