@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/effects/effect_columns.hpp"
@@ -238,25 +240,32 @@ TEST(Generator, RippleAndSpringOverAWideRange) {
   expect_written_model_runs(d);
 }
 
-// Three files of the generator read as one several-file log (the last is diagnose's held-out
-// file), each with joint 2's offset given in `offsets`; seeds 31–33, the middle file 20 s, the
-// others 60 s.
-offline::Log three_file_log(const std::array<double, 3>& offsets) {
+// Files of the generator read as one several-file log, in order (the last is diagnose's held-out
+// file); each file named tpf_generator_<tag><1-based index>_<pid>.csv.
+offline::Log several_file_log(const std::vector<PlanarArmPlant>& plants, const std::string& tag) {
   std::vector<std::filesystem::path> paths;
-  for (int f = 0; f < 3; ++f) {
-    PlanarArmPlant plant;
-    plant.seed = 31 + f;
-    plant.duration_s = f == 1 ? 20.0 : 60.0;
-    plant.offset = {0.0, offsets[f]};
-    paths.push_back(
-        std::filesystem::temp_directory_path() /
-        ("tpf_generator_file" + std::to_string(f + 1) + "_" + std::to_string(::getpid()) + ".csv"));
-    offline::write_log(paths.back(), generate_planar_log(plant));
+  for (std::size_t f = 0; f < plants.size(); ++f) {
+    paths.push_back(std::filesystem::temp_directory_path() /
+                    ("tpf_generator_" + tag + std::to_string(f + 1) + "_" +
+                     std::to_string(::getpid()) + ".csv"));
+    offline::write_log(paths.back(), generate_planar_log(plants[f]));
   }
   offline::Log log = offline::read_logs(paths);
   for (const auto& p : paths)
     std::filesystem::remove(p);
   return log;
+}
+
+// Three files of different motions, each with joint 2's offset given in `offsets`; seeds 31–33,
+// the middle file 20 s, the others 60 s.
+offline::Log three_file_log(const std::array<double, 3>& offsets) {
+  std::vector<PlanarArmPlant> plants(3);
+  for (int f = 0; f < 3; ++f) {
+    plants[f].seed = 31 + f;
+    plants[f].duration_s = f == 1 ? 20.0 : 60.0;
+    plants[f].offset = {0.0, offsets[f]};
+  }
+  return several_file_log(plants, "file");
 }
 
 const offline::CandidateTrial* first_trial(const Diagnosis<2>& d, const std::string& key,
@@ -301,6 +310,95 @@ TEST(Generator, AnOffsetInEveryFileIsClaimedAcrossFiles) {
   const offline::CandidateTrial* offset = first_trial(d, "offset", 2);
   ASSERT_NE(offset, nullptr);
   EXPECT_GT(offset->transfer_improvement, 0.10);
+}
+
+// Three files, 40 s each: a motion of its own (joint 2 around 0.9 rad), a run (joint 2 around
+// 0.1 rad) and the same run again (its noise only differs); file f has a spring of stiffness
+// stiffness[f] on joint 2 (neutral 0.3 rad).
+std::vector<PlanarArmPlant> repeated_run_plants(const std::array<double, 3>& stiffness) {
+  std::vector<PlanarArmPlant> plants(3);
+  plants[0].seed = 41;
+  plants[0].centre = {0.3, 0.9};
+  plants[1].seed = plants[2].seed = 42;
+  plants[1].centre = plants[2].centre = {0.3, 0.1};
+  plants[2].noise_seed = 99;
+  for (int f = 0; f < 3; ++f) {
+    plants[f].duration_s = 40.0;
+    plants[f].amplitude = {1.2, 1.0};
+    plants[f].spring_stiffness = {0.0, stiffness[f]};
+    plants[f].spring_neutral = {0.0, 0.3};
+  }
+  return plants;
+}
+
+// The rows of the log's files in `files` (0-based) are diagnose's held-out samples, and only they.
+void expect_heldout_files(const offline::Log& log, const Diagnosis<2>& d,
+                          const std::set<std::size_t>& files) {
+  for (std::size_t f = 0; f < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    for (Eigen::Index k = begin; k < end; ++k)
+      if (static_cast<bool>(d.samples.heldout[k]) != (files.count(f) > 0)) {
+        ADD_FAILURE() << "row " << k << " of file " << f + 1;
+        return;
+      }
+  }
+}
+
+TEST(Generator, AnEffectOfTwoRepeatedRunsIsNotClaimed) {
+  // Files 2 and 3 repeat one motion (one seed, other noise) with a spring on joint 2 (a cable
+  // on that day); file 1 moves elsewhere without it. Held out one by one, each run would be
+  // scored on a fit that saw its own motion; held out together, the spring fitted on the other
+  // file does not lower their error, and fitted on them it does not transfer to file 1.
+  const offline::Log log = several_file_log(repeated_run_plants({0.0, 1.5, 1.5}), "repeat");
+  const auto d = offline::diagnose<2>(log, planar_model());
+  std::printf("  [spring in two repeated runs only] %s\n", describe(d).c_str());
+  for (const auto& f : d.findings)
+    std::printf("    %s\n", f.c_str());
+  expect_heldout_files(log, d, {1, 2});
+  EXPECT_NE(d.heldout_split.find("repeat2_"), std::string::npos) << d.heldout_split;
+  EXPECT_NE(d.heldout_split.find("repeats the motion of"), std::string::npos) << d.heldout_split;
+  EXPECT_EQ(outcome(d, "spring", 2), Outcome::Missed) << describe(d);
+}
+
+TEST(Generator, FilesThatAllRepeatOneMotionAreNotHeldOutByFile) {
+  // The run and its repeat alone: no file is independent of the other, so the log is split in
+  // interleaved blocks as one file is, and the finding says why.
+  std::vector<PlanarArmPlant> plants = repeated_run_plants({0.0, 1.5, 1.5});
+  plants.erase(plants.begin());
+  const offline::Log log = several_file_log(plants, "alike");
+  const auto d = offline::diagnose<2>(log, planar_model());
+  std::printf("  [one motion twice] %s\n    %s\n", describe(d).c_str(), d.heldout_split.c_str());
+  EXPECT_EQ(d.samples.heldout_file, 0);
+  EXPECT_NE(d.heldout_split.find("Not held out by file"), std::string::npos) << d.heldout_split;
+  for (std::size_t f = 0; f < log.file_count(); ++f) {
+    const auto [begin, end] = log.file_rows(f);
+    const auto held =
+        std::count(d.samples.heldout.begin() + begin, d.samples.heldout.begin() + end, char{1});
+    EXPECT_GT(held, 0) << "file " << f + 1;
+    EXPECT_LT(held, end - begin) << "file " << f + 1;
+  }
+}
+
+TEST(Generator, ASpringOfEveryFileIsClaimedAndTestedOutsideTheRange) {
+  // The same files with the spring in every one: it is the arm's, it transfers between the two
+  // motions, and each motion leaves the other's range of q2 (centres 0.9 and 0.1 rad), where the
+  // extrapolated k·q must lower the error too.
+  const offline::Log log = several_file_log(repeated_run_plants({1.5, 1.5, 1.5}), "spring");
+  const auto d = offline::diagnose<2>(log, planar_model());
+  std::printf("  [spring in every file] %s\n", describe(d).c_str());
+  for (const auto& f : d.findings)
+    std::printf("    %s\n", f.c_str());
+  expect_heldout_files(log, d, {1, 2});
+  EXPECT_NE(outcome(d, "spring", 2), Outcome::Missed) << describe(d);
+  expect_only(d, {"spring@2", "offset@2"});
+  bool tested = false;
+  for (const offline::CandidateTrial& t : d.trials)
+    if (t.selected && t.key == "spring") {
+      tested = true;
+      EXPECT_GE(t.outside_improvement, 0.10);
+      EXPECT_GT(t.outside_samples, 100);
+    }
+  EXPECT_TRUE(tested) << describe(d);
 }
 
 }  // namespace

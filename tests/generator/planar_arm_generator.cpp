@@ -140,6 +140,8 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
     tau[k] = effort;
   }
 
+  std::mt19937_64 own_noise(p.noise_seed);
+  std::mt19937_64& noise = p.noise_seed ? own_noise : rng;
   offline::Log log;
   log.source = "planar2-generator-seed" + std::to_string(p.seed);
   log.meta.set("source", "independent test generator (tests/generator), not the twin");
@@ -151,8 +153,8 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
     for (int j = 0; j < 2; ++j) {
       log.values(k, 1 + j) = quantise(q[motion][j], p.position_quantum);
       log.values(k, 3 + j) =
-          quantise(dq[motion][j] + p.velocity_noise * unit(rng), p.velocity_quantum);
-      log.values(k, 5 + j) = quantise(tau[k][j] + p.effort_noise * unit(rng), p.effort_quantum);
+          quantise(dq[motion][j] + p.velocity_noise * unit(noise), p.velocity_quantum);
+      log.values(k, 5 + j) = quantise(tau[k][j] + p.effort_noise * unit(noise), p.effort_quantum);
     }
   }
   return log;

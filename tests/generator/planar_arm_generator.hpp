@@ -17,6 +17,9 @@ namespace tpf::test {
 /// What the generator plants. Every effect is off (zero) by default.
 struct PlanarArmPlant {
   std::uint64_t seed = 1;
+  /// 0: the noise continues the motion's random stream; else its own stream, so that two plants
+  /// of one seed and different noise seeds repeat one motion with independent noise.
+  std::uint64_t noise_seed = 0;
   double duration_s = 60.0;
   double rate_hz = 100.0;
   Eigen::Vector2d centre{0.3, 0.5};     ///< rad, middle of each joint's motion

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
 #include "offline/diagnose/residual_analysis.hpp"
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/identification_setup.hpp"
+#include "offline/report/text_format.hpp"
+#include "offline/validate/measured_facts.hpp"
 #include "tpf/common/joint_counts.hpp"
 #include "tpf/dynamics/regressor.hpp"
 
@@ -78,21 +81,117 @@ CandidateInputs candidate_inputs(const Model<double, N>& model, const JointSampl
   return inputs;
 }
 
-/// The files of a several-file log other than the held-out one (the last), each held out in turn:
-/// the folds a candidate's gain must transfer to. None for a one-file log or without a split.
-template <int N>
-std::vector<TransferFold> transfer_folds(const Log& log, const EffectDesign<N>& design,
-                                         const JointSamples& s) {
-  std::vector<TransferFold> folds;
-  if (s.heldout_file == 0) return folds;
-  JointSamples fold = s;
-  for (std::size_t f = 0; f + 1 < log.file_count(); ++f) {
+/// The held-out split by file of a several-file log: files that repeat one motion
+/// (repeated_motions) form one group, held out together; the selection holds out the group of the
+/// last file, the transfer test each other group in turn.
+struct FileSplit {
+  std::vector<std::vector<std::size_t>> groups;
+  std::size_t selection_group = 0;
+  std::vector<RepeatedMotion> repeats;
+};
+
+std::string file_names(const Log& log, const std::vector<std::size_t>& files) {
+  std::string text;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    text += (i ? " + " : "") + std::filesystem::path(log.file_path(files[i])).filename().string();
+  return text;
+}
+
+/// Rows of `files` marked 1, the others 0.
+std::vector<char> rows_of(const Log& log, const std::vector<std::size_t>& files, std::size_t n) {
+  std::vector<char> rows(n, 0);
+  for (std::size_t f : files) {
     const auto [begin, end] = log.file_rows(f);
-    std::fill(fold.heldout.begin(), fold.heldout.end(), 0);
-    std::fill(fold.heldout.begin() + begin, fold.heldout.begin() + end, 1);
-    folds.push_back({log.file_path(f), design.accumulate(fold)});
+    std::fill(rows.begin() + begin, rows.begin() + end, 1);
   }
-  return folds;
+  return rows;
+}
+
+/// Groups the files of a log held out by file and holds out the last file's group in `s`; when
+/// every file repeats one motion, no file is independent of another: the log is split in
+/// interleaved blocks, as one file is.
+FileSplit split_by_file(const Log& log, JointSamples& s, const DiagnoseOptions& options) {
+  FileSplit split;
+  if (s.heldout_file == 0) return split;
+  split.repeats = repeated_motions(log, s, options.repeat_tolerance);
+  split.groups = repeated_motion_groups(log.file_count(), split.repeats);
+  for (std::size_t g = 0; g < split.groups.size(); ++g)
+    if (split.groups[g].back() + 1 == log.file_count()) split.selection_group = g;
+  if (split.groups.size() > 1) {
+    s.heldout = rows_of(log, split.groups[split.selection_group], s.heldout.size());
+  } else {
+    s.heldout = interleaved_heldout_blocks(s.t, options.samples);
+    s.heldout_file = 0;
+  }
+  return split;
+}
+
+/// The held-out split in a sentence, with the repeated motions that grouped files.
+std::string split_sentence(const Log& log, const FileSplit& split, const JointSamples& s,
+                           const DiagnoseOptions& o) {
+  if (split.groups.empty()) return {};
+  const double heldout_share =
+      static_cast<double>(std::count(s.heldout.begin(), s.heldout.end(), 1)) /
+      static_cast<double>(std::max<std::size_t>(s.heldout.size(), 1));
+  std::string text;
+  if (split.groups.size() == 1) {
+    text = format_sentence(
+        "Not held out by file: every file repeats one motion, so a fit on some would be scored "
+        "on their own motion; the files are split as one log, in interleaved %g s blocks, 1 in "
+        "%.0f held out (%.0f %% of the samples).",
+        o.samples.block_s, o.samples.heldout_every, 100 * heldout_share);
+  } else {
+    const std::vector<std::size_t>& held = split.groups[split.selection_group];
+    text = "Held out by file: " + file_names(log, held) + " (fitted on the other files)";
+    text += "; for the transfer test, in turn:";
+    for (std::size_t g = 0; g < split.groups.size(); ++g)
+      if (g != split.selection_group) {
+        text += text.back() == ':' ? " " : "; ";
+        text += file_names(log, split.groups[g]);
+      }
+    text += ".";
+  }
+  for (const RepeatedMotion& r : split.repeats)
+    text +=
+        std::string(" ") + file_names(log, {r.second}) + " repeats the motion of " +
+        file_names(log, {r.first}) +
+        format_sentence(
+            " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
+            "joint, below %.2g rad)",
+            static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance) +
+        (split.groups.size() > 1
+             ? ", so they are held out together: a fit on one would be scored on its own motion."
+             : ".");
+  return text;
+}
+
+/// The folds a candidate's gain must transfer to (each group of files but the selection's held
+/// out in turn, fitted on the rest), and every held-out group (the selection's first) scored only
+/// outside the range of q its fit saw.
+template <int N>
+void held_out_folds(const Log& log, const FileSplit& split, const EffectDesign<N>& design,
+                    const JointSamples& s, std::vector<TransferFold>& transfer,
+                    std::vector<OutsideFold>& outside) {
+  if (split.groups.size() < 2) return;
+  std::vector<std::size_t> order{split.selection_group};
+  for (std::size_t g = 0; g < split.groups.size(); ++g)
+    if (g != split.selection_group) order.push_back(g);
+  for (std::size_t g : order) {
+    JointSamples fold = s;
+    fold.heldout = rows_of(log, split.groups[g], s.heldout.size());
+    const std::string name = file_names(log, split.groups[g]);
+    if (g != split.selection_group) transfer.push_back({name, design.accumulate(fold)});
+    std::vector<char> fit_rows(fold.heldout.size());
+    for (std::size_t k = 0; k < fit_rows.size(); ++k)
+      fit_rows[k] = !fold.heldout[k];
+    const std::vector<std::pair<double, double>> range = position_range(fold, fit_rows);
+    for (int j = 0; j < N; ++j)
+      for (Eigen::Index k = 0; k < fold.size(); ++k)
+        if (fold.heldout[static_cast<std::size_t>(k)] && fold.q(k, j) >= range[j].first &&
+            fold.q(k, j) <= range[j].second)
+          fold.regimes[j][k] = Regime::Invalid;
+    outside.push_back({name, design.accumulate(fold)});
+  }
 }
 
 /// The effort predictions pass 4 needs, in one pass over the samples.
@@ -234,7 +333,13 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   Diagnosis<N> out;
   IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
   out.samples = std::move(setup.samples);
+  const FileSplit split = split_by_file(log, out.samples, options);
+  out.heldout_split = split_sentence(log, split, out.samples, options);
   const JointSamples& s = out.samples;
+  std::vector<char> training(s.heldout.size());
+  for (std::size_t k = 0; k < training.size(); ++k)
+    training[k] = !s.heldout[k];
+  out.fit_range = position_range(s, training);
   const double threshold = options.samples.regimes.static_velocity;
   FitSelection selection;  // fit on moving samples: friction at rest has memory
   selection.regimes = {false, true, true};
@@ -258,9 +363,12 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   const EffectDesign<N> design(model, setup.base, s, inputs, threshold);
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
+  std::vector<TransferFold> transfer;
+  std::vector<OutsideFold> outside;
+  held_out_folds(log, split, design, s, transfer, outside);
   EffectSelection sel =
-      select_effects(grams, transfer_folds(log, design, s), out.groups, design.declared_columns(),
-                     selection, analysis.variance_inflation, options);
+      select_effects(grams, transfer, outside, out.groups, design.declared_columns(), selection,
+                     analysis.variance_inflation, options);
   out.trials = std::move(sel.trials);
   out.selected = sel.selected;
   out.claims = sel.claims;

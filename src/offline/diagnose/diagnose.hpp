@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "offline/identify/effect_design.hpp"
@@ -30,6 +31,9 @@ struct DiagnoseOptions {
   /// A claimed coefficient must be this many standard errors from zero (Wald statistic per
   /// column, standard errors inflated for the residual's autocorrelation).
   double min_standard_errors = 3.0;
+  /// Several files: two files repeat one motion when the RMS of Δq over their common length is
+  /// below this on every joint [rad] (repeated_motions); such files are held out together.
+  double repeat_tolerance = 0.01;
   ProgressLine progress;
 };
 
@@ -61,12 +65,32 @@ struct CandidateTrial {
   /// this too reaches min_improvement: it lowers the held-out error of every file, not of one.
   double transfer_improvement = std::numeric_limits<double>::quiet_NaN();
   std::string transfer_file;
+  /// An effect that extrapolates in q (FeatureGroup::extrapolates_in_q): the smallest
+  /// improvement on the held-out samples whose q of its joint lies outside the range of q the fit
+  /// saw, over the held-out groups that have such samples (outside_samples of them), and that
+  /// group; NaN when no held-out group leaves the range (not tested).
+  double outside_improvement = std::numeric_limits<double>::quiet_NaN();
+  double outside_samples = 0;
+  std::string outside_file;
+  bool extrapolates = false;
   bool selected = false;
+  /// Passes the tests on the selection's held-out file alone.
+  bool passes_heldout(const DiagnoseOptions& o) const {
+    return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors;
+  }
   /// Passed every test on the selection's held-out file but made another file worse.
   bool fails_transfer(const DiagnoseOptions& o) const {
-    return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors &&
+    return passes_heldout(o) &&
            !(transfer_improvement >= o.min_improvement || std::isnan(transfer_improvement));
   }
+  /// Passed the held-out file and the transfer, but its term, extrapolated outside the range of q
+  /// it was fitted on, does not lower the error of the held-out samples there.
+  bool fails_outside(const DiagnoseOptions& o) const {
+    return passes_heldout(o) && !fails_transfer(o) && extrapolates &&
+           !(outside_improvement >= o.min_improvement || std::isnan(outside_improvement));
+  }
+  /// Extrapolates in q and no held-out group left the range of q it was fitted on.
+  bool outside_untested() const { return extrapolates && std::isnan(outside_improvement); }
 };
 
 /// A payload judged against the robot file's inertias (CAD): the rigid body is held at the robot
@@ -98,6 +122,11 @@ struct EffectDiagnosis {
   Eigen::VectorXd noise_floor;       ///< per joint: effort noise at rest (std of Δeffort/√2)
   Eigen::MatrixXd residual_before, residual_after;  ///< per sample and joint
   std::vector<Eigen::MatrixXd> effect_terms;        ///< per selected group: its fitted effort term
+  /// The held-out split in a sentence: which files are held out, and which are grouped because
+  /// they repeat one motion (empty for a one-file log).
+  std::string heldout_split;
+  /// Per joint: [min, max] of q over the selection's training samples.
+  std::vector<std::pair<double, double>> fit_range;
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
   std::vector<std::string> notes;     ///< skipped candidates and why
   CadPayloadCheck cad_payload;

@@ -21,6 +21,13 @@ std::string payload_finding(const CadPayloadCheck& c) {
              100 * c.improvement);
 }
 
+/// The trial that selected the claim's group.
+const CandidateTrial* selected_trial(const EffectDiagnosis& d, const Claim& c) {
+  for (const CandidateTrial& t : d.trials)
+    if (t.selected && t.title == d.groups[c.groups[0]].title) return &t;
+  return nullptr;
+}
+
 std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
   const FeatureGroup& g = d.groups[c.groups[0]];
   std::string coefficients;
@@ -52,6 +59,20 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
             coefficients +
             "); a log with more range of motion, both directions and rests tells them apart.";
   }
+  if (const CandidateTrial* t = selected_trial(d, c); t && t->extrapolates)
+    text += std::isnan(t->outside_improvement)
+                ? format_sentence(
+                      " Its term extrapolates in q; no held-out file left the range "
+                      "of q_%.0f the fit saw (%.3g … %.3g rad), so transfer outside "
+                      "that range is not tested.",
+                      g.joint + 1.0, d.fit_range[g.joint].first, d.fit_range[g.joint].second)
+                : format_sentence(
+                      " Its term extrapolates in q: on the %.0f held-out samples "
+                      "of ",
+                      t->outside_samples) +
+                      t->outside_file +
+                      format_sentence(" outside the range of q the fit saw it removes %.1f %%.",
+                                      100 * t->outside_improvement);
   if (!c.written && g.written_to == WrittenTo::kNothing)
     text +=
         " Not written to the parameter file: the run-time nominal model cannot evaluate it "
@@ -87,12 +108,22 @@ void add_worsened_regimes(const EffectDiagnosis& d, std::vector<std::string>& fi
     }
 }
 
-// Candidates that passed on the held-out file but made another file worse, once each.
+/// Whether `title` is named by a claim (added to the model in some round, or an alternative of
+/// an ambiguous claim).
+bool selected_in_a_round(const EffectDiagnosis& d, const std::string& title) {
+  for (const Claim& c : d.claims)
+    for (int g : c.groups)
+      if (d.groups[g].title == title) return true;
+  return false;
+}
+
+// Candidates that passed on the held-out file but made another file worse, once each (not those
+// a claim names: tried again in a later round, on a larger model, they passed).
 void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
                        std::vector<std::string>& findings) {
   std::vector<std::string> said;
   for (const CandidateTrial& t : d.trials) {
-    if (!t.fails_transfer(options)) continue;
+    if (!t.fails_transfer(options) || selected_in_a_round(d, t.title)) continue;
     if (std::find(said.begin(), said.end(), t.title) != said.end()) continue;
     said.push_back(t.title);
     findings.push_back(
@@ -104,6 +135,28 @@ void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
         format_sentence(", held out in turn, by %+.1f %% (claims need −%.0f %% on every file): it "
                         "does not transfer between files.",
                         -100 * t.transfer_improvement, 100 * options.min_improvement));
+  }
+}
+
+// Candidates that passed on the held-out files but, extrapolated outside the fit's range of q,
+// made the held-out samples there worse, once each.
+void add_not_extrapolating(const EffectDiagnosis& d, const DiagnoseOptions& options,
+                           std::vector<std::string>& findings) {
+  std::vector<std::string> said;
+  for (const CandidateTrial& t : d.trials) {
+    if (!t.fails_outside(options) || selected_in_a_round(d, t.title)) continue;
+    if (std::find(said.begin(), said.end(), t.title) != said.end()) continue;
+    said.push_back(t.title);
+    findings.push_back(
+        "Not claimed: " + t.title +
+        format_sentence(" — removes %.1f %% of the held-out file's residual sum of squares, but "
+                        "on the %.0f held-out samples of ",
+                        100 * t.improvement, t.outside_samples) +
+        t.outside_file +
+        format_sentence(" whose q lies outside the range the fit saw it changes it by %+.1f %% "
+                        "(claims need −%.0f %% there): its term, fitted over a range of q, does "
+                        "not extrapolate.",
+                        -100 * t.outside_improvement, 100 * options.min_improvement));
   }
 }
 
@@ -135,19 +188,24 @@ void add_unexplained(const EffectDiagnosis& d, std::vector<std::string>& finding
 std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
                                             const DiagnoseOptions& options) {
   std::vector<std::string> findings;
+  if (!d.heldout_split.empty()) findings.push_back(d.heldout_split);
   if (d.cad_payload.claimed) findings.push_back(payload_finding(d.cad_payload));
   const bool untransferred =
-      std::any_of(d.trials.begin(), d.trials.end(),
-                  [&](const CandidateTrial& t) { return t.fails_transfer(options); });
+      std::any_of(d.trials.begin(), d.trials.end(), [&](const CandidateTrial& t) {
+        return t.fails_transfer(options) || t.fails_outside(options);
+      });
   if (d.selected.empty())
     findings.push_back(
         "No candidate effect is claimed: none lowers the held-out residual by the threshold (" +
         format_sentence("%.0f %%", 100 * options.min_improvement) +
         " of the residual sum of squares)" +
-        (untransferred ? " and does so on every file held out in turn (below)." : "."));
+        (untransferred ? " and does so on every file held out in turn and, for a term that "
+                         "extrapolates in q, outside the range of q the fit saw (below)."
+                       : "."));
   for (const Claim& c : d.claims)
     findings.push_back(claim_finding(d, c));
   add_untransferred(d, options, findings);
+  add_not_extrapolating(d, options, findings);
   add_worsened_regimes(d, findings);
   add_unexplained(d, findings);
   return findings;

@@ -71,6 +71,12 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
                                               ? nlohmann::json(nullptr)
                                               : nlohmann::json(100 * t.transfer_improvement)},
          {"transfer_file", t.transfer_file},
+         {"extrapolates_in_q", t.extrapolates},
+         {"outside_range_improvement_percent", std::isnan(t.outside_improvement)
+                                                   ? nlohmann::json(nullptr)
+                                                   : nlohmann::json(100 * t.outside_improvement)},
+         {"outside_range_samples", t.outside_samples},
+         {"outside_range_file", t.outside_file},
          {"selected", t.selected}});
   j["trials"] = trials;
   nlohmann::json selected = nlohmann::json::array();

@@ -45,11 +45,12 @@ Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& sele
 class ForwardSelection {
  public:
   ForwardSelection(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
-                   const std::vector<FeatureGroup>& groups,
+                   const std::vector<OutsideFold>& outside, const std::vector<FeatureGroup>& groups,
                    const std::vector<int>& declared_columns, const FitSelection& selection,
                    const Eigen::VectorXd& inflation, const DiagnoseOptions& options)
       : grams_(grams),
         transfer_(transfer),
+        outside_(outside),
         groups_(groups),
         declared_columns_(declared_columns),
         selection_(selection),
@@ -88,8 +89,8 @@ class ForwardSelection {
       const CandidateTrial trial = try_candidate(static_cast<int>(g), round, model);
       gain[g] = trial.improvement;
       out.trials.push_back(trial);
-      if (trial.improvement >= options_.min_improvement && trial.bic_change < 0 &&
-          trial.wald >= options_.min_standard_errors && !trial.fails_transfer(options_))
+      if (trial.passes_heldout(options_) && !trial.fails_transfer(options_) &&
+          !trial.fails_outside(options_))
         eligible.push_back(static_cast<int>(g));
     }
     if (eligible.empty()) return false;
@@ -156,7 +157,27 @@ class ForwardSelection {
         trial.transfer_file = fold.file;
       }
     }
+    trial.extrapolates = group.extrapolates_in_q && group.joint >= 0;
+    if (trial.extrapolates)
+      for (const OutsideFold& fold : outside_) {
+        const double samples = moving_heldout_count(fold.grams, group.joint);
+        if (samples <= 0) continue;  // the group never leaves the range: not a test
+        const double gain = fold_improvement(fold.grams, reference, trial_columns, group.joint);
+        if (!(gain >= trial.outside_improvement)) {
+          trial.outside_improvement = gain;
+          trial.outside_samples = samples;
+          trial.outside_file = fold.file;
+        }
+      }
     return trial;
+  }
+
+  /// Held-out samples in motion of `joint` in `fold`.
+  static double moving_heldout_count(const DesignGrams& fold, int joint) {
+    double n = 0;
+    for (int r = 1; r < DesignGrams::kRegimes; ++r)
+      n += fold.at(joint, r, 1)(fold.features + 1, fold.features + 1);
+    return n;
   }
 
   /// Fraction of a fold's held-out SSE (on `joint`, or every joint) that `with` removes from
@@ -307,6 +328,7 @@ class ForwardSelection {
 
   const DesignGrams& grams_;
   const std::vector<TransferFold>& transfer_;
+  const std::vector<OutsideFold>& outside_;
   const std::vector<FeatureGroup>& groups_;
   const std::vector<int>& declared_columns_;
   const FitSelection& selection_;
@@ -322,13 +344,14 @@ class ForwardSelection {
 }  // namespace
 
 EffectSelection select_effects(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
+                               const std::vector<OutsideFold>& outside,
                                const std::vector<FeatureGroup>& groups,
                                const std::vector<int>& declared_columns,
                                const FitSelection& selection,
                                const Eigen::VectorXd& variance_inflation,
                                const DiagnoseOptions& options) {
-  return ForwardSelection(grams, transfer, groups, declared_columns, selection, variance_inflation,
-                          options)
+  return ForwardSelection(grams, transfer, outside, groups, declared_columns, selection,
+                          variance_inflation, options)
       .run();
 }
 

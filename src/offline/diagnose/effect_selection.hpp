@@ -23,10 +23,18 @@ RegimeTable heldout_table(const DesignGrams& grams, const Eigen::VectorXd& theta
 std::pair<double, double> heldout_sse(const RegimeTable& table, int joint,
                                       const Eigen::VectorXd& w);
 
-/// Another file of a several-file log held out instead of the selection's (its Grams with that
-/// file's samples in the held-out split): a candidate's gain must transfer to it.
+/// Another group of files of a several-file log held out instead of the selection's (its Grams
+/// with those files' samples in the held-out split): a candidate's gain must transfer to it.
 struct TransferFold {
-  std::string file;
+  std::string file;  ///< the held-out files' names
+  DesignGrams grams;
+};
+
+/// A held-out group (the selection's or a transfer fold's) scored only where the fit did not go:
+/// the same training rows, the held-out rows of joint j kept where q_j lies outside the range
+/// of q_j over the training rows. An effect that extrapolates in q must lower the error there.
+struct OutsideFold {
+  std::string file;  ///< the held-out files' names
   DesignGrams grams;
 };
 
@@ -46,8 +54,10 @@ struct EffectSelection {
 
 /// Selection on `grams` over `groups` (declared ones first), fitting on `selection`'s rows with
 /// its joint weights; standard errors inflated per joint by `variance_inflation`. A candidate
-/// must also lower the held-out error of every fold in `transfer` (none for a one-file log).
+/// must also lower the held-out error of every fold in `transfer` (none for a one-file log), and
+/// one that extrapolates in q that of every fold in `outside` with samples outside the range.
 EffectSelection select_effects(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
+                               const std::vector<OutsideFold>& outside,
                                const std::vector<FeatureGroup>& groups,
                                const std::vector<int>& declared_columns,
                                const FitSelection& selection,

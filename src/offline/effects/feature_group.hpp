@@ -28,6 +28,9 @@ struct FeatureGroup {
   std::vector<std::string> judged_beside;
   std::vector<int> columns;  ///< global feature indices, consecutive
   std::vector<std::string> column_names;
+  /// Its term is unbounded (k·q) or periodic with few periods (a ripple of the output angle) in
+  /// its joint's q: fitted over a range of q, it extrapolates outside it.
+  bool extrapolates_in_q = false;
 };
 
 }  // namespace tpf::offline

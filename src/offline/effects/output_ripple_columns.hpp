@@ -8,6 +8,9 @@ namespace tpf::offline {
 
 struct OutputRippleColumns : RippleColumns<false> {
   static constexpr std::string_view key = "ripple";
+  /// A few periods over the joint's range of q: its phase outside the range is extrapolated (the
+  /// motor-side ripple has G times as many periods, all seen within any range).
+  static constexpr bool kExtrapolatesInQ = true;
 };
 
 }  // namespace tpf::offline

@@ -8,6 +8,7 @@
 namespace tpf::offline {
 
 struct SpringColumns : AddedEffectColumns<JointSpring> {
+  static constexpr bool kExtrapolatesInQ = true;  ///< k·q grows without bound outside the range
   static bool offered(const DesignContext&, int joint) { return joint >= 0; }
   static GroupSpec group(const DesignContext&, int joint) {
     return {"joint spring or cable torque (k·q), " + joint_title(joint),

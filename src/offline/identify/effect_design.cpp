@@ -43,6 +43,8 @@ void EffectDesign<N>::add_families(const DesignContext& context) {
   auto offer = [&]<typename Family>(int joint) {
     if (!Family::offered(context, joint)) return;
     GroupSpec spec = Family::group(context, joint);
+    bool extrapolates = false;
+    if constexpr (requires { Family::kExtrapolatesInQ; }) extrapolates = Family::kExtrapolatesInQ;
     add_group({std::string(Family::key),
                std::move(spec.title),
                joint,
@@ -51,7 +53,8 @@ void EffectDesign<N>::add_families(const DesignContext& context) {
                spec.held_column,
                std::move(spec.judged_beside),
                {},
-               std::move(spec.column_names)},
+               std::move(spec.column_names),
+               extrapolates},
               &Family::template fill<N>);
   };
   for_each_family<Families>([&]<typename Family>() {

@@ -8,6 +8,17 @@
 
 namespace tpf::offline {
 
+std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
+                                             const SampleOptions& options) {
+  std::vector<char> heldout(static_cast<std::size_t>(t.size()), 0);
+  for (Eigen::Index k = 0; k < t.size(); ++k) {
+    const long block = static_cast<long>(std::floor((t[k] - t[0]) / options.block_s));
+    heldout[static_cast<std::size_t>(k)] =
+        (block % options.heldout_every) == options.heldout_every - 1;
+  }
+  return heldout;
+}
+
 JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque_constant,
                                    const SampleOptions& options) {
   JointSamples s;
@@ -70,11 +81,7 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
     for (Eigen::Index k = log.file_starts.back(); k < n; ++k)
       s.heldout[k] = 1;
   } else if (options.hold_out) {
-    const double t0 = s.t[0];
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const long block = static_cast<long>(std::floor((s.t[k] - t0) / options.block_s));
-      s.heldout[k] = (block % options.heldout_every) == options.heldout_every - 1;
-    }
+    s.heldout = interleaved_heldout_blocks(s.t, options);
   }
 
   // Sign of the last motion, reset at gaps and NaNs (a new segment starts unknown).

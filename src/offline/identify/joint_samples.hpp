@@ -46,6 +46,11 @@ struct JointSamples {
   Eigen::Index size() const { return t.size(); }
 };
 
+/// The interleaved held-out blocks of times `t`: block_s long from t[0], every heldout_every-th
+/// held out (1), the others 0.
+std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
+                                             const SampleOptions& options);
+
 /// Extracts the joint samples of `log`: q<j>, dq<j>, ddq<j> (or derive_acceleration of dq<j>),
 /// the effort i<j> or tau<j> converted to N·m with `torque_constant` (the robot file's K_t per
 /// joint, drive_units), temp<j> when every joint has one. Throws tpf::Error naming the log when

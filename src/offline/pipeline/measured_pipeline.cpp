@@ -72,19 +72,37 @@ std::vector<MeasuredColumn> measured_split_columns(const Validation& v) {
   return columns;
 }
 
-/// Diagnose's written model with only its first `keep` written effects (the later ones removed),
-/// and the titles of the written effects in selection order.
+/// Whether diagnose's claim e is written as a term of its own (a payload is folded into the
+/// rigid body: it cannot be taken out again, so it is not added in turn).
+bool separable_written_effect(const Diagnosis<kMeasuredJoints>& d, std::size_t e) {
+  return d.claims[e].written &&
+         d.groups[static_cast<std::size_t>(d.selected[e])].written_to != WrittenTo::kRigidBody;
+}
+
+/// Diagnose's written model with only its first `keep` separable written effects (the later ones
+/// removed), and the titles of those effects in selection order.
 Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t keep,
                                        std::vector<std::string>* titles = nullptr) {
   Gen3Model m = d.nominal;
   std::size_t written = 0;
   for (std::size_t e = 0; e < d.claims.size(); ++e) {
-    if (!d.claims[e].written) continue;
+    if (!separable_written_effect(d, e)) continue;
     const FeatureGroup& g = d.groups[static_cast<std::size_t>(d.selected[e])];
     if (titles) titles->push_back(g.title);
     if (written++ >= keep) remove_group(g, m);
   }
   return m;
+}
+
+/// " (with its <title>, folded into the rigid body)" for each written claim that cannot be taken
+/// out, or "".
+std::string folded_effects(const Diagnosis<kMeasuredJoints>& d) {
+  std::vector<std::string> folded;
+  for (std::size_t e = 0; e < d.claims.size(); ++e)
+    if (d.claims[e].written && !separable_written_effect(d, e))
+      folded.push_back(d.groups[static_cast<std::size_t>(d.selected[e])].title);
+  return folded.empty() ? std::string()
+                        : " (with its " + joined(folded, ", ") + ", folded into the rigid body)";
 }
 
 /// Per joint: RMSE of the log's effort less the estimate's over the valid samples, in the log's
@@ -109,8 +127,8 @@ bool same_values_or_nan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 
 std::size_t written_effect_count(const Diagnosis<kMeasuredJoints>& d) {
   std::size_t n = 0;
-  for (const Claim& c : d.claims)
-    n += c.written;
+  for (std::size_t e = 0; e < d.claims.size(); ++e)
+    n += separable_written_effect(d, e);
   return n;
 }
 
@@ -270,7 +288,8 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
     EffortEstimate e = nominal_estimate<kMeasuredJoints>(
         with_first_diagnosed_effects(diagnosis, keep), d.score_samples, ignored);
     result.diagnosis_effort.push_back(
-        {keep == 0 ? "diagnose's model without its effects" : "+ " + titles[keep - 1],
+        {keep == 0 ? "diagnose's model without its effects" + folded_effects(diagnosis)
+                   : "+ " + titles[keep - 1],
          effort_rmse_per_joint(d.score_samples, e)});
     if (keep > 0 && same_values_or_nan(e.drive_loss, estimates.back().drive_loss)) {
       unseen.push_back(titles[keep - 1]);

@@ -394,7 +394,10 @@ void add_diagnosis_section(HtmlReport& page, const MeasuredResult& r) {
   page.heading("What diagnose adds", 3);
   page.paragraph(
       "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
-      ": it claims an effect only if it lowers the current residual there. The column "
+      ", with the files that repeat its motion: it claims an effect only if it lowers the "
+      "current residual there, on each other group of files held out in turn and, for a term "
+      "that extrapolates in q, on the held-out samples outside the range of q its fit saw. The "
+      "column "
       "\"diagnose's model\" above scores its written model against the sensor on the held-out "
       "files; the table below adds its written effects one at a time against the held-out "
       "files' current. Its findings on the fitting files:");

@@ -1,7 +1,9 @@
 #include "offline/validate/measured_facts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "offline/log/torque_sensor.hpp"
 #include "offline/report/text_format.hpp"
@@ -49,29 +51,6 @@ MeasuredFile one_file_facts(const Log& log, const JointSamples& s, std::size_t f
   return file;
 }
 
-/// The files of `log` whose motion repeats an earlier file's.
-std::vector<RepeatedMotion> find_repeated_motions(const Log& log, const JointSamples& s,
-                                                  const MeasuredFactsOptions& o) {
-  std::vector<RepeatedMotion> out;
-  for (std::size_t a = 0; a < log.file_count(); ++a)
-    for (std::size_t b = a + 1; b < log.file_count(); ++b) {
-      const auto [a0, a1] = log.file_rows(a);
-      const auto [b0, b1] = log.file_rows(b);
-      if (a1 - a0 != b1 - b0 || a1 == a0) continue;
-      const Eigen::MatrixXd dq = s.q.middleRows(a0, a1 - a0) - s.q.middleRows(b0, b1 - b0);
-      const double worst = dq.cwiseAbs().maxCoeff();
-      if (!(worst < o.repeat_tolerance)) continue;
-      RepeatedMotion r{a, b, worst, {}};
-      for (int j = 0; j < s.joints(); ++j) {
-        const Eigen::VectorXd d =
-            s.effort.col(j).segment(a0, a1 - a0) - s.effort.col(j).segment(b0, b1 - b0);
-        r.torque_rms_difference.push_back(std::sqrt(d.squaredNorm() / d.size()));
-      }
-      out.push_back(r);
-    }
-  return out;
-}
-
 /// Σ of squared second differences of x within [begin, end) and their count (finite ones only).
 void add_second_differences_of(const Eigen::Ref<const Eigen::VectorXd>& x, double& sum,
                                double& count) {
@@ -105,7 +84,7 @@ MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
     const std::size_t first = facts.files.size();
     for (std::size_t f = 0; f < log.file_count(); ++f)
       facts.files.push_back(one_file_facts(log, s, f, sensors, o));
-    for (RepeatedMotion r : find_repeated_motions(log, s, o)) {
+    for (RepeatedMotion r : repeated_motions(log, s, o.repeat_tolerance)) {
       r.first += first;
       r.second += first;
       facts.repeats.push_back(r);
@@ -141,15 +120,85 @@ MeasuredFacts measured_facts(const std::vector<LogWithSamples>& logs,
   return facts;
 }
 
+std::vector<RepeatedMotion> repeated_motions(const Log& log, const JointSamples& s,
+                                             double tolerance) {
+  std::vector<RepeatedMotion> out;
+  for (std::size_t a = 0; a < log.file_count(); ++a)
+    for (std::size_t b = a + 1; b < log.file_count(); ++b) {
+      const Eigen::Index a0 = log.file_rows(a).first, b0 = log.file_rows(b).first;
+      const Eigen::Index n = std::min(log.file_rows(a).second - a0, log.file_rows(b).second - b0);
+      RepeatedMotion r{a, b, 0, 0.0, 0.0, std::vector<double>(s.joints(), 0.0)};
+      std::vector<double> dq2(s.joints(), 0.0);
+      for (Eigen::Index k = 0; k < n; ++k) {
+        if (!s.valid[a0 + k] || !s.valid[b0 + k]) continue;
+        ++r.common_samples;
+        for (int j = 0; j < s.joints(); ++j) {
+          const double d = s.q(a0 + k, j) - s.q(b0 + k, j);
+          const double e = s.effort(a0 + k, j) - s.effort(b0 + k, j);
+          dq2[j] += d * d;
+          r.torque_rms_difference[j] += e * e;
+          r.max_position_difference = std::max(r.max_position_difference, std::abs(d));
+        }
+      }
+      if (r.common_samples == 0) continue;
+      const double count = static_cast<double>(r.common_samples);
+      for (int j = 0; j < s.joints(); ++j) {
+        r.rms_position_difference = std::max(r.rms_position_difference, std::sqrt(dq2[j] / count));
+        r.torque_rms_difference[j] = std::sqrt(r.torque_rms_difference[j] / count);
+      }
+      if (r.rms_position_difference < tolerance) out.push_back(r);
+    }
+  return out;
+}
+
+std::vector<std::vector<std::size_t>> repeated_motion_groups(
+    std::size_t files, const std::vector<RepeatedMotion>& repeats) {
+  std::vector<std::size_t> root(files);
+  for (std::size_t f = 0; f < files; ++f)
+    root[f] = f;
+  const auto find = [&](std::size_t f) {
+    while (root[f] != f)
+      f = root[f] = root[root[f]];
+    return f;
+  };
+  for (const RepeatedMotion& r : repeats) {
+    const std::size_t a = find(r.first), b = find(r.second);
+    root[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<int> index(files, -1);
+  for (std::size_t f = 0; f < files; ++f) {
+    const std::size_t r = find(f);
+    if (index[r] < 0) {
+      index[r] = static_cast<int>(groups.size());
+      groups.emplace_back();
+    }
+    groups[static_cast<std::size_t>(index[r])].push_back(f);
+  }
+  return groups;
+}
+
+std::vector<std::pair<double, double>> position_range(const JointSamples& s,
+                                                      const std::vector<char>& rows) {
+  std::vector<std::pair<double, double>> range(
+      s.joints(),
+      {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()});
+  for (Eigen::Index k = 0; k < s.size(); ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    if (!s.valid[i] || (!rows.empty() && !rows[i])) continue;
+    for (int j = 0; j < s.joints(); ++j) {
+      range[j].first = std::min(range[j].first, s.q(k, j));
+      range[j].second = std::max(range[j].second, s.q(k, j));
+    }
+  }
+  return range;
+}
+
 std::vector<double> outside_range_share(const JointSamples& fit, const JointSamples& heldout) {
   std::vector<double> share;
+  const std::vector<std::pair<double, double>> range = position_range(fit);
   for (int j = 0; j < fit.joints(); ++j) {
-    double lo = 1e300, hi = -1e300;
-    for (Eigen::Index k = 0; k < fit.size(); ++k)
-      if (fit.valid[static_cast<std::size_t>(k)]) {
-        lo = std::min(lo, fit.q(k, j));
-        hi = std::max(hi, fit.q(k, j));
-      }
+    const auto [lo, hi] = range[j];
     double outside = 0, count = 0;
     for (Eigen::Index k = 0; k < heldout.size(); ++k)
       if (heldout.valid[static_cast<std::size_t>(k)]) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "offline/identify/joint_samples.hpp"
@@ -19,7 +20,8 @@ struct MeasuredFactsOptions {
   double rest_velocity = 1e-3;
   /// … of which samples at or above the static threshold are labelled moving by noise [rad/s].
   double static_velocity = 1e-4;
-  /// Two files repeat one motion when they have as many rows and |Δq| stays below this [rad].
+  /// Two files repeat one motion when the RMS of Δq over their common length stays below this on
+  /// every joint [rad] (repeated_motions).
   double repeat_tolerance = 0.01;
 };
 
@@ -36,9 +38,27 @@ struct MeasuredFile {
 /// Two files with the same motion, and how far their current-based torques differ.
 struct RepeatedMotion {
   std::size_t first = 0, second = 0;          ///< indices into MeasuredFacts::files
+  Eigen::Index common_samples = 0;            ///< the shorter file's rows, compared row by row
+  double rms_position_difference = 0.0;       ///< rad, the largest per-joint RMS of Δq
   double max_position_difference = 0.0;       ///< rad, over all joints
   std::vector<double> torque_rms_difference;  ///< per joint, RMS of Δ(K_t·i) [N·m]
 };
+
+/// The pairs of files of `log` (first < second, indices of the log's files) that repeat one
+/// motion: over their common length (the shorter file's rows from each file's start, valid rows
+/// of both), the RMS of Δq is below `tolerance` [rad] on every joint.
+std::vector<RepeatedMotion> repeated_motions(const Log& log, const JointSamples& s,
+                                             double tolerance);
+
+/// The files 0 … files−1 in groups that repeat one motion (joined through `repeats`), each
+/// group's files in order, the groups ordered by their first file.
+std::vector<std::vector<std::size_t>> repeated_motion_groups(
+    std::size_t files, const std::vector<RepeatedMotion>& repeats);
+
+/// Per joint: [min, max] of q over the valid samples of `s` where `rows` is non-zero (every
+/// valid sample when `rows` is empty); [+inf, −inf] when there is none.
+std::vector<std::pair<double, double>> position_range(const JointSamples& s,
+                                                      const std::vector<char>& rows = {});
 
 struct MeasuredFacts {
   std::vector<MeasuredFile> files;
