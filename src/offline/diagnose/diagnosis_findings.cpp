@@ -54,7 +54,7 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
     text += format_sentence(
                 ": on this log their columns are nearly collinear (share outside the "
                 "model %.3f), so the data cannot tell which it is and no coefficient "
-                "means much alone. The model holds the first (",
+                "means much alone (the first: ",
                 c.distinct_share) +
             coefficients +
             "); a log with more range of motion, both directions and rests tells them apart.";
@@ -80,8 +80,9 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
         "leaves it out.";
   else if (!c.written)
     text +=
-        " Not written to the parameter file: it cannot be told from the declared model, "
-        "so its coefficients mean nothing there; the written model is refitted without it.";
+        " Not written to the parameter file: the two would predict differently where this log "
+        "cannot tell them apart (the other direction, outside its range of motion); the written "
+        "model is refitted without it.";
   return text;
 }
 

@@ -255,14 +255,13 @@ class ForwardSelection {
     }
   }
 
-  /// Written only when the run time evaluates it and its coefficients mean something: one that
-  /// cannot be told from the declared model (a spring beside gravity's mx) is reported, not
-  /// written.
+  /// Written only when the run time evaluates it and its coefficients mean something: an
+  /// ambiguous claim — one that cannot be told from the declared model (a spring beside
+  /// gravity's mx) or from another candidate (an offset beside direction-asymmetric friction
+  /// under one-directional motion, which predict differently once the joint reverses) — is
+  /// reported, not written.
   bool writable(const Claim& claim) const {
-    bool beside_declared = false;
-    for (int g : claim.groups)
-      beside_declared = beside_declared || groups_[g].declared;
-    return groups_[claim.groups[0]].written_to != WrittenTo::kNothing && !beside_declared;
+    return groups_[claim.groups[0]].written_to != WrittenTo::kNothing && !claim.ambiguous();
   }
 
   std::vector<int> written_columns(const EffectSelection& out) const {
