@@ -42,7 +42,7 @@ TEST(NoiseFloor, SlowSignalHasNoFloorAndWhiteNoiseKeepsNearlyAllOfIt) {
   // White noise of σ = 1 at 1 kHz: above 20 Hz lies ≈ 1 − 2·20/1000 of its power.
   EXPECT_GT(floor[1], 0.95);
   EXPECT_LT(floor[1], 1.02);
-  const std::vector<double> all = finite_rms(x.rightCols(1));
+  const std::vector<double> all = finite_rms_per_column(x.rightCols(1));
   EXPECT_NEAR(all[0], 1.0, 0.03);
   EXPECT_GE(all[0], floor[1]);
 }
@@ -53,7 +53,7 @@ TEST(NoiseFloor, ColumnWithoutFiniteSamplesIsNaN) {
   const Eigen::MatrixXd x =
       Eigen::MatrixXd::Constant(8000, 1, std::numeric_limits<double>::quiet_NaN());
   EXPECT_TRUE(std::isnan(high_frequency_rms(log, t, x, 20.0)[0]));
-  EXPECT_TRUE(std::isnan(finite_rms(x)[0]));
+  EXPECT_TRUE(std::isnan(finite_rms_per_column(x)[0]));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "offline/compensator_training/train_compensator.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "offline/compensator_training/baseline_start.hpp"
@@ -18,6 +19,24 @@ int compensator_input_channel(std::string_view name) {
                       "nominal-friction)");
 }
 
+namespace {
+
+/// The network input channels of options.masked_inputs: the channel itself in a per-joint network,
+/// that input of every joint (c·joints + k) in the all-joints one. Throws on an unknown channel.
+std::vector<int> masked_network_inputs(const CompensatorTrainingOptions& options, int joints) {
+  std::vector<int> masked;
+  for (int c : options.masked_inputs) {
+    if (c < 0 || c >= kCompensatorInputsPerJoint)
+      throw Error::at("compensator training", 0, "masked_inputs",
+                      "channel " + std::to_string(c) + " is not a compensator input");
+    for (int k = 0; k < (options.per_joint ? 1 : joints); ++k)
+      masked.push_back(options.per_joint ? c : c * joints + k);
+  }
+  return masked;
+}
+
+}  // namespace
+
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const CompensatorTrainingOptions& options,
                                       const TcnProgressCallback& progress) {
@@ -33,19 +52,15 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
   CompensatorTraining out;
   out.layout = options.per_joint ? CompensatorLayout::PerJoint : CompensatorLayout::AllJoints;
   const int networks = options.per_joint ? joints : 1;
+  const std::vector<int> masked = masked_network_inputs(options, joints);
   for (int net = 0; net < networks; ++net) {
     const int joint = options.per_joint ? net : -1;
     TcnDataset dataset;
     TcnTrainOptions o = options.tcn;
     for (const EstimatorTrace& trace : traces) {
       TcnSequence sequence = training_sequence(trace, joint);
-      for (int c : options.masked_inputs) {
-        if (c < 0 || c >= kCompensatorInputsPerJoint)
-          throw Error::at("compensator training", 0, "masked_inputs",
-                          "channel " + std::to_string(c) + " is not a compensator input");
-        for (int k = 0; k < (options.per_joint ? 1 : joints); ++k)
-          sequence.inputs.col(options.per_joint ? c : c * joints + k).setZero();
-      }
+      for (int c : masked)
+        sequence.inputs.col(c).setZero();
       sequence.weight = regime_weights(trace, joint, options.static_weight,
                                        options.static_to_kinetic_weight, options.regimes);
       dataset.sequences.push_back(std::move(sequence));
@@ -65,19 +80,15 @@ CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
     for (int k = 0; k < o.architecture.outputs; ++k)
       baseline[k] = options.per_joint ? 3 : 3 * joints + k;
     // The baseline start predicts τ̂_fric,s: not when the networks do not see it.
-    bool sees_static_friction = true;
-    for (int c : options.masked_inputs)
-      sees_static_friction = sees_static_friction && c != kStaticFrictionInput;
+    const bool sees_static_friction =
+        std::find(options.masked_inputs.begin(), options.masked_inputs.end(),
+                  kStaticFrictionInput) == options.masked_inputs.end();
     TcnTrainResult result =
         options.start_from_baseline && sees_static_friction
             ? trainer.train(baseline_start(o.architecture, o.seed, trainer.input_mean(),
                                            trainer.input_std(), baseline),
                             progress)
             : trainer.train(progress);
-    std::vector<int> masked;
-    for (int c : options.masked_inputs)
-      for (int k = 0; k < (options.per_joint ? 1 : joints); ++k)
-        masked.push_back(options.per_joint ? c : c * joints + k);
     mask_tcn_inputs(result.best, masked);
     out.files.push_back(to_weight_file(result.best));
     out.results.push_back(std::move(result));

@@ -118,15 +118,26 @@ bool selected_in_a_round(const EffectDiagnosis& d, const std::string& title) {
   return false;
 }
 
+/// The trials `fails` refuses, the first of each title, leaving out those a claim names (tried
+/// again in a later round, on a larger model, they passed).
+template <typename Fails>
+std::vector<const CandidateTrial*> refused_once(const EffectDiagnosis& d, Fails fails) {
+  std::vector<const CandidateTrial*> refused;
+  for (const CandidateTrial& t : d.trials) {
+    if (!fails(t) || selected_in_a_round(d, t.title)) continue;
+    const auto same_title = [&](const CandidateTrial* r) { return r->title == t.title; };
+    if (std::none_of(refused.begin(), refused.end(), same_title)) refused.push_back(&t);
+  }
+  return refused;
+}
+
 // Candidates that passed on the held-out file but made another file worse, once each (not those
 // a claim names: tried again in a later round, on a larger model, they passed).
 void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
                        std::vector<std::string>& findings) {
-  std::vector<std::string> said;
-  for (const CandidateTrial& t : d.trials) {
-    if (!t.fails_transfer(options) || selected_in_a_round(d, t.title)) continue;
-    if (std::find(said.begin(), said.end(), t.title) != said.end()) continue;
-    said.push_back(t.title);
+  const auto fails = [&](const CandidateTrial& t) { return t.fails_transfer(options); };
+  for (const CandidateTrial* trial : refused_once(d, fails)) {
+    const CandidateTrial& t = *trial;
     findings.push_back(
         "Not claimed: " + t.title +
         format_sentence(" — removes %.1f %% of the held-out file's residual sum of squares, but "
@@ -143,11 +154,9 @@ void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
 // made the held-out samples there worse, once each.
 void add_not_extrapolating(const EffectDiagnosis& d, const DiagnoseOptions& options,
                            std::vector<std::string>& findings) {
-  std::vector<std::string> said;
-  for (const CandidateTrial& t : d.trials) {
-    if (!t.fails_outside(options) || selected_in_a_round(d, t.title)) continue;
-    if (std::find(said.begin(), said.end(), t.title) != said.end()) continue;
-    said.push_back(t.title);
+  const auto fails = [&](const CandidateTrial& t) { return t.fails_outside(options); };
+  for (const CandidateTrial* trial : refused_once(d, fails)) {
+    const CandidateTrial& t = *trial;
     findings.push_back(
         "Not claimed: " + t.title +
         format_sentence(" — removes %.1f %% of the held-out file's residual sum of squares, but "

@@ -19,17 +19,20 @@ std::vector<double> high_frequency_rms(const Log& log, const Eigen::VectorXd& t,
           part - zero_phase_low_pass(t.segment(begin, n), part, cutoff_hz);
     }
   }
-  return finite_rms(high);
+  return finite_rms_per_column(high);
 }
 
-std::vector<double> finite_rms(const Eigen::MatrixXd& x) {
+double finite_rms(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  double sum = 0, count = 0;
+  for (Eigen::Index k = 0; k < x.size(); ++k)
+    if (std::isfinite(x[k])) sum += x[k] * x[k], ++count;
+  return count > 0 ? std::sqrt(sum / count) : std::nan("");
+}
+
+std::vector<double> finite_rms_per_column(const Eigen::MatrixXd& x) {
   std::vector<double> out;
-  for (Eigen::Index j = 0; j < x.cols(); ++j) {
-    double sum = 0, count = 0;
-    for (Eigen::Index k = 0; k < x.rows(); ++k)
-      if (std::isfinite(x(k, j))) sum += x(k, j) * x(k, j), ++count;
-    out.push_back(count > 0 ? std::sqrt(sum / count) : std::nan(""));
-  }
+  for (Eigen::Index j = 0; j < x.cols(); ++j)
+    out.push_back(finite_rms(x.col(j)));
   return out;
 }
 

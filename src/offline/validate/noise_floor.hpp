@@ -15,7 +15,10 @@ namespace tpf::offline {
 std::vector<double> high_frequency_rms(const Log& log, const Eigen::VectorXd& t,
                                        const Eigen::MatrixXd& x, double cutoff_hz);
 
-/// Per column: RMS over the finite samples (NaN when none).
-std::vector<double> finite_rms(const Eigen::MatrixXd& x);
+/// RMS over the finite samples of x (NaN when none).
+double finite_rms(const Eigen::Ref<const Eigen::VectorXd>& x);
+
+/// finite_rms of each column.
+std::vector<double> finite_rms_per_column(const Eigen::MatrixXd& x);
 
 }  // namespace tpf::offline

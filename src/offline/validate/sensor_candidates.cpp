@@ -10,6 +10,7 @@
 #include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
 #include "offline/signal/periodogram.hpp"
+#include "offline/validate/noise_floor.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -20,13 +21,6 @@ constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 using CandidateFeatureVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1>;
 using CandidateFeatures =
     std::function<CandidateFeatureVector(const JointSamples&, Eigen::Index, int)>;
-
-double finite_rms(const Eigen::VectorXd& r) {
-  double sum = 0, n = 0;
-  for (Eigen::Index k = 0; k < r.size(); ++k)
-    if (std::isfinite(r[k])) sum += r[k] * r[k], ++n;
-  return n > 0 ? std::sqrt(sum / n) : kNoValue;
-}
 
 bool candidate_moving(const JointSamples& s, Eigen::Index k, int j) {
   const Regime r = s.regimes[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
