@@ -1,14 +1,12 @@
 #include "offline/regimes/regime_stats.hpp"
 
 #include <cmath>
-#include <limits>
 
+#include "offline/common/not_a_number.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Running sums, turned into statistics by a second pass over the same samples.
 struct Accumulator {

@@ -1,15 +1,12 @@
 #include "offline/signal/acceleration.hpp"
 
-#include <limits>
-
+#include "offline/common/not_a_number.hpp"
 #include "offline/signal/butterworth.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void check_sizes(const Eigen::VectorXd& t, const Eigen::VectorXd& x, const char* what) {
   if (t.size() != x.size())

@@ -2,17 +2,15 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <nlohmann/json.hpp>
 
+#include "offline/common/not_a_number.hpp"
 #include "offline/log/torque_sensor.hpp"
 #include "offline/replay/replay_estimator.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Identified armature of each joint: the base value of regressor column "Ia<j>" when that
 /// column is a base column of its own (0 otherwise).
