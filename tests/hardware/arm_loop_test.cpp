@@ -21,6 +21,7 @@
 #include "dynamixel/serial/pty_pair.hpp"
 #include "dynamixel/serial/serial_port.hpp"
 #include "dynamixel/serial/thread_priority.hpp"
+#include "loop_fixture.hpp"
 #include "support/allocation_counter.hpp"
 #include "teensy/emulator/pad_board_emulator.hpp"
 #include "wait_until.hpp"
@@ -28,14 +29,7 @@
 namespace tpf::arm {
 namespace {
 
-std::string temp_path(const std::string& name) {
-  const char* dir = std::getenv("TMPDIR");
-  return std::string(dir ? dir : "/tmp") + "/tpf_arm_" + name + "_" + std::to_string(::getpid());
-}
-
-// Device threads ask for SCHED_FIFO (best effort) to keep up on a loaded machine; the asserts
-// below hold without it too, only with more failed cycles.
-constexpr int kDevicePriority = 20;
+using test::kDevicePriority;
 constexpr dxl::BusTiming kLoopTiming{4'000'000, 1.0, 3.0};
 
 pad::PadBoardEmulatorOptions board_options(const std::string& link, int garbage) {
@@ -59,7 +53,7 @@ struct ArmRig {
   dxl::ph54::ChainInfo chain;
 
   explicit ArmRig(const std::string& name, int garbage = 0)
-      : board(board_options(temp_path(name + "_pads"), garbage)) {
+      : board(board_options(test::temp_path("arm", name + "_pads"), garbage)) {
     motors.start(kDevicePriority);
     board.start();
     port = serial::open_serial_port(motor_pty.slave_path(), 4'000'000);
@@ -68,8 +62,8 @@ struct ArmRig {
     bus = std::make_unique<dxl::Bus>(port, dxl::BusTiming{4'000'000, 1.0, 200.0});
     chain = dxl::ph54::set_up_chain(*bus, {});
     bus->set_timing(kLoopTiming);
-    pads = std::make_unique<pad::PadReader>(
-        pad::PadReaderOptions{temp_path(name + "_pads"), 5.0, 50.0, 5.0, kDevicePriority});
+    pads = std::make_unique<pad::PadReader>(pad::PadReaderOptions{
+        test::temp_path("arm", name + "_pads"), 5.0, 50.0, 5.0, kDevicePriority});
     pads->start();
     test::wait_until([&] { return pads->stats().frames > 20; });
   }
@@ -98,7 +92,7 @@ std::vector<std::string> read_lines(const std::string& path) {
 
 TEST(ArmLoop, HealthyRunLogsEveryCycleInTheTpfFormat) {
   ArmRig rig("healthy");
-  const std::string log_path = temp_path("healthy.csv");
+  const std::string log_path = test::temp_path("arm", "healthy.csv");
   offline::LogMetadata meta;
   meta.set("robot", "arm4");
   meta.set("rate_hz", "400");

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "support/allocation_counter.hpp"
+#include "support/arm_fixture.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/estimator_status.hpp"
@@ -24,17 +25,15 @@
 namespace tpf::arm {
 namespace {
 
-std::string data(const std::string& name) {
-  return std::string(TPF_TEST_DATA_DIR) + "/" + name;
-}
+using test::data_path;
 
 EstimatorFiles arm4_files() {
   EstimatorFiles f;
-  f.params = data("arm4.params.json");
-  f.robot = data("arm4.robot.json");
-  f.pads = data("arm4.pads.json");
-  f.estimator = data("arm4.estimator.json");  // calibrated on a SIMULATED log
-  f.weights = data("weights/arm4.tcn.json");
+  f.params = data_path("arm4.params.json");
+  f.robot = data_path("arm4.robot.json");
+  f.pads = data_path("arm4.pads.json");
+  f.estimator = data_path("arm4.estimator.json");  // calibrated on a SIMULATED log
+  f.weights = data_path("weights/arm4.tcn.json");
   f.trace_capacity = 100;
   return f;
 }
@@ -42,7 +41,7 @@ EstimatorFiles arm4_files() {
 /// The arm at rest at q = (0, 0.3, −0.4, 0), pads unloaded (currents set by the caller).
 /// The arm's model: its torque constants turn the estimator's N·m into the drives' mA.
 const Model<double, 4>& arm4() {
-  static const Model<double, 4> model = load_robot<double, 4>(data("arm4.robot.json"));
+  static const Model<double, 4> model = load_robot<double, 4>(data_path("arm4.robot.json"));
   return model;
 }
 
@@ -134,11 +133,11 @@ JointVector<double, 4> proprioceptive_at_rest(const std::string& file, double of
 TEST(EstimatorHook, TheEstimatorFileSetsTheDeadBands) {
   // The shipped file's proprioceptive dead band is 1.5·σ_nominal per joint (N·m): a 300 mA
   // residual, K_t·0.3 N·m, passes it by that less 1.5·σ_j where σ_j < 200 mA and not elsewhere.
-  const auto shipped = load_estimator_parameters<4>(data("arm4.estimator.json"));
+  const auto shipped = load_estimator_parameters<4>(data_path("arm4.estimator.json"));
   const JointVector<double, 4> band = shipped.dead_band_factor * shipped.nominal_sigma;
   const JointVector<double, 4> push =
       torque_from_current(arm4(), JointVector<double, 4>::Constant(300.0).eval());
-  const JointVector<double, 4> r = proprioceptive_at_rest(data("arm4.estimator.json"), 300.0);
+  const JointVector<double, 4> r = proprioceptive_at_rest(data_path("arm4.estimator.json"), 300.0);
   for (int j = 0; j < 4; ++j)
     EXPECT_NEAR(r[j], std::max(push[j] - band[j], 0.0), 1e-6) << "joint " << j + 1;
   EXPECT_GT(r.maxCoeff(), 0.0);  // the data file has a joint with σ < 200 mA
@@ -153,7 +152,7 @@ TEST(EstimatorHook, TheEstimatorFileSetsTheDeadBands) {
 
 TEST(EstimatorHook, RefusesBadFilesNamingThem) {
   EstimatorFiles f = arm4_files();
-  f.pads = data("no-such-pads.json");
+  f.pads = data_path("no-such-pads.json");
   try {
     EstimatorHook hook(f);
     FAIL() << "no error";
@@ -161,11 +160,11 @@ TEST(EstimatorHook, RefusesBadFilesNamingThem) {
     EXPECT_NE(std::string(e.what()).find("no-such-pads.json"), std::string::npos) << e.what();
   }
   f = arm4_files();
-  f.weights = data("weights/none-here.json");
+  f.weights = data_path("weights/none-here.json");
   EXPECT_THROW(EstimatorHook{f}, Error);
   // An estimator parameter file with a field missing: the file and the field are named.
   TempFile bad("tpf_hook_bad_estimator");
-  std::ifstream in(data("arm4.estimator.json"));
+  std::ifstream in(data_path("arm4.estimator.json"));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const auto at = text.find("\"torque_alarm_samples\"");
   ASSERT_NE(at, std::string::npos);

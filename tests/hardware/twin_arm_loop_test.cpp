@@ -22,8 +22,10 @@
 #include "dynamixel/serial/pty_pair.hpp"
 #include "dynamixel/serial/serial_port.hpp"
 #include "dynamixel/serial/thread_priority.hpp"
+#include "loop_fixture.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/sim/scenario.hpp"
+#include "support/arm_fixture.hpp"
 #include "teensy/emulator/pad_board_emulator.hpp"
 #include "tpf/estimation/estimator_status.hpp"
 #include "tpf/estimation/nominal_model.hpp"
@@ -33,16 +35,9 @@
 namespace tpf::arm {
 namespace {
 
-std::string temp_path(const std::string& name) {
-  const char* dir = std::getenv("TMPDIR");
-  return std::string(dir ? dir : "/tmp") + "/tpf_twin_" + name + "_" + std::to_string(::getpid());
-}
+using test::data_path;
+using test::kDevicePriority;
 
-std::string data(const std::string& name) {
-  return std::string(TPF_TEST_DATA_DIR) + "/" + name;
-}
-
-constexpr int kDevicePriority = 20;
 constexpr std::uint64_t kCycles = 1600;  // 4 s at 400 Hz
 // The push (twin time): ramps over 0.25 s, held 1.5 s, on pad kPad with kNormal newtons on a
 // 6 cm² contact (the pads' reference area: the twin's pad gain is then exactly 1.5 kPa/N).
@@ -70,7 +65,8 @@ void pause_ms(long ms) {
 
 TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   // The twin: static-contacts scenario (robot, friction, PH54 drives, sensor noise) with one push.
-  const offline::Scenario scenario = offline::load_scenario(data("scenarios/static-contacts.json"));
+  const offline::Scenario scenario =
+      offline::load_scenario(data_path("scenarios/static-contacts.json"));
   dxl::emu::TwinMotorPlant plant(scenario, {7, 2000 * 6});
   plant.set_contacts(one_push());
 
@@ -78,7 +74,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   serial::PtyPair motor_pty;
   dxl::emu::MotorChainEmulator motors(motor_pty.master(), plant, dxl::emu::arm_chain());
   pad::PadBoardEmulatorOptions board_options;
-  board_options.link_path = temp_path("pads");
+  board_options.link_path = test::temp_path("twin", "pads");
   board_options.startup_garbage_bytes = 40;
   board_options.realtime_priority = kDevicePriority;
   board_options.source = [&plant](std::span<float> kpa) { return plant.pad_pressures(kpa); };
@@ -89,14 +85,15 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   // Files first, as tpf_arm_loop does: once the motors hold, the bus watchdog (100 ms) wants
   // the loop running.
   EstimatorFiles files;
-  files.params = data("arm4.params.json");
-  files.robot = data("arm4.robot.json");
-  files.pads = data("arm4.pads.json");
-  files.estimator = data("arm4.estimator.json");  // calibrated on a SIMULATED twin log
-  files.weights = data("weights/arm4.tcn.json");
+  files.params = data_path("arm4.params.json");
+  files.robot = data_path("arm4.robot.json");
+  files.pads = data_path("arm4.pads.json");
+  files.estimator = data_path("arm4.estimator.json");  // calibrated on a SIMULATED twin log
+  files.weights = data_path("weights/arm4.tcn.json");
   files.trace_capacity = kCycles;
   EstimatorHook estimator(files);
-  pad::PadReader pads(pad::PadReaderOptions{temp_path("pads"), 5.0, 50.0, 5.0, kDevicePriority});
+  pad::PadReader pads(
+      pad::PadReaderOptions{test::temp_path("twin", "pads"), 5.0, 50.0, 5.0, kDevicePriority});
   pads.start();
   // Host side as tpf_arm_loop sets it up: generous start-up timeouts, hold the pose, then 1 + 3 ms.
   serial::FdTransport port = serial::open_serial_port(motor_pty.slave_path(), 4'000'000);
@@ -113,7 +110,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   ArmLoopOptions options;
   options.cycles = kCycles;
   // Recorded as tpf_arm_loop records: the motors, the pads and the estimator's answer.
-  const std::string log_path = temp_path("twin-loop.csv");
+  const std::string log_path = test::temp_path("twin", "twin-loop.csv");
   offline::LogMetadata meta;
   meta.set("robot", "arm4");
   meta.set("rate_hz", "400");
@@ -258,7 +255,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   // than that must get its sign. (Measured, simulated: joint 2 5.2–5.8 vs 2.89 N·m, joint 3
   // 2.5 vs 1.32 N·m; joints 1 and 4 exactly 0 behind their dead bands, truth ≈ 0.)
   const NominalModel<double, 4> nominal =
-      load_nominal_model<4>(data("arm4.params.json"), data("arm4.robot.json"));
+      load_nominal_model<4>(data_path("arm4.params.json"), data_path("arm4.robot.json"));
   for (int j = 0; j < 4; ++j) {
     const double swing = 2.0 * nominal.friction.static_friction[j];
     EXPECT_NEAR(estimated[j], expected[j], swing + 0.25) << "joint " << j + 1;

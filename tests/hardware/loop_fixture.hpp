@@ -1,0 +1,22 @@
+// Shared by the end-to-end loop tests against emulated devices (arm_loop, twin_arm_loop).
+#pragma once
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <string>
+
+namespace tpf::test {
+
+/// Device threads ask for SCHED_FIFO (best effort) to keep up on a loaded machine; the tests'
+/// asserts hold without it too, only with more failed cycles.
+inline constexpr int kDevicePriority = 20;
+
+/// A path of this process in $TMPDIR (else /tmp): tpf_<tag>_<name>_<pid>.
+inline std::string temp_path(const std::string& tag, const std::string& name) {
+  const char* dir = std::getenv("TMPDIR");
+  return std::string(dir ? dir : "/tmp") + "/tpf_" + tag + "_" + name + "_" +
+         std::to_string(::getpid());
+}
+
+}  // namespace tpf::test
