@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
@@ -345,7 +346,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   selection.regimes = {false, true, true};
 
   say("diagnose: pass 1/4: declared model");
-  const EffectDesign<N> declared(model, setup.base, s, {}, threshold);
+  const auto regressors =
+      std::make_shared<const SampleRegressors<N>>(model, setup.base.independent, s);
+  const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
   const DeclaredFit fit = fit_declared(declared, s, selection);
   selection.joint_weights = fit.joint_weights;
 
@@ -360,7 +363,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
 
   say("diagnose: pass 3/4: candidate effects");
   const CandidateInputs inputs = candidate_inputs(model, s, analysis, fit);
-  const EffectDesign<N> design(model, setup.base, s, inputs, threshold);
+  const EffectDesign<N> design(model, setup.base, s, regressors, inputs, threshold);
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
   std::vector<TransferFold> transfer;

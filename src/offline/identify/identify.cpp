@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <random>
 
 #include "offline/effects/effect_columns.hpp"
@@ -229,7 +230,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
-  const EffectDesign<N> design(model, base, s, {}, options.samples.regimes.static_velocity);
+  const auto regressors = std::make_shared<const SampleRegressors<N>>(model, base.independent, s);
+  const EffectDesign<N> design(model, base, s, regressors, {},
+                               options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);
   FitSelection selection;
   selection.regimes = {false, true, true};  // moving samples only
