@@ -209,7 +209,10 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   check_samples(s);
   const Eigen::Index n = s.size();
   const int m = static_cast<int>(thetas.size());
-  std::vector<Eigen::MatrixXd> predictions(m, Eigen::MatrixXd(n, N));
+  std::vector<Eigen::MatrixXd> predictions;  // each n × N, filled below (not copied from one)
+  predictions.reserve(static_cast<std::size_t>(m));
+  for (int i = 0; i < m; ++i)
+    predictions.emplace_back(n, N);
   // Per joint: local features × parameter sets.
   std::vector<Eigen::MatrixXd> local_theta(N);
   for (int j = 0; j < N; ++j) {

@@ -35,6 +35,7 @@ template <int N>
 Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
   const Eigen::Index n = s.size();
   Eigen::MatrixXd residual(n, N);
+  const NominalLinks<double, N> links = nominal_links(nominal);  // once, not per sample
   auto work = [&](Eigen::Index begin, Eigen::Index end) {
     Data<double, N> data;
     JointVector<double, N> rigid, friction;
@@ -44,7 +45,7 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const J
         continue;
       }
       const JointVector<double, N> q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
-      predict_effort(nominal, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
+      predict_effort(nominal, links, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
       residual.row(k) = s.effort.row(k) - (rigid + friction).transpose();
     }
   };
