@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "offline/identify/effect_design.hpp"
 #include "support/arm_fixture.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 
@@ -23,8 +24,11 @@ TEST(SampleRegressors, StoredEntriesAreComputeRegressorsOwn) {
   s.valid.assign(n, 1);
   s.valid[7] = 0;  // an invalid sample is skipped
   const std::vector<int> base = rigid_body_base_parameters(arm()).independent;
-  const offline::SampleRegressors<kJoints> regressors(arm(), base, s);
+  const offline::SampleRegressors<kJoints> regressors(
+      arm(), offline::EffectDesign<kJoints>::regressor_columns(base, true), s);
   ASSERT_EQ(regressors.size(), n);
+  EXPECT_TRUE(regressors.holds(10 * (kJoints - 1)));
+  EXPECT_FALSE(regressors.holds(11 * kJoints));  // a friction column no family reads
 
   ArmData data;
   Regressor<double, kJoints> expected, loaded = Regressor<double, kJoints>::Zero();

@@ -346,8 +346,8 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   selection.regimes = {false, true, true};
 
   say("diagnose: pass 1/4: declared model");
-  const auto regressors =
-      std::make_shared<const SampleRegressors<N>>(model, setup.base.independent, s);
+  const auto regressors = std::make_shared<const SampleRegressors<N>>(
+      model, EffectDesign<N>::regressor_columns(setup.base.independent, true), s);
   const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
   const DeclaredFit fit = fit_declared(declared, s, selection);
   selection.joint_weights = fit.joint_weights;
@@ -362,8 +362,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   if (N == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const CandidateInputs inputs = candidate_inputs(model, s, analysis, fit);
-  const EffectDesign<N> design(model, setup.base, s, regressors, inputs, threshold);
+  const EffectDesign<N> design(model, setup.base, s, regressors,
+                               candidate_inputs(model, s, analysis, fit), threshold);
+  const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
   std::vector<TransferFold> transfer;

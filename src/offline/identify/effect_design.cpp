@@ -103,8 +103,21 @@ void EffectDesign<N>::index_joint_groups() {
 }
 
 template <int N>
+std::vector<int> EffectDesign<N>::regressor_columns(const std::vector<int>& base_columns,
+                                                    bool candidates) {
+  std::vector<int> columns = base_columns;
+  if (candidates)
+    for (int p = 0; p < PayloadColumns::kColumns; ++p)
+      columns.push_back(10 * (N - 1) + p);
+  return columns;
+}
+
+template <int N>
 void EffectDesign<N>::check_samples(const JointSamples& samples) const {
-  if (!regressors_ || regressors_->size() != samples.size())
+  const std::vector<int> needed = regressor_columns(base_columns_, candidates_.enabled);
+  if (!regressors_ || regressors_->size() != samples.size() ||
+      !std::all_of(needed.begin(), needed.end(),
+                   [&](int column) { return regressors_->holds(column); }))
     throw Error::at(samples.source, 0, "",
                     "effect design: the regressors are not those of these samples");
 }

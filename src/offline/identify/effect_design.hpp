@@ -47,7 +47,13 @@ class EffectDesign {
                const JointSamples& samples, std::shared_ptr<const SampleRegressors<N>> regressors,
                CandidateInputs candidates, double static_velocity);
 
+  /// The columns of Y the families read: the base columns, and the last link's (a payload) when
+  /// the candidates are offered. The SampleRegressors of a design must hold them.
+  static std::vector<int> regressor_columns(const std::vector<int>& base_columns, bool candidates);
+
   int features() const { return features_; }
+  /// The candidate inputs the design was built with.
+  const CandidateInputs& candidates() const { return candidates_; }
   const std::vector<FeatureGroup>& groups() const { return groups_; }
   /// Columns of the declared model.
   std::vector<int> declared_columns() const;

@@ -231,7 +231,8 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
-  const auto regressors = std::make_shared<const SampleRegressors<N>>(model, base.independent, s);
+  const auto regressors = std::make_shared<const SampleRegressors<N>>(
+      model, EffectDesign<N>::regressor_columns(base.independent, false), s);
   const EffectDesign<N> design(model, base, s, regressors, {},
                                options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);

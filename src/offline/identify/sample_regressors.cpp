@@ -1,6 +1,7 @@
 #include "offline/identify/sample_regressors.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "offline/identify/parallel_halves.hpp"
 
@@ -16,14 +17,12 @@ bool structurally_nonzero(int joints, int row, int column) {
 }  // namespace
 
 template <int N>
-SampleRegressors<N>::SampleRegressors(const Model<double, N>& model,
-                                      const std::vector<int>& base_columns, const JointSamples& s) {
-  std::vector<int> columns = base_columns;
-  for (int p = 0; p < 10; ++p)
-    columns.push_back(10 * (N - 1) + p);  // the last link's standard columns (PayloadColumns)
-  std::sort(columns.begin(), columns.end());
-  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
-  for (int column : columns)
+SampleRegressors<N>::SampleRegressors(const Model<double, N>& model, std::vector<int> columns,
+                                      const JointSamples& s)
+    : columns_(std::move(columns)) {
+  std::sort(columns_.begin(), columns_.end());
+  columns_.erase(std::unique(columns_.begin(), columns_.end()), columns_.end());
+  for (int column : columns_)
     for (int row = 0; row < N; ++row)
       if (structurally_nonzero(N, row, column)) entries_.push_back({row, column});
 
@@ -40,6 +39,11 @@ SampleRegressors<N>::SampleRegressors(const Model<double, N>& model,
         *out++ = Y(e.row, e.column);
     }
   });
+}
+
+template <int N>
+bool SampleRegressors<N>::holds(int column) const {
+  return std::binary_search(columns_.begin(), columns_.end(), column);
 }
 
 template <int N>
