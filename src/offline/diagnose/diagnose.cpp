@@ -152,17 +152,20 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
       }
     text += ".";
   }
-  for (const RepeatedMotion& r : split.repeats)
-    text +=
-        std::string(" ") + file_names(log, {r.second}) + " repeats the motion of " +
-        file_names(log, {r.first}) +
-        format_sentence(
-            " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
-            "joint, below %.2g rad)",
-            static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance) +
-        (split.groups.size() > 1
-             ? ", so they are held out together: a fit on one would be scored on its own motion."
-             : ".");
+  // Appended piece by piece (a chain of string + string trips GCC 12's -Wrestrict here).
+  for (const RepeatedMotion& r : split.repeats) {
+    text += " ";
+    text += file_names(log, {r.second});
+    text += " repeats the motion of ";
+    text += file_names(log, {r.first});
+    text += format_sentence(
+        " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
+        "joint, below %.2g rad)",
+        static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance);
+    text += split.groups.size() > 1
+                ? ", so they are held out together: a fit on one would be scored on its own motion."
+                : ".";
+  }
   return text;
 }
 
