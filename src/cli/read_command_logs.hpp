@@ -6,16 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
 
 namespace tpf::cli {
 
-/// read_logs of `paths`, printing its notes, the joined log's quality (several files) and the
-/// torque-sensor lines that name a flat or missing sensor.
+/// read_logs of `paths` (only the columns the fit reads are parsed and kept), printing its notes,
+/// the joined log's quality (several files) and the torque-sensor lines that name a flat or
+/// missing sensor.
 inline offline::Log read_command_logs(const std::vector<std::string>& paths) {
   std::vector<std::string> notes;
-  offline::Log log = offline::read_logs(paths, &notes);
+  offline::Log log = offline::read_logs(paths, &notes, offline::identification_column);
   for (const std::string& n : notes)
     std::printf("note: %s\n", n.c_str());
   if (log.file_count() > 1) std::printf("%s\n", log.quality.summary(log.columns).c_str());

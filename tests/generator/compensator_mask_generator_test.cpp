@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "offline/compensator_training/tcn_parameters.hpp"
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
@@ -39,12 +40,12 @@ const offline::EstimatorTrace& planar_trace() {
   return trace;
 }
 
-offline::CompensatorTraining train_planar(const std::vector<int>& masked) {
+offline::CompensatorTraining train_planar(const std::vector<int>& masked, int threads = 1) {
   offline::CompensatorTrainingOptions o;
   o.per_joint = true;
   o.masked_inputs = masked;
   o.tcn.max_epochs = 2;
-  o.tcn.threads = 1;
+  o.tcn.threads = threads;
   o.tcn.validation_block_windows = 2;
   return offline::train_compensator({planar_trace()}, o);
 }
@@ -95,6 +96,18 @@ TEST(CompensatorWithoutPosition, OutputDoesNotDependOnQAtAll) {
   const offline::CompensatorTraining full = train_planar({});
   const Eigen::MatrixXd c = stream(full, 0.0, "c"), d = stream(full, 1.7, "d");
   EXPECT_GT((c - d).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+TEST(CompensatorTraining, NetworksTrainedAtOnceOnTwoThreadsAreTheSame) {
+  const offline::CompensatorTraining one = train_planar({}, 1);
+  const offline::CompensatorTraining two = train_planar({}, 2);  // one network per thread
+  ASSERT_EQ(one.results.size(), 2u);
+  ASSERT_EQ(two.results.size(), 2u);
+  for (std::size_t j = 0; j < 2; ++j) {
+    EXPECT_EQ(one.results[j].best_validation_loss, two.results[j].best_validation_loss);
+    offline::TcnParameters serial = one.results[j].best, concurrent = two.results[j].best;
+    EXPECT_EQ(offline::flatten(serial), offline::flatten(concurrent));
+  }
 }
 
 TEST(CompensatorWithoutPosition, InputNamesMapToChannelsAndUnknownNamesAreRefused) {

@@ -217,5 +217,27 @@ TEST(ReadLog, ParallelParseMatchesEveryValue) {
   EXPECT_EQ(log.quality.missing_per_column[2], 70u);
 }
 
+TEST(ReadLog, ColumnFilterSkipsTheOthersUnparsed) {
+  TempDir dir("filter");
+  write_text(dir / "a.csv", "# rate_hz: 400\nt,q1,note,gt_x\n0,1,text,1e308\n0.0025,2,more,,\n");
+  // A skipped column may hold text; the field count is still checked.
+  EXPECT_THROW(read_log(dir / "a.csv", [](std::string_view n) { return n != "note"; }), Error);
+  write_text(dir / "b.csv", "# rate_hz: 400\nt,q1,note,gt_x\n0,1,text,5\n0.0025,2,more,\n");
+  const Log log = read_log(dir / "b.csv", [](std::string_view n) { return n == "t" || n == "q1"; });
+  EXPECT_EQ(log.columns, (std::vector<std::string>{"t", "q1"}));
+  EXPECT_EQ(log.col("q1")[1], 2.0);
+  EXPECT_EQ(log.quality.missing_per_column, (std::vector<std::size_t>{0, 0}));
+}
+
+TEST(ReadLog, OneLineLongerThanHalfTheDataIsParsedWhole) {
+  TempDir dir("long_line");
+  // Above the parallel threshold, with no line end after the middle of the data.
+  write_text(dir / "a.csv", "t,text\n0,a\n1," + std::string(300000, 'b') + "\n");
+  const CsvTable table =
+      read_csv_table(dir / "a.csv", [](std::string_view name) { return name == "t"; });
+  ASSERT_EQ(table.log.values.rows(), 2);
+  EXPECT_EQ(table.log.values(1, 0), 1.0);
+}
+
 }  // namespace
 }  // namespace tpf::offline

@@ -64,6 +64,8 @@ struct CompensatorTraining {
 /// Trains on the traces of contact-free logs (training_sequence of each, weighted by
 /// regime_weights), with the trainer's zero-phase split, Adam, held-out blocks and early stopping;
 /// per joint, each network gets max_epochs and max_seconds/N. The joint count N is the traces'.
+/// The threads (options.tcn.threads) share whole networks: as many train at once as there are
+/// threads, up to N (the same networks as one after another; progress calls are serialised).
 /// Inputs and outputs in N·m (the traces' units).
 CompensatorTraining train_compensator(const std::vector<EstimatorTrace>& traces,
                                       const CompensatorTrainingOptions& options,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
@@ -151,17 +152,20 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
       }
     text += ".";
   }
-  for (const RepeatedMotion& r : split.repeats)
-    text +=
-        std::string(" ") + file_names(log, {r.second}) + " repeats the motion of " +
-        file_names(log, {r.first}) +
-        format_sentence(
-            " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
-            "joint, below %.2g rad)",
-            static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance) +
-        (split.groups.size() > 1
-             ? ", so they are held out together: a fit on one would be scored on its own motion."
-             : ".");
+  // Appended piece by piece (a chain of string + string trips GCC 12's -Wrestrict here).
+  for (const RepeatedMotion& r : split.repeats) {
+    text += " ";
+    text += file_names(log, {r.second});
+    text += " repeats the motion of ";
+    text += file_names(log, {r.first});
+    text += format_sentence(
+        " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
+        "joint, below %.2g rad)",
+        static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance);
+    text += split.groups.size() > 1
+                ? ", so they are held out together: a fit on one would be scored on its own motion."
+                : ".";
+  }
   return text;
 }
 
@@ -345,7 +349,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   selection.regimes = {false, true, true};
 
   say("diagnose: pass 1/4: declared model");
-  const EffectDesign<N> declared(model, setup.base, s, {}, threshold);
+  const auto regressors = std::make_shared<const SampleRegressors<N>>(
+      model, EffectDesign<N>::regressor_columns(setup.base.independent, true), s);
+  const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
   const DeclaredFit fit = fit_declared(declared, s, selection);
   selection.joint_weights = fit.joint_weights;
 
@@ -359,8 +365,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   if (N == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const CandidateInputs inputs = candidate_inputs(model, s, analysis, fit);
-  const EffectDesign<N> design(model, setup.base, s, inputs, threshold);
+  const EffectDesign<N> design(model, setup.base, s, regressors,
+                               candidate_inputs(model, s, analysis, fit), threshold);
+  const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
   std::vector<TransferFold> transfer;

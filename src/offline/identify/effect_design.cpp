@@ -23,8 +23,7 @@ int regime_index(Regime r) {
 
 template <int N>
 struct EffectDesign<N>::Workspace {
-  Data<double, N> data;
-  Regressor<double, N> Y;
+  Regressor<double, N> Y = Regressor<double, N>::Zero();  ///< entries not stored stay zero
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> local;  ///< N × max local
 };
 
@@ -69,14 +68,17 @@ void EffectDesign<N>::add_families(const DesignContext& context) {
 
 template <int N>
 EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameters& base,
-                              const JointSamples& samples, CandidateInputs candidates,
-                              double static_velocity)
+                              const JointSamples& samples,
+                              std::shared_ptr<const SampleRegressors<N>> regressors,
+                              CandidateInputs candidates, double static_velocity)
     : model_(model),
+      regressors_(std::move(regressors)),
       base_columns_(base.independent),
       candidates_(std::move(candidates)),
       static_velocity_(static_velocity),
       has_temperature_(samples.temperature.cols() == N) {
   const DesignContext context{N, base_columns_, candidates_, has_temperature_};
+  check_samples(samples);
   add_families<DeclaredColumns>(context);
   if (candidates_.enabled) {
     if (candidates_.abs_gravity.rows() != samples.size() || candidates_.abs_gravity.cols() != N)
@@ -101,6 +103,26 @@ void EffectDesign<N>::index_joint_groups() {
 }
 
 template <int N>
+std::vector<int> EffectDesign<N>::regressor_columns(const std::vector<int>& base_columns,
+                                                    bool candidates) {
+  std::vector<int> columns = base_columns;
+  if (candidates)
+    for (int p = 0; p < PayloadColumns::kColumns; ++p)
+      columns.push_back(10 * (N - 1) + p);
+  return columns;
+}
+
+template <int N>
+void EffectDesign<N>::check_samples(const JointSamples& samples) const {
+  const std::vector<int> needed = regressor_columns(base_columns_, candidates_.enabled);
+  if (!regressors_ || regressors_->size() != samples.size() ||
+      !std::all_of(needed.begin(), needed.end(),
+                   [&](int column) { return regressors_->holds(column); }))
+    throw Error::at(samples.source, 0, "",
+                    "effect design: the regressors are not those of these samples");
+}
+
+template <int N>
 std::vector<int> EffectDesign<N>::declared_columns() const {
   std::vector<int> columns;
   for (const FeatureGroup& g : groups_)
@@ -113,7 +135,7 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
   const JointVector<double, N> q = s.q.row(k).transpose();
   const JointVector<double, N> dq = s.dq.row(k).transpose();
   const JointVector<double, N> ddq = s.ddq.row(k).transpose();
-  compute_regressor(model_, ws.data, q, dq, ddq, ws.Y);
+  regressors_->load(k, ws.Y);
   JointVector<double, N> direction, held;
   for (int j = 0; j < N; ++j) {
     const bool moving = std::abs(dq[j]) >= static_velocity_;
@@ -133,6 +155,7 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
 
 template <int N>
 DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const {
+  check_samples(s);
   stride = std::max(stride, 1);
   constexpr int kBlock = 256;
   const Eigen::Index n = s.size();
@@ -196,9 +219,13 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
 template <int N>
 std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
     const JointSamples& s, const std::vector<Eigen::VectorXd>& thetas) const {
+  check_samples(s);
   const Eigen::Index n = s.size();
   const int m = static_cast<int>(thetas.size());
-  std::vector<Eigen::MatrixXd> predictions(m, Eigen::MatrixXd(n, N));
+  std::vector<Eigen::MatrixXd> predictions;  // each n × N, filled below (not copied from one)
+  predictions.reserve(static_cast<std::size_t>(m));
+  for (int i = 0; i < m; ++i)
+    predictions.emplace_back(n, N);
   // Per joint: local features × parameter sets.
   std::vector<Eigen::MatrixXd> local_theta(N);
   for (int j = 0; j < N; ++j) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "offline/effects/sample_row.hpp"
 #include "offline/identify/gram_fit.hpp"
 #include "offline/identify/joint_samples.hpp"
+#include "offline/identify/sample_regressors.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
 #include "tpf/model/model.hpp"
 
@@ -39,10 +41,19 @@ namespace tpf::offline {
 template <int N>
 class EffectDesign {
  public:
+  /// `regressors`: Y of `samples` (built with base.independent), shared with the caller's other
+  /// designs; every pass of this design must be over samples with the same motion rows.
   EffectDesign(const Model<double, N>& model, const BaseParameters& base,
-               const JointSamples& samples, CandidateInputs candidates, double static_velocity);
+               const JointSamples& samples, std::shared_ptr<const SampleRegressors<N>> regressors,
+               CandidateInputs candidates, double static_velocity);
+
+  /// The columns of Y the families read: the base columns, and the last link's (a payload) when
+  /// the candidates are offered. The SampleRegressors of a design must hold them.
+  static std::vector<int> regressor_columns(const std::vector<int>& base_columns, bool candidates);
 
   int features() const { return features_; }
+  /// The candidate inputs the design was built with.
+  const CandidateInputs& candidates() const { return candidates_; }
   const std::vector<FeatureGroup>& groups() const { return groups_; }
   /// Columns of the declared model.
   std::vector<int> declared_columns() const;
@@ -68,8 +79,11 @@ class EffectDesign {
   void add_group(FeatureGroup group, FillColumns fill);
   /// local_, joint_groups_ and max_local_ of the groups.
   void index_joint_groups();
+  /// Throws tpf::Error when `samples` are not the ones the regressors were computed for.
+  void check_samples(const JointSamples& samples) const;
 
   Model<double, N> model_;
+  std::shared_ptr<const SampleRegressors<N>> regressors_;
   std::vector<int> base_columns_;
   CandidateInputs candidates_;
   double static_velocity_;

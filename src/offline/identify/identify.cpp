@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <random>
 
 #include "offline/effects/effect_columns.hpp"
@@ -34,6 +35,7 @@ template <int N>
 Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
   const Eigen::Index n = s.size();
   Eigen::MatrixXd residual(n, N);
+  const NominalLinks<double, N> links = nominal_links(nominal);  // once, not per sample
   auto work = [&](Eigen::Index begin, Eigen::Index end) {
     Data<double, N> data;
     JointVector<double, N> rigid, friction;
@@ -43,7 +45,7 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const J
         continue;
       }
       const JointVector<double, N> q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
-      predict_effort(nominal, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
+      predict_effort(nominal, links, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
       residual.row(k) = s.effort.row(k) - (rigid + friction).transpose();
     }
   };
@@ -229,7 +231,10 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
-  const EffectDesign<N> design(model, base, s, {}, options.samples.regimes.static_velocity);
+  const auto regressors = std::make_shared<const SampleRegressors<N>>(
+      model, EffectDesign<N>::regressor_columns(base.independent, false), s);
+  const EffectDesign<N> design(model, base, s, regressors, {},
+                               options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);
   FitSelection selection;
   selection.regimes = {false, true, true};  // moving samples only

@@ -1,12 +1,26 @@
 #include "offline/identify/joint_samples.hpp"
 
 #include <cmath>
+#include <initializer_list>
 
+#include "offline/identify/parallel_halves.hpp"
 #include "offline/signal/acceleration.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
+
+bool identification_column(std::string_view name) {
+  if (name == "t") return true;
+  const std::size_t digits = name.find_first_of("0123456789");
+  if (digits == 0 || digits == std::string_view::npos ||
+      name.find_first_not_of("0123456789", digits) != std::string_view::npos)
+    return false;
+  const std::string_view prefix = name.substr(0, digits);
+  for (const std::string_view read : {"q", "dq", "ddq", "i", "tau", "temp", "tau_sensor"})
+    if (prefix == read) return true;
+  return false;
+}
 
 std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
                                              const SampleOptions& options) {
@@ -18,6 +32,24 @@ std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
   }
   return heldout;
 }
+
+namespace {
+
+/// Column j - 1 (joint j) of q, dq, effort, ddq (read or derived), temperature and the regimes.
+void extract_joint(const Log& log, const std::string& prefix, bool has_temperature,
+                   const SampleOptions& options, int j, JointSamples& s) {
+  s.q.col(j - 1) = log.col(indexed_name("q", j));
+  s.dq.col(j - 1) = log.col(indexed_name("dq", j));
+  s.effort.col(j - 1) = log.col(indexed_name(prefix, j)) * s.units.newton_metres_per_unit(j - 1);
+  const std::string acc = indexed_name("ddq", j);
+  s.ddq.col(j - 1) =
+      log.has(acc) ? Eigen::VectorXd(log.col(acc))
+                   : derive_acceleration(s.t, s.dq.col(j - 1), options.acceleration_cutoff_hz);
+  if (has_temperature) s.temperature.col(j - 1) = log.col(indexed_name("temp", j));
+  s.regimes[j - 1] = label_regimes(s.t, s.dq.col(j - 1), options.regimes);
+}
+
+}  // namespace
 
 JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque_constant,
                                    const SampleOptions& options) {
@@ -42,16 +74,12 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
   for (int j = 1; j <= n_joints; ++j)
     has_temperature = has_temperature && log.has(indexed_name("temp", j));
   if (has_temperature) s.temperature.resize(n, n_joints);
-  for (int j = 1; j <= n_joints; ++j) {
-    s.q.col(j - 1) = log.col(indexed_name("q", j));
-    s.dq.col(j - 1) = log.col(indexed_name("dq", j));
-    s.effort.col(j - 1) = log.col(indexed_name(prefix, j)) * s.units.newton_metres_per_unit(j - 1);
-    const std::string acc = indexed_name("ddq", j);
-    s.ddq.col(j - 1) =
-        log.has(acc) ? Eigen::VectorXd(log.col(acc))
-                     : derive_acceleration(s.t, s.dq.col(j - 1), options.acceleration_cutoff_hz);
-    if (has_temperature) s.temperature.col(j - 1) = log.col(indexed_name("temp", j));
-  }
+  s.regimes.resize(n_joints);
+  // Joints are independent columns: half of them on a helper thread (same result as serial).
+  parallel_halves(n_joints, [&](Eigen::Index first, Eigen::Index last) {
+    for (int j = static_cast<int>(first) + 1; j <= last; ++j)
+      extract_joint(log, prefix, has_temperature, options, j, s);
+  });
 
   s.valid.assign(n, 1);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -66,10 +94,6 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
                     "fewer than 100 complete samples (" +
                         std::to_string(n - static_cast<Eigen::Index>(s.invalid_count)) +
                         "): nothing to identify from");
-
-  s.regimes.resize(n_joints);
-  for (int j = 0; j < n_joints; ++j)
-    s.regimes[j] = label_regimes(s.t, s.dq.col(j), options.regimes);
 
   // Held-out split: the last file of a several-file log (fit on the others), else interleaved
   // time blocks; none when the caller scores on other logs.

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "offline/log/log.hpp"
@@ -45,6 +46,11 @@ struct JointSamples {
   int joints() const { return static_cast<int>(q.cols()); }
   Eigen::Index size() const { return t.size(); }
 };
+
+/// The columns identification and diagnosis read from a log, by name: t, q<j>, dq<j>, ddq<j>,
+/// the effort i<j> or tau<j>, temp<j> (extract_joint_samples) and tau_sensor<j> (the torque-sensor
+/// friction reference and report). A reader may skip the others (ground truth, pads) unparsed.
+bool identification_column(std::string_view name);
 
 /// The interleaved held-out blocks of times `t`: block_s long from t[0], every heldout_every-th
 /// held out (1), the others 0.

@@ -13,7 +13,7 @@
 #include <set>
 #include <thread>
 
-#include "offline/log/gzip.hpp"
+#include "offline/log/file_text.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
 
@@ -23,28 +23,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Below this many bytes of data the second thread costs more than it saves.
 constexpr std::size_t kParallelBytes = 256 << 10;
-
-/// The whole file as text (gunzipped when it starts with the gzip magic), with a '\n' sentinel
-/// after the last byte so that every scan stops at a line end.
-std::string read_whole_file(const std::filesystem::path& path) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                       &std::fclose);
-  if (!file)
-    throw Error::at(path.string(), 0, "", std::string("cannot open: ") + std::strerror(errno));
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw Error::at(path.string(), 0, "", "cannot read size: " + ec.message());
-  std::string bytes;
-  bytes.resize(static_cast<std::size_t>(size) + 1);
-  if (std::fread(bytes.data(), 1, size, file.get()) != size)
-    throw Error::at(path.string(), 0, "", "read failed (file changed while reading?)");
-  bytes.back() = '\n';
-  if (is_gzip(bytes)) {
-    bytes = gunzip(std::string_view(bytes).substr(0, size), path.string());
-    bytes.push_back('\n');
-  }
-  return bytes;
-}
 
 /// Joins text pieces (also sidesteps a GCC 12 -Wrestrict false positive on "literal" + string).
 std::string concat(std::initializer_list<std::string_view> parts) {
@@ -177,9 +155,16 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
 
 CsvTable read_csv_table(const std::filesystem::path& path,
                         const std::vector<std::string>* keep_columns) {
+  if (keep_columns == nullptr) return read_csv_table(path, ColumnFilter{});
+  return read_csv_table(path, [keep_columns](std::string_view name) {
+    return std::find(keep_columns->begin(), keep_columns->end(), name) != keep_columns->end();
+  });
+}
+
+CsvTable read_csv_table(const std::filesystem::path& path, const ColumnFilter& keep_column) {
   const std::string file = path.string();
-  const std::string bytes = read_whole_file(path);
-  const std::string_view text(bytes.data(), bytes.size() - 1);  // without the sentinel
+  const FileText file_text(path);
+  const std::string_view text = file_text.text();
 
   CsvTable table;
   Log& log = table.log;
@@ -237,10 +222,7 @@ CsvTable read_csv_table(const std::filesystem::path& path,
   }
   std::vector<int> target(names.size(), -1);
   for (std::size_t c = 0; c < names.size(); ++c) {
-    const bool keep =
-        keep_columns == nullptr ||
-        std::find(keep_columns->begin(), keep_columns->end(), names[c]) != keep_columns->end();
-    if (!keep) continue;
+    if (keep_column && !keep_column(names[c])) continue;
     target[c] = static_cast<int>(log.columns.size());
     log.columns.push_back(names[c]);
   }
@@ -264,8 +246,8 @@ CsvTable read_csv_table(const std::filesystem::path& path,
   std::size_t second_first_row = rows;
   if (static_cast<std::size_t>(data_end - data_begin) >= kParallelBytes) {
     const char* middle = data_begin + (data_end - data_begin) / 2;
-    split = static_cast<const char*>(std::memchr(middle, '\n', data_end - middle)) + 1;
-    split = std::min(split, data_end);
+    const void* line_end = std::memchr(middle, '\n', data_end - middle);
+    split = line_end != nullptr ? static_cast<const char*>(line_end) + 1 : data_end;
     second_first_row = static_cast<std::size_t>(std::count(data_begin, split, '\n'));
   }
   ChunkResult first, second;
@@ -293,8 +275,8 @@ CsvTable read_csv_table(const std::filesystem::path& path,
   return table;
 }
 
-Log read_log(const std::filesystem::path& path) {
-  CsvTable table = read_csv_table(path);
+Log read_log(const std::filesystem::path& path, const ColumnFilter& keep_column) {
+  CsvTable table = read_csv_table(path, keep_column);
   Log& log = table.log;
   const std::string& file = log.source;
   const auto line_of = [&](std::string_view key) {

@@ -3,12 +3,17 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "offline/log/log.hpp"
 
 namespace tpf::offline {
+
+/// Whether a column, by name, is to be parsed and kept.
+using ColumnFilter = std::function<bool(std::string_view name)>;
 
 /// Reads a tpf log: '#' metadata, a header line, then comma-separated decimal numbers.
 /// - a file that starts with the gzip magic (.csv.gz) is decompressed first;
@@ -18,8 +23,10 @@ namespace tpf::offline {
 /// - errors name file, line and column: a 'tpf-log' major version > 1, a wrong field count, text
 ///   where a number belongs, an infinite value, a line cut off at the end of the file, a missing
 ///   or non-increasing t, corrupt or truncated gzip data.
-/// Reads the file with one read and parses it on two threads.
-Log read_log(const std::filesystem::path& path);
+/// The file is mapped (read in place, not copied) and parsed on two threads.
+/// `keep_column` (all columns when empty): the columns to parse and keep, by name ('t' among
+/// them); the others are skipped unparsed, as read_csv_table's.
+Log read_log(const std::filesystem::path& path, const ColumnFilter& keep_column = {});
 
 /// A numeric CSV file as read_csv_table found it, with the line numbers errors need.
 struct CsvTable {
@@ -35,5 +42,7 @@ struct CsvTable {
 /// may hold text, but every line still needs the header's field count. Errors as read_log's.
 CsvTable read_csv_table(const std::filesystem::path& path,
                         const std::vector<std::string>* keep_columns = nullptr);
+/// read_csv_table keeping the columns `keep_column` accepts (all when empty).
+CsvTable read_csv_table(const std::filesystem::path& path, const ColumnFilter& keep_column);
 
 }  // namespace tpf::offline

@@ -38,12 +38,13 @@ double file_seam_seconds(double median_step_s) {
   return std::max(1.0, 100.0 * (std::isfinite(median_step_s) ? median_step_s : 0.0));
 }
 
-Log read_logs(const std::vector<std::filesystem::path>& paths, std::vector<std::string>* notes) {
+Log read_logs(const std::vector<std::filesystem::path>& paths, std::vector<std::string>* notes,
+              const ColumnFilter& keep_column) {
   if (paths.empty()) throw Error("no log file given");
   std::vector<Log> logs;
   logs.reserve(paths.size());
   for (const auto& path : paths)
-    logs.push_back(read_log(path));
+    logs.push_back(read_log(path, keep_column));
   if (logs.size() == 1) return std::move(logs.front());
 
   const std::vector<std::string> columns = common_columns(logs);
@@ -107,8 +108,10 @@ Log read_logs(const std::vector<std::filesystem::path>& paths, std::vector<std::
   return out;
 }
 
-Log read_logs(const std::vector<std::string>& paths, std::vector<std::string>* notes) {
-  return read_logs(std::vector<std::filesystem::path>(paths.begin(), paths.end()), notes);
+Log read_logs(const std::vector<std::string>& paths, std::vector<std::string>* notes,
+              const ColumnFilter& keep_column) {
+  return read_logs(std::vector<std::filesystem::path>(paths.begin(), paths.end()), notes,
+                   keep_column);
 }
 
 }  // namespace tpf::offline

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "offline/log/log.hpp"
+#include "offline/log/read_log.hpp"
 
 namespace tpf::offline {
 
@@ -25,10 +26,12 @@ double file_seam_seconds(double median_step_s);
 ///   'files' listing the paths; source = the paths joined by " + ".
 /// Throws read_log's errors (naming the file) and tpf::Error when no path is given or no column
 /// is common to all files.
+/// `keep_column`: read_log's, for every file (all columns when empty).
 Log read_logs(const std::vector<std::filesystem::path>& paths,
-              std::vector<std::string>* notes = nullptr);
+              std::vector<std::string>* notes = nullptr, const ColumnFilter& keep_column = {});
 
 /// read_logs of paths given as strings (the command line's --log values).
-Log read_logs(const std::vector<std::string>& paths, std::vector<std::string>* notes = nullptr);
+Log read_logs(const std::vector<std::string>& paths, std::vector<std::string>* notes = nullptr,
+              const ColumnFilter& keep_column = {});
 
 }  // namespace tpf::offline
