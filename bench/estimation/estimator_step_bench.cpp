@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
@@ -120,16 +121,15 @@ std::unique_ptr<PlainEstimator> make_plain_estimator() {
 
 /// Replays the teaching log through `est` (time keeps advancing), one timed update per iteration;
 /// median, p99, p99.9 and max of the per-step wall time as counters.
-template <typename Est>
-void time_steps(benchmark::State& state, Est& est) {
-  const auto& rows = samples();
+template <typename Est, typename Row = Sample>
+void time_steps(benchmark::State& state, Est& est, const std::vector<Row>& rows = samples()) {
   std::vector<double> ns;
   ns.reserve(1 << 22);
   std::size_t r = 0;
   double t_offset = 0;
   int wrenches = 0;
   for (auto _ : state) {
-    Sample s = rows[r];
+    Row s = rows[r];
     s.t += t_offset;
     const auto start = std::chrono::steady_clock::now();
     const auto& out = est.update(s);
@@ -176,6 +176,40 @@ void BM_EstimatorStepWithoutCompensator(benchmark::State& state) {
   time_steps(state, *est);
 }
 BENCHMARK(BM_EstimatorStepWithoutCompensator)->Iterations(400000)->Unit(benchmark::kNanosecond);
+
+/// The 7-joint Kinova Gen3 without skin (P = 0, no compensator): its robot and friction files,
+/// 20 s of a multi-sine motion (400 Hz, every joint moving) with the nominal model's own effort
+/// plus a slow push on joint 2 (an external torque half of the time).
+void BM_EstimatorStepKinova7NoPads(benchmark::State& state) {
+  constexpr int J = 7;
+  using Kinova = tpf::Estimator<double, J, 0>;
+  using KinovaSample = tpf::EstimatorSample<double, J, 0>;
+  const auto model = tpf::load_robot<double, J>(data("real/kinova-gen3/gen3.robot.json"));
+  const auto nominal = tpf::nominal_from_model<J>(
+      model, tpf::load_stribeck_parameters<double, J>(data("real/kinova-gen3/gen3.friction.json")));
+  const auto links = tpf::nominal_links(nominal);
+  tpf::Data<double, J> d(nominal.model);
+  std::vector<KinovaSample> rows(8000);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    KinovaSample& s = rows[k];
+    s.t = 0.0025 * static_cast<double>(k);
+    tpf::JointVector<double, J> ddq;
+    for (int j = 0; j < J; ++j) {
+      const double w = 2.0 * 3.141592653589793 * (0.1 + 0.03 * j), a = 0.4 + 0.05 * j;
+      s.q[j] = a * std::sin(w * s.t + j);
+      s.dq[j] = a * w * std::cos(w * s.t + j);
+      ddq[j] = -a * w * w * std::sin(w * s.t + j);
+    }
+    tpf::JointVector<double, J> rigid, friction;
+    tpf::predict_effort(nominal, links, d, s.q, s.dq, ddq, rigid, friction);
+    s.effort = rigid + friction;
+    s.effort[1] += 5.0 * std::max(0.0, std::sin(0.7 * s.t));  // a push on joint 2 [N·m]
+  }
+  auto est = std::make_unique<Kinova>(nominal, std::vector<tpf::Pad>{},
+                                      tpf::EstimatorParameters<double, J>{});
+  time_steps(state, *est, rows);
+}
+BENCHMARK(BM_EstimatorStepKinova7NoPads)->Iterations(400000)->Unit(benchmark::kNanosecond);
 
 /// The nominal model alone on the log's states: the link form (per cycle) against the regressor
 /// form it replaced.

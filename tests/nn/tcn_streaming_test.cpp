@@ -108,6 +108,25 @@ TEST(TcnStreaming, ShippedFloatNetworkEqualsDoubleToFloatRounding) {
   EXPECT_LT((od - of).cwiseAbs().maxCoeff(), 3e-6 * scale);
 }
 
+TEST(TcnStreaming, OneRegisterHiddenVectorSumsByColumnsToFloatRounding) {
+  // Four float channels fill one SSE register (16 floats one AVX-512 register, the shipped shape
+  // natively): add_taps deals the columns to four accumulators (add_taps_by_columns). The same
+  // network in double (per-tap sums) is the reference; the sums differ to float rounding only.
+  const TcnArchitecture a{5, 4, 4, 4, 1};
+  const offline::TcnParameters p = test::random_tcn_parameters(a, 71);
+  Tcn<double, 5, 4, 4> d;
+  Tcn<float, 5, 4, 4> f;
+  test::load_parameters(p, d);
+  test::load_parameters(p, f);
+  const Eigen::MatrixXd raw = test::random_inputs(5, 300, 72);
+  d.reset(raw.col(0));
+  f.reset(raw.col(0).cast<float>());
+  const Eigen::MatrixXd od = stream(d, raw, 0), of = stream(f, raw, 0);
+  const double scale = od.cwiseAbs().maxCoeff();
+  ASSERT_GT(scale, 0.1);
+  EXPECT_LT((od - of).cwiseAbs().maxCoeff(), 3e-6 * scale);
+}
+
 TEST(TcnStreaming, IsCausal) {
   const TcnArchitecture a{4, 8, 3, 4, 2};
   const offline::TcnParameters p = test::random_tcn_parameters(a, 31);

@@ -122,9 +122,17 @@ class Tcn {
   /// step is a chain of dependent multiply-adds that leaves the vector units waiting on their
   /// latency; the networks' chains are independent, so interleaved they overlap
   /// (docs/performance.md). Groups of kInterleave networks at a time, as many as keep their
-  /// accumulators in half the vector registers. Allocation-free.
+  /// accumulators in half the vector registers. Where add_taps already sums by columns into
+  /// several accumulators (a hidden vector in one register) the networks step in turn, which
+  /// measured as fast. Allocation-free.
   template <std::size_t M>
   static void step_together(std::array<Tcn, M>& nets, const std::array<Input, M>& inputs) noexcept {
+    if constexpr (kColumnAccumulators > 1) {
+      // Each step already keeps several independent chains busy (add_taps): in turn is as fast.
+      for (std::size_t n = 0; n < M; ++n)
+        nets[n].step(inputs[n]);
+      return;
+    }
     for (std::size_t first = 0; first < M; first += kInterleave) {
       if constexpr (M % kInterleave == 0) {
         step_group<kInterleave>(&nets[first], &inputs[first]);
@@ -171,9 +179,17 @@ class Tcn {
   static constexpr bool kAccumulatorPerTap =
       Kernel * ((Hidden * int(sizeof(S)) + kVectorBytes - 1) / kVectorBytes) <= kVectorRegisters;
 
+  /// Vector registers one Hidden-vector accumulator takes.
+  static constexpr int kVectorsPerHidden =
+      (Hidden * int(sizeof(S)) + kVectorBytes - 1) / kVectorBytes;
+  /// Where a Hidden vector fits one register (16 floats in AVX-512), add_taps deals the columns to
+  /// this many accumulators (an FMA's latency over its throughput); otherwise 1 (per-tap sums).
+  static constexpr int kColumnAccumulators = kVectorsPerHidden == 1 ? 4 : 1;
+
   /// z += Σ_j W_j·x_j over the K taps, one column axpy at a time (keeps the sums in registers,
-  /// 4–14 % faster than Eigen's general matrix–vector kernel at these sizes, docs/tcn.md). Where
-  /// the registers allow, each tap has its own accumulator and the K sums meet z at the end: the
+  /// 4–14 % faster than Eigen's general matrix–vector kernel at these sizes, docs/tcn.md).
+  /// Where a Hidden vector is one register, see add_taps_by_columns. Otherwise, where the
+  /// registers allow, each tap has its own accumulator and the K sums meet z at the end: the
   /// multiply-adds then form K independent chains instead of one through z, which a core with wide
   /// vector units overlaps instead of waiting on each add (docs/performance.md); the sums are
   /// ordered differently, equal to rounding. Otherwise one chain through z, as registers allow.
@@ -181,7 +197,9 @@ class Tcn {
   static void add_taps(HiddenVector& z, const std::array<Matrix, Kernel>& w,
                        const std::array<const S*, Kernel>& x) noexcept {
     constexpr int columns = Matrix::ColsAtCompileTime;
-    if constexpr (kAccumulatorPerTap) {
+    if constexpr (kColumnAccumulators > 1) {
+      add_taps_by_columns(z, w, x);
+    } else if constexpr (kAccumulatorPerTap) {
       std::array<HiddenVector, Kernel> partial;
       for (int j = 0; j < Kernel; ++j)
         partial[j].noalias() = w[j].col(0) * x[j][0];
@@ -197,9 +215,33 @@ class Tcn {
     }
   }
 
-  /// Vector registers one Hidden-vector accumulator takes.
-  static constexpr int kVectorsPerHidden =
-      (Hidden * int(sizeof(S)) + kVectorBytes - 1) / kVectorBytes;
+  /// add_taps with the K·columns axpys dealt in turn to kColumnAccumulators partial sums, the
+  /// lagged taps (j ≥ 1, known before this step) first and the current tap (j = 0, the input just
+  /// computed) last, then summed pairwise into z. The chains are independent, so the vector unit
+  /// stays busy, and what waits on the previous block's output is only columns/A multiply-adds
+  /// per chain instead of all of tap 0 (the block-to-block critical path of a step); the sums
+  /// are ordered differently from the per-tap form, equal to rounding.
+  template <typename Matrix>
+  static void add_taps_by_columns(HiddenVector& z, const std::array<Matrix, Kernel>& w,
+                                  const std::array<const S*, Kernel>& x) noexcept {
+    constexpr int columns = Matrix::ColsAtCompileTime;
+    constexpr int accumulators = kColumnAccumulators;
+    static_assert(accumulators == 4, "the pairwise sum at the end is written for four");
+    std::array<HiddenVector, accumulators> partial;
+    for_each<accumulators>([&](auto a) { partial[a].setZero(); });
+    auto add_tap = [&](int j) {
+      for (int first = 0; first < columns; first += accumulators)
+        for_each<accumulators>([&](auto a) {
+          if (first + int(a) < columns)
+            partial[a].noalias() += w[j].col(first + a) * x[j][first + a];
+        });
+    };
+    for (int j = Kernel - 1; j > 0; --j)
+      add_tap(j);
+    add_tap(0);
+    z += (partial[0] + partial[1]) + (partial[2] + partial[3]);
+  }
+
   /// Networks stepped together: as many as keep one accumulator each in half the registers (the
   /// interleaved loops keep one accumulator per network live, see add_taps_together), 1 to 8.
   static constexpr std::size_t kInterleave =

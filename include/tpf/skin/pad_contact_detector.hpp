@@ -35,6 +35,21 @@ PadDetectorSettings<S> detector_settings_from_noise(S noise_kpa, S period_s,
   return s;
 }
 
+/// What a detector's update needs from the sample period h besides the readings: the low-pass
+/// coefficient α(h) and the offset tracker's gain 1 − exp(−h/τ_offset) (0 without tracking). Pads
+/// with the same settings share them: the skin computes them once per sample, not once per pad.
+template <typename S>
+struct PadStepFactors {
+  S filter_alpha = S(0);
+  S offset_gain = S(0);
+
+  static PadStepFactors at(const PadDetectorSettings<S>& settings, S h) noexcept {
+    using std::exp;
+    const S tau = settings.offset_time_constant_s;
+    return {low_pass_coefficient(settings.cutoff_hz, h), tau > S(0) ? S(1) - exp(-h / tau) : S(0)};
+  }
+};
+
 /// One pad's contact state. With p_f the low-passed pressure and o the offset (tracked by a slow
 /// low-pass of p_f while no contact, frozen during contact), the load is u = p_f − o and
 ///   off → on when u > on_level,   on → off when u < off_level.
@@ -58,9 +73,11 @@ class PadContactDetector {
   }
 
   /// Advances by the pressure p [kPa] at time t, h = t − t_previous > 0. Returns in_contact().
-  bool update(S t, S p, S h) noexcept {
-    using std::exp;
-    const S filtered = filter_.update(p, h);
+  bool update(S t, S p, S h) noexcept { return update(t, p, PadStepFactors<S>::at(settings_, h)); }
+
+  /// The same with the factors of this sample's h and these settings already computed.
+  bool update(S t, S p, const PadStepFactors<S>& factors) noexcept {
+    const S filtered = filter_.update_with_coefficient(p, factors.filter_alpha);
     const S load = filtered - offset_;
     const bool was = in_contact_;
     if (in_contact_) {
@@ -72,7 +89,7 @@ class PadContactDetector {
     if (!in_contact_) {
       if (load <= settings_.off_level_kpa) quiet_since_ = t;
       if (settings_.offset_time_constant_s > S(0) && load <= settings_.off_level_kpa)
-        offset_ += (S(1) - exp(-h / settings_.offset_time_constant_s)) * load;
+        offset_ += factors.offset_gain * load;
     }
     changed_ = was != in_contact_;
     return in_contact_;

@@ -35,7 +35,13 @@ class PadLowPass {
 
   /// Advances by one sample x taken h seconds after the previous one; returns the new output.
   S update(S x, S period_s) noexcept {
-    y_ += low_pass_coefficient(cutoff_hz_, period_s) * (x - y_);
+    return update_with_coefficient(x, low_pass_coefficient(cutoff_hz_, period_s));
+  }
+
+  /// The same with α = low_pass_coefficient(cutoff_hz(), h) already computed (one exp per sample
+  /// for all pads that share the cut-off).
+  S update_with_coefficient(S x, S alpha) noexcept {
+    y_ += alpha * (x - y_);
     return y_;
   }
 

@@ -86,9 +86,11 @@ class Skin {
   /// number of pads skipped for non-finite pressure.
   int update(S t, S h, const Pressures& p) noexcept {
     int skipped = 0;
+    // Every pad's detector has settings_.detector: one α and one offset gain for all.
+    const PadStepFactors<S> factors = PadStepFactors<S>::at(settings_.detector, h);
     for (int k = 0; k < count(); ++k) {
       if (std::isfinite(p[k]))
-        detectors_[k].update(t, p[k], h);
+        detectors_[k].update(t, p[k], factors);
       else
         ++skipped;
     }
