@@ -24,6 +24,28 @@ Eigen::MatrixXd stream(Engine& tcn, const Eigen::MatrixXd& raw, Eigen::Index fro
   return out;
 }
 
+/// The same random network in the float and the double engine, streamed over `steps` random
+/// inputs: the largest |float − double| output and the largest |double| output.
+struct FloatDeviation {
+  double max_difference;
+  double scale;
+};
+template <int In, int H, int L>
+FloatDeviation float_deviation(std::uint64_t parameter_seed, std::uint64_t input_seed,
+                               Eigen::Index steps) {
+  const TcnArchitecture a{In, H, L, 4, 1};
+  const offline::TcnParameters p = test::random_tcn_parameters(a, parameter_seed);
+  Tcn<double, In, H, L> d;
+  Tcn<float, In, H, L> f;
+  test::load_parameters(p, d);
+  test::load_parameters(p, f);
+  const Eigen::MatrixXd raw = test::random_inputs(In, steps, input_seed);
+  d.reset(raw.col(0));
+  f.reset(raw.col(0).cast<float>());
+  const Eigen::MatrixXd od = stream(d, raw, 0), of = stream(f, raw, 0);
+  return {(od - of).cwiseAbs().maxCoeff(), od.cwiseAbs().maxCoeff()};
+}
+
 template <typename Engine>
 void expect_streaming_equals_naive(const TcnArchitecture& a, std::uint64_t seed,
                                    Eigen::Index steps = 300) {
@@ -75,56 +97,26 @@ TEST(TcnStreaming, FiveLevelsSixtyFourChannelsEqualNaive) {
 }
 
 TEST(TcnStreaming, FloatEngineTracksDouble) {
-  const TcnArchitecture a{4, 16, 4, 4, 1};
-  const offline::TcnParameters p = test::random_tcn_parameters(a, 21);
-  Tcn<double, 4, 16, 4> d;
-  Tcn<float, 4, 16, 4> f;
-  test::load_parameters(p, d);
-  test::load_parameters(p, f);
-  const Eigen::MatrixXd raw = test::random_inputs(4, 200, 22);
-  d.reset(raw.col(0));
-  f.reset(raw.col(0).cast<float>());
-  const Eigen::MatrixXd od = stream(d, raw, 0), of = stream(f, raw, 0);
-  EXPECT_LT((od - of).cwiseAbs().maxCoeff(), 1e-4 * od.cwiseAbs().maxCoeff());
+  const FloatDeviation e = float_deviation<4, 16, 4>(21, 22, 200);
+  EXPECT_LT(e.max_difference, 1e-4 * e.scale);
 }
 
 TEST(TcnStreaming, ShippedFloatNetworkEqualsDoubleToFloatRounding) {
   // The shipped shape (5 inputs, 16 channels, 4 levels, kernel 4): its taps may be summed in
   // separate accumulators (one per tap where the vector registers allow), so the float engine is
   // held to the rounding of float sums, a few ulps of the largest activation, not more.
-  using Float = Tcn<float, 5, 16, 4>;
-  const TcnArchitecture a{5, 16, 4, 4, 1};
-  const offline::TcnParameters p = test::random_tcn_parameters(a, 23);
-  Tcn<double, 5, 16, 4> d;
-  Float f;
-  test::load_parameters(p, d);
-  test::load_parameters(p, f);
-  const Eigen::MatrixXd raw = test::random_inputs(5, 300, 24);
-  d.reset(raw.col(0));
-  f.reset(raw.col(0).cast<float>());
-  const Eigen::MatrixXd od = stream(d, raw, 0), of = stream(f, raw, 0);
-  const double scale = od.cwiseAbs().maxCoeff();
-  ASSERT_GT(scale, 0.1);
-  EXPECT_LT((od - of).cwiseAbs().maxCoeff(), 3e-6 * scale);
+  const FloatDeviation e = float_deviation<5, 16, 4>(23, 24, 300);
+  ASSERT_GT(e.scale, 0.1);
+  EXPECT_LT(e.max_difference, 3e-6 * e.scale);
 }
 
 TEST(TcnStreaming, OneRegisterHiddenVectorSumsByColumnsToFloatRounding) {
   // Four float channels fill one SSE register (16 floats one AVX-512 register, the shipped shape
   // natively): add_taps deals the columns to four accumulators (add_taps_by_columns). The same
   // network in double (per-tap sums) is the reference; the sums differ to float rounding only.
-  const TcnArchitecture a{5, 4, 4, 4, 1};
-  const offline::TcnParameters p = test::random_tcn_parameters(a, 71);
-  Tcn<double, 5, 4, 4> d;
-  Tcn<float, 5, 4, 4> f;
-  test::load_parameters(p, d);
-  test::load_parameters(p, f);
-  const Eigen::MatrixXd raw = test::random_inputs(5, 300, 72);
-  d.reset(raw.col(0));
-  f.reset(raw.col(0).cast<float>());
-  const Eigen::MatrixXd od = stream(d, raw, 0), of = stream(f, raw, 0);
-  const double scale = od.cwiseAbs().maxCoeff();
-  ASSERT_GT(scale, 0.1);
-  EXPECT_LT((od - of).cwiseAbs().maxCoeff(), 3e-6 * scale);
+  const FloatDeviation e = float_deviation<5, 4, 4>(71, 72, 300);
+  ASSERT_GT(e.scale, 0.1);
+  EXPECT_LT(e.max_difference, 3e-6 * e.scale);
 }
 
 TEST(TcnStreaming, IsCausal) {
