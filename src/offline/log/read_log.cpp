@@ -13,6 +13,7 @@
 #include <set>
 #include <thread>
 
+#include "offline/common/not_a_number.hpp"
 #include "offline/log/file_text.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
@@ -20,7 +21,6 @@
 namespace tpf::offline {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Below this many bytes of data the second thread costs more than it saves.
 constexpr std::size_t kParallelBytes = 256 << 10;
 
