@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string_view>
 
 #include "log_test_files.hpp"
 #include "tpf/common/error.hpp"
@@ -215,6 +218,76 @@ TEST(ReadLog, ParallelParseMatchesEveryValue) {
     }
   }
   EXPECT_EQ(log.quality.missing_per_column[2], 70u);
+}
+
+/// A log of `rows` lines with CR LF line ends, spaces around fields, missing values and a last
+/// line without its line end, then blank lines: every awkward break the reader accepts.
+std::string awkward_log(int rows, int bad_row = -1) {
+  std::string text = "# tpf-log: 1\r\n# rate_hz: 400\r\nt, a ,b,c\r\n";
+  for (int r = 0; r < rows; ++r) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%.17g, %.17g ,%s,%s", 0.0025 * r, std::sin(0.37 * r),
+                  r % 97 == 5 ? "" : "-1.5e-3", r == bad_row ? "x42" : "+42");
+    text += line;
+    if (r + 1 < rows) text += (r % 3 == 0) ? "\n" : "\r\n";
+  }
+  return text + "\r\n \r\n\n";
+}
+
+/// Line `line` (1-based) of `text` and what follows it.
+std::string from_line(const std::string& text, int line) {
+  std::size_t pos = 0;
+  for (int l = 1; l < line; ++l)
+    pos = text.find('\n', pos) + 1;
+  return text.substr(pos);
+}
+
+TEST(ReadLog, TwoHalfParseEqualsOnePassParseOfEachHalf) {
+  TempDir dir("halves");
+  constexpr int kRows = 12000;  // ≈ 600 KB: parsed on two threads; each half alone on one
+  const std::string text = awkward_log(kRows);
+  write_text(dir / "whole.csv", text);
+  const Log whole = read_log(dir / "whole.csv");
+  ASSERT_EQ(whole.values.rows(), kRows);
+  // The same lines as two files, each below the parallel threshold (parsed in one pass).
+  constexpr int kFirst = 5003;
+  const std::string header = "# rate_hz: 400\nt, a ,b,c\n";
+  std::string first_text = text.substr(0, text.size() - from_line(text, 4 + kFirst).size());
+  write_text(dir / "first.csv", first_text);
+  write_text(dir / "second.csv", header + from_line(text, 4 + kFirst));
+  const Log first = read_log(dir / "first.csv"), second = read_log(dir / "second.csv");
+  ASSERT_EQ(first.values.rows() + second.values.rows(), kRows);
+  for (Eigen::Index r = 0; r < kRows; ++r)
+    for (Eigen::Index c = 0; c < 4; ++c) {
+      const double expected = r < kFirst ? first.values(r, c) : second.values(r - kFirst, c);
+      const double got = whole.values(r, c);
+      ASSERT_TRUE(got == expected || (std::isnan(got) && std::isnan(expected)))
+          << "row " << r << " column " << c;
+    }
+  for (std::size_t c = 0; c < 4; ++c)
+    EXPECT_EQ(whole.quality.missing_per_column[c],
+              first.quality.missing_per_column[c] + second.quality.missing_per_column[c]);
+  EXPECT_EQ(whole.quality.missing_per_column[2], 124u);
+}
+
+TEST(ReadLog, ErrorsAroundTheSplitNameTheirLine) {
+  TempDir dir("split_errors");
+  constexpr int kRows = 12000;
+  // The data is split just after the first line end past its middle byte: find that row.
+  const std::string good = awkward_log(kRows);
+  const std::size_t data_begin = good.find("t, a ,b,c\r\n") + 11;
+  std::size_t data_end = good.size();
+  while (std::string_view("\r\n \t").find(good[data_end - 1]) != std::string_view::npos)
+    --data_end;
+  const std::size_t split = good.find('\n', data_begin + (data_end - data_begin) / 2) + 1;
+  const int split_row = static_cast<int>(std::count(good.begin() + static_cast<long>(data_begin),
+                                                    good.begin() + static_cast<long>(split), '\n'));
+  for (int row : {0, split_row - 1, split_row, split_row + 1, kRows - 1}) {
+    // The bad field is as long as the good one: the split stays at the same row.
+    const std::string message = read_error(dir, awkward_log(kRows, row));
+    const std::string where = "bad.csv:" + std::to_string(4 + row) + ": c: 'x42' is not a number";
+    EXPECT_NE(message.find(where), std::string::npos) << "row " << row << ": " << message;
+  }
 }
 
 TEST(ReadLog, ColumnFilterSkipsTheOthersUnparsed) {

@@ -10,6 +10,7 @@
 #include "offline/diagnose/residual_analysis.hpp"
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/identification_setup.hpp"
+#include "offline/identify/parallel_jobs.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/validate/measured_facts.hpp"
 #include "tpf/common/joint_counts.hpp"
@@ -393,21 +394,28 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   bool load_selected = false;
   const StribeckParameters<double, N> linear =
       write_effects(out.groups, sel.theta_written, setup.base, inputs, nominal, load_selected);
-  FrictionCurves<N> curves =
-      fit_friction_curves<N>(s, p.non_friction, inputs.abs_gravity, linear, load_selected, 20000);
-  nominal.friction = curves.parameters;
-  for (const std::string& note : curves.notes)
-    out.notes.push_back("friction curve: " + note);
-  // The written models on the held-out samples: the declared model as identify fits it, and the
-  // extended one (what --params holds).
-  out.written_before =
-      split_regime_stats(s,
-                         nominal_residual(declared_nominal(nominal, out.groups, sel.theta_declared,
-                                                           setup.base, s, p.declared_rigid, inputs),
-                                          s),
-                         true);
-  out.residual_written = nominal_residual(nominal, s);
-  out.written_after = split_regime_stats(s, out.residual_written, true);
+  // The written models on the held-out samples: the extended one (what --params holds) and the
+  // declared model as identify fits it (a copy of the extended one before its friction is fitted,
+  // every part but the model and the base columns replaced), at once: independent fits.
+  const NominalModel<double, N> before_friction = nominal;
+  parallel_jobs(2, [&](int model) {
+    if (model == 0) {
+      FrictionCurves<N> curves = fit_friction_curves<N>(s, p.non_friction, inputs.abs_gravity,
+                                                        linear, load_selected, 20000);
+      nominal.friction = curves.parameters;
+      for (const std::string& note : curves.notes)
+        out.notes.push_back("friction curve: " + note);
+      out.residual_written = nominal_residual(nominal, s);
+      out.written_after = split_regime_stats(s, out.residual_written, true);
+    } else {
+      out.written_before = split_regime_stats(
+          s,
+          nominal_residual(declared_nominal(before_friction, out.groups, sel.theta_declared,
+                                            setup.base, s, p.declared_rigid, inputs),
+                           s),
+          true);
+    }
+  });
 
   out.cad_payload = check_cad_payload(model, setup.base, grams, design, out.groups, selection,
                                       options.min_improvement);

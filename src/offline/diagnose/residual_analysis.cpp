@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "offline/identify/parallel_jobs.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/acceleration.hpp"
@@ -53,6 +54,36 @@ double range_of_motion(const Eigen::VectorXd& q) {
          sorted[static_cast<std::size_t>(0.01 * (m - 1))];
 }
 
+/// Joint j's part of the analysis: its entries of `a`, and its notes into `notes`.
+void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
+                            const Eigen::MatrixXd& rigid_prediction,
+                            const Eigen::VectorXd& gear_ratio, int j, ResidualAnalysis& a,
+                            std::vector<std::string>& notes) {
+  a.noise_floor[j] = static_noise(s, j);
+  const std::vector<Eigen::Index> moving = moving_training_samples(s, j);
+  a.variance_inflation[j] = variance_inflation(residual.col(j), moving);
+  a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0);
+  // The periodograms on at most 20 000 of the moving samples.
+  const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
+  const Eigen::Index m = static_cast<Eigen::Index>(moving.size() / stride);
+  if (m <= 100) return;
+  Eigen::VectorXd q(m), r(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    q[i] = s.q(moving[i * stride], j);
+    r[i] = residual(moving[i * stride], j);
+  }
+  const double range = range_of_motion(q);
+  const int shortest = shortest_fitting_cycles(range);
+  if (shortest <= 64) a.ripple_cycles[j] = dominant_cycles(q, r, shortest, 64, 1.0);
+  if (shortest > 3)
+    notes.push_back("joint " + std::to_string(j + 1) +
+                    format_sentence(": moves over %.2f rad, so position ripple is checked only "
+                                    "from %.0f periods/rev (a longer period does not fit in "
+                                    "the motion)",
+                                    range, shortest));
+  a.ripple_motor_cycles[j] = dominant_cycles(q, r, 1, 4, gear_ratio[j]);
+}
+
 }  // namespace
 
 ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
@@ -65,31 +96,15 @@ ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& 
   a.ripple_cycles = Eigen::VectorXd::Zero(joints);
   a.ripple_motor_cycles = Eigen::VectorXd::Zero(joints);
   a.prediction_rate.resize(s.size(), joints);
-  for (int j = 0; j < joints; ++j) {
-    a.noise_floor[j] = static_noise(s, j);
-    const std::vector<Eigen::Index> moving = moving_training_samples(s, j);
-    a.variance_inflation[j] = variance_inflation(residual.col(j), moving);
-    a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0);
-    // The periodograms on at most 20 000 of the moving samples.
-    const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
-    const Eigen::Index m = static_cast<Eigen::Index>(moving.size() / stride);
-    if (m <= 100) continue;
-    Eigen::VectorXd q(m), r(m);
-    for (Eigen::Index i = 0; i < m; ++i) {
-      q[i] = s.q(moving[i * stride], j);
-      r[i] = residual(moving[i * stride], j);
-    }
-    const double range = range_of_motion(q);
-    const int shortest = shortest_fitting_cycles(range);
-    if (shortest <= 64) a.ripple_cycles[j] = dominant_cycles(q, r, shortest, 64, 1.0);
-    if (shortest > 3)
-      a.notes.push_back("joint " + std::to_string(j + 1) +
-                        format_sentence(": moves over %.2f rad, so position ripple is checked only "
-                                        "from %.0f periods/rev (a longer period does not fit in "
-                                        "the motion)",
-                                        range, shortest));
-    a.ripple_motor_cycles[j] = dominant_cycles(q, r, 1, 4, gear_ratio[j]);
-  }
+  // Joints are independent: each thread takes the next (same result as serial, notes in joint
+  // order).
+  std::vector<std::vector<std::string>> notes(static_cast<std::size_t>(joints));
+  parallel_jobs(joints, [&](int j) {
+    analyse_joint_residual(s, residual, rigid_prediction, gear_ratio, j, a,
+                           notes[static_cast<std::size_t>(j)]);
+  });
+  for (const std::vector<std::string>& joint_notes : notes)
+    a.notes.insert(a.notes.end(), joint_notes.begin(), joint_notes.end());
   return a;
 }
 

@@ -12,6 +12,7 @@
 #include "offline/identify/gram_fit.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/parallel_halves.hpp"
+#include "offline/identify/parallel_jobs.hpp"
 #include "offline/identify/sensor_friction.hpp"
 #include "offline/identify/stribeck_fit.hpp"
 #include "tpf/common/error.hpp"
@@ -208,11 +209,9 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
     out.parameters.coulomb_asymmetry[j] =
         std::clamp(clamped.coulomb_asymmetry[j], -curve.coulomb[j], curve.coulomb[j]);
   };
-  // Joints are independent problems: half of them on a helper thread (same result as serial).
-  parallel_halves(N, [&](Eigen::Index begin, Eigen::Index end) {
-    for (Eigen::Index j = begin; j < end; ++j)
-      fit_joint(static_cast<int>(j));
-  });
+  // Joints are independent problems of unequal cost: each thread takes the next joint (same
+  // result as serial).
+  parallel_jobs(N, fit_joint);
   for (const auto& n : notes)
     out.notes.insert(out.notes.end(), n.begin(), n.end());
   return out;
@@ -306,17 +305,20 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has
   // no added effects), without a third regressor pass.
   out.residual.resize(s.size(), N);
-  for (Eigen::Index k = 0; k < s.size(); ++k) {
-    if (!s.valid[k]) {
-      out.residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
-      continue;
+  parallel_halves(s.size(), [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index k = begin; k < end; ++k) {
+      if (!s.valid[k]) {
+        out.residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
+      const JointVector<double, N> dq = s.dq.row(k).transpose(), abs_g = load.row(k).transpose();
+      const JointVector<double, N> friction = stribeck_friction(nominal.friction, dq, abs_g);
+      out.residual.row(k) = s.effort.row(k) - rigid.row(k) - friction.transpose();
     }
-    const JointVector<double, N> dq = s.dq.row(k).transpose(), abs_g = load.row(k).transpose();
-    const JointVector<double, N> friction = stribeck_friction(nominal.friction, dq, abs_g);
-    out.residual.row(k) = s.effort.row(k) - rigid.row(k) - friction.transpose();
-  }
-  out.heldout = split_regime_stats(s, out.residual, true);
-  out.training = split_regime_stats(s, out.residual, false);
+  });
+  parallel_jobs(2, [&](int split) {
+    (split == 0 ? out.heldout : out.training) = split_regime_stats(s, out.residual, split == 0);
+  });
   out.consistency = check_consistency(nominal);
   if (!(out.consistency.min_mass_eigenvalue > 0) && s.ddq.cwiseAbs().maxCoeff() == 0.0)
     out.consistency.problems.push_back(

@@ -35,9 +35,29 @@ std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
 
 namespace {
 
-/// Column j - 1 (joint j) of q, dq, effort, ddq (read or derived), temperature and the regimes.
+/// Sign of joint j's last motion, reset at gaps and NaNs (a new segment starts unknown).
+void hold_motion_sign(const std::vector<Segment>& segments, const RegimeOptions& regimes, int j,
+                      JointSamples& s) {
+  s.held_sign.col(j).setZero();  // outside every segment (t not finite)
+  for (const Segment& seg : segments) {
+    double sign = 0.0;
+    for (Eigen::Index k = seg.begin; k < seg.end; ++k) {
+      const double v = s.dq(k, j);
+      if (!std::isfinite(v)) {
+        sign = 0.0;
+      } else if (std::abs(v) >= regimes.static_velocity) {
+        sign = v > 0 ? 1.0 : -1.0;
+      }
+      s.held_sign(k, j) = sign;
+    }
+  }
+}
+
+/// Column j - 1 (joint j) of q, dq, effort, ddq (read or derived), temperature, the regimes and
+/// the held sign of motion.
 void extract_joint(const Log& log, const std::string& prefix, bool has_temperature,
-                   const SampleOptions& options, int j, JointSamples& s) {
+                   const SampleOptions& options, const std::vector<Segment>& segments, int j,
+                   JointSamples& s) {
   s.q.col(j - 1) = log.col(indexed_name("q", j));
   s.dq.col(j - 1) = log.col(indexed_name("dq", j));
   s.effort.col(j - 1) = log.col(indexed_name(prefix, j)) * s.units.newton_metres_per_unit(j - 1);
@@ -47,6 +67,7 @@ void extract_joint(const Log& log, const std::string& prefix, bool has_temperatu
                    : derive_acceleration(s.t, s.dq.col(j - 1), options.acceleration_cutoff_hz);
   if (has_temperature) s.temperature.col(j - 1) = log.col(indexed_name("temp", j));
   s.regimes[j - 1] = label_regimes(s.t, s.dq.col(j - 1), options.regimes);
+  hold_motion_sign(segments, options.regimes, j - 1, s);
 }
 
 }  // namespace
@@ -75,10 +96,13 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
     has_temperature = has_temperature && log.has(indexed_name("temp", j));
   if (has_temperature) s.temperature.resize(n, n_joints);
   s.regimes.resize(n_joints);
+  s.held_sign.resize(n, n_joints);
+  const std::vector<Segment> segments =
+      contiguous_segments(s.t, {}, options.regimes.gap_factor);  // of t alone: every joint's
   // Joints are independent columns: half of them on a helper thread (same result as serial).
   parallel_halves(n_joints, [&](Eigen::Index first, Eigen::Index last) {
     for (int j = static_cast<int>(first) + 1; j <= last; ++j)
-      extract_joint(log, prefix, has_temperature, options, j, s);
+      extract_joint(log, prefix, has_temperature, options, segments, j, s);
   });
 
   s.valid.assign(n, 1);
@@ -106,23 +130,6 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
       s.heldout[k] = 1;
   } else if (options.hold_out) {
     s.heldout = interleaved_heldout_blocks(s.t, options);
-  }
-
-  // Sign of the last motion, reset at gaps and NaNs (a new segment starts unknown).
-  s.held_sign = Eigen::MatrixXd::Zero(n, n_joints);
-  for (const Segment& seg : contiguous_segments(s.t, {}, options.regimes.gap_factor)) {
-    for (int j = 0; j < n_joints; ++j) {
-      double sign = 0.0;
-      for (Eigen::Index k = seg.begin; k < seg.end; ++k) {
-        const double v = s.dq(k, j);
-        if (!std::isfinite(v)) {
-          sign = 0.0;
-        } else if (std::abs(v) >= options.regimes.static_velocity) {
-          sign = v > 0 ? 1.0 : -1.0;
-        }
-        s.held_sign(k, j) = sign;
-      }
-    }
   }
   return s;
 }

@@ -12,6 +12,7 @@
 #include <memory>
 #include <set>
 #include <thread>
+#include <utility>
 
 #include "offline/common/not_a_number.hpp"
 #include "offline/log/file_text.hpp"
@@ -151,6 +152,27 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
   }
 }
 
+/// Where the data lines [begin, end) are split for two threads: just after the first line end
+/// past the middle, or `end` (no split) when the data is small or has no line end there.
+const char* split_point(const char* begin, const char* end) {
+  if (static_cast<std::size_t>(end - begin) < kParallelBytes) return end;
+  const char* middle = begin + (end - begin) / 2;
+  const void* line_end = std::memchr(middle, '\n', static_cast<std::size_t>(end - middle));
+  return line_end != nullptr ? static_cast<const char*>(line_end) + 1 : end;
+}
+
+/// The '\n' in [begin, split) and in [split, end), the second counted on a helper thread.
+std::pair<std::size_t, std::size_t> count_line_ends(const char* begin, const char* split,
+                                                    const char* end) {
+  std::size_t second = 0;
+  std::thread helper;
+  if (split < end)
+    helper = std::thread([&] { second = static_cast<std::size_t>(std::count(split, end, '\n')); });
+  const auto first = static_cast<std::size_t>(std::count(begin, split, '\n'));
+  if (helper.joinable()) helper.join();
+  return {first, second};
+}
+
 }  // namespace
 
 CsvTable read_csv_table(const std::filesystem::path& path,
@@ -234,22 +256,17 @@ CsvTable read_csv_table(const std::filesystem::path& path, const ColumnFilter& k
   while (data_end > data_begin && (data_end[-1] == '\n' || data_end[-1] == '\r' ||
                                    data_end[-1] == ' ' || data_end[-1] == '\t'))
     --data_end;
-  const std::size_t rows =
-      data_end > data_begin ? 1 + static_cast<std::size_t>(std::count(data_begin, data_end, '\n'))
-                            : 0;
   table.first_data_line = table.header_line + 1;
   const std::size_t columns = log.columns.size();
-  log.values.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(columns));
 
-  // Split at a line boundary near the middle and parse both halves at once.
-  const char* split = data_end;
-  std::size_t second_first_row = rows;
-  if (static_cast<std::size_t>(data_end - data_begin) >= kParallelBytes) {
-    const char* middle = data_begin + (data_end - data_begin) / 2;
-    const void* line_end = std::memchr(middle, '\n', data_end - middle);
-    split = line_end != nullptr ? static_cast<const char*>(line_end) + 1 : data_end;
-    second_first_row = static_cast<std::size_t>(std::count(data_begin, split, '\n'));
-  }
+  // Split at a line boundary near the middle; count the lines of both halves, then parse both
+  // halves, at once.
+  const char* const split = split_point(data_begin, data_end);
+  const std::pair<std::size_t, std::size_t> line_ends =
+      count_line_ends(data_begin, split, data_end);
+  const std::size_t second_first_row = line_ends.first;
+  const std::size_t rows = data_end > data_begin ? line_ends.first + line_ends.second + 1 : 0;
+  log.values.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(columns));
   ChunkResult first, second;
   if (split < data_end) {
     std::thread helper([&] {
