@@ -121,6 +121,37 @@ TEST(DeriveAcceleration, NeverDifferentiatesAcrossGapsOrNaN) {
     EXPECT_EQ(ddq2[k], ddq[k]);
 }
 
+TEST(DeriveAcceleration, GivenMedianStepGivesTheSameBits) {
+  // Jittered time with a gap and NaNs: the overloads that take t's median step (computed once by
+  // a caller filtering several signals) return exactly what the ones computing it return.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-2e-5, 2e-5);
+  const int n = 5000;
+  Eigen::VectorXd t(n), dq(n);
+  for (int k = 0; k < n; ++k) {
+    t[k] = k / kRate + jitter(rng) + (k >= 3000 ? 0.1 : 0.0);
+    dq[k] = std::sin(2 * kPi * 0.7 * t[k]) + 0.01 * jitter(rng) * 1e5;
+  }
+  dq[100] = dq[2500] = kNaN;
+  const double step = median_step(t);
+  const Eigen::VectorXd a = derive_acceleration(t, dq, 20.0);
+  const Eigen::VectorXd b = derive_acceleration(t, dq, 20.0, step);
+  const Eigen::VectorXd c = zero_phase_low_pass(t, dq, 20.0);
+  const Eigen::VectorXd d = zero_phase_low_pass(t, dq, 20.0, step);
+  for (int k = 0; k < n; ++k) {
+    ASSERT_TRUE(a[k] == b[k] || (std::isnan(a[k]) && std::isnan(b[k]))) << k;
+    ASSERT_TRUE(c[k] == d[k] || (std::isnan(c[k]) && std::isnan(d[k]))) << k;
+  }
+  const auto segments = contiguous_segments(t, dq, 1.5);
+  const auto given = contiguous_segments(t, dq, 1.5, step);
+  ASSERT_EQ(segments.size(), given.size());
+  EXPECT_EQ(segments.size(), 4u);
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    EXPECT_EQ(segments[i].begin, given[i].begin);
+    EXPECT_EQ(segments[i].end, given[i].end);
+  }
+}
+
 TEST(Segments, SplitAtGapsAndNaN) {
   Eigen::VectorXd t(8);
   t << 0, 1, 2, 3, 5, 6, 7, 8;

@@ -8,6 +8,7 @@
 #include "offline/report/text_format.hpp"
 #include "offline/signal/acceleration.hpp"
 #include "offline/signal/periodogram.hpp"
+#include "offline/signal/segments.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -57,12 +58,12 @@ double range_of_motion(const Eigen::VectorXd& q) {
 /// Joint j's part of the analysis: its entries of `a`, and its notes into `notes`.
 void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
                             const Eigen::MatrixXd& rigid_prediction,
-                            const Eigen::VectorXd& gear_ratio, int j, ResidualAnalysis& a,
-                            std::vector<std::string>& notes) {
+                            const Eigen::VectorXd& gear_ratio, double step, int j,
+                            ResidualAnalysis& a, std::vector<std::string>& notes) {
   a.noise_floor[j] = static_noise(s, j);
   const std::vector<Eigen::Index> moving = moving_training_samples(s, j);
   a.variance_inflation[j] = variance_inflation(residual.col(j), moving);
-  a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0);
+  a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0, step);
   // The periodograms on at most 20 000 of the moving samples.
   const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
   const Eigen::Index m = static_cast<Eigen::Index>(moving.size() / stride);
@@ -99,8 +100,9 @@ ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& 
   // Joints are independent: each thread takes the next (same result as serial, notes in joint
   // order).
   std::vector<std::vector<std::string>> notes(static_cast<std::size_t>(joints));
+  const double step = median_step(s.t);  // once for every joint's filter
   parallel_jobs(joints, [&](int j) {
-    analyse_joint_residual(s, residual, rigid_prediction, gear_ratio, j, a,
+    analyse_joint_residual(s, residual, rigid_prediction, gear_ratio, step, j, a,
                            notes[static_cast<std::size_t>(j)]);
   });
   for (const std::vector<std::string>& joint_notes : notes)

@@ -56,15 +56,15 @@ void hold_motion_sign(const std::vector<Segment>& segments, const RegimeOptions&
 /// Column j - 1 (joint j) of q, dq, effort, ddq (read or derived), temperature, the regimes and
 /// the held sign of motion.
 void extract_joint(const Log& log, const std::string& prefix, bool has_temperature,
-                   const SampleOptions& options, const std::vector<Segment>& segments, int j,
-                   JointSamples& s) {
+                   const SampleOptions& options, double step, const std::vector<Segment>& segments,
+                   int j, JointSamples& s) {
   s.q.col(j - 1) = log.col(indexed_name("q", j));
   s.dq.col(j - 1) = log.col(indexed_name("dq", j));
   s.effort.col(j - 1) = log.col(indexed_name(prefix, j)) * s.units.newton_metres_per_unit(j - 1);
   const std::string acc = indexed_name("ddq", j);
-  s.ddq.col(j - 1) =
-      log.has(acc) ? Eigen::VectorXd(log.col(acc))
-                   : derive_acceleration(s.t, s.dq.col(j - 1), options.acceleration_cutoff_hz);
+  s.ddq.col(j - 1) = log.has(acc) ? Eigen::VectorXd(log.col(acc))
+                                  : derive_acceleration(s.t, s.dq.col(j - 1),
+                                                        options.acceleration_cutoff_hz, step);
   if (has_temperature) s.temperature.col(j - 1) = log.col(indexed_name("temp", j));
   s.regimes[j - 1] = label_regimes(s.t, s.dq.col(j - 1), options.regimes);
   hold_motion_sign(segments, options.regimes, j - 1, s);
@@ -97,12 +97,13 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
   if (has_temperature) s.temperature.resize(n, n_joints);
   s.regimes.resize(n_joints);
   s.held_sign.resize(n, n_joints);
+  const double step = median_step(s.t);  // once for every joint's filters and segments
   const std::vector<Segment> segments =
-      contiguous_segments(s.t, {}, options.regimes.gap_factor);  // of t alone: every joint's
+      contiguous_segments(s.t, {}, options.regimes.gap_factor, step);  // of t alone
   // Joints are independent columns: half of them on a helper thread (same result as serial).
   parallel_halves(n_joints, [&](Eigen::Index first, Eigen::Index last) {
     for (int j = static_cast<int>(first) + 1; j <= last; ++j)
-      extract_joint(log, prefix, has_temperature, options, segments, j, s);
+      extract_joint(log, prefix, has_temperature, options, step, segments, j, s);
   });
 
   s.valid.assign(n, 1);

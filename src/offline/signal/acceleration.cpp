@@ -19,10 +19,16 @@ void check_sizes(const Eigen::VectorXd& t, const Eigen::VectorXd& x, const char*
 Eigen::VectorXd zero_phase_low_pass(const Eigen::VectorXd& t, const Eigen::VectorXd& x,
                                     double cutoff_hz) {
   check_sizes(t, x, "zero_phase_low_pass");
+  return zero_phase_low_pass(t, x, cutoff_hz, median_step(t));
+}
+
+Eigen::VectorXd zero_phase_low_pass(const Eigen::VectorXd& t, const Eigen::VectorXd& x,
+                                    double cutoff_hz, double median_step_s) {
+  check_sizes(t, x, "zero_phase_low_pass");
   Eigen::VectorXd y = Eigen::VectorXd::Constant(x.size(), kNaN);
-  const std::vector<Segment> segments = contiguous_segments(t, x);
+  const std::vector<Segment> segments = contiguous_segments(t, x, 1.5, median_step_s);
   if (segments.empty()) return y;
-  const double rate = 1.0 / median_step(t);
+  const double rate = 1.0 / median_step_s;
   const Butterworth2 filter = Butterworth2::low_pass(cutoff_hz, rate);
   for (const Segment& s : segments)
     y.segment(s.begin, s.size()) = filtfilt(filter, x.segment(s.begin, s.size()), rate / cutoff_hz);
@@ -32,9 +38,15 @@ Eigen::VectorXd zero_phase_low_pass(const Eigen::VectorXd& t, const Eigen::Vecto
 Eigen::VectorXd derive_acceleration(const Eigen::VectorXd& t, const Eigen::VectorXd& dq,
                                     double cutoff_hz) {
   check_sizes(t, dq, "derive_acceleration");
-  const Eigen::VectorXd v = zero_phase_low_pass(t, dq, cutoff_hz);
+  return derive_acceleration(t, dq, cutoff_hz, median_step(t));
+}
+
+Eigen::VectorXd derive_acceleration(const Eigen::VectorXd& t, const Eigen::VectorXd& dq,
+                                    double cutoff_hz, double median_step_s) {
+  check_sizes(t, dq, "derive_acceleration");
+  const Eigen::VectorXd v = zero_phase_low_pass(t, dq, cutoff_hz, median_step_s);
   Eigen::VectorXd ddq = Eigen::VectorXd::Constant(dq.size(), kNaN);
-  for (const Segment& s : contiguous_segments(t, dq))
+  for (const Segment& s : contiguous_segments(t, dq, 1.5, median_step_s))
     for (Eigen::Index k = s.begin + 1; k + 1 < s.end; ++k)
       ddq[k] = (v[k + 1] - v[k - 1]) / (t[k + 1] - t[k - 1]);
   return ddq;

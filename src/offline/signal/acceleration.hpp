@@ -20,4 +20,11 @@ Eigen::VectorXd zero_phase_low_pass(const Eigen::VectorXd& t, const Eigen::Vecto
 Eigen::VectorXd derive_acceleration(const Eigen::VectorXd& t, const Eigen::VectorXd& dq,
                                     double cutoff_hz);
 
+/// zero_phase_low_pass and derive_acceleration with t's median step given (median_step(t),
+/// computed once by a caller that filters several signals of one t): the same results.
+Eigen::VectorXd zero_phase_low_pass(const Eigen::VectorXd& t, const Eigen::VectorXd& x,
+                                    double cutoff_hz, double median_step_s);
+Eigen::VectorXd derive_acceleration(const Eigen::VectorXd& t, const Eigen::VectorXd& dq,
+                                    double cutoff_hz, double median_step_s);
+
 }  // namespace tpf::offline

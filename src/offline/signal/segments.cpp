@@ -24,7 +24,15 @@ std::vector<Segment> contiguous_segments(const Eigen::VectorXd& t, const Eigen::
   if (x.size() != 0 && x.size() != t.size())
     throw Error("contiguous_segments: t has " + std::to_string(t.size()) + " samples, x has " +
                 std::to_string(x.size()));
-  const double max_step = gap_factor * median_step(t);
+  return contiguous_segments(t, x, gap_factor, median_step(t));
+}
+
+std::vector<Segment> contiguous_segments(const Eigen::VectorXd& t, const Eigen::VectorXd& x,
+                                         double gap_factor, double median_step_s) {
+  if (x.size() != 0 && x.size() != t.size())
+    throw Error("contiguous_segments: t has " + std::to_string(t.size()) + " samples, x has " +
+                std::to_string(x.size()));
+  const double max_step = gap_factor * median_step_s;
   const auto valid = [&](Eigen::Index k) {
     return std::isfinite(t[k]) && (x.size() == 0 || std::isfinite(x[k]));
   };

@@ -21,5 +21,9 @@ double median_step(const Eigen::VectorXd& t);
 /// `x` may be empty (then only t is checked). Throws tpf::Error when sizes differ.
 std::vector<Segment> contiguous_segments(const Eigen::VectorXd& t, const Eigen::VectorXd& x,
                                          double gap_factor = 1.5);
+/// The same with t's median step given (median_step(t), computed once by a caller that needs it
+/// for several signals of one t).
+std::vector<Segment> contiguous_segments(const Eigen::VectorXd& t, const Eigen::VectorXd& x,
+                                         double gap_factor, double median_step_s);
 
 }  // namespace tpf::offline
