@@ -302,6 +302,31 @@ TEST(ReadLog, ColumnFilterSkipsTheOthersUnparsed) {
   EXPECT_EQ(log.quality.missing_per_column, (std::vector<std::size_t>{0, 0}));
 }
 
+TEST(ReadLog, SkippedLastColumnsGiveTheSameFieldCountErrors) {
+  // The columns after the last kept one are only counted, not walked field by field: a wrong
+  // count is reported as when every column is parsed.
+  TempDir dir("skipped_tail");
+  const std::string head = "# rate_hz: 400\nt,q1,gt_a,gt_b\n0,1,2,3\n";
+  const auto message = [&](const std::string& text, const ColumnFilter& filter) {
+    write_text(dir / "a.csv", text);
+    try {
+      read_log(dir / "a.csv", filter);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const ColumnFilter fitted = [](std::string_view name) { return name == "t" || name == "q1"; };
+  for (const std::string tail :
+       {"0.0025,2,3\n0.005,1,2,3\n", "0.0025,2,3,4,5\n", "0.0025,2,3,4\n0.005,2,3",
+        "0.0025,2,3,4\n0.005,2,3,", "0.0025,2\n", "0.0025,2,3,4\n0.005,1,2,3,\n"}) {
+    const std::string all = message(head + tail, {});
+    EXPECT_NE(all, "no error") << tail;
+    EXPECT_EQ(message(head + tail, fitted), all) << tail;
+  }
+  EXPECT_EQ(message(head + "0.0025,2,x,y\n", fitted), "no error");
+}
+
 TEST(ReadLog, OneLineLongerThanHalfTheDataIsParsedWhole) {
   TempDir dir("long_line");
   // Above the parallel threshold, with no line end after the middle of the data.

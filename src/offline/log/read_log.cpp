@@ -68,6 +68,13 @@ std::size_t count_fields(const char* begin, const char* end) {
   return 1 + static_cast<std::size_t>(std::count(begin, end, ','));
 }
 
+/// A line with the wrong number of fields; `cut_off`: it is the file's last, without a line end,
+/// and has too few.
+std::string field_count_message(bool cut_off, std::size_t expected, std::size_t found) {
+  return concat({cut_off ? "the file ends mid-line (truncated?): " : "", "expected ",
+                 std::to_string(expected), " fields, found ", std::to_string(found)});
+}
+
 /// Parses lines in [begin, end) (each ending in '\n', except possibly the last) into rows
 /// first_row.. of `values`: field c goes to column target[c] of `values`, or is skipped unparsed
 /// when target[c] < 0 (its count still checked). Stops at the first malformed line. Never throws.
@@ -75,6 +82,10 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
                  const std::vector<int>& target, Eigen::MatrixXd& values, ChunkResult& result) {
   try {
     const std::size_t columns = target.size();
+    // From this column on every field is skipped: only the rest of the line's commas are counted.
+    std::size_t skipped_tail = columns;
+    while (skipped_tail > 0 && target[skipped_tail - 1] < 0)
+      --skipped_tail;
     const std::size_t rows = static_cast<std::size_t>(values.rows());
     double* const data = values.data();
     result.missing.assign(static_cast<std::size_t>(values.cols()), 0);
@@ -91,6 +102,16 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
       for (std::size_t c = 0; c < columns; ++c) {
         while (field < content_end && (*field == ' ' || *field == '\t'))
           ++field;
+        if (c == skipped_tail) {  // c fields read, each ended by a comma
+          const std::size_t found =
+              c + 1 + static_cast<std::size_t>(std::count(field, content_end, ','));
+          if (found != columns) {
+            fail(-1, field_count_message(found < columns && ends_mid_line && line_end == end,
+                                         columns, found));
+            return;
+          }
+          break;
+        }
         double value = kNaN;
         const char* after = field;
         if (target[c] < 0) {
@@ -125,17 +146,12 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
         }
         const bool last = c + 1 == columns;
         if (!last && after >= content_end) {
-          const std::size_t found = count_fields(p, content_end);
-          fail(-1,
-               concat(
-                   {ends_mid_line && line_end == end ? "the file ends mid-line (truncated?): " : "",
-                    "expected ", std::to_string(columns), " fields, found ",
-                    std::to_string(found)}));
+          fail(-1, field_count_message(ends_mid_line && line_end == end, columns,
+                                       count_fields(p, content_end)));
           return;
         }
         if (last && after < content_end) {
-          fail(-1, concat({"expected ", std::to_string(columns), " fields, found ",
-                           std::to_string(count_fields(p, content_end))}));
+          fail(-1, field_count_message(false, columns, count_fields(p, content_end)));
           return;
         }
         field = after + 1;
