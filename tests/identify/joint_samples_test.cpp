@@ -1,0 +1,87 @@
+// Sample extraction runs per joint on two threads and computes t's median step once: its q̈ and
+// held sign of motion are those of the one-joint-at-a-time definitions, bit for bit.
+#include "offline/identify/joint_samples.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "offline/signal/acceleration.hpp"
+#include "offline/signal/segments.hpp"
+
+namespace tpf::offline {
+namespace {
+
+constexpr int kJoints = 3;
+constexpr int kRows = 2000;
+
+/// Three joints at 100 Hz (jittered), a 1 s gap at row 1200, NaN velocities on joint 2, rests
+/// between motions; no ddq<j> columns (derived), currents i<j>.
+Log three_joint_log() {
+  Log log;
+  log.meta.set("rate_hz", "100");
+  log.columns = {"t", "q1", "q2", "q3", "dq1", "dq2", "dq3", "i1", "i2", "i3"};
+  log.values.resize(kRows, 10);
+  for (int k = 0; k < kRows; ++k) {
+    const double t = k / 100.0 + 1e-5 * std::sin(7.0 * k) + (k >= 1200 ? 1.0 : 0.0);
+    log.values(k, 0) = t;
+    for (int j = 0; j < kJoints; ++j) {
+      const double w = 0.8 + 0.3 * j;
+      const double dq = std::max(0.0, std::abs(std::sin(0.2 * t)) - 0.3) * std::cos(w * t);
+      log.values(k, 1 + j) = std::sin(w * t);
+      log.values(k, 4 + j) = dq;
+      log.values(k, 7 + j) = 100.0 * dq + 10.0 * j;
+    }
+  }
+  for (int k : {300, 301, 1500})
+    log.values(k, 5) = std::numeric_limits<double>::quiet_NaN();
+  return log;
+}
+
+/// The held sign as defined: per segment of t, the sign of the last motion (NaN resets it).
+Eigen::MatrixXd held_sign_reference(const JointSamples& s, const SampleOptions& o) {
+  Eigen::MatrixXd held = Eigen::MatrixXd::Zero(s.size(), kJoints);
+  for (const Segment& seg : contiguous_segments(s.t, {}, o.regimes.gap_factor))
+    for (int j = 0; j < kJoints; ++j) {
+      double sign = 0.0;
+      for (Eigen::Index k = seg.begin; k < seg.end; ++k) {
+        const double v = s.dq(k, j);
+        if (!std::isfinite(v))
+          sign = 0.0;
+        else if (std::abs(v) >= o.regimes.static_velocity)
+          sign = v > 0 ? 1.0 : -1.0;
+        held(k, j) = sign;
+      }
+    }
+  return held;
+}
+
+bool same(double a, double b) {
+  return a == b || (std::isnan(a) && std::isnan(b));
+}
+
+TEST(JointSamples, ParallelExtractionMatchesTheDefinitionsBitForBit) {
+  const SampleOptions options;
+  const JointSamples s =
+      extract_joint_samples(three_joint_log(), Eigen::VectorXd::Ones(kJoints), options);
+  ASSERT_EQ(s.size(), kRows);
+  const Eigen::MatrixXd held = held_sign_reference(s, options);
+  int moving = 0;
+  for (int j = 0; j < kJoints; ++j) {
+    const Eigen::VectorXd ddq =
+        derive_acceleration(s.t, s.dq.col(j), options.acceleration_cutoff_hz);
+    for (Eigen::Index k = 0; k < kRows; ++k) {
+      ASSERT_TRUE(same(s.ddq(k, j), ddq[k])) << "joint " << j << " row " << k;
+      ASSERT_EQ(s.held_sign(k, j), held(k, j)) << "joint " << j << " row " << k;
+      moving += held(k, j) != 0.0;
+    }
+  }
+  EXPECT_GT(moving, kRows);  // the held sign is not trivially zero
+  // Invalid: the 3 NaN velocities, and q̈ at both ends of every segment (log ends, gap, NaNs):
+  // rows 0, 299, 302, 1199, 1200, 1499, 1501, 1999.
+  EXPECT_EQ(s.invalid_count, 11u);
+}
+
+}  // namespace
+}  // namespace tpf::offline
