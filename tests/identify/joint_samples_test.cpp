@@ -13,8 +13,8 @@
 namespace tpf::offline {
 namespace {
 
-constexpr int kJoints = 3;
-constexpr int kRows = 2000;
+constexpr int kSampleJoints = 3;
+constexpr int kSampleRows = 2000;
 
 /// Three joints at 100 Hz (jittered), a 1 s gap at row 1200, NaN velocities on joint 2, rests
 /// between motions; no ddq<j> columns (derived), currents i<j>.
@@ -22,11 +22,11 @@ Log three_joint_log() {
   Log log;
   log.meta.set("rate_hz", "100");
   log.columns = {"t", "q1", "q2", "q3", "dq1", "dq2", "dq3", "i1", "i2", "i3"};
-  log.values.resize(kRows, 10);
-  for (int k = 0; k < kRows; ++k) {
+  log.values.resize(kSampleRows, 10);
+  for (int k = 0; k < kSampleRows; ++k) {
     const double t = k / 100.0 + 1e-5 * std::sin(7.0 * k) + (k >= 1200 ? 1.0 : 0.0);
     log.values(k, 0) = t;
-    for (int j = 0; j < kJoints; ++j) {
+    for (int j = 0; j < kSampleJoints; ++j) {
       const double w = 0.8 + 0.3 * j;
       const double dq = std::max(0.0, std::abs(std::sin(0.2 * t)) - 0.3) * std::cos(w * t);
       log.values(k, 1 + j) = std::sin(w * t);
@@ -41,9 +41,9 @@ Log three_joint_log() {
 
 /// The held sign as defined: per segment of t, the sign of the last motion (NaN resets it).
 Eigen::MatrixXd held_sign_reference(const JointSamples& s, const SampleOptions& o) {
-  Eigen::MatrixXd held = Eigen::MatrixXd::Zero(s.size(), kJoints);
+  Eigen::MatrixXd held = Eigen::MatrixXd::Zero(s.size(), kSampleJoints);
   for (const Segment& seg : contiguous_segments(s.t, {}, o.regimes.gap_factor))
-    for (int j = 0; j < kJoints; ++j) {
+    for (int j = 0; j < kSampleJoints; ++j) {
       double sign = 0.0;
       for (Eigen::Index k = seg.begin; k < seg.end; ++k) {
         const double v = s.dq(k, j);
@@ -57,27 +57,27 @@ Eigen::MatrixXd held_sign_reference(const JointSamples& s, const SampleOptions& 
   return held;
 }
 
-bool same(double a, double b) {
+bool same_bits(double a, double b) {
   return a == b || (std::isnan(a) && std::isnan(b));
 }
 
 TEST(JointSamples, ParallelExtractionMatchesTheDefinitionsBitForBit) {
   const SampleOptions options;
   const JointSamples s =
-      extract_joint_samples(three_joint_log(), Eigen::VectorXd::Ones(kJoints), options);
-  ASSERT_EQ(s.size(), kRows);
+      extract_joint_samples(three_joint_log(), Eigen::VectorXd::Ones(kSampleJoints), options);
+  ASSERT_EQ(s.size(), kSampleRows);
   const Eigen::MatrixXd held = held_sign_reference(s, options);
   int moving = 0;
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < kSampleJoints; ++j) {
     const Eigen::VectorXd ddq =
         derive_acceleration(s.t, s.dq.col(j), options.acceleration_cutoff_hz);
-    for (Eigen::Index k = 0; k < kRows; ++k) {
-      ASSERT_TRUE(same(s.ddq(k, j), ddq[k])) << "joint " << j << " row " << k;
+    for (Eigen::Index k = 0; k < kSampleRows; ++k) {
+      ASSERT_TRUE(same_bits(s.ddq(k, j), ddq[k])) << "joint " << j << " row " << k;
       ASSERT_EQ(s.held_sign(k, j), held(k, j)) << "joint " << j << " row " << k;
       moving += held(k, j) != 0.0;
     }
   }
-  EXPECT_GT(moving, kRows);  // the held sign is not trivially zero
+  EXPECT_GT(moving, kSampleRows);  // the held sign is not trivially zero
   // Invalid: the 3 NaN velocities, and q̈ at both ends of every segment (log ends, gap, NaNs):
   // rows 0, 299, 302, 1199, 1200, 1499, 1501, 1999.
   EXPECT_EQ(s.invalid_count, 11u);
