@@ -154,6 +154,10 @@ void expect_bound(const std::filesystem::path& out, const MeasuredResult& r) {
   EXPECT_LT(b.in_sample[1], b.heldout[1]);
   EXPECT_LT(b.oracle_low_pass[1], 0.9 * b.target[1]);
   EXPECT_GT(b.heldout_low_pass[1], 1.3 * b.target[1]) << "the fitting files choose 200 ms";
+  // The load terms of the friction are scored beside it (their own fit, so a different RMSE).
+  ASSERT_EQ(b.heldout_without_load.size(), 7u);
+  EXPECT_NE(b.heldout_without_load[1], b.heldout[1]);
+  EXPECT_LT(std::abs(b.heldout_without_load[1] / b.heldout[1] - 1.0), 0.2);
   // Reverse (RunTrajectory1 + RecordTrajectory_quadratic scored): K_t·i 4.1 N·m between 2 and
   // 20 Hz on joint 2, the sensor 0.19.
   const MeasuredBound& rb = r.reverse_bound;

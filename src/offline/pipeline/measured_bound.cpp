@@ -26,6 +26,11 @@ Eigen::MatrixXd bound_masked(const Eigen::MatrixXd& x, const Eigen::MatrixXd& ma
 
 }  // namespace
 
+std::vector<double> heldout_sensor_rmse(const MeasuredBoundSide& side,
+                                        const EffortEstimate& estimate) {
+  return bound_rmse(sensor_residual({side.log, side.samples, estimate.drive_loss}));
+}
+
 MeasuredBound measured_bound(const MeasuredBoundSide& fit, const MeasuredBoundSide& scored,
                              const EffortEstimate& fit_estimate, const EffortEstimate& heldout,
                              const EffortEstimate& in_sample, double target_reduction,

@@ -22,7 +22,9 @@ struct MeasuredBound {
   double low_hz = 0.0, high_hz = 0.0;  ///< the band edges
   std::vector<double> maker, target;   ///< K_t·i alone; (1 − target reduction)·maker
   std::vector<double> heldout;         ///< the sensor-fitted friction, fitted on the fitting files
-  Eigen::VectorXd fit_time_constants;  ///< the low-pass chosen on the fitting files [s], pooled
+  /// The same fitted without its load terms (α_c = α_v = 0; empty when not computed).
+  std::vector<double> heldout_without_load;
+  Eigen::VectorXd fit_time_constants;    ///< the low-pass chosen on the fitting files [s], pooled
   std::vector<double> heldout_low_pass;  ///< + that low-pass (the pipeline's column)
   /// The same with the time constant chosen by LowPassCriterion::kWorstFile on the fitting files
   /// (reported, not used: see docs/measured-data.md).
@@ -54,6 +56,10 @@ struct MeasuredBoundSide {
   const Log* log = nullptr;
   const JointSamples* samples = nullptr;
 };
+
+/// Per joint: RMSE of K_t·i − d − τ_sensor of `estimate` on `side` (NaN where not scored).
+std::vector<double> heldout_sensor_rmse(const MeasuredBoundSide& side,
+                                        const EffortEstimate& estimate);
 
 /// `heldout` is the model fitted on `fit` scored on `scored`; `in_sample` the same model class
 /// fitted on `scored` and scored there; `fit_estimate` the held-out model on `fit` (to choose the

@@ -39,6 +39,7 @@ Table measured_bound_table(const MeasuredBound& b) {
               "maker [N·m]",
               "target [N·m]",
               "held out [N·m]",
+              "the same without load friction (α on |G(q)|)",
               "+ low-pass chosen on the fitting files",
               "+ low-pass, worst-file rule (not used)",
               "oracle: low-pass best on the scored files",
@@ -66,6 +67,7 @@ Table measured_bound_table(const MeasuredBound& b) {
     t.rows.push_back(
         {std::to_string(j + 1), format_fixed(m, 3), format_fixed(b.target[j], 3),
          bound_change(m, b.heldout[j]),
+         j < b.heldout_without_load.size() ? bound_change(m, b.heldout_without_load[j]) : "–",
          bound_change(m, b.heldout_low_pass[j]) + ", " + bound_ms(b.fit_time_constants[jj]),
          bound_change(m, b.heldout_worst_file[j]) + ", " +
              bound_ms(b.worst_file_time_constants[jj]),
@@ -193,6 +195,7 @@ std::string measured_bound_json(const MeasuredBound& b) {
          {"maker_rmse", numbers(b.maker)},
          {"target_rmse", numbers(b.target)},
          {"heldout_rmse", numbers(b.heldout)},
+         {"heldout_without_load_rmse", numbers(b.heldout_without_load)},
          {"heldout_low_pass_rmse", numbers(b.heldout_low_pass)},
          {"fit_time_constants_s", vec(b.fit_time_constants)},
          {"heldout_worst_file_rmse", numbers(b.heldout_worst_file)},

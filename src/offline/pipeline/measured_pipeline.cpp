@@ -48,11 +48,13 @@ JointSamples samples_without_holdout(const Log& log, const Model<double, kMeasur
 
 Identification<kMeasuredJoints> identify_on_every_sample(
     const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
-    bool friction_from_sensor, const std::function<void(const std::string&)>& say) {
+    bool friction_from_sensor, const std::function<void(const std::string&)>& say,
+    bool fit_load_friction = IdentifyOptions{}.fit_load_friction) {
   IdentifyOptions options;
   options.friction_samples_per_joint = friction_samples;
   options.samples.hold_out = false;
   options.friction_from_sensor = friction_from_sensor;
+  options.fit_load_friction = fit_load_friction;
   options.progress = say;
   return identify(log, model, options);
 }
@@ -423,12 +425,24 @@ void bound_stage(const MeasuredOptions& o, const MeasuredData& d, const Gen3Mode
   const MeasuredBoundSide fit{&d.fit, &d.fit_samples}, score{&d.score, &d.score_samples};
   result.bound = measured_bound(fit, score, on_fit, on_score, own_score, o.target_reduction,
                                 o.band_low_hz, o.floor_cutoff_hz);
+  // The load terms of the friction (α_c, α_v on |G_j(q)|, the load the run time has) left out.
+  const Say quiet;
+  const auto without_load = [&](const Log& log, const JointSamples& on) {
+    return nominal_estimate<kMeasuredJoints>(
+        identify_on_every_sample(log, d.model, o.friction_samples_per_joint, true, quiet, false)
+            .nominal,
+        on, ignored);
+  };
   result.bound.fitted_on = joined_file_names(o.fitting);
   result.bound.scored_on = joined_file_names(o.scoring);
   result.reverse_bound = measured_bound(score, fit, own_score, own_fit, on_fit, o.target_reduction,
                                         o.band_low_hz, o.floor_cutoff_hz);
   result.reverse_bound.fitted_on = result.bound.scored_on;
   result.reverse_bound.scored_on = result.bound.fitted_on;
+  result.bound.heldout_without_load =
+      heldout_sensor_rmse(score, without_load(d.fit, d.score_samples));
+  result.reverse_bound.heldout_without_load =
+      heldout_sensor_rmse(fit, without_load(d.score, d.fit_samples));
 }
 
 }  // namespace
