@@ -32,40 +32,32 @@ bool bound_missed(const MeasuredBound& b, std::size_t j) {
          !(b.heldout_low_pass[j] <= b.target[j]);
 }
 
+/// The held-out RMSE against the oracles.
 Table measured_bound_table(const MeasuredBound& b) {
   Table t;
-  const std::string lo = format_number(b.low_hz, 3), hi = format_number(b.high_hz, 3);
   t.header = {"joint",
-              "maker [N·m]",
-              "target [N·m]",
-              "held out [N·m]",
-              "the same without load friction (α on |G(q)|)",
+              "maker / target [N·m]",
+              "held out",
+              "without load friction (α on |G(q)|)",
               "+ low-pass chosen on the fitting files",
               "+ low-pass, worst-file rule (not used)",
               "oracle: low-pass best on the scored files",
               "oracle: fitted on the scored files",
-              "oracle: both",
-              "oracle fitted on the scored files: residual below " + lo + " Hz",
-              "held-out residual below " + lo + " / " + lo + "–" + hi + " / above " + hi + " Hz",
-              "K_t·i / τ_sensor in " + lo + "–" + hi + " Hz",
-              "outside the fitting q̇: samples / squared error",
-              "outside the fitting q: samples / squared error"};
+              "oracle: both"};
   t.caption =
       "Fitted on " + b.fitted_on + ", scored on " + b.scored_on +
-      " against the torque sensor (RMSE, N·m, change against the maker). Held out: the friction "
+      " against the torque sensor (RMSE [N·m], change against the maker). Held out: the friction "
       "fitted against the sensor; its low-pass chosen on the fitting files pooled (the pipeline's "
       "column) or so that it helps every fitting file (the lowest worst-file ratio of RMSE to "
       "the unfiltered current's: reported, not used, as it raises other joints). The oracles see "
-      "the scored files (bounds, not results): the "
-      "low-pass time constant best there, the same model class (identify --friction-from-sensor) "
-      "fitted on them, and both. Bands: zero-phase Butterworth splits per file (their squares "
-      "add up to the RMSE²).";
+      "the scored files (bounds, not results): the low-pass time constant best there, the same "
+      "model class (identify --friction-from-sensor) fitted on them, and both.";
   for (std::size_t j = 0; j < b.maker.size(); ++j) {
     if (!bound_scored(b, j)) continue;
     const Eigen::Index jj = static_cast<Eigen::Index>(j);
     const double m = b.maker[j];
     t.rows.push_back(
-        {std::to_string(j + 1), format_fixed(m, 3), format_fixed(b.target[j], 3),
+        {std::to_string(j + 1), format_fixed(m, 3) + " / " + format_fixed(b.target[j], 3),
          bound_change(m, b.heldout[j]),
          j < b.heldout_without_load.size() ? bound_change(m, b.heldout_without_load[j]) : "–",
          bound_change(m, b.heldout_low_pass[j]) + ", " + bound_ms(b.fit_time_constants[jj]),
@@ -73,13 +65,38 @@ Table measured_bound_table(const MeasuredBound& b) {
              bound_ms(b.worst_file_time_constants[jj]),
          bound_change(m, b.oracle_low_pass[j]) + ", " + bound_ms(b.oracle_time_constants[jj]),
          bound_change(m, b.in_sample[j]),
-         bound_change(m, b.in_sample_low_pass[j]) + ", " + bound_ms(b.in_sample_time_constants[jj]),
-         format_fixed(b.in_sample_band_low[j], 3),
-         format_fixed(b.band_low[j], 3) + " / " + format_fixed(b.band_mid[j], 3) + " / " +
-             format_fixed(b.band_high[j], 3),
-         format_fixed(b.current_mid[j], 3) + " / " + format_fixed(b.sensor_mid[j], 3),
-         bound_share(b.velocity_samples[j], b.velocity_error[j]),
-         bound_share(b.position_samples[j], b.position_error[j])});
+         bound_change(m, b.in_sample_low_pass[j]) + ", " +
+             bound_ms(b.in_sample_time_constants[jj])});
+  }
+  return t;
+}
+
+/// Where the held-out error lies: frequency bands and motion outside the fitting range.
+Table measured_bound_where_table(const MeasuredBound& b) {
+  Table t;
+  const std::string lo = format_number(b.low_hz, 3), hi = format_number(b.high_hz, 3);
+  t.header = {
+      "joint",
+      "held-out residual below " + lo + " / " + lo + "–" + hi + " / above " + hi + " Hz [N·m]",
+      "oracle fitted on the scored files: below " + lo + " Hz",
+      "K_t·i / τ_sensor in " + lo + "–" + hi + " Hz",
+      "outside the fitting q̇: samples / squared error",
+      "outside the fitting q: samples / squared error"};
+  t.caption = "The same split (" + b.scored_on +
+              " scored): the held-out residual split by zero-phase Butterworth filters per file "
+              "(the squares add up to the RMSE²), what the current and the sensor hold between " +
+              lo + " and " + hi +
+              " Hz, and the share of held-out samples, and of their squared error, outside the "
+              "fitting files' range.";
+  for (std::size_t j = 0; j < b.maker.size(); ++j) {
+    if (!bound_scored(b, j)) continue;
+    t.rows.push_back({std::to_string(j + 1),
+                      format_fixed(b.band_low[j], 3) + " / " + format_fixed(b.band_mid[j], 3) +
+                          " / " + format_fixed(b.band_high[j], 3),
+                      format_fixed(b.in_sample_band_low[j], 3),
+                      format_fixed(b.current_mid[j], 3) + " / " + format_fixed(b.sensor_mid[j], 3),
+                      bound_share(b.velocity_samples[j], b.velocity_error[j]),
+                      bound_share(b.position_samples[j], b.position_error[j])});
   }
   return t;
 }
@@ -165,6 +182,7 @@ void add_measured_bound_section(HtmlReport& page, const MeasuredBound& forward,
   for (const MeasuredBound* b : {&forward, &reverse}) {
     if (b->maker.empty()) continue;
     page.table(measured_bound_table(*b));
+    page.table(measured_bound_where_table(*b));
     for (std::size_t j = 0; j < b->maker.size(); ++j) {
       if (!bound_missed(*b, j)) continue;
       verdicts.push_back(measured_bound_verdict(*b, static_cast<int>(j)));

@@ -499,6 +499,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   else
     scored_sensor_model =
         identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, true, say).nominal;
+  say("measured: what bounds the held-out error (oracles, bands, coverage; both splits)");
   bound_stage(o, d, sensor_model, scored_sensor_model, result);
   result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}});
   result.facts.outside_share = outside_range_share(d.fit_samples, d.score_samples);

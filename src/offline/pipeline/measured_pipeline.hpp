@@ -123,7 +123,8 @@ struct MeasuredResult {
 
 /// identify (all fitting files) → validate on the scoring files → diagnose (held out by file) and
 /// its effects one by one → train the per-joint compensator → validate with it → the sensor-side
-/// candidates → the reverse split → the facts of every file. `progress` gets one line per stage.
+/// candidates → the reverse split → what bounds the held-out error on both splits (MeasuredBound)
+/// → the facts of every file. `progress` gets one line per stage.
 MeasuredResult run_measured(const MeasuredOptions& options,
                             const std::function<void(const std::string&)>& progress = {});
 
