@@ -47,6 +47,21 @@ TEST(NoiseFloor, SlowSignalHasNoFloorAndWhiteNoiseKeepsNearlyAllOfIt) {
   EXPECT_GE(all[0], floor[1]);
 }
 
+TEST(NoiseFloor, BandsSplitTheRmsAtBothCutOffs) {
+  Eigen::VectorXd t;
+  const Log log = two_files(t);
+  Eigen::MatrixXd x(8000, 1);
+  for (Eigen::Index k = 0; k < 8000; ++k)  // 2 N·m at 0.5 Hz, 1 at 6 Hz, 0.5 at 97 Hz
+    x(k, 0) = 2.0 * std::sin(2 * M_PI * 0.5 * t[k]) + std::sin(2 * M_PI * 6.0 * t[k]) +
+              0.5 * std::sin(2 * M_PI * 97.0 * t[k]);
+  const BandRms b = band_rms(log, t, x, 2.0, 20.0);
+  EXPECT_NEAR(b.low[0], 2.0 / std::sqrt(2.0), 0.05);
+  EXPECT_NEAR(b.mid[0], 1.0 / std::sqrt(2.0), 0.05);
+  EXPECT_NEAR(b.high[0], 0.5 / std::sqrt(2.0), 0.02);
+  EXPECT_NEAR(b.low[0] * b.low[0] + b.mid[0] * b.mid[0] + b.high[0] * b.high[0],
+              b.total[0] * b.total[0], 1e-9);
+}
+
 TEST(NoiseFloor, ColumnWithoutFiniteSamplesIsNaN) {
   Eigen::VectorXd t;
   const Log log = two_files(t);

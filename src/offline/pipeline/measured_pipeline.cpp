@@ -15,6 +15,7 @@
 #include "offline/replay/replay_estimator.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
+#include "offline/validate/low_pass_choice.hpp"
 #include "offline/validate/noise_floor.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -47,11 +48,13 @@ JointSamples samples_without_holdout(const Log& log, const Model<double, kMeasur
 
 Identification<kMeasuredJoints> identify_on_every_sample(
     const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
-    bool friction_from_sensor, const std::function<void(const std::string&)>& say) {
+    bool friction_from_sensor, const std::function<void(const std::string&)>& say,
+    bool fit_load_friction = IdentifyOptions{}.fit_load_friction) {
   IdentifyOptions options;
   options.friction_samples_per_joint = friction_samples;
   options.samples.hold_out = false;
   options.friction_from_sensor = friction_from_sensor;
+  options.fit_load_friction = fit_load_friction;
   options.progress = say;
   return identify(log, model, options);
 }
@@ -206,27 +209,12 @@ EffortEstimate low_passed_estimate(const EffortEstimate& e, const Log& log, cons
 }
 
 /// Per joint, the time constant (0: none) that minimises the RMSE of `e` against the sensor on
-/// the fitting side.
+/// the fitting side, pooled (MeasuredBound also reports the worst-file rule, not used here).
 Eigen::VectorXd choose_low_pass_time_constants(const Log& log, const JointSamples& s,
                                                const EffortEstimate& e) {
-  const Eigen::MatrixXd residual = sensor_residual({&log, &s, e.drive_loss});
-  const auto rmse = [](const Eigen::VectorXd& r) {
-    double sum = 0, n = 0;
-    for (Eigen::Index k = 0; k < r.size(); ++k)
-      if (std::isfinite(r[k])) sum += r[k] * r[k], ++n;
-    return n > 0 ? std::sqrt(sum / n) : 0.0;
-  };
-  Eigen::VectorXd best = Eigen::VectorXd::Zero(s.joints());
-  for (Eigen::Index j = 0; j < s.joints(); ++j) {
-    const Eigen::VectorXd effort = s.effort.col(j);
-    double lowest = rmse(residual.col(j));
-    for (double tau : kCurrentLowPassTimeConstants) {
-      const double now =
-          rmse(residual.col(j) + (causal_low_pass(s.t, effort, tau, log.file_starts) - effort));
-      if (now < lowest) lowest = now, best[j] = tau;
-    }
-  }
-  return best;
+  return choose_current_low_pass(log, s, sensor_residual({&log, &s, e.drive_loss}),
+                                 LowPassCriterion::kPooled)
+      .time_constant;
 }
 
 /// What every stage reads: the arm, the fitting and the scoring logs with their samples.
@@ -353,12 +341,12 @@ MeasuredTraces plot_traces(const MeasuredData& d, const std::vector<EffortEstima
 
 /// Stage 6: the other way round, fitted on the scoring files and scored on the fitting files.
 MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
-                            Eigen::VectorXd& time_constants, const Say& say) {
+                            Eigen::VectorXd& time_constants, Gen3Model& sensor_model,
+                            const Say& say) {
   say("measured: reverse split: identify on " + joined_file_names(o.scoring) + ", score on " +
       joined_file_names(o.fitting));
   std::vector<std::string> notes;
   std::vector<EffortEstimate> estimates;
-  Gen3Model sensor_model;
   for (bool from_sensor : {false, true}) {
     const Gen3Model model =
         identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor, say)
@@ -422,6 +410,41 @@ MeasuredFloor measured_floor(const MeasuredData& d, const MeasuredSplit& split,
   return f;
 }
 
+/// Stage 7: what bounds the sensor-fitted friction's held-out error on both splits; `fitted` was
+/// identified on the fitting files, `scored_fitted` on the scoring files.
+void bound_stage(const MeasuredOptions& o, const MeasuredData& d, const Gen3Model& fitted,
+                 const Gen3Model& scored_fitted, MeasuredResult& result) {
+  std::vector<std::string> ignored;
+  const EffortEstimate on_fit = nominal_estimate<kMeasuredJoints>(fitted, d.fit_samples, ignored);
+  const EffortEstimate on_score =
+      nominal_estimate<kMeasuredJoints>(fitted, d.score_samples, ignored);
+  const EffortEstimate own_score =
+      nominal_estimate<kMeasuredJoints>(scored_fitted, d.score_samples, ignored);
+  const EffortEstimate own_fit =
+      nominal_estimate<kMeasuredJoints>(scored_fitted, d.fit_samples, ignored);
+  const MeasuredBoundSide fit{&d.fit, &d.fit_samples}, score{&d.score, &d.score_samples};
+  result.bound = measured_bound(fit, score, on_fit, on_score, own_score, o.target_reduction,
+                                o.band_low_hz, o.floor_cutoff_hz);
+  // The load terms of the friction (α_c, α_v on |G_j(q)|, the load the run time has) left out.
+  const Say quiet;
+  const auto without_load = [&](const Log& log, const JointSamples& on) {
+    return nominal_estimate<kMeasuredJoints>(
+        identify_on_every_sample(log, d.model, o.friction_samples_per_joint, true, quiet, false)
+            .nominal,
+        on, ignored);
+  };
+  result.bound.fitted_on = joined_file_names(o.fitting);
+  result.bound.scored_on = joined_file_names(o.scoring);
+  result.reverse_bound = measured_bound(score, fit, own_score, own_fit, on_fit, o.target_reduction,
+                                        o.band_low_hz, o.floor_cutoff_hz);
+  result.reverse_bound.fitted_on = result.bound.scored_on;
+  result.reverse_bound.scored_on = result.bound.fitted_on;
+  result.bound.heldout_without_load =
+      heldout_sensor_rmse(score, without_load(d.fit, d.score_samples));
+  result.reverse_bound.heldout_without_load =
+      heldout_sensor_rmse(fit, without_load(d.score, d.fit_samples));
+}
+
 }  // namespace
 
 int measured_column(const MeasuredSplit& split, const std::string& name) {
@@ -469,8 +492,15 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   const SensorSide held_side{&d.score, &d.score_samples, estimates.front().drive_loss};
   result.candidates = sensor_candidates(fit_side, held_side, Eigen::VectorXd(d.model.gear_ratio));
   result.traces = plot_traces(d, estimates, o.run_training);
+  Gen3Model scored_sensor_model;
   if (o.run_reverse)
-    result.reverse = reverse_stage(o, d, result.reverse_low_pass_time_constants, say);
+    result.reverse =
+        reverse_stage(o, d, result.reverse_low_pass_time_constants, scored_sensor_model, say);
+  else
+    scored_sensor_model =
+        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, true, say).nominal;
+  say("measured: what bounds the held-out error (oracles, bands, coverage; both splits)");
+  bound_stage(o, d, sensor_model, scored_sensor_model, result);
   result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}});
   result.facts.outside_share = outside_range_share(d.fit_samples, d.score_samples);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -11,6 +11,7 @@
 
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/pipeline/measured_bound.hpp"
 #include "offline/validate/measured_facts.hpp"
 #include "offline/validate/sensor_candidates.hpp"
 #include "offline/validate/validation.hpp"
@@ -46,6 +47,9 @@ struct MeasuredOptions {
   /// Cut-off [Hz] above which the residual counts as noise a model of the motion cannot reach
   /// (MeasuredFloor).
   double floor_cutoff_hz = 20.0;
+  /// Below this [Hz] the residual counts as slow (friction, load): MeasuredBound's bands are
+  /// below band_low_hz, up to floor_cutoff_hz, and above.
+  double band_low_hz = 2.0;
   std::uint64_t seed = 1;
   int threads = 2;
   /// The target: the current-based joint torque this much closer to the sensor than the
@@ -107,6 +111,9 @@ struct MeasuredResult {
   Eigen::VectorXd reverse_low_pass_time_constants;  ///< the same, chosen for the reverse split
   MeasuredFacts facts;
   MeasuredFloor floor;
+  /// What bounds the sensor-fitted friction's held-out error, per split (reverse: fitted on the
+  /// scoring files, scored on the fitting files; computed whether or not run_reverse is set).
+  MeasuredBound bound, reverse_bound;
   CompensatorTraining training;         ///< on the current residual (tpf train's target)
   CompensatorTraining sensor_training;  ///< on K_t·i − d − τ_sensor where the sensor varies
   MeasuredTraces traces;
@@ -116,7 +123,8 @@ struct MeasuredResult {
 
 /// identify (all fitting files) → validate on the scoring files → diagnose (held out by file) and
 /// its effects one by one → train the per-joint compensator → validate with it → the sensor-side
-/// candidates → the reverse split → the facts of every file. `progress` gets one line per stage.
+/// candidates → the reverse split → what bounds the held-out error on both splits (MeasuredBound)
+/// → the facts of every file. `progress` gets one line per stage.
 MeasuredResult run_measured(const MeasuredOptions& options,
                             const std::function<void(const std::string&)>& progress = {});
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "offline/pipeline/measured_bound_report.hpp"
 #include "offline/report/line_plot.hpp"
 #include "offline/report/scatter_plot.hpp"
 #include "offline/report/text_format.hpp"
@@ -431,6 +432,7 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
     page.table(compensator_floor_table(r.floor));
     page.paragraph(compensator_floor_sentence(r.floor));
   }
+  if (!r.bound.maker.empty()) add_measured_bound_section(page, r.bound, r.reverse_bound);
   if (!r.diagnosis_heldout.empty()) add_diagnosis_section(page, r);
   page.heading("What the residual holds: candidates against the sensor");
   page.table(candidate_table(r));
@@ -512,6 +514,10 @@ std::string measured_json(const MeasuredResult& r, double target) {
                                  {"target_reachable", most >= r.floor.target}});
     }
     j["compensator_floor"] = floor;
+  }
+  if (!r.bound.maker.empty()) {
+    j["bound"] = json::parse(measured_bound_json(r.bound));
+    j["reverse_bound"] = json::parse(measured_bound_json(r.reverse_bound));
   }
   j["facts"] = measured_fact_lines(r.facts);
   return j.dump(2);

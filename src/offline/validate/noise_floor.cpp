@@ -1,5 +1,6 @@
 #include "offline/validate/noise_floor.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "offline/signal/acceleration.hpp"
@@ -20,6 +21,20 @@ std::vector<double> high_frequency_rms(const Log& log, const Eigen::VectorXd& t,
     }
   }
   return finite_rms_per_column(high);
+}
+
+BandRms band_rms(const Log& log, const Eigen::VectorXd& t, const Eigen::MatrixXd& x, double low_hz,
+                 double high_hz) {
+  BandRms out;
+  out.total = finite_rms_per_column(x);
+  const std::vector<double> above_low = high_frequency_rms(log, t, x, low_hz);
+  out.high = high_frequency_rms(log, t, x, high_hz);
+  const auto rest = [](double a, double b) { return std::sqrt(std::max(0.0, a * a - b * b)); };
+  for (std::size_t j = 0; j < out.total.size(); ++j) {
+    out.low.push_back(rest(out.total[j], above_low[j]));
+    out.mid.push_back(rest(above_low[j], out.high[j]));
+  }
+  return out;
 }
 
 double finite_rms(const Eigen::Ref<const Eigen::VectorXd>& x) {

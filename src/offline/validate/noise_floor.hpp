@@ -15,6 +15,15 @@ namespace tpf::offline {
 std::vector<double> high_frequency_rms(const Log& log, const Eigen::VectorXd& t,
                                        const Eigen::MatrixXd& x, double cutoff_hz);
 
+/// Per column of `x`: RMS below `low_hz`, between `low_hz` and `high_hz`, above `high_hz` and in
+/// all, over its finite samples (each split as high_frequency_rms does; the parts are squared
+/// differences of those, so low² + mid² + high² = total²).
+struct BandRms {
+  std::vector<double> low, mid, high, total;
+};
+BandRms band_rms(const Log& log, const Eigen::VectorXd& t, const Eigen::MatrixXd& x, double low_hz,
+                 double high_hz);
+
 /// RMS over the finite samples of x (NaN when none).
 double finite_rms(const Eigen::Ref<const Eigen::VectorXd>& x);
 
