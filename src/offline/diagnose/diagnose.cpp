@@ -400,12 +400,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     out.notes.push_back("friction curve: " + note);
   // The written models on the held-out samples: the declared model as identify fits it, and the
   // extended one (what --params holds).
-  out.written_before =
-      split_regime_stats(s,
-                         nominal_residual(declared_nominal(nominal, out.groups, sel.theta_declared,
-                                                           setup.base, s, p.declared_rigid, inputs),
-                                          s),
-                         true);
+  out.declared = declared_nominal(nominal, out.groups, sel.theta_declared, setup.base, s,
+                                  p.declared_rigid, inputs);
+  out.written_before = split_regime_stats(s, nominal_residual(out.declared, s), true);
   out.residual_written = nominal_residual(nominal, s);
   out.written_after = split_regime_stats(s, out.residual_written, true);
 
