@@ -194,5 +194,25 @@ TEST(MeasuredLoop, BeatsKtOnlyHeldOutByFileAndReportsIt) {
   std::filesystem::remove_all(o.out);
 }
 
+TEST(MeasuredReport, AnEffectOnEveryJointIsJudgedByItsSummedError) {
+  // A payload lowers joint 2 a little and raises joint 1: its summed squared error falls
+  // (100² + 1000² → 110² + 900²), so it is listed as lowering the error, with both joints named;
+  // a spring on joint 2 alone that raises it is listed as raising it.
+  MeasuredResult r;
+  r.diagnosis_effort = {{"after identification", {100, 1200}},
+                        {"diagnose's declared model", {100, 1000}},
+                        {"+ payload (folded into the rigid body)", {110, 900}},
+                        {"+ spring, joint 2", {110, 950}}};
+  const std::string s = diagnosis_transfer_sentence(r);
+  EXPECT_NE(
+      s.find("lower the error: payload (folded into the rigid body) (−18.6\u00a0% of the squared "
+             "error summed over the joints: lowers joint 2 −10.0\u00a0%; raises joint 1 "
+             "+10.0\u00a0%)"),
+      std::string::npos)
+      << s;
+  EXPECT_NE(s.find("not claimed here: spring, joint 2 (joint 2 +5.6\u00a0%)"), std::string::npos)
+      << s;
+}
+
 }  // namespace
 }  // namespace tpf::offline

@@ -408,12 +408,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
       out.residual_written = nominal_residual(nominal, s);
       out.written_after = split_regime_stats(s, out.residual_written, true);
     } else {
-      out.written_before = split_regime_stats(
-          s,
-          nominal_residual(declared_nominal(before_friction, out.groups, sel.theta_declared,
-                                            setup.base, s, p.declared_rigid, inputs),
-                           s),
-          true);
+      out.declared = declared_nominal(before_friction, out.groups, sel.theta_declared, setup.base,
+                                      s, p.declared_rigid, inputs);
+      out.written_before = split_regime_stats(s, nominal_residual(out.declared, s), true);
     }
   });
 

@@ -138,6 +138,9 @@ struct EffectDiagnosis {
 template <int N>
 struct Diagnosis : EffectDiagnosis {
   NominalModel<double, N> nominal;  ///< the declared model plus the selected effects
+  /// The declared model as identify fits it (rigid body and friction curves, nothing added):
+  /// what `written_before` scores; beside `nominal` it shows what a folded payload does.
+  NominalModel<double, N> declared;
 };
 
 /// Runs the diagnosis of `log` for the arm of `model` (robot file). Never hands ground truth

@@ -97,15 +97,13 @@ Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std:
   return m;
 }
 
-/// " (with its <title>, folded into the rigid body)" for each written claim that cannot be taken
-/// out, or "".
-std::string folded_effects(const Diagnosis<kMeasuredJoints>& d) {
+/// The titles of the written claims that cannot be taken out (folded into the rigid body).
+std::vector<std::string> folded_effects(const Diagnosis<kMeasuredJoints>& d) {
   std::vector<std::string> folded;
   for (std::size_t e = 0; e < d.claims.size(); ++e)
     if (d.claims[e].written && !separable_written_effect(d, e))
       folded.push_back(d.groups[static_cast<std::size_t>(d.selected[e])].title);
-  return folded.empty() ? std::string()
-                        : " (with its " + joined(folded, ", ") + ", folded into the rigid body)";
+  return folded;
 }
 
 /// Per joint: RMSE of the log's effort less the estimate's over the valid samples, in the log's
@@ -272,13 +270,23 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
   with_first_diagnosed_effects(diagnosis, 0, &titles);
   result.diagnosis_effort.push_back(
       {"after identification", effort_rmse_per_joint(d.score_samples, estimates.front())});
+  // A payload folded into the rigid body is scored as the step from diagnose's declared model
+  // (fitted without it) to its written model without the separable effects.
+  const std::vector<std::string> folded = folded_effects(diagnosis);
+  if (!folded.empty())
+    result.diagnosis_effort.push_back(
+        {"diagnose's declared model (as identify fits it, nothing added)",
+         effort_rmse_per_joint(
+             d.score_samples,
+             nominal_estimate<kMeasuredJoints>(diagnosis.declared, d.score_samples, ignored))});
   for (std::size_t keep = 0; keep <= written_effect_count(diagnosis); ++keep) {
     EffortEstimate e = nominal_estimate<kMeasuredJoints>(
         with_first_diagnosed_effects(diagnosis, keep), d.score_samples, ignored);
-    result.diagnosis_effort.push_back(
-        {keep == 0 ? "diagnose's model without its effects" + folded_effects(diagnosis)
-                   : "+ " + titles[keep - 1],
-         effort_rmse_per_joint(d.score_samples, e)});
+    const std::string name = keep > 0 ? "+ " + titles[keep - 1]
+                             : folded.empty()
+                                 ? "diagnose's model without its effects"
+                                 : "+ " + joined(folded, ", ") + " (folded into the rigid body)";
+    result.diagnosis_effort.push_back({name, effort_rmse_per_joint(d.score_samples, e)});
     if (keep > 0 && same_values_or_nan(e.drive_loss, estimates.back().drive_loss)) {
       unseen.push_back(titles[keep - 1]);
       continue;

@@ -98,23 +98,52 @@ std::string measured_target_sentence(const MeasuredSplit& split, double target) 
          (missed.empty() ? std::string("none") : joined(missed, ", ")) + ".";
 }
 
+/// "joint 1 −9.2 %, joint 3 −45.3 %" for the joints whose error the row changes by ≥ 1 %,
+/// lowered (`lowered`) or raised.
+std::string changed_joints(const MeasuredColumn& before, const MeasuredColumn& now, bool lowered) {
+  std::vector<std::string> joints;
+  for (std::size_t j = 0; j < now.rmse.size(); ++j) {
+    const double change = percent_change(before.rmse[j], now.rmse[j]);
+    if (std::abs(change) >= 1.0 && (change < 0) == lowered)
+      joints.push_back("joint " + std::to_string(j + 1) + " " +
+                       format_percent_change(before.rmse[j], now.rmse[j]));
+  }
+  return joined(joints, ", ");
+}
+
+/// Σ_j RMSE_j² over the joints where both rows have a value: the summed squared error that a
+/// diagnose claim acting on several joints is judged by.
+std::pair<double, double> summed_squares(const MeasuredColumn& before, const MeasuredColumn& now) {
+  double b = 0, a = 0;
+  for (std::size_t j = 0; j < now.rmse.size(); ++j)
+    if (std::isfinite(before.rmse[j]) && std::isfinite(now.rmse[j])) {
+      b += before.rmse[j] * before.rmse[j];
+      a += now.rmse[j] * now.rmse[j];
+    }
+  return {b, a};
+}
+
 }  // namespace
 
 std::string diagnosis_transfer_sentence(const MeasuredResult& r) {
-  std::vector<std::string> lower, higher;
-  for (std::size_t m = 2; m < r.diagnosis_effort.size(); ++m) {
-    const MeasuredColumn& now = r.diagnosis_effort[m];
-    for (std::size_t j = 0; j < now.rmse.size(); ++j) {
-      const double change = percent_change(r.diagnosis_effort[m - 1].rmse[j], now.rmse[j]);
-      if (!(std::abs(change) >= 1.0)) continue;
-      const std::string text =
-          now.name.substr(2) + " (joint " + std::to_string(j + 1) + " " +
-          format_percent_change(r.diagnosis_effort[m - 1].rmse[j], now.rmse[j]) + ")";
-      (change < 0 ? lower : higher).push_back(text);
-    }
-  }
   if (r.diagnosis_effort.size() <= 2)
     return "diagnose wrote no effect: nothing to check on the held-out files.";
+  std::vector<std::string> lower, higher;
+  for (std::size_t m = 2; m < r.diagnosis_effort.size(); ++m) {
+    const MeasuredColumn& before = r.diagnosis_effort[m - 1];
+    const MeasuredColumn& now = r.diagnosis_effort[m];
+    const std::string down = changed_joints(before, now, true);
+    const std::string up = changed_joints(before, now, false);
+    const auto [b, a] = summed_squares(before, now);
+    if (down.empty() && up.empty()) continue;
+    std::string text = now.name.substr(2) + " (";
+    if (!down.empty() && !up.empty())
+      text += format_percent_change(b, a) +
+              " of the squared error summed over the joints: lowers " + down + "; raises " + up;
+    else
+      text += down.empty() ? up : down;
+    (a < b ? lower : higher).push_back(text + ")");
+  }
   return "On the held-out files' current, these of diagnose's effects lower the error: " +
          (lower.empty() ? std::string("none") : joined(lower, "; ")) +
          "; these raise it, so they are not claimed here: " +
