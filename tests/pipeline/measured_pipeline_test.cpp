@@ -214,5 +214,27 @@ TEST(MeasuredReport, AnEffectOnEveryJointIsJudgedByItsSummedError) {
       << s;
 }
 
+TEST(MeasuredReport, TheOracleCompensatorClosesATargetTheFloorLeavesOpen) {
+  // Joint 1: floor 1.8 of 2.0 N·m leaves 10 % (< 30 %): closed by the floor. Joint 2: floor 1.6
+  // of 3.5 leaves 54 %, but the compensator trained on the scored files reaches only 3.4 (−2.9 %):
+  // closed by the oracle. Joint 3: room and an oracle at 2.0 of 3.0 (−33.3 %): left open.
+  MeasuredFloor f;
+  f.target = 0.3;
+  f.best_rmse = {2.0, 3.5, 3.0};
+  f.floor = {1.8, 1.6, 1.0};
+  f.oracle_compensator_rmse = {1.9, 3.4, 2.0};
+  f.cutoff_hz = 20.0;
+  f.best_name = {"a", "b", "c"};
+  f.compensator_rmse = {2.1, 3.6, 2.9};
+  f.model_high = {0.1, 0.1, 0.1};
+  const std::string s = compensator_floor_sentence(f);
+  EXPECT_NE(s.find("on joints 2, 3 and none on joints 1:"), std::string::npos) << s;
+  EXPECT_NE(s.find("still falls short (joint 2 −2.9\u00a0% against"), std::string::npos) << s;
+  EXPECT_EQ(s.find("joint 3 −33.3"), std::string::npos) << s;
+  const Table t = compensator_floor_table(f);
+  ASSERT_EQ(t.rows.size(), 3u);
+  EXPECT_EQ(t.rows[1][4], "3.400 (−2.9\u00a0%)");
+}
+
 }  // namespace
 }  // namespace tpf::offline

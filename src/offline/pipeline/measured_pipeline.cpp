@@ -327,6 +327,30 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
   estimates.back().name = "friction against the sensor + compensator trained against it";
 }
 
+/// A bound, not a result: the compensator trained against the sensor as compensator_stage does,
+/// but on the scored files themselves (it sees what it is scored on), over the sensor-fitted
+/// friction (`sensor_estimate` on the scored files). RMSE against the sensor per joint [N·m]
+/// (NaN where no sensor moves).
+std::vector<double> oracle_compensator_rmse(const MeasuredOptions& o, const MeasuredData& d,
+                                            const Gen3Model& sensor_model,
+                                            const EffortEstimate& sensor_estimate, const Say& say) {
+  say("measured: oracle: the same networks trained on " + joined_file_names(o.scoring) +
+      " themselves (a bound for the compensator target)");
+  const SensorSide side{&d.score, &d.score_samples, sensor_estimate.drive_loss};
+  CompensatorTraining training;
+  const EstimatorSetup<kMeasuredJoints> setup =
+      train_measured_compensator(o, d.score, sensor_model, sensor_residual(side),
+                                 "gen3.tcn-sensor-oracle.json", training, say);
+  const Validation v =
+      score_estimates(d.score, d.score_samples,
+                      {compensated_estimate<kMeasuredJoints>(setup, d.score, sensor_estimate)});
+  std::vector<double> rmse;
+  for (const SensorScore& s : v.sensor)
+    rmse.push_back(s.samples > 0 ? s.estimates[0].valid.rmse
+                                 : std::numeric_limits<double>::quiet_NaN());
+  return rmse;
+}
+
 /// The plots' residuals on the scoring files: Kt only, after identification, the sensor-fitted
 /// friction with the low-pass, and (when trained) the compensator trained against the sensor.
 MeasuredTraces plot_traces(const MeasuredData& d, const std::vector<EffortEstimate>& estimates,
@@ -490,6 +514,9 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   result.forward.columns = measured_split_columns(result.forward.validation);
   result.floor =
       measured_floor(d, result.forward, estimates, o.floor_cutoff_hz, o.compensator_target);
+  if (o.run_training)
+    result.floor.oracle_compensator_rmse =
+        oracle_compensator_rmse(o, d, sensor_model, estimates[1], say);
 
   // What the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");

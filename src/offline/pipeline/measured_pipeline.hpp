@@ -91,8 +91,11 @@ struct MeasuredFloor {
   std::vector<std::string> best_name;    ///< the best memoryless column per joint
   std::vector<double> best_rmse;         ///< its RMSE [N·m] (NaN: no usable sensor)
   std::vector<double> compensator_rmse;  ///< "… + compensator trained against it" (NaN: none)
-  std::vector<double> floor;             ///< RMS of the best model's residual above cutoff_hz
-  std::vector<double> model_high;        ///< RMS of that model's drive loss d above cutoff_hz
+  /// The same compensator trained on the scored files themselves: a bound, not a result (empty
+  /// when no compensator was trained).
+  std::vector<double> oracle_compensator_rmse;
+  std::vector<double> floor;       ///< RMS of the best model's residual above cutoff_hz
+  std::vector<double> model_high;  ///< RMS of that model's drive loss d above cutoff_hz
 };
 
 struct MeasuredResult {
