@@ -10,8 +10,8 @@
 #include <random>
 #include <thread>
 
-#include "offline/signal/butterworth.hpp"
 #include "offline/compensator_training/progress_bar.hpp"
+#include "offline/signal/butterworth.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
@@ -381,10 +381,11 @@ TcnTrainResult train_tcn(const TcnDataset& dataset, const TcnTrainOptions& optio
 TcnProgressCallback tcn_progress_bar(std::ostream& out) {
   auto bar = std::make_shared<TerminalProgressBar>(out);
   return [bar](const TcnTrainProgress& p) {
-    char status[160];
-    std::snprintf(status, sizeof status, "epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d  lr %.2g",
-                  p.epoch, p.max_epochs, p.train_loss, p.validation_loss, p.best_validation_loss,
-                  p.best_epoch, p.learning_rate);
+    char status[192];
+    std::snprintf(status, sizeof status,
+                  "net %d  epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d  lr %.2g  %.1f s",
+                  p.network + 1, p.epoch, p.max_epochs, p.train_loss, p.validation_loss,
+                  p.best_validation_loss, p.best_epoch, p.learning_rate, p.elapsed_seconds);
     bar->update(p.last ? 1.0 : static_cast<double>(p.epoch) / p.max_epochs, status,
                 p.remaining_seconds);
     if (p.last) bar->finish();

@@ -84,6 +84,9 @@ struct TcnTrainProgress {
   double remaining_seconds = 0.0;  ///< upper estimate (max_epochs or the time budget)
   double learning_rate = 0.0;      ///< Adam step size used in this epoch
   bool last = false;               ///< training stops after this epoch
+  /// Which network (0-based): train_compensator sets the joint of a per-joint network, so that
+  /// the reports of networks training at once can be told apart; 0 otherwise.
+  int network = 0;
 };
 
 using TcnProgressCallback = std::function<void(const TcnTrainProgress&)>;
