@@ -113,6 +113,10 @@ void register_train_command(CLI::App& app) {
                   "Wall-clock safety net for the whole run (0: none); results then depend on the "
                   "machine's speed")
       ->capture_default_str();
+  cmd->add_option("--epoch-windows", o->tcn.epoch_windows,
+                  "At most this many training windows per epoch (0: all); a pass over the "
+                  "shuffled windows is split into equal epochs")
+      ->capture_default_str();
   cmd->add_option("--patience", o->tcn.patience, "Early stopping: epochs without improvement")
       ->capture_default_str();
   cmd->add_option("--split-cutoff", o->tcn.split_cutoff_hz,

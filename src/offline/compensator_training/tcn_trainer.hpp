@@ -45,6 +45,12 @@ struct TcnTrainOptions {
   /// Windows per Adam step.
   int batch_windows = 8;
   AdamOptimizer::Settings adam;
+  /// At most this many training windows per epoch (≤ 0: all). A pass over the shuffled training
+  /// windows is split into P = ⌈N/epoch_windows⌉ epochs of ⌊N/P⌋ windows each (the N mod P
+  /// windows left at the end of a pass wait for the next shuffle); the held-out loss, the
+  /// learning-rate decay and early stopping act after each epoch. With N ≤ epoch_windows an
+  /// epoch is one pass over all windows, as without it.
+  int epoch_windows = 0;
   int max_epochs = 200;
   /// Halve the learning rate when the validation loss has not improved for this many epochs
   /// (and again after as many more); ≤ 0: constant rate.
@@ -124,6 +130,10 @@ class TcnTrainer {
   Eigen::Index skipped_samples() const { return skipped_samples_; }
   std::size_t training_windows() const { return training_.size(); }
   std::size_t validation_windows() const { return validation_.size(); }
+
+  /// Training windows in one epoch of N windows with TcnTrainOptions::epoch_windows = cap: N if
+  /// cap ≤ 0 or N ≤ cap, else ⌊N/P⌋ with P = ⌈N/cap⌉ epochs per pass.
+  static std::size_t windows_per_epoch(std::size_t windows, int epoch_windows);
 
   /// Where a window lies: samples [first_input, end) of finite run `segment` (runs numbered in
   /// dataset order), supervising [first_output, end).
