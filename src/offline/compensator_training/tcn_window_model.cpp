@@ -1,7 +1,23 @@
 #include "offline/compensator_training/tcn_window_model.hpp"
 
+#include "offline/compensator_training/float_gemm16.hpp"
+
 namespace tpf::offline {
 namespace {
+
+/// Whether a block's products go through float_gemm16 (float, 16 output channels, K·C_in a
+/// multiple of `multiple`, AVX2): the same sums in the same order as Eigen's GEMM, in wider
+/// registers. Not for a single time step, where Eigen takes its matrix–vector path instead.
+template <typename S>
+bool use_float_gemm16(Eigen::Index channels, Eigen::Index stacked_inputs, Eigen::Index multiple,
+                      Eigen::Index steps) {
+  if constexpr (std::is_same_v<S, float>) {
+    return channels == 16 && stacked_inputs % multiple == 0 && steps >= 2 &&
+           float_gemm16_available();
+  } else {
+    return false;
+  }
+}
 
 /// [W_0 … W_{K−1}] of block `b` into `out` (C_out × K·C_in).
 template <typename S, typename Matrix>
@@ -39,7 +55,13 @@ void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>
     }
     z.colwise() += b.bias;
     stack_taps(b, ws.stacked_weights);
-    z.noalias() += ws.stacked_weights * stack;
+    if (use_float_gemm16<S>(z.rows(), stack.rows(), 1, t_out)) {
+      if constexpr (std::is_same_v<S, float>)
+        float_gemm16_accumulate(ws.stacked_weights.data(), stack.rows(), stack.data(), t_out,
+                                z.data());
+    } else {
+      z.noalias() += ws.stacked_weights * stack;
+    }
     z = z.cwiseMax(S(0));
   }
   const auto& last = ws.activations[a.levels];
@@ -94,14 +116,30 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
     const auto& dz = ws.upstream;
     gb.bias += dz.rowwise().sum();
     const Eigen::Index in = x.rows();
-    ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
+    const auto& stack = ws.stacked_inputs[l];
+    if (use_float_gemm16<S>(dz.rows(), stack.rows(), 4, t_out)) {
+      ws.stacked_gradient.resize(dz.rows(), stack.rows());
+      if constexpr (std::is_same_v<S, float>)
+        float_gemm16_times_transpose(dz.data(), stack.data(), stack.rows(), t_out,
+                                     ws.stacked_gradient.data());
+    } else {
+      ws.stacked_gradient.noalias() = dz * stack.transpose();
+    }
     for (int j = 0; j < a.kernel; ++j)
       gb.taps[j] += ws.stacked_gradient.middleCols(j * in, in);
     if (b.projection.size() > 0) gb.projection.noalias() += dz * x.rightCols(t_out).transpose();
     if (l == 0) break;
 
     stack_taps(b, ws.stacked_weights);
-    ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
+    if (use_float_gemm16<S>(dz.rows(), ws.stacked_weights.cols(), 8, t_out)) {
+      ws.transposed_weights = ws.stacked_weights.transpose();
+      ws.stacked_gradient.resize(ws.stacked_weights.cols(), t_out);
+      if constexpr (std::is_same_v<S, float>)
+        float_gemm16_transpose_times(ws.transposed_weights.data(), ws.stacked_weights.cols(),
+                                     dz.data(), t_out, ws.stacked_gradient.data());
+    } else {
+      ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
+    }
     ws.downstream.setZero(x.rows(), x.cols());
     for (int j = 0; j < a.kernel; ++j) {
       ws.downstream.middleCols((a.kernel - 1 - j) * d, t_out) +=

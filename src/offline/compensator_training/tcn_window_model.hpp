@@ -17,12 +17,13 @@ struct BasicTcnWindowWorkspace {
   /// Per block, the K lagged copies of its input stacked (K·C_in × T_out), so that one GEMM
   /// [W_0 … W_{K−1}]·stack does all taps.
   std::vector<Matrix> stacked_inputs;
-  Matrix stacked_weights;   ///< [W_0 … W_{K−1}] of the current block, C_out × K·C_in
-  Matrix stacked_gradient;  ///< ∂L/∂[W_0 … W_{K−1}] or ∂L/∂stack
-  Matrix low;               ///< Out × M
-  Matrix high;              ///< Out × M
-  Matrix upstream;          ///< ∂L/∂X_{l+1} during the backward pass
-  Matrix downstream;        ///< ∂L/∂X_l during the backward pass
+  Matrix stacked_weights;     ///< [W_0 … W_{K−1}] of the current block, C_out × K·C_in
+  Matrix transposed_weights;  ///< its transpose, for the AVX2 float products (float_gemm16)
+  Matrix stacked_gradient;    ///< ∂L/∂[W_0 … W_{K−1}] or ∂L/∂stack
+  Matrix low;                 ///< Out × M
+  Matrix high;                ///< Out × M
+  Matrix upstream;            ///< ∂L/∂X_{l+1} during the backward pass
+  Matrix downstream;          ///< ∂L/∂X_l during the backward pass
 };
 using TcnWindowWorkspace = BasicTcnWindowWorkspace<double>;
 
