@@ -138,6 +138,35 @@ TEST(TcnTrainer, EpochsOfOnePassTakeEveryWindowOnce) {
   EXPECT_NE(result.history[0].train_loss, result.history[2].train_loss);  // reshuffled
 }
 
+TEST(TcnTrainer, MinLearningRateStopsAtTheDecayBelowItAndChangesNothingBefore) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 1));
+  TcnTrainOptions o = small_options();
+  o.max_epochs = 60;
+  o.decay_patience = 1;  // decays often on this small set
+  o.patience = 60;
+  o.min_learning_rate = 0.2 * o.adam.learning_rate;  // allows two halvings; the third stops
+  const TcnTrainResult stopped = train_tcn(data, o);
+  ASSERT_LT(stopped.history.size(), 60u) << "no third decay within 60 epochs";
+  EXPECT_TRUE(stopped.stopped_early);
+  EXPECT_TRUE(stopped.history.back().last);
+  EXPECT_EQ(stopped.history.back().learning_rate, 0.25 * o.adam.learning_rate);
+  int decays = 0;
+  for (std::size_t e = 1; e < stopped.history.size(); ++e)
+    decays += stopped.history[e].learning_rate < stopped.history[e - 1].learning_rate;
+  EXPECT_EQ(decays, 2);
+
+  o.min_learning_rate = 0.0;
+  o.max_epochs = static_cast<int>(stopped.history.size());
+  const TcnTrainResult budget = train_tcn(data, o);
+  TcnParameters a = stopped.best, b = budget.best;
+  EXPECT_EQ(flatten(a), flatten(b));
+  EXPECT_EQ(stopped.best_epoch, budget.best_epoch);
+  ASSERT_EQ(stopped.history.size(), budget.history.size());
+  for (std::size_t e = 0; e < budget.history.size(); ++e)
+    EXPECT_EQ(stopped.history[e].validation_loss, budget.history[e].validation_loss);
+}
+
 TEST(TcnTrainer, CheckpointLoadsIntoTheCoreEngineWithTheSameOutputs) {
   TcnDataset data;
   data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 2));

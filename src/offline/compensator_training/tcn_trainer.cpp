@@ -364,7 +364,9 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
       }
     }
     const int stale = epoch - std::max(result.best_epoch, last_decay);
+    bool converged = false;
     if (options_.decay_patience > 0 && stale >= options_.decay_patience) {
+      converged = 0.5 * adam.learning_rate() < options_.min_learning_rate;
       adam.set_learning_rate(0.5 * adam.learning_rate());
       last_decay = epoch;
     }
@@ -378,7 +380,7 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
       p.remaining_seconds =
           std::min(p.remaining_seconds, std::max(0.0, options_.max_seconds - p.elapsed_seconds));
     }
-    result.stopped_early = epoch - result.best_epoch >= options_.patience;
+    result.stopped_early = epoch - result.best_epoch >= options_.patience || converged;
     result.stopped_on_time = out_of_time && !result.stopped_early && epoch < options_.max_epochs;
     p.last = result.stopped_early || out_of_time || epoch == options_.max_epochs;
     if (p.last) p.remaining_seconds = 0.0;
