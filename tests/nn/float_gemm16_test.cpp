@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "offline/compensator_training/tcn_window_model.hpp"
 #include "tcn_test_support.hpp"
@@ -31,12 +33,20 @@ void expect_identical(const Eigen::MatrixXf& got, const Eigen::MatrixXf& eigen,
                           << " elements differ, worst " << (got - eigen).cwiseAbs().maxCoeff();
 }
 
+std::vector<std::ptrdiff_t> identity_offsets(Eigen::Index k) {
+  std::vector<std::ptrdiff_t> offset(static_cast<std::size_t>(k));
+  for (Eigen::Index i = 0; i < k; ++i)
+    offset[static_cast<std::size_t>(i)] = i;
+  return offset;
+}
+
 // The shapes of the shipped per-joint network (5 inputs, K = 4: 20 and 64 stacked rows) and of
 // a 4-input one (16), over the window widths of its levels and short tails (from 2 steps).
 TEST(FloatGemm16, ProductsEqualEigensBitForBit) {
   if (!float_gemm16_available()) GTEST_SKIP() << "no AVX2 on this CPU";
   std::uint64_t seed = 900;
   for (Eigen::Index k : {16, 20, 64}) {
+    const std::vector<std::ptrdiff_t> offset = identity_offsets(k);
     for (Eigen::Index n : {2, 3, 5, 256, 280, 292, 298}) {
       const std::string shape = "k " + std::to_string(k) + ", n " + std::to_string(n);
       const Eigen::MatrixXf a = random_float(16, k, ++seed), b = random_float(k, n, ++seed);
@@ -44,12 +54,12 @@ TEST(FloatGemm16, ProductsEqualEigensBitForBit) {
 
       Eigen::MatrixXf eigen = c0, got = c0;
       eigen.noalias() += a * b;
-      float_gemm16_accumulate(a.data(), k, b.data(), n, got.data());
+      float_gemm16_accumulate(a.data(), k, b.data(), offset.data(), k, n, got.data());
       expect_identical(got, eigen, "C += A·B, " + shape);
 
       Eigen::MatrixXf g(16, k);
       eigen.noalias() = d * b.transpose();
-      float_gemm16_times_transpose(d.data(), b.data(), k, n, g.data());
+      float_gemm16_times_transpose(d.data(), b.data(), offset.data(), k, k, n, g.data());
       expect_identical(g, eigen, "G = D·Sᵀ, " + shape);
 
       if (k % 8 != 0) continue;  // Aᵀ·D is used for the 64 stacked rows of blocks 1…L−1
@@ -62,13 +72,44 @@ TEST(FloatGemm16, ProductsEqualEigensBitForBit) {
   }
 }
 
+// Reading the K lagged columns of a block input in place equals the products with the stacked
+// copy (block 0: 5 inputs, d = 1; block 3: 16 inputs, d = 8).
+TEST(FloatGemm16, LaggedColumnsEqualTheStackedCopy) {
+  if (!float_gemm16_available()) GTEST_SKIP() << "no AVX2 on this CPU";
+  const int kernel = 4;
+  std::uint64_t seed = 950;
+  for (const auto& [in, d] : {std::pair<Eigen::Index, Eigen::Index>{5, 1}, {16, 8}}) {
+    const Eigen::Index n = 256, width = n + (kernel - 1) * d, k = kernel * in;
+    const Eigen::MatrixXf x = random_float(in, width, ++seed), a = random_float(16, k, ++seed);
+    const Eigen::MatrixXf dz = random_float(16, n, ++seed), c0 = random_float(16, n, ++seed);
+    Eigen::MatrixXf stack(k, n);
+    std::vector<std::ptrdiff_t> offset(static_cast<std::size_t>(k));
+    for (int j = 0; j < kernel; ++j) {
+      stack.middleRows(j * in, in) = x.middleCols((kernel - 1 - j) * d, n);
+      for (Eigen::Index c = 0; c < in; ++c)
+        offset[static_cast<std::size_t>(j * in + c)] = (kernel - 1 - j) * d * in + c;
+    }
+    const std::string shape = "C_in " + std::to_string(in) + ", d " + std::to_string(d);
+    Eigen::MatrixXf eigen = c0, got = c0;
+    eigen.noalias() += a * stack;
+    float_gemm16_accumulate(a.data(), k, x.data(), offset.data(), in, n, got.data());
+    expect_identical(got, eigen, "C += A·stack, " + shape);
+    Eigen::MatrixXf g(16, k);
+    eigen.noalias() = dz * stack.transpose();
+    float_gemm16_times_transpose(dz.data(), x.data(), offset.data(), in, k, n, g.data());
+    expect_identical(g, eigen, "G = D·stackᵀ, " + shape);
+  }
+}
+
 TEST(FloatGemm16, ZeroSumsArePositiveZeroAsInEigen) {
   if (!float_gemm16_available()) GTEST_SKIP() << "no AVX2 on this CPU";
   const Eigen::MatrixXf a = -Eigen::MatrixXf::Zero(16, 8), d = Eigen::MatrixXf::Zero(16, 3);
   Eigen::MatrixXf x(8, 3), g(16, 8);
   const Eigen::MatrixXf at = a.transpose();
   float_gemm16_transpose_times(at.data(), 8, d.data(), 3, x.data());
-  float_gemm16_times_transpose(d.data(), Eigen::MatrixXf::Zero(8, 3).eval().data(), 8, 3, g.data());
+  const Eigen::MatrixXf zeros = Eigen::MatrixXf::Zero(8, 3);
+  const std::vector<std::ptrdiff_t> offset = identity_offsets(8);
+  float_gemm16_times_transpose(d.data(), zeros.data(), offset.data(), 8, 8, 3, g.data());
   Eigen::MatrixXf eigen_x(8, 3);
   eigen_x.noalias() = a.transpose() * d;
   expect_identical(x, eigen_x, "zero sums");

@@ -42,15 +42,17 @@ TPF_AVX2 inline void store_fresh(float* c, const Column16& acc) {
   _mm256_storeu_ps(c + 8, _mm256_add_ps(_mm256_setzero_ps(), acc.high));
 }
 
-/// Columns [t, t + 4) of C += A·B.
-TPF_AVX2 void accumulate_four(const float* a, std::ptrdiff_t k, const float* b, float* c) {
+/// Columns [t, t + 4) of C += A·B, B(i, t) = b[t·stride + offset[i]].
+TPF_AVX2 void accumulate_four(const float* a, std::ptrdiff_t k, const float* b,
+                              const std::ptrdiff_t* offset, std::ptrdiff_t stride, float* c) {
   Column16 c0 = zero16(), c1 = zero16(), c2 = zero16(), c3 = zero16();
   for (std::ptrdiff_t i = 0; i < k; ++i) {
     const __m256 a_low = _mm256_loadu_ps(a + 16 * i), a_high = _mm256_loadu_ps(a + 16 * i + 8);
-    add_scaled(c0, a_low, a_high, _mm256_broadcast_ss(b + i));
-    add_scaled(c1, a_low, a_high, _mm256_broadcast_ss(b + k + i));
-    add_scaled(c2, a_low, a_high, _mm256_broadcast_ss(b + 2 * k + i));
-    add_scaled(c3, a_low, a_high, _mm256_broadcast_ss(b + 3 * k + i));
+    const float* row = b + offset[i];
+    add_scaled(c0, a_low, a_high, _mm256_broadcast_ss(row));
+    add_scaled(c1, a_low, a_high, _mm256_broadcast_ss(row + stride));
+    add_scaled(c2, a_low, a_high, _mm256_broadcast_ss(row + 2 * stride));
+    add_scaled(c3, a_low, a_high, _mm256_broadcast_ss(row + 3 * stride));
   }
   add_into(c, c0);
   add_into(c + 16, c1);
@@ -59,11 +61,12 @@ TPF_AVX2 void accumulate_four(const float* a, std::ptrdiff_t k, const float* b, 
 }
 
 /// Column t of C += A·B.
-TPF_AVX2 void accumulate_one(const float* a, std::ptrdiff_t k, const float* b, float* c) {
+TPF_AVX2 void accumulate_one(const float* a, std::ptrdiff_t k, const float* b,
+                             const std::ptrdiff_t* offset, float* c) {
   Column16 acc = zero16();
   for (std::ptrdiff_t i = 0; i < k; ++i)
     add_scaled(acc, _mm256_loadu_ps(a + 16 * i), _mm256_loadu_ps(a + 16 * i + 8),
-               _mm256_broadcast_ss(b + i));
+               _mm256_broadcast_ss(b + offset[i]));
   add_into(c, acc);
 }
 
@@ -104,25 +107,28 @@ TPF_AVX2 inline void transpose_times_columns(const float* at, std::ptrdiff_t k, 
 }  // namespace
 
 TPF_AVX2 void float_gemm16_accumulate(const float* a, std::ptrdiff_t k, const float* b,
+                                      const std::ptrdiff_t* offset, std::ptrdiff_t stride,
                                       std::ptrdiff_t n, float* c) {
   std::ptrdiff_t t = 0;
   for (; t + 4 <= n; t += 4)
-    accumulate_four(a, k, b + t * k, c + 16 * t);
+    accumulate_four(a, k, b + t * stride, offset, stride, c + 16 * t);
   for (; t < n; ++t)
-    accumulate_one(a, k, b + t * k, c + 16 * t);
+    accumulate_one(a, k, b + t * stride, offset, c + 16 * t);
 }
 
-TPF_AVX2 void float_gemm16_times_transpose(const float* d, const float* s, std::ptrdiff_t k,
-                                           std::ptrdiff_t n, float* g) {
+TPF_AVX2 void float_gemm16_times_transpose(const float* d, const float* s,
+                                           const std::ptrdiff_t* offset, std::ptrdiff_t stride,
+                                           std::ptrdiff_t k, std::ptrdiff_t n, float* g) {
   for (std::ptrdiff_t j = 0; j < k; j += 4) {
     Column16 g0 = zero16(), g1 = zero16(), g2 = zero16(), g3 = zero16();
+    const std::ptrdiff_t o0 = offset[j], o1 = offset[j + 1], o2 = offset[j + 2], o3 = offset[j + 3];
     for (std::ptrdiff_t t = 0; t < n; ++t) {
       const __m256 d_low = _mm256_loadu_ps(d + 16 * t), d_high = _mm256_loadu_ps(d + 16 * t + 8);
-      const float* column = s + t * k + j;
-      add_scaled(g0, d_low, d_high, _mm256_broadcast_ss(column));
-      add_scaled(g1, d_low, d_high, _mm256_broadcast_ss(column + 1));
-      add_scaled(g2, d_low, d_high, _mm256_broadcast_ss(column + 2));
-      add_scaled(g3, d_low, d_high, _mm256_broadcast_ss(column + 3));
+      const float* column = s + t * stride;
+      add_scaled(g0, d_low, d_high, _mm256_broadcast_ss(column + o0));
+      add_scaled(g1, d_low, d_high, _mm256_broadcast_ss(column + o1));
+      add_scaled(g2, d_low, d_high, _mm256_broadcast_ss(column + o2));
+      add_scaled(g3, d_low, d_high, _mm256_broadcast_ss(column + o3));
     }
     store_fresh(g + 16 * j, g0);
     store_fresh(g + 16 * (j + 1), g1);

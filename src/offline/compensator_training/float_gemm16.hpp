@@ -16,12 +16,18 @@ bool float_gemm16_available();
 /// SSE2 float GEMM (n ≥ 2; one column goes through Eigen's matrix–vector path) bit for bit
 /// (FloatGemm16 tests).
 ///
+/// B and S are read as B(i, t) = b[t·stride + offset[i]]: a stacked matrix (offset[i] = i,
+/// stride = k) or, without stacking, the K lagged copies of a block input x (C_in × T):
+/// offset[j·C_in + c] = (K − 1 − j)·d·C_in + c, stride = C_in (tcn_window_model).
+///
 /// C (16 × n) += A (16 × k) · B (k × n).
-void float_gemm16_accumulate(const float* a, std::ptrdiff_t k, const float* b, std::ptrdiff_t n,
+void float_gemm16_accumulate(const float* a, std::ptrdiff_t k, const float* b,
+                             const std::ptrdiff_t* offset, std::ptrdiff_t stride, std::ptrdiff_t n,
                              float* c);
 /// G (16 × k) = D (16 × n) · S (k × n)ᵀ; k a multiple of 4.
-void float_gemm16_times_transpose(const float* d, const float* s, std::ptrdiff_t k,
-                                  std::ptrdiff_t n, float* g);
+void float_gemm16_times_transpose(const float* d, const float* s, const std::ptrdiff_t* offset,
+                                  std::ptrdiff_t stride, std::ptrdiff_t k, std::ptrdiff_t n,
+                                  float* g);
 /// X (k × n) = A (16 × k)ᵀ · D (16 × n), given At = Aᵀ (k × 16); k a multiple of 8.
 void float_gemm16_transpose_times(const float* at, std::ptrdiff_t k, const float* d,
                                   std::ptrdiff_t n, float* x);

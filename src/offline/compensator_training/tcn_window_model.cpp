@@ -5,18 +5,30 @@
 namespace tpf::offline {
 namespace {
 
-/// Whether a block's products go through float_gemm16 (float, 16 output channels, K·C_in a
-/// multiple of `multiple`, AVX2): the same sums in the same order as Eigen's GEMM, in wider
-/// registers. Not for a single time step, where Eigen takes its matrix–vector path instead.
+/// Whether block `level`'s products go through float_gemm16 (float, 16 output channels, K·C_in a
+/// multiple of 4, AVX2): the same sums in the same order as Eigen's GEMM, in wider registers, read
+/// from the block input's lagged columns instead of a stacked copy. Not for a single time step,
+/// where Eigen takes its matrix–vector path instead. Forward and backward decide alike.
 template <typename S>
-bool use_float_gemm16(Eigen::Index channels, Eigen::Index stacked_inputs, Eigen::Index multiple,
-                      Eigen::Index steps) {
+bool use_float_gemm16(const TcnArchitecture& a, int level, Eigen::Index steps) {
   if constexpr (std::is_same_v<S, float>) {
-    return channels == 16 && stacked_inputs % multiple == 0 && steps >= 2 &&
+    return a.hidden == 16 && (a.kernel * a.block_inputs(level)) % 4 == 0 && steps >= 2 &&
            float_gemm16_available();
   } else {
     return false;
   }
+}
+
+/// Row i = j·C_in + c of block `level`'s stacked input is x(c, t + (K − 1 − j)·d): its offset in
+/// x's storage from column t (float_gemm16's B(i, t) = x[t·C_in + offset[i]]).
+std::vector<std::ptrdiff_t>& lagged_offsets(const TcnArchitecture& a, int level,
+                                            std::vector<std::ptrdiff_t>& offsets) {
+  const std::ptrdiff_t in = a.block_inputs(level), d = a.dilation(level);
+  offsets.resize(static_cast<std::size_t>(a.kernel * in));
+  for (int j = 0; j < a.kernel; ++j)
+    for (std::ptrdiff_t c = 0; c < in; ++c)
+      offsets[static_cast<std::size_t>(j * in + c)] = (a.kernel - 1 - j) * d * in + c;
+  return offsets;
 }
 
 /// [W_0 … W_{K−1}] of block `b` into `out` (C_out × K·C_in).
@@ -42,10 +54,13 @@ void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>
     const auto& x = ws.activations[l];
     const int d = a.dilation(l);
     const Eigen::Index in = x.rows(), t_out = x.cols() - (a.kernel - 1) * d;
+    const bool avx2 = use_float_gemm16<S>(a, l, t_out);
     auto& stack = ws.stacked_inputs[l];
-    stack.resize(a.kernel * in, t_out);
-    for (int j = 0; j < a.kernel; ++j) {
-      stack.middleRows(j * in, in) = x.middleCols((a.kernel - 1 - j) * d, t_out);
+    if (!avx2) {
+      stack.resize(a.kernel * in, t_out);
+      for (int j = 0; j < a.kernel; ++j) {
+        stack.middleRows(j * in, in) = x.middleCols((a.kernel - 1 - j) * d, t_out);
+      }
     }
     auto& z = ws.activations[l + 1];
     if (b.projection.size() > 0) {
@@ -55,10 +70,10 @@ void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>
     }
     z.colwise() += b.bias;
     stack_taps(b, ws.stacked_weights);
-    if (use_float_gemm16<S>(z.rows(), stack.rows(), 1, t_out)) {
+    if (avx2) {
       if constexpr (std::is_same_v<S, float>)
-        float_gemm16_accumulate(ws.stacked_weights.data(), stack.rows(), stack.data(), t_out,
-                                z.data());
+        float_gemm16_accumulate(ws.stacked_weights.data(), a.kernel * in, x.data(),
+                                lagged_offsets(a, l, ws.offsets).data(), in, t_out, z.data());
     } else {
       z.noalias() += ws.stacked_weights * stack;
     }
@@ -116,14 +131,14 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
     const auto& dz = ws.upstream;
     gb.bias += dz.rowwise().sum();
     const Eigen::Index in = x.rows();
-    const auto& stack = ws.stacked_inputs[l];
-    if (use_float_gemm16<S>(dz.rows(), stack.rows(), 4, t_out)) {
-      ws.stacked_gradient.resize(dz.rows(), stack.rows());
+    const bool avx2 = use_float_gemm16<S>(a, l, t_out);
+    if (avx2) {
+      ws.stacked_gradient.resize(dz.rows(), a.kernel * in);
       if constexpr (std::is_same_v<S, float>)
-        float_gemm16_times_transpose(dz.data(), stack.data(), stack.rows(), t_out,
-                                     ws.stacked_gradient.data());
+        float_gemm16_times_transpose(dz.data(), x.data(), lagged_offsets(a, l, ws.offsets).data(),
+                                     in, a.kernel * in, t_out, ws.stacked_gradient.data());
     } else {
-      ws.stacked_gradient.noalias() = dz * stack.transpose();
+      ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
     }
     for (int j = 0; j < a.kernel; ++j)
       gb.taps[j] += ws.stacked_gradient.middleCols(j * in, in);
@@ -131,7 +146,7 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
     if (l == 0) break;
 
     stack_taps(b, ws.stacked_weights);
-    if (use_float_gemm16<S>(dz.rows(), ws.stacked_weights.cols(), 8, t_out)) {
+    if (avx2 && ws.stacked_weights.cols() % 8 == 0) {
       ws.transposed_weights = ws.stacked_weights.transpose();
       ws.stacked_gradient.resize(ws.stacked_weights.cols(), t_out);
       if constexpr (std::is_same_v<S, float>)
