@@ -31,6 +31,17 @@ std::vector<std::ptrdiff_t>& lagged_offsets(const TcnArchitecture& a, int level,
   return offsets;
 }
 
+/// g ← g ⊙ [y > 0] (g where y > 0, else +0: Eigen's select, bit for bit), as a plain loop that
+/// the compiler turns into compare-and-mask vector code (Eigen's select branches per element).
+template <typename Matrix>
+void mask_by_positive(const Matrix& y, Matrix& g) {
+  using S = typename Matrix::Scalar;
+  const S* __restrict positive = y.data();
+  S* __restrict values = g.data();
+  for (Eigen::Index i = 0; i < g.size(); ++i)
+    values[i] = positive[i] > S(0) ? values[i] : S(0);
+}
+
 /// [W_0 … W_{K−1}] of block `b` into `out` (C_out × K·C_in).
 template <typename S, typename Matrix>
 void stack_taps(const BasicTcnBlockParameters<S>& b, Matrix& out) {
@@ -127,7 +138,7 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
     const int d = a.dilation(l);
     const Eigen::Index t_out = ws.upstream.cols();
     // ∂L/∂z = ∂L/∂y ⊙ [y > 0].
-    ws.upstream = (ws.activations[l + 1].array() > S(0)).select(ws.upstream, S(0));
+    mask_by_positive(ws.activations[l + 1], ws.upstream);
     const auto& dz = ws.upstream;
     gb.bias += dz.rowwise().sum();
     const Eigen::Index in = x.rows();
