@@ -162,3 +162,5 @@ bool float_gemm16_available() {
 #endif
 
 }  // namespace tpf::offline
+
+#undef TPF_FLOAT_GEMM16_AVX2  // file-local (unity builds)
