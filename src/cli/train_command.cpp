@@ -87,6 +87,7 @@ namespace tpf::cli {
 void register_train_command(CLI::App& app) {
   auto o = std::make_shared<TrainCommandOptions>();
   o->tcn.max_seconds = 0.0;
+  o->tcn.min_learning_rate = 5e-5;  // the sixth halving of 2e-3 ends training (docs/tcn.md)
   CLI::App* cmd = app.add_subcommand(
       "train",
       "Train the friction compensator (TCN) on contact-free excitation logs: target = effort − "
@@ -112,6 +113,14 @@ void register_train_command(CLI::App& app) {
   cmd->add_option("--max-seconds", o->tcn.max_seconds,
                   "Wall-clock safety net for the whole run (0: none); results then depend on the "
                   "machine's speed")
+      ->capture_default_str();
+  cmd->add_option("--epoch-windows", o->tcn.epoch_windows,
+                  "At most this many training windows per epoch (0: all); a pass over the "
+                  "shuffled windows is split into equal epochs")
+      ->capture_default_str();
+  cmd->add_option("--min-learning-rate", o->tcn.min_learning_rate,
+                  "Early stopping: stop when the decay would halve the learning rate below this "
+                  "(0: never)")
       ->capture_default_str();
   cmd->add_option("--patience", o->tcn.patience, "Early stopping: epochs without improvement")
       ->capture_default_str();

@@ -61,6 +61,112 @@ TEST(TcnTrainer, IsDeterministicWhateverTheThreadCount) {
   EXPECT_LT(one.history.back().train_loss, one.history.front().train_loss);
 }
 
+TEST(TcnTrainer, EpochWindowsSplitAPassIntoEqualEpochs) {
+  EXPECT_EQ(TcnTrainer::windows_per_epoch(9532, 0), 9532u);     // no cap
+  EXPECT_EQ(TcnTrainer::windows_per_epoch(9532, 9532), 9532u);  // cap = N: one pass per epoch
+  EXPECT_EQ(TcnTrainer::windows_per_epoch(9532, 20000), 9532u);
+  EXPECT_EQ(TcnTrainer::windows_per_epoch(9532, 2048), 1906u);  // 5 epochs per pass, 2 left over
+  EXPECT_EQ(TcnTrainer::windows_per_epoch(10, 3), 2u);          // 4 epochs of 2
+  EXPECT_EQ(TcnTrainer::windows_per_epoch(10, 5), 5u);          // 2 epochs of 5
+}
+
+TEST(TcnTrainer, EpochWindowsChangeNothingUpToTheTrainingSetAndStayDeterministicBelow) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 1));
+  TcnTrainOptions o = small_options();
+  o.max_epochs = 6;
+  const TcnTrainResult all = train_tcn(data, o);
+  const std::size_t n = TcnTrainer(data, o).training_windows();
+  ASSERT_GT(n, 8u);
+  o.epoch_windows = static_cast<int>(n);
+  const TcnTrainResult capped_at_n = train_tcn(data, o);
+  TcnParameters a = all.best, b = capped_at_n.best;
+  EXPECT_EQ(flatten(a), flatten(b));
+  ASSERT_EQ(all.history.size(), capped_at_n.history.size());
+  for (std::size_t e = 0; e < all.history.size(); ++e) {
+    EXPECT_EQ(all.history[e].train_loss, capped_at_n.history[e].train_loss);
+    EXPECT_EQ(all.history[e].validation_loss, capped_at_n.history[e].validation_loss);
+  }
+
+  o.epoch_windows = static_cast<int>(n / 3);  // 3 or 4 epochs per pass
+  o.threads = 1;
+  const TcnTrainResult one = train_tcn(data, o);
+  o.threads = 2;
+  const TcnTrainResult two = train_tcn(data, o);
+  TcnParameters c = one.best, d = two.best;
+  EXPECT_EQ(flatten(c), flatten(d));
+  ASSERT_EQ(one.history.size(), two.history.size());
+  for (std::size_t e = 0; e < one.history.size(); ++e)
+    EXPECT_EQ(one.history[e].validation_loss, two.history[e].validation_loss);
+  EXPECT_NE(flatten(a), flatten(c));  // fewer steps per epoch: another trajectory
+}
+
+TEST(TcnTrainer, EpochsOfOnePassTakeEveryWindowOnce) {
+  // Sample weights 1/outputs give every window the total weight 1. With a zero learning rate the
+  // parameters never move, so an epoch's training loss is the mean window loss over exactly its
+  // windows, and the two epochs of a pass (halves of the set) average to the whole set's loss
+  // only if they are disjoint and cover it; epochs of a reshuffled random subset would not.
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 1));
+  TcnTrainOptions o = small_options();
+  const TcnTrainer probe(data, o);
+  TcnSequence& s = data.sequences[0];
+  s.weight = Eigen::MatrixXd::Ones(s.inputs.rows(), 1);
+  for (bool held : {false, true})
+    for (const TcnTrainer::WindowSpan& w : probe.window_spans(held))
+      s.weight.middleRows(w.first_output, w.end - w.first_output)
+          .setConstant(1.0 / static_cast<double>(w.end - w.first_output));
+  const std::size_t n = probe.training_windows();
+  ASSERT_EQ(n % 2, 0u) << "the test needs an even number of training windows";
+  o.epoch_windows = static_cast<int>(n / 2);
+  o.adam.learning_rate = 0.0;
+  o.decay_patience = 0;
+  o.patience = 100;
+  o.max_epochs = 4;  // two passes
+  TcnTrainer trainer(data, o);
+  ASSERT_EQ(trainer.training_windows(), n);
+  const TcnParameters start = init_tcn_parameters(o.architecture, o.seed);
+  const TcnTrainResult result = trainer.train(start);
+  const double whole = trainer.loss(start, false);
+  ASSERT_EQ(result.history.size(), 4u);
+  for (int pass = 0; pass < 2; ++pass) {
+    const double first = result.history[2 * pass].train_loss;
+    const double second = result.history[2 * pass + 1].train_loss;
+    EXPECT_GT(std::abs(first - second), 1e-6 * whole) << "pass " << pass << ": the same windows";
+    EXPECT_NEAR(0.5 * (first + second), whole, 1e-12 * whole) << "pass " << pass;
+  }
+  EXPECT_NE(result.history[0].train_loss, result.history[2].train_loss);  // reshuffled
+}
+
+TEST(TcnTrainer, MinLearningRateStopsAtTheDecayBelowItAndChangesNothingBefore) {
+  TcnDataset data;
+  data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 1));
+  TcnTrainOptions o = small_options();
+  o.max_epochs = 60;
+  o.decay_patience = 1;  // decays often on this small set
+  o.patience = 60;
+  o.min_learning_rate = 0.2 * o.adam.learning_rate;  // allows two halvings; the third stops
+  const TcnTrainResult stopped = train_tcn(data, o);
+  ASSERT_LT(stopped.history.size(), 60u) << "no third decay within 60 epochs";
+  EXPECT_TRUE(stopped.stopped_early);
+  EXPECT_TRUE(stopped.history.back().last);
+  EXPECT_EQ(stopped.history.back().learning_rate, 0.25 * o.adam.learning_rate);
+  int decays = 0;
+  for (std::size_t e = 1; e < stopped.history.size(); ++e)
+    decays += stopped.history[e].learning_rate < stopped.history[e - 1].learning_rate;
+  EXPECT_EQ(decays, 2);
+
+  o.min_learning_rate = 0.0;
+  o.max_epochs = static_cast<int>(stopped.history.size());
+  const TcnTrainResult budget = train_tcn(data, o);
+  TcnParameters a = stopped.best, b = budget.best;
+  EXPECT_EQ(flatten(a), flatten(b));
+  EXPECT_EQ(stopped.best_epoch, budget.best_epoch);
+  ASSERT_EQ(stopped.history.size(), budget.history.size());
+  for (std::size_t e = 0; e < budget.history.size(); ++e)
+    EXPECT_EQ(stopped.history[e].validation_loss, budget.history[e].validation_loss);
+}
+
 TEST(TcnTrainer, CheckpointLoadsIntoTheCoreEngineWithTheSameOutputs) {
   TcnDataset data;
   data.sequences.push_back(make_synthetic_friction_sequence(6.0, 400.0, 2));

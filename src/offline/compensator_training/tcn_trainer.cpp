@@ -10,8 +10,8 @@
 #include <random>
 #include <thread>
 
-#include "offline/signal/butterworth.hpp"
 #include "offline/compensator_training/progress_bar.hpp"
+#include "offline/signal/butterworth.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
@@ -216,6 +216,13 @@ std::vector<TcnTrainer::WindowSpan> TcnTrainer::window_spans(bool validation) co
   return spans;
 }
 
+std::size_t TcnTrainer::windows_per_epoch(std::size_t windows, int epoch_windows) {
+  if (epoch_windows <= 0 || windows <= static_cast<std::size_t>(epoch_windows)) return windows;
+  const std::size_t cap = static_cast<std::size_t>(epoch_windows);
+  const std::size_t epochs_per_pass = (windows + cap - 1) / cap;
+  return windows / epochs_per_pass;
+}
+
 double TcnTrainer::weight_sum(const std::vector<Window>& windows) {
   double n = 0.0;
   for (const Window& w : windows)
@@ -317,13 +324,20 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
   result.best = parameters;
   result.best_validation_loss = loss(parameters, true);
   std::vector<Window> order = training_;
+  const std::size_t per_epoch = windows_per_epoch(order.size(), options_.epoch_windows);
+  std::size_t pass_position = order.size();  // the first epoch shuffles
   std::vector<Window> batch;
   int last_decay = 0;
   for (int epoch = 1; epoch <= options_.max_epochs; ++epoch) {
-    std::shuffle(order.begin(), order.end(), rng);
+    if (order.size() - pass_position < per_epoch) {
+      std::shuffle(order.begin(), order.end(), rng);
+      pass_position = 0;
+    }
+    const std::size_t epoch_begin = pass_position, epoch_end = pass_position + per_epoch;
+    pass_position = epoch_end;
     double epoch_loss = 0.0;
-    for (std::size_t first = 0; first < order.size(); first += options_.batch_windows) {
-      const std::size_t last = std::min(order.size(), first + options_.batch_windows);
+    for (std::size_t first = epoch_begin; first < epoch_end; first += options_.batch_windows) {
+      const std::size_t last = std::min(epoch_end, first + options_.batch_windows);
       batch.assign(order.begin() + first, order.begin() + last);
       unflatten(Eigen::VectorXd::Zero(theta.size()), gradient);
       epoch_loss += sum_loss(parameters, batch, &gradient);
@@ -337,7 +351,9 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
     p.learning_rate = adam.learning_rate();
     p.epoch = epoch;
     p.max_epochs = options_.max_epochs;
-    p.train_loss = epoch_loss / weight_sum(order);
+    p.train_loss =
+        epoch_loss / std::accumulate(order.begin() + epoch_begin, order.begin() + epoch_end, 0.0,
+                                     [](double n, const Window& w) { return n + w.weight; });
     p.validation_loss = loss(parameters, true);
     if (p.validation_loss < result.best_validation_loss || result.best_epoch == 0) {
       result.best = parameters;
@@ -348,7 +364,9 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
       }
     }
     const int stale = epoch - std::max(result.best_epoch, last_decay);
+    bool converged = false;
     if (options_.decay_patience > 0 && stale >= options_.decay_patience) {
+      converged = 0.5 * adam.learning_rate() < options_.min_learning_rate;
       adam.set_learning_rate(0.5 * adam.learning_rate());
       last_decay = epoch;
     }
@@ -362,7 +380,7 @@ TcnTrainResult TcnTrainer::train(TcnParameters parameters, const TcnProgressCall
       p.remaining_seconds =
           std::min(p.remaining_seconds, std::max(0.0, options_.max_seconds - p.elapsed_seconds));
     }
-    result.stopped_early = epoch - result.best_epoch >= options_.patience;
+    result.stopped_early = epoch - result.best_epoch >= options_.patience || converged;
     result.stopped_on_time = out_of_time && !result.stopped_early && epoch < options_.max_epochs;
     p.last = result.stopped_early || out_of_time || epoch == options_.max_epochs;
     if (p.last) p.remaining_seconds = 0.0;
@@ -381,10 +399,11 @@ TcnTrainResult train_tcn(const TcnDataset& dataset, const TcnTrainOptions& optio
 TcnProgressCallback tcn_progress_bar(std::ostream& out) {
   auto bar = std::make_shared<TerminalProgressBar>(out);
   return [bar](const TcnTrainProgress& p) {
-    char status[160];
-    std::snprintf(status, sizeof status, "epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d  lr %.2g",
-                  p.epoch, p.max_epochs, p.train_loss, p.validation_loss, p.best_validation_loss,
-                  p.best_epoch, p.learning_rate);
+    char status[192];
+    std::snprintf(status, sizeof status,
+                  "net %d  epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d  lr %.2g  %.1f s",
+                  p.network + 1, p.epoch, p.max_epochs, p.train_loss, p.validation_loss,
+                  p.best_validation_loss, p.best_epoch, p.learning_rate, p.elapsed_seconds);
     bar->update(p.last ? 1.0 : static_cast<double>(p.epoch) / p.max_epochs, status,
                 p.remaining_seconds);
     if (p.last) bar->finish();

@@ -1,7 +1,46 @@
 #include "offline/compensator_training/tcn_window_model.hpp"
 
+#include "offline/compensator_training/float_gemm16.hpp"
+
 namespace tpf::offline {
 namespace {
+
+/// Whether block `level`'s products go through float_gemm16 (float, 16 output channels, K·C_in a
+/// multiple of 4, AVX2): the same sums in the same order as Eigen's GEMM, in wider registers, read
+/// from the block input's lagged columns instead of a stacked copy. Not for a single time step,
+/// where Eigen takes its matrix–vector path instead. Forward and backward decide alike.
+template <typename S>
+bool use_float_gemm16(const TcnArchitecture& a, int level, Eigen::Index steps) {
+  if constexpr (std::is_same_v<S, float>) {
+    return a.hidden == 16 && (a.kernel * a.block_inputs(level)) % 4 == 0 && steps >= 2 &&
+           float_gemm16_available();
+  } else {
+    return false;
+  }
+}
+
+/// Row i = j·C_in + c of block `level`'s stacked input is x(c, t + (K − 1 − j)·d): its offset in
+/// x's storage from column t (float_gemm16's B(i, t) = x[t·C_in + offset[i]]).
+std::vector<std::ptrdiff_t>& lagged_offsets(const TcnArchitecture& a, int level,
+                                            std::vector<std::ptrdiff_t>& offsets) {
+  const std::ptrdiff_t in = a.block_inputs(level), d = a.dilation(level);
+  offsets.resize(static_cast<std::size_t>(a.kernel * in));
+  for (int j = 0; j < a.kernel; ++j)
+    for (std::ptrdiff_t c = 0; c < in; ++c)
+      offsets[static_cast<std::size_t>(j * in + c)] = (a.kernel - 1 - j) * d * in + c;
+  return offsets;
+}
+
+/// g ← g ⊙ [y > 0] (g where y > 0, else +0: Eigen's select, bit for bit), as a plain loop that
+/// the compiler turns into compare-and-mask vector code (Eigen's select branches per element).
+template <typename Matrix>
+void mask_by_positive(const Matrix& y, Matrix& g) {
+  using S = typename Matrix::Scalar;
+  const S* __restrict positive = y.data();
+  S* __restrict values = g.data();
+  for (Eigen::Index i = 0; i < g.size(); ++i)
+    values[i] = positive[i] > S(0) ? values[i] : S(0);
+}
 
 /// [W_0 … W_{K−1}] of block `b` into `out` (C_out × K·C_in).
 template <typename S, typename Matrix>
@@ -26,10 +65,13 @@ void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>
     const auto& x = ws.activations[l];
     const int d = a.dilation(l);
     const Eigen::Index in = x.rows(), t_out = x.cols() - (a.kernel - 1) * d;
+    const bool avx2 = use_float_gemm16<S>(a, l, t_out);
     auto& stack = ws.stacked_inputs[l];
-    stack.resize(a.kernel * in, t_out);
-    for (int j = 0; j < a.kernel; ++j) {
-      stack.middleRows(j * in, in) = x.middleCols((a.kernel - 1 - j) * d, t_out);
+    if (!avx2) {
+      stack.resize(a.kernel * in, t_out);
+      for (int j = 0; j < a.kernel; ++j) {
+        stack.middleRows(j * in, in) = x.middleCols((a.kernel - 1 - j) * d, t_out);
+      }
     }
     auto& z = ws.activations[l + 1];
     if (b.projection.size() > 0) {
@@ -39,7 +81,13 @@ void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>
     }
     z.colwise() += b.bias;
     stack_taps(b, ws.stacked_weights);
-    z.noalias() += ws.stacked_weights * stack;
+    if (avx2) {
+      if constexpr (std::is_same_v<S, float>)
+        float_gemm16_accumulate(ws.stacked_weights.data(), a.kernel * in, x.data(),
+                                lagged_offsets(a, l, ws.offsets).data(), in, t_out, z.data());
+    } else {
+      z.noalias() += ws.stacked_weights * stack;
+    }
     z = z.cwiseMax(S(0));
   }
   const auto& last = ws.activations[a.levels];
@@ -90,18 +138,34 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
     const int d = a.dilation(l);
     const Eigen::Index t_out = ws.upstream.cols();
     // ∂L/∂z = ∂L/∂y ⊙ [y > 0].
-    ws.upstream = (ws.activations[l + 1].array() > S(0)).select(ws.upstream, S(0));
+    mask_by_positive(ws.activations[l + 1], ws.upstream);
     const auto& dz = ws.upstream;
     gb.bias += dz.rowwise().sum();
     const Eigen::Index in = x.rows();
-    ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
+    const bool avx2 = use_float_gemm16<S>(a, l, t_out);
+    if (avx2) {
+      ws.stacked_gradient.resize(dz.rows(), a.kernel * in);
+      if constexpr (std::is_same_v<S, float>)
+        float_gemm16_times_transpose(dz.data(), x.data(), lagged_offsets(a, l, ws.offsets).data(),
+                                     in, a.kernel * in, t_out, ws.stacked_gradient.data());
+    } else {
+      ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
+    }
     for (int j = 0; j < a.kernel; ++j)
       gb.taps[j] += ws.stacked_gradient.middleCols(j * in, in);
     if (b.projection.size() > 0) gb.projection.noalias() += dz * x.rightCols(t_out).transpose();
     if (l == 0) break;
 
     stack_taps(b, ws.stacked_weights);
-    ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
+    if (avx2 && ws.stacked_weights.cols() % 8 == 0) {
+      ws.transposed_weights = ws.stacked_weights.transpose();
+      ws.stacked_gradient.resize(ws.stacked_weights.cols(), t_out);
+      if constexpr (std::is_same_v<S, float>)
+        float_gemm16_transpose_times(ws.transposed_weights.data(), ws.stacked_weights.cols(),
+                                     dz.data(), t_out, ws.stacked_gradient.data());
+    } else {
+      ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
+    }
     ws.downstream.setZero(x.rows(), x.cols());
     for (int j = 0; j < a.kernel; ++j) {
       ws.downstream.middleCols((a.kernel - 1 - j) * d, t_out) +=

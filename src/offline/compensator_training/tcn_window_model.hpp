@@ -15,9 +15,12 @@ struct BasicTcnWindowWorkspace {
   using Matrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
   std::vector<Matrix> activations;  ///< X_0 (normalised input) … X_L, channels × time
   /// Per block, the K lagged copies of its input stacked (K·C_in × T_out), so that one GEMM
-  /// [W_0 … W_{K−1}]·stack does all taps.
+  /// [W_0 … W_{K−1}]·stack does all taps (not filled where float_gemm16 reads them in place).
   std::vector<Matrix> stacked_inputs;
-  Matrix stacked_weights;   ///< [W_0 … W_{K−1}] of the current block, C_out × K·C_in
+  Matrix stacked_weights;     ///< [W_0 … W_{K−1}] of the current block, C_out × K·C_in
+  Matrix transposed_weights;  ///< its transpose, for the AVX2 float products (float_gemm16)
+  /// Where float_gemm16 reads a block's lagged inputs (no stacked copy; stacked_inputs unused).
+  std::vector<std::ptrdiff_t> offsets;
   Matrix stacked_gradient;  ///< ∂L/∂[W_0 … W_{K−1}] or ∂L/∂stack
   Matrix low;               ///< Out × M
   Matrix high;              ///< Out × M

@@ -86,11 +86,18 @@ TrainedNetwork train_network(const std::vector<EstimatorTrace>& traces,
   const bool sees_static_friction =
       std::find(options.masked_inputs.begin(), options.masked_inputs.end(), kStaticFrictionInput) ==
       options.masked_inputs.end();
+  TcnProgressCallback report;
+  if (progress)
+    report = [&progress, net](const TcnTrainProgress& p) {
+      TcnTrainProgress named = p;
+      named.network = net;
+      progress(named);
+    };
   out.result = options.start_from_baseline && sees_static_friction
                    ? trainer.train(baseline_start(o.architecture, o.seed, trainer.input_mean(),
                                                   trainer.input_std(), baseline),
-                                   progress)
-                   : trainer.train(progress);
+                                   report)
+                   : trainer.train(report);
   mask_tcn_inputs(out.result.best, masked);
   return out;
 }
