@@ -174,22 +174,29 @@ std::string measured_bound_verdict(const MeasuredBound& b, int joint) {
   return text;
 }
 
+std::vector<std::string> measured_bound_verdicts(const MeasuredBound& forward,
+                                                 const MeasuredBound& reverse) {
+  std::vector<std::string> verdicts;
+  for (const MeasuredBound* b : {&forward, &reverse})
+    for (std::size_t j = 0; j < b->maker.size(); ++j)
+      if (bound_missed(*b, j)) verdicts.push_back(measured_bound_verdict(*b, static_cast<int>(j)));
+  return verdicts;
+}
+
 void add_measured_bound_section(HtmlReport& page, const MeasuredBound& forward,
                                 const MeasuredBound& reverse) {
   page.heading("What bounds the held-out error", 3);
-  std::vector<std::string> verdicts;
   std::vector<int> missed;
   for (const MeasuredBound* b : {&forward, &reverse}) {
     if (b->maker.empty()) continue;
     page.table(measured_bound_table(*b));
     page.table(measured_bound_where_table(*b));
-    for (std::size_t j = 0; j < b->maker.size(); ++j) {
-      if (!bound_missed(*b, j)) continue;
-      verdicts.push_back(measured_bound_verdict(*b, static_cast<int>(j)));
-      if (std::find(missed.begin(), missed.end(), static_cast<int>(j)) == missed.end())
+    for (std::size_t j = 0; j < b->maker.size(); ++j)
+      if (bound_missed(*b, j) &&
+          std::find(missed.begin(), missed.end(), static_cast<int>(j)) == missed.end())
         missed.push_back(static_cast<int>(j));
-    }
   }
+  std::vector<std::string> verdicts = measured_bound_verdicts(forward, reverse);
   if (verdicts.empty()) verdicts.push_back("Every scored joint meets the target on every split.");
   page.list(verdicts);
   for (int j : missed)

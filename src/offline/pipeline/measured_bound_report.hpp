@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "offline/pipeline/measured_bound.hpp"
 #include "offline/report/html_report.hpp"
@@ -11,6 +12,11 @@ namespace tpf::offline {
 
 /// Per joint of `b` with a scored sensor: why the target is met or missed, from its numbers.
 std::string measured_bound_verdict(const MeasuredBound& b, int joint);
+
+/// The verdicts of every joint that misses the target, forward split first (a split without a
+/// maker RMSE has none).
+std::vector<std::string> measured_bound_verdicts(const MeasuredBound& forward,
+                                                 const MeasuredBound& reverse);
 
 /// The section: both splits' tables and verdicts, and a figure for each joint that misses the
 /// target on either split. `reverse` may be empty (no maker RMSE).

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <string>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "offline/pipeline/measured_bound_report.hpp"
 #include "offline/report/line_plot.hpp"
@@ -368,6 +368,8 @@ std::string measured_headline(const MeasuredResult& r, double target) {
     text += measured_split_text(r.reverse, target);
   }
   text += measured_target_sentence(r.forward, target) + "\n";
+  for (const std::string& verdict : measured_bound_verdicts(r.bound, r.reverse_bound))
+    text += "  " + verdict + "\n";
   text += low_pass_sentence(r) + "\n";
   if (!r.floor.best_rmse.empty()) text += compensator_floor_sentence(r.floor) + "\n";
   if (!r.diagnosis_heldout.empty()) text += diagnosis_transfer_sentence(r) + "\n";
