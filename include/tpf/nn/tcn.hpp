@@ -9,6 +9,7 @@
 
 #include "tpf/nn/tcn_architecture.hpp"
 #include "tpf/nn/tcn_weights.hpp"
+#include "tpf/nn/tcn_x86_kernels.hpp"
 
 namespace tpf {
 
@@ -31,6 +32,12 @@ namespace tpf {
 /// Streaming: block l keeps a ring buffer of its last (K − 1)·d_l + 1 inputs, so `step` costs
 /// Levels·K matrix–vector products (O(Levels·Hidden²·K)) whatever the dilation; it allocates
 /// nothing, throws nothing and never branches on data size.
+///
+/// Kernel: on x86-64 (GCC, clang) a translation unit not compiled for AVX-512 steps a float or
+/// double network whose hidden vector fills whole 32-byte registers (16 floats, 32 doubles, …)
+/// in AVX-512 or AVX2 + FMA registers where the CPU has them (tcn_x86_kernels.hpp; chosen when
+/// the Tcn is constructed, kernel()), equal to the portable path to rounding. Elsewhere, and
+/// in an AVX-512 build (TPF_NATIVE=ON), the compile-time path below (Eigen, add_taps).
 template <typename S, int In, int Hidden, int Levels, int Kernel = 4, int Out = 1>
 class Tcn {
  public:
@@ -52,6 +59,17 @@ class Tcn {
   /// All-zero weights and history (output 0) until weights are loaded, see load_tcn_weights.
   Tcn() { clear_history(); }
   explicit Tcn(const Weights& weights) : weights_(weights) { clear_history(); }
+
+  /// How step() computes: preferred_tcn_kernel<S, Hidden>() unless use_kernel changed it.
+  TcnKernel kernel() const noexcept { return kernel_; }
+  /// Makes step() compute with `kernel` if this CPU runs it and it fits this shape (returns
+  /// true), else changes nothing (false). For tests and benchmarks: each kernel's result equals
+  /// the others' to rounding only.
+  bool use_kernel(TcnKernel kernel) noexcept {
+    if (!tcn_kernel_fits<S, Hidden>(kernel) || !tcn_kernel_supported(kernel)) return false;
+    kernel_ = kernel;
+    return true;
+  }
 
   const Weights& weights() const noexcept { return weights_; }
   /// Mutable weights, for loaders; call reset() after changing them.
@@ -89,6 +107,12 @@ class Tcn {
     const Input& input = last_input_;
     int head = heads_[0];
     input_history_.col(head) = input;
+#ifdef TPF_TCN_DISPATCH
+    if (kernel_ != TcnKernel::Portable) {
+      step_in_registers();
+      return output_;
+    }
+#endif
     {
       std::array<const S*, Kernel> columns;
       for (int j = 0; j < Kernel; ++j)
@@ -118,7 +142,8 @@ class Tcn {
 
   /// Steps M networks of this shape together, network n on inputs[n]; then nets[n].output() is
   /// what nets[n].step(inputs[n]) would return, bit for bit: each network performs the same
-  /// operations in the same order, interleaved with the others column by column. One network's
+  /// operations in the same order, interleaved with the others column by column (networks
+  /// whose kernel() is not Portable step in turn, each with its kernel). One network's
   /// step is a chain of dependent multiply-adds that leaves the vector units waiting on their
   /// latency; the networks' chains are independent, so interleaved they overlap
   /// (docs/performance.md). Groups of kInterleave networks at a time, as many as keep their
@@ -127,6 +152,14 @@ class Tcn {
   /// measured as fast. Allocation-free.
   template <std::size_t M>
   static void step_together(std::array<Tcn, M>& nets, const std::array<Input, M>& inputs) noexcept {
+#ifdef TPF_TCN_DISPATCH
+    if (std::any_of(nets.begin(), nets.end(),
+                    [](const Tcn& t) { return t.kernel_ != TcnKernel::Portable; })) {
+      for (std::size_t n = 0; n < M; ++n)
+        nets[n].step(inputs[n]);
+      return;
+    }
+#endif
     if constexpr (kColumnAccumulators > 1) {
       // Each step already keeps several independent chains busy (add_taps): in turn is as fast.
       for (std::size_t n = 0; n < M; ++n)
@@ -146,21 +179,67 @@ class Tcn {
   }
 
   /// Low-frequency part of the last output [N·m].
-  const Output& low() const noexcept { return low_; }
+  const Output& low() const noexcept {
+    return low_;
+  }
   /// High-frequency part of the last output [N·m].
-  const Output& high() const noexcept { return high_; }
+  const Output& high() const noexcept {
+    return high_;
+  }
   /// low() + high() [N·m].
-  const Output& output() const noexcept { return output_; }
+  const Output& output() const noexcept {
+    return output_;
+  }
   /// Number of non-finite samples replaced since construction.
-  long skipped_inputs() const noexcept { return skipped_inputs_; }
+  long skipped_inputs() const noexcept {
+    return skipped_inputs_;
+  }
 
  private:
   using HiddenColumn = Eigen::Map<HiddenVector, Eigen::Unaligned>;
 
+#ifdef TPF_TCN_DISPATCH
+  /// step() after x(t) is in the input ring, in kernel_'s registers (tcn_x86_kernels.hpp).
+  void step_in_registers() noexcept {
+    if constexpr (tcn_kernel_fits<S, Hidden>(TcnKernel::Avx2)) {
+      S low = 0, high = 0;
+      const TcnStepBuffers<S> buffers{input_history_.data(),
+                                      heads_[0],
+                                      hidden_history_.data(),
+                                      heads_.data(),
+                                      hidden_.data(),
+                                      &low,
+                                      &high};
+      bool done = false;
+      if constexpr (tcn_kernel_fits<S, Hidden>(TcnKernel::Avx512)) {
+        if (kernel_ == TcnKernel::Avx512) {
+          tcn_x86::step_avx512(weights_, buffers);
+          done = true;
+        }
+      }
+      if (!done) tcn_x86::step_avx2(weights_, buffers);
+      heads_[0] = next(heads_[0], Kernel);
+      for (int l = 1; l < Levels; ++l)
+        heads_[l] = next(heads_[l], Shape::history_length(l));
+      if constexpr (Out == 1) {
+        low_[0] = low;
+        high_[0] = high;
+        output_ = low_ + high_;
+      } else {
+        apply_heads();
+      }
+    }
+  }
+#endif
+
   /// i in [−n, n) ↦ i mod n.
-  static int wrap(int i, int n) noexcept { return i < 0 ? i + n : i; }
+  static int wrap(int i, int n) noexcept {
+    return i < 0 ? i + n : i;
+  }
   /// (i + 1) mod n for i in [0, n).
-  static int next(int i, int n) noexcept { return i + 1 == n ? 0 : i + 1; }
+  static int next(int i, int n) noexcept {
+    return i + 1 == n ? 0 : i + 1;
+  }
 
   HiddenColumn history_column(int level, int column) noexcept {
     return HiddenColumn(hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column));
@@ -364,6 +443,7 @@ class Tcn {
   Output low_;
   Output high_;
   Output output_;
+  TcnKernel kernel_ = preferred_tcn_kernel<S, Hidden>();
 };
 
 }  // namespace tpf

@@ -1,0 +1,401 @@
+// The TCN step in AVX2 + FMA or AVX-512 registers, chosen at run time on x86-64 (GCC, clang).
+#pragma once
+
+#include <array>
+#include <type_traits>
+
+#include "tpf/nn/tcn_architecture.hpp"
+#include "tpf/nn/tcn_weights.hpp"
+
+// A translation unit compiled for AVX-512 (TPF_NATIVE=ON) keeps Tcn's compile-time code path;
+// elsewhere on x86-64 the step runs in the widest registers the CPU has.
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__AVX512F__)
+#define TPF_TCN_DISPATCH 1
+#include <immintrin.h>
+#endif
+
+namespace tpf {
+
+/// How Tcn::step computes: the compile-time path (Eigen at the translation unit's flags), or one
+/// of the kernels below in wider registers than the build's.
+enum class TcnKernel { Portable, Avx2, Avx512 };
+
+/// Whether this build has the x86 kernels and this CPU (and its OS) runs `kernel`.
+inline bool tcn_kernel_supported(TcnKernel kernel) noexcept {
+#ifdef TPF_TCN_DISPATCH
+  __builtin_cpu_init();  // also valid before main (a Tcn in a static object)
+  switch (kernel) {
+    case TcnKernel::Portable:
+      return true;
+    case TcnKernel::Avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    case TcnKernel::Avx512:
+      return __builtin_cpu_supports("avx512f");
+  }
+  return false;
+#else
+  return kernel == TcnKernel::Portable;
+#endif
+}
+
+/// Whether `kernel` computes Tcn<S, ·, Hidden, …>: a float or double hidden vector that fills
+/// whole registers (32 bytes AVX2, 64 bytes AVX-512; e.g. 16 floats, 32 doubles).
+template <typename S, int Hidden>
+constexpr bool tcn_kernel_fits(TcnKernel kernel) noexcept {
+  if (!std::is_same_v<S, float> && !std::is_same_v<S, double>) return false;
+  const int bytes = Hidden * int(sizeof(S));
+  switch (kernel) {
+    case TcnKernel::Portable:
+      return true;
+    case TcnKernel::Avx2:
+      return bytes % 32 == 0;
+    case TcnKernel::Avx512:
+      return bytes % 64 == 0;
+  }
+  return false;
+}
+
+/// The kernel a new Tcn<S, ·, Hidden, …> uses: the widest that fits and this CPU runs, found
+/// once (the first call; a Tcn's constructor makes it, before any real-time loop) and cached.
+template <typename S, int Hidden>
+TcnKernel preferred_tcn_kernel() noexcept {
+  static const TcnKernel chosen = [] {
+    for (TcnKernel k : {TcnKernel::Avx512, TcnKernel::Avx2})
+      if (tcn_kernel_fits<S, Hidden>(k) && tcn_kernel_supported(k)) return k;
+    return TcnKernel::Portable;
+  }();
+  return chosen;
+}
+
+/// What a kernel reads and writes of a Tcn's state for one step. The ring heads are those before
+/// the step: x(t) is already in column input_head of the input ring; block l ≥ 1 writes its input
+/// to column heads[l] of its ring. Nothing needs any alignment.
+template <typename S>
+struct TcnStepBuffers {
+  const S* input_history;  ///< In × Kernel, column-major
+  int input_head;
+  S* hidden_history;  ///< rings of blocks 1 … Levels−1, back to back (Tcn::hidden_history_)
+  const int* heads;   ///< Levels entries
+  S* hidden;          ///< out: h_{L−1}(t), Hidden
+  S* low;             ///< out (Out == 1): low(t) = c_low + A_low·h_{L−1}(t)
+  S* high;            ///< out (Out == 1): high(t)
+};
+
+#ifdef TPF_TCN_DISPATCH
+
+namespace tcn_x86 {
+
+#define TPF_TCN_AVX2 __attribute__((target("avx2,fma"), always_inline)) inline
+#define TPF_TCN_AVX512 __attribute__((target("avx512f"), always_inline)) inline
+
+// The same few operations on each register type, overloaded by scalar (load, broadcast) or
+// register type: unaligned load and store, broadcast, fused multiply-add, add, max with 0 and
+// the sum of the lanes.
+TPF_TCN_AVX2 __m256 load256(const float* p) {
+  return _mm256_loadu_ps(p);
+}
+TPF_TCN_AVX2 __m256d load256(const double* p) {
+  return _mm256_loadu_pd(p);
+}
+TPF_TCN_AVX2 __m256 splat256(const float* p) {
+  return _mm256_broadcast_ss(p);
+}
+TPF_TCN_AVX2 __m256d splat256(const double* p) {
+  return _mm256_broadcast_sd(p);
+}
+TPF_TCN_AVX2 void store(float* p, __m256 v) {
+  _mm256_storeu_ps(p, v);
+}
+TPF_TCN_AVX2 void store(double* p, __m256d v) {
+  _mm256_storeu_pd(p, v);
+}
+TPF_TCN_AVX2 __m256 fmadd(__m256 a, __m256 b, __m256 c) {
+  return _mm256_fmadd_ps(a, b, c);
+}
+TPF_TCN_AVX2 __m256d fmadd(__m256d a, __m256d b, __m256d c) {
+  return _mm256_fmadd_pd(a, b, c);
+}
+TPF_TCN_AVX2 __m256 add(__m256 a, __m256 b) {
+  return _mm256_add_ps(a, b);
+}
+TPF_TCN_AVX2 __m256d add(__m256d a, __m256d b) {
+  return _mm256_add_pd(a, b);
+}
+TPF_TCN_AVX2 __m256 relu(__m256 a) {
+  return _mm256_max_ps(a, _mm256_setzero_ps());
+}
+TPF_TCN_AVX2 __m256d relu(__m256d a) {
+  return _mm256_max_pd(a, _mm256_setzero_pd());
+}
+TPF_TCN_AVX2 float lane_sum(__m256 a) {
+  __m128 s = _mm_add_ps(_mm256_castps256_ps128(a), _mm256_extractf128_ps(a, 1));
+  s = _mm_add_ps(s, _mm_movehl_ps(s, s));
+  return _mm_cvtss_f32(_mm_add_ss(s, _mm_movehdup_ps(s)));
+}
+TPF_TCN_AVX2 double lane_sum(__m256d a) {
+  __m128d s = _mm_add_pd(_mm256_castpd256_pd128(a), _mm256_extractf128_pd(a, 1));
+  return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
+}
+
+TPF_TCN_AVX512 __m512 load512(const float* p) {
+  return _mm512_loadu_ps(p);
+}
+TPF_TCN_AVX512 __m512d load512(const double* p) {
+  return _mm512_loadu_pd(p);
+}
+TPF_TCN_AVX512 __m512 splat512(const float* p) {
+  return _mm512_set1_ps(*p);
+}
+TPF_TCN_AVX512 __m512d splat512(const double* p) {
+  return _mm512_set1_pd(*p);
+}
+TPF_TCN_AVX512 void store(float* p, __m512 v) {
+  _mm512_storeu_ps(p, v);
+}
+TPF_TCN_AVX512 void store(double* p, __m512d v) {
+  _mm512_storeu_pd(p, v);
+}
+TPF_TCN_AVX512 __m512 fmadd(__m512 a, __m512 b, __m512 c) {
+  return _mm512_fmadd_ps(a, b, c);
+}
+TPF_TCN_AVX512 __m512d fmadd(__m512d a, __m512d b, __m512d c) {
+  return _mm512_fmadd_pd(a, b, c);
+}
+TPF_TCN_AVX512 __m512 add(__m512 a, __m512 b) {
+  return _mm512_add_ps(a, b);
+}
+TPF_TCN_AVX512 __m512d add(__m512d a, __m512d b) {
+  return _mm512_add_pd(a, b);
+}
+// (The zero-masking forms: GCC 12 warns of the unmasked form's undefined pass-through operand.)
+TPF_TCN_AVX512 __m512 relu(__m512 a) {
+  return _mm512_maskz_max_ps(__mmask16(0xFFFF), a, _mm512_setzero_ps());
+}
+TPF_TCN_AVX512 __m512d relu(__m512d a) {
+  return _mm512_maskz_max_pd(__mmask8(0xFF), a, _mm512_setzero_pd());
+}
+// (GCC 12's unmasked extracts and 512 → 256 casts leave a lane undefined and warn.)
+template <int Half>
+TPF_TCN_AVX512 __m256d half(__m512d a) {
+  return _mm512_maskz_extractf64x4_pd(__mmask8(0xF), a, Half);
+}
+TPF_TCN_AVX512 float lane_sum(__m512 a) {
+  const __m512d d = _mm512_castps_pd(a);
+  const __m256 s8 = _mm256_add_ps(_mm256_castpd_ps(half<0>(d)), _mm256_castpd_ps(half<1>(d)));
+  __m128 s = _mm_add_ps(_mm256_castps256_ps128(s8), _mm256_extractf128_ps(s8, 1));
+  s = _mm_add_ps(s, _mm_movehl_ps(s, s));
+  return _mm_cvtss_f32(_mm_add_ss(s, _mm_movehdup_ps(s)));
+}
+TPF_TCN_AVX512 double lane_sum(__m512d a) {
+  const __m256d s4 = _mm256_add_pd(half<0>(a), half<1>(a));
+  const __m128d s = _mm_add_pd(_mm256_castpd256_pd128(s4), _mm256_extractf128_pd(s4, 1));
+  return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
+}
+
+// The step, once per register width (a target attribute cannot depend on a template argument;
+// the two copies differ only in the register width). A hidden vector is V registers. Each
+// block's axpys z += W_j[:, c]·x_j[c] are dealt by column c to A partial sums (A·V ≥ 4
+// independent chains), the lagged taps (read from the rings) first and the current tap (the
+// input just computed) last; then z = (bias + skip) + the partial sums, ReLU. Block 0's skip is
+// its projection, one more matrix on the current input. This sums in another order than the
+// portable path and rounds each multiply-add once (FMA): equal to rounding
+// (tests/nn/tcn_kernel_test.cpp). Weights, rings and outputs are read and written unaligned.
+
+/// (acc_0 + acc_1) + (acc_2 + acc_3) of register v (A = 4), acc_0 + acc_1 (A = 2), acc_0.
+template <int A, int V, typename Register>
+TPF_TCN_AVX2 Register sum256(Register (&acc)[A][V], int v) noexcept {
+  if constexpr (A == 1)
+    return acc[0][v];
+  else if constexpr (A == 2)
+    return add(acc[0][v], acc[1][v]);
+  else
+    return add(add(acc[0][v], acc[1][v]), add(acc[2][v], acc[3][v]));
+}
+
+/// acc[c mod A] += W[:, c]·x[c] for c < Columns (W: V registers × Columns, column-major).
+template <int A, int V, int Columns, typename S, typename Register>
+TPF_TCN_AVX2 void axpys256(Register (&acc)[A][V], const S* W, const S* x) noexcept {
+  constexpr int lanes = 32 / int(sizeof(S));
+  for (int first = 0; first < Columns; first += A) {
+#pragma GCC unroll 4
+    for (int a = 0; a < A; ++a) {
+      if (first + a >= Columns) break;
+      const S* column = W + (first + a) * V * lanes;
+      const Register s = splat256(x + first + a);
+#pragma GCC unroll 8
+      for (int v = 0; v < V; ++v)
+        acc[a][v] = fmadd(load256(column + v * lanes), s, acc[a][v]);
+    }
+  }
+}
+
+/// Tcn::step in 256-bit registers (see the comment above).
+template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
+__attribute__((target("avx2,fma"))) void step_avx2(
+    const TcnWeights<S, In, Hidden, Levels, Kernel, Out>& w, const TcnStepBuffers<S>& b) noexcept {
+  using Shape = TcnShape<Levels, Kernel>;
+  using Register = decltype(load256(static_cast<const S*>(nullptr)));
+  constexpr int lanes = 32 / int(sizeof(S)), V = Hidden / lanes, A = V == 1 ? 4 : V == 2 ? 2 : 1;
+  static_assert(Hidden % lanes == 0, "a hidden vector fills whole registers");
+  constexpr std::array<int, Levels + 1> offsets = Shape::hidden_history_offsets();
+  Register acc[A][V], h[V];
+
+  // Block 0: z = b + P·x(t) + Σ_j W_j·x(t − j).
+#pragma GCC unroll 8
+  for (int v = 0; v < V; ++v) {
+    acc[0][v] = load256(w.input_bias.data() + v * lanes);
+#pragma GCC unroll 4
+    for (int a = 1; a < A; ++a)
+      acc[a][v] = Register{};
+  }
+  for (int j = Kernel - 1; j >= 0; --j) {
+    const int column = b.input_head - j < 0 ? b.input_head - j + Kernel : b.input_head - j;
+    axpys256<A, V, In>(acc, w.input_taps[j].data(), b.input_history + In * column);
+  }
+  axpys256<A, V, In>(acc, w.input_projection.data(), b.input_history + In * b.input_head);
+#pragma GCC unroll 8
+  for (int v = 0; v < V; ++v)
+    h[v] = relu(sum256(acc, v));
+
+  // Blocks 1 … L−1: z = b_l + h + Σ_j W_{l,j}·h(t − j·d_l), the ring holding h's past.
+  for (int l = 1; l < Levels; ++l) {
+    const int length = Shape::history_length(l), dilation = Shape::dilation(l);
+    S* const ring = b.hidden_history + Hidden * offsets[l];
+    S* const current = ring + Hidden * b.heads[l];
+#pragma GCC unroll 8
+    for (int v = 0; v < V; ++v) {
+      store(current + v * lanes, h[v]);
+      acc[0][v] = add(load256(w.bias[l - 1].data() + v * lanes), h[v]);
+#pragma GCC unroll 4
+      for (int a = 1; a < A; ++a)
+        acc[a][v] = Register{};
+    }
+    for (int j = Kernel - 1; j > 0; --j) {
+      const int lagged = b.heads[l] - j * dilation;
+      const S* x = ring + Hidden * (lagged < 0 ? lagged + length : lagged);
+      axpys256<A, V, Hidden>(acc, w.taps[l - 1][j].data(), x);
+    }
+    axpys256<A, V, Hidden>(acc, w.taps[l - 1][0].data(), current);
+#pragma GCC unroll 8
+    for (int v = 0; v < V; ++v)
+      h[v] = relu(sum256(acc, v));
+  }
+
+#pragma GCC unroll 8
+  for (int v = 0; v < V; ++v)
+    store(b.hidden + v * lanes, h[v]);
+  if constexpr (Out == 1) {
+    Register low = Register{}, high = Register{};
+#pragma GCC unroll 8
+    for (int v = 0; v < V; ++v) {
+      low = fmadd(load256(w.low_weight.data() + v * lanes), h[v], low);
+      high = fmadd(load256(w.high_weight.data() + v * lanes), h[v], high);
+    }
+    *b.low = w.low_bias[0] + lane_sum(low);
+    *b.high = w.high_bias[0] + lane_sum(high);
+  }
+}
+
+/// (acc_0 + acc_1) + (acc_2 + acc_3) of register v (A = 4), acc_0 + acc_1 (A = 2), acc_0.
+template <int A, int V, typename Register>
+TPF_TCN_AVX512 Register sum512(Register (&acc)[A][V], int v) noexcept {
+  if constexpr (A == 1)
+    return acc[0][v];
+  else if constexpr (A == 2)
+    return add(acc[0][v], acc[1][v]);
+  else
+    return add(add(acc[0][v], acc[1][v]), add(acc[2][v], acc[3][v]));
+}
+
+/// acc[c mod A] += W[:, c]·x[c] for c < Columns (W: V registers × Columns, column-major).
+template <int A, int V, int Columns, typename S, typename Register>
+TPF_TCN_AVX512 void axpys512(Register (&acc)[A][V], const S* W, const S* x) noexcept {
+  constexpr int lanes = 64 / int(sizeof(S));
+  for (int first = 0; first < Columns; first += A) {
+#pragma GCC unroll 4
+    for (int a = 0; a < A; ++a) {
+      if (first + a >= Columns) break;
+      const S* column = W + (first + a) * V * lanes;
+      const Register s = splat512(x + first + a);
+#pragma GCC unroll 8
+      for (int v = 0; v < V; ++v)
+        acc[a][v] = fmadd(load512(column + v * lanes), s, acc[a][v]);
+    }
+  }
+}
+
+/// Tcn::step in 512-bit registers (see the comment above).
+template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
+__attribute__((target("avx512f"))) void step_avx512(
+    const TcnWeights<S, In, Hidden, Levels, Kernel, Out>& w, const TcnStepBuffers<S>& b) noexcept {
+  using Shape = TcnShape<Levels, Kernel>;
+  using Register = decltype(load512(static_cast<const S*>(nullptr)));
+  constexpr int lanes = 64 / int(sizeof(S)), V = Hidden / lanes, A = V == 1 ? 4 : V == 2 ? 2 : 1;
+  static_assert(Hidden % lanes == 0, "a hidden vector fills whole registers");
+  constexpr std::array<int, Levels + 1> offsets = Shape::hidden_history_offsets();
+  Register acc[A][V], h[V];
+
+  // Block 0: z = b + P·x(t) + Σ_j W_j·x(t − j).
+#pragma GCC unroll 8
+  for (int v = 0; v < V; ++v) {
+    acc[0][v] = load512(w.input_bias.data() + v * lanes);
+#pragma GCC unroll 4
+    for (int a = 1; a < A; ++a)
+      acc[a][v] = Register{};
+  }
+  for (int j = Kernel - 1; j >= 0; --j) {
+    const int column = b.input_head - j < 0 ? b.input_head - j + Kernel : b.input_head - j;
+    axpys512<A, V, In>(acc, w.input_taps[j].data(), b.input_history + In * column);
+  }
+  axpys512<A, V, In>(acc, w.input_projection.data(), b.input_history + In * b.input_head);
+#pragma GCC unroll 8
+  for (int v = 0; v < V; ++v)
+    h[v] = relu(sum512(acc, v));
+
+  // Blocks 1 … L−1: z = b_l + h + Σ_j W_{l,j}·h(t − j·d_l), the ring holding h's past.
+  for (int l = 1; l < Levels; ++l) {
+    const int length = Shape::history_length(l), dilation = Shape::dilation(l);
+    S* const ring = b.hidden_history + Hidden * offsets[l];
+    S* const current = ring + Hidden * b.heads[l];
+#pragma GCC unroll 8
+    for (int v = 0; v < V; ++v) {
+      store(current + v * lanes, h[v]);
+      acc[0][v] = add(load512(w.bias[l - 1].data() + v * lanes), h[v]);
+#pragma GCC unroll 4
+      for (int a = 1; a < A; ++a)
+        acc[a][v] = Register{};
+    }
+    for (int j = Kernel - 1; j > 0; --j) {
+      const int lagged = b.heads[l] - j * dilation;
+      const S* x = ring + Hidden * (lagged < 0 ? lagged + length : lagged);
+      axpys512<A, V, Hidden>(acc, w.taps[l - 1][j].data(), x);
+    }
+    axpys512<A, V, Hidden>(acc, w.taps[l - 1][0].data(), current);
+#pragma GCC unroll 8
+    for (int v = 0; v < V; ++v)
+      h[v] = relu(sum512(acc, v));
+  }
+
+#pragma GCC unroll 8
+  for (int v = 0; v < V; ++v)
+    store(b.hidden + v * lanes, h[v]);
+  if constexpr (Out == 1) {
+    Register low = Register{}, high = Register{};
+#pragma GCC unroll 8
+    for (int v = 0; v < V; ++v) {
+      low = fmadd(load512(w.low_weight.data() + v * lanes), h[v], low);
+      high = fmadd(load512(w.high_weight.data() + v * lanes), h[v], high);
+    }
+    *b.low = w.low_bias[0] + lane_sum(low);
+    *b.high = w.high_bias[0] + lane_sum(high);
+  }
+}
+
+#undef TPF_TCN_AVX2
+#undef TPF_TCN_AVX512
+
+}  // namespace tcn_x86
+
+#endif  // TPF_TCN_DISPATCH
+
+}  // namespace tpf
