@@ -158,16 +158,26 @@ void BM_EstimatorStep(benchmark::State& state) {
 }
 BENCHMARK(BM_EstimatorStep)->Iterations(400000)->Unit(benchmark::kNanosecond);
 
-/// The shipped compensator (float networks), and the same networks in double.
-template <typename NetScalar>
+/// The shipped compensator (float networks), and the same networks in double; each network
+/// steps with the kernel a new Tcn takes (tcn_x86_kernels.hpp), or with `kernel`.
+template <typename NetScalar, int kernel = -1>
 void BM_EstimatorStepShippedCompensator(benchmark::State& state) {
   auto est = make_shipped_estimator<NetScalar>();
+  for (int j = 0; j < N; ++j)
+    if (kernel >= 0 && !est->compensator().network(j).use_kernel(tpf::TcnKernel(kernel))) {
+      state.SkipWithError("kernel not supported here");
+      return;
+    }
   time_steps(state, *est);
 }
 BENCHMARK(BM_EstimatorStepShippedCompensator<float>)
     ->Iterations(400000)
     ->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_EstimatorStepShippedCompensator<double>)
+    ->Iterations(400000)
+    ->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_EstimatorStepShippedCompensator<float, int(tpf::TcnKernel::Portable)>)
+    ->Name("BM_EstimatorStepShippedCompensator<float>/portable")
     ->Iterations(400000)
     ->Unit(benchmark::kNanosecond);
 

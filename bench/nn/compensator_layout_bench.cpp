@@ -43,11 +43,17 @@ void AllJoints(benchmark::State& state) {
   run<S>(state, *c);
 }
 
-template <typename S, int Hidden>
+/// One network per joint, each stepping with the kernel a new Tcn takes, or with `kernel`.
+template <typename S, int Hidden, int kernel = -1>
 void PerJoint(benchmark::State& state) {
   auto c = std::make_unique<tpf::PerJointTcnCompensator<S, kJoints, Hidden, 4>>();
-  for (int j = 0; j < kJoints; ++j)
+  for (int j = 0; j < kJoints; ++j) {
     tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j).weights());
+    if (kernel >= 0 && !c->network(j).use_kernel(tpf::TcnKernel(kernel))) {
+      state.SkipWithError("kernel not supported here");
+      return;
+    }
+  }
   run<S>(state, *c);
 }
 
@@ -73,6 +79,8 @@ void PerJointOneAfterAnother(benchmark::State& state) {
 BENCHMARK(AllJoints<float>)->Name("Compensator/all_joints_32ch/float");
 BENCHMARK(AllJoints<double>)->Name("Compensator/all_joints_32ch/double");
 BENCHMARK(PerJoint<float, 16>)->Name("Compensator/per_joint_16ch/float");
+BENCHMARK(PerJoint<float, 16, int(tpf::TcnKernel::Portable)>)
+    ->Name("Compensator/per_joint_16ch/float/portable");
 BENCHMARK(PerJoint<double, 16>)->Name("Compensator/per_joint_16ch/double");
 BENCHMARK(PerJoint<float, 32>)->Name("Compensator/per_joint_32ch/float");
 BENCHMARK(PerJoint<double, 32>)->Name("Compensator/per_joint_32ch/double");

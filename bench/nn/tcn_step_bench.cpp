@@ -9,10 +9,15 @@
 
 namespace {
 
-template <typename S, int In, int Hidden, int Out, int Levels = 4>
+/// One network stepped with the kernel a new Tcn takes (tcn_x86_kernels.hpp), or with `kernel`.
+template <typename S, int In, int Hidden, int Out, int Levels = 4, int kernel = -1>
 void BM_TcnStep(benchmark::State& state) {
   using Engine = tpf::Tcn<S, In, Hidden, Levels, 4, Out>;
   auto tcn = std::make_unique<Engine>();
+  if (kernel >= 0 && !tcn->use_kernel(tpf::TcnKernel(kernel))) {
+    state.SkipWithError("kernel not supported here");
+    return;
+  }
   tpf::offline::TcnParameters p =
       tpf::offline::init_tcn_parameters({In, Hidden, Levels, 4, Out}, 1);
   for (auto& b : p.blocks)
@@ -30,8 +35,20 @@ void BM_TcnStep(benchmark::State& state) {
   state.counters["receptive_field"] = Engine::kReceptiveField;
 }
 
+constexpr int kPortable = int(tpf::TcnKernel::Portable), kAvx2 = int(tpf::TcnKernel::Avx2),
+              kAvx512 = int(tpf::TcnKernel::Avx512);
+
 // Default shape: kernel 4, 4 levels, R = 46 samples (115 ms at 400 Hz).
 BENCHMARK(BM_TcnStep<float, 4, 16, 1>)->Name("TcnStep/per_joint/float/16ch");
+// The same with each step kernel forced: the portable path (Eigen at the build's flags), AVX2,
+// AVX-512.
+BENCHMARK(BM_TcnStep<float, 4, 16, 1, 4, kPortable>)->Name("TcnStep/per_joint/float/16ch/portable");
+BENCHMARK(BM_TcnStep<float, 4, 16, 1, 4, kAvx2>)->Name("TcnStep/per_joint/float/16ch/avx2");
+BENCHMARK(BM_TcnStep<float, 4, 16, 1, 4, kAvx512>)->Name("TcnStep/per_joint/float/16ch/avx512");
+BENCHMARK(BM_TcnStep<double, 4, 32, 1, 4, kPortable>)
+    ->Name("TcnStep/per_joint/double/32ch/portable");
+BENCHMARK(BM_TcnStep<double, 4, 32, 1, 4, kAvx2>)->Name("TcnStep/per_joint/double/32ch/avx2");
+BENCHMARK(BM_TcnStep<double, 4, 32, 1, 4, kAvx512>)->Name("TcnStep/per_joint/double/32ch/avx512");
 BENCHMARK(BM_TcnStep<float, 4, 32, 1>)->Name("TcnStep/per_joint/float/32ch");
 BENCHMARK(BM_TcnStep<float, 4, 64, 1>)->Name("TcnStep/per_joint/float/64ch");
 BENCHMARK(BM_TcnStep<double, 4, 16, 1>)->Name("TcnStep/per_joint/double/16ch");
