@@ -81,7 +81,7 @@ void expect_kernels_match(double relative) {
   for (TcnKernel kernel : kWide) {
     const bool fits = tcn_kernel_fits<S, Hidden>(kernel);
     if (!fits || !tcn_kernel_supported(kernel)) {
-      EXPECT_FALSE(Tcn<S, In, Hidden, Levels, 4, Out>().use_kernel(kernel));
+      EXPECT_FALSE((Tcn<S, In, Hidden, Levels, 4, Out>().use_kernel(kernel)));
       continue;
     }
     ++ran;
