@@ -20,7 +20,7 @@ namespace tpf {
 /// ≤ 9 ε·λ_max), ≤ 3e-13 relative on λ_min ≥ 4e-4·λ_max, the contact force's rank threshold
 /// (tests/estimation/symmetric_eigenvalues3_test.cpp).
 /// Entries up to ≈ 1e150 (a squared difference must not overflow); a non-finite entry gives
-/// non-finite eigenvalues. Allocation-free; ≈ 30 % cheaper than Eigen's solver for eigenvalues
+/// non-finite eigenvalues. Allocation-free; ≈ 25 % cheaper than Eigen's solver for eigenvalues
 /// only (docs/performance.md).
 template <typename S>
 Vector3<S> symmetric_eigenvalues3(const Matrix3<S>& a) noexcept {
