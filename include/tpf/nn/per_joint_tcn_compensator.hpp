@@ -27,9 +27,9 @@ class PerJointTcnCompensator {
   static constexpr int kReceptiveField = Network::kReceptiveField;
 
   /// τ_TCN,j = network_j(x_j) for every joint.
-  /// The networks step together (Tcn::step_together: interleaved where one network's step is a
-  /// single chain of multiply-adds, in turn where it already has several): the same result as
-  /// stepping each in turn, bit for bit.
+  /// The networks step together (Tcn::step_together: in turn with the run-time kernel or where
+  /// one step already has several chains of multiply-adds, interleaved where it is a single
+  /// chain): the same result as stepping each in turn, bit for bit.
   const Output& step(const Input& x) noexcept {
     std::array<typename Network::Input, N> inputs;
     for (int j = 0; j < N; ++j)
