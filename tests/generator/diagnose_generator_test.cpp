@@ -165,6 +165,24 @@ TEST(Generator, CleanLogClaimsNothing) {
   }
 }
 
+TEST(Generator, ALogShorterThanTheFirstHeldOutBlockSaysSoInsteadOfNoGain) {
+  // One file of 10 s: the interleaved split holds out nothing (the first held-out block starts at
+  // 15 s). Nothing is claimed, and the finding says that nothing is held out, not that no
+  // candidate lowers the held-out residual.
+  PlanarArmPlant plant;
+  plant.seed = 11;
+  plant.duration_s = 10.0;
+  plant.offset = {0.0, 0.3};
+  const auto d = run(plant, "10 s, nothing held out");
+  EXPECT_TRUE(d.claims.empty()) << describe(d);
+  bool said = false;
+  for (const auto& f : d.findings) {
+    said = said || f.find("nothing is held out") != std::string::npos;
+    EXPECT_EQ(f.find("none lowers the held-out residual"), std::string::npos) << f;
+  }
+  EXPECT_TRUE(said);
+}
+
 TEST(Generator, OffsetUnderAShortRangeIsNeverARipple) {
   PlanarArmPlant plant;
   plant.seed = 21;
