@@ -91,8 +91,7 @@ Eigen::Vector2d PlanarArm::inverse_dynamics(const Eigen::Vector2d& q, const Eige
                                             const Eigen::Vector2d& ddq) const {
   const Forearm f = forearm(*this);
   const double c = std::cos(q[1] + f.psi), s = std::sin(q[1] + f.psi);
-  const double m11 =
-      I1 + m1 * c1 * c1 + f.inertia + f.mass * L1 * L1 + 2 * L1 * f.h * c + armature;
+  const double m11 = I1 + m1 * c1 * c1 + f.inertia + f.mass * L1 * L1 + 2 * L1 * f.h * c + armature;
   const double m12 = f.inertia + L1 * f.h * c;
   const double m22 = f.inertia + armature;
   const double h = L1 * f.h * s;
@@ -141,8 +140,8 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
       dq[k][j] = path[j].d1(progress) * speed;
       ddq[j] = path[j].d2(progress) * speed * speed + path[j].d1(progress) * speed_rate;
     }
-    Eigen::Vector2d effort = arm.inverse_dynamics(q[k], dq[k], ddq) +
-                             p.coupling_velocity * dq[k] + p.coupling_acceleration * ddq;
+    Eigen::Vector2d effort = arm.inverse_dynamics(q[k], dq[k], ddq) + p.coupling_velocity * dq[k] +
+                             p.coupling_acceleration * ddq;
     const Eigen::Vector2d load = arm.gravity(q[k]).cwiseAbs();
     temperature[k] = p.temperature_start +
                      p.temperature_rise * (1 - std::exp(-t / p.temperature_time_constant_s));
@@ -151,20 +150,18 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
       double level = v >= 0 ? p.coulomb_positive[j] : p.coulomb_negative[j];
       level += p.own_load[j] * load[j];
       if (j == 0) level += p.neighbour_load * load[1];
-      const double viscous =
-          (p.viscous[j] + (v >= 0 ? 1 : -1) * p.viscous_asymmetry[j]) *
-          (1 + p.thermal_viscous[j] * (temperature[k][j] - 25.0));
+      const double viscous = (p.viscous[j] + (v >= 0 ? 1 : -1) * p.viscous_asymmetry[j]) *
+                             (1 + p.thermal_viscous[j] * (temperature[k][j] - 25.0));
       if (v != 0.0) {  // exact step of ż = v − σ0|v|z/level at constant v
         const double steady = (v > 0 ? 1.0 : -1.0) * level / p.bristle_stiffness[j];
         bristle[j] = steady + (bristle[j] - steady) *
                                   std::exp(-p.bristle_stiffness[j] * std::abs(v) * dt / level);
       }
-      effort[j] +=
-          p.bristle_stiffness[j] * bristle[j] + viscous * v + p.offset[j] +
-          p.spring_stiffness[j] * (q[k][j] - p.spring_neutral[j]) +
-          p.ripple_amplitude[j] * std::sin(p.ripple_cycles[j] * q[k][j]) +
-          p.motor_ripple_amplitude[j] *
-              std::sin(p.motor_ripple_cycles[j] * arm.gear_ratio * q[k][j] + 0.7);
+      effort[j] += p.bristle_stiffness[j] * bristle[j] + viscous * v + p.offset[j] +
+                   p.spring_stiffness[j] * (q[k][j] - p.spring_neutral[j]) +
+                   p.ripple_amplitude[j] * std::sin(p.ripple_cycles[j] * q[k][j]) +
+                   p.motor_ripple_amplitude[j] *
+                       std::sin(p.motor_ripple_cycles[j] * arm.gear_ratio * q[k][j] + 0.7);
     }
     tau[k] = effort;
   }

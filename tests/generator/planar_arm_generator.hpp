@@ -31,8 +31,8 @@ struct PlanarArmPlant {
   Eigen::Vector2d coulomb_negative{0.40, 0.25};  ///< N·m, for q̇ < 0
   Eigen::Vector2d viscous{0.30, 0.20};           ///< N·m·s/rad
   Eigen::Vector2d viscous_asymmetry{0, 0};  ///< a: viscous + a for q̇ > 0, viscous − a for q̇ < 0
-  Eigen::Vector2d bristle_stiffness{400, 300};   ///< N·m/rad
-  double neighbour_load = 0.0;  ///< joint 1's sliding level grows by this × |G_2(q)| [1]
+  Eigen::Vector2d bristle_stiffness{400, 300};  ///< N·m/rad
+  double neighbour_load = 0.0;     ///< joint 1's sliding level grows by this × |G_2(q)| [1]
   Eigen::Vector2d own_load{0, 0};  ///< joint j's sliding level grows by this × |G_j(q)| [1]
 
   // Temperature: T_j(t) = start + rise·(1 − exp(−t/τ)), logged as temp<j> (0.1 K quantum) when
@@ -56,9 +56,9 @@ struct PlanarArmPlant {
   Eigen::Matrix2d coupling_velocity = Eigen::Matrix2d::Zero();      ///< N·m·s/rad
   Eigen::Matrix2d coupling_acceleration = Eigen::Matrix2d::Zero();  ///< N·m·s²/rad
   // A payload on the last link, not in the robot file: a point mass at (x, 0, z) of its frame.
-  double payload_mass = 0.0;                    ///< kg
-  Eigen::Vector2d payload_com{0.0, 0.0};        ///< (x, z), m
-  double delay_s = 0.0;                    ///< the logged effort lags the motion on every joint
+  double payload_mass = 0.0;              ///< kg
+  Eigen::Vector2d payload_com{0.0, 0.0};  ///< (x, z), m
+  double delay_s = 0.0;                   ///< the logged effort lags the motion on every joint
 
   // Sensors.
   double effort_noise = 0.02;        ///< N·m, std
@@ -76,8 +76,8 @@ struct PlanarArm {
   double gear_ratio = 100;
   double armature = 1e-5 * gear_ratio * gear_ratio;  ///< rotor inertia × gear ratio², kg·m²
   double g = 9.81;
-  double payload_mass = 0.0;                       ///< kg
-  Eigen::Vector2d payload_com{0.0, 0.0};           ///< (x, z) in the forearm's frame, m
+  double payload_mass = 0.0;              ///< kg
+  Eigen::Vector2d payload_com{0.0, 0.0};  ///< (x, z) in the forearm's frame, m
 
   /// Rigid-body torque (incl. armature) the drives must produce, closed form.
   Eigen::Vector2d inverse_dynamics(const Eigen::Vector2d& q, const Eigen::Vector2d& dq,
