@@ -488,6 +488,10 @@ TEST(Generator, FrictionGrowingWithTheJointsOwnLoad) {
   const auto d = run(plant, "own-load friction j1");
   EXPECT_NE(outcome(d, "load_friction", 1), Outcome::Missed) << describe(d);
   expect_only(d, {"load_friction@1", "neighbour_load_friction@1"});
+  for (const offline::Claim& c : d.claims)
+    if (d.groups[c.groups[0]].key == "load_friction") {
+      EXPECT_NEAR(c.coefficients[0], 0.05, 0.03);  // α_c
+    }
 }
 
 TEST(Generator, TemperatureDependentFrictionOfOneJoint) {
@@ -503,6 +507,10 @@ TEST(Generator, TemperatureDependentFrictionOfOneJoint) {
   const auto d = run(plant, "thermal j2");
   EXPECT_EQ(outcome(d, "thermal", 2), Outcome::Named) << describe(d);
   expect_only(d, {"thermal@2"});
+  // β = b_2·(−0.03/K) = −0.006 N·m·s/rad/K: the sign (friction falls as it warms) and size.
+  if (!d.claims.empty()) {
+    EXPECT_NEAR(d.claims[0].coefficients[0], -0.006, 0.003);
+  }
 }
 
 TEST(Generator, TemperatureDependentFrictionOfEveryJoint) {
@@ -542,6 +550,10 @@ TEST(Generator, MotionCouplingBetweenTheJoints) {
   const auto d = run(plant, "coupling j1 <- dq2");
   EXPECT_EQ(outcome(d, "coupling", 1), Outcome::Named) << describe(d);
   expect_only(d, {"coupling@1"});
+  if (!d.claims.empty()) {
+    EXPECT_NEAR(d.claims[0].coefficients[0], 0.15, 0.05);  // C_v,12
+    EXPECT_NEAR(d.claims[0].coefficients[1], 0.0, 0.05);   // C_a,12: none planted
+  }
   expect_written_model_runs(d);
 }
 
@@ -554,6 +566,10 @@ TEST(Generator, MotorSideRipple) {
   const auto d = run(plant, "motor ripple j2");
   EXPECT_EQ(outcome(d, "ripple_motor", 2), Outcome::Named) << describe(d);
   expect_only(d, {"ripple_motor@2"});
+  if (!d.claims.empty()) {  // a·sin(n r q + 0.7) = a cos 0.7·sin + a sin 0.7·cos
+    EXPECT_NEAR(d.claims[0].coefficients[0], 0.08 * std::cos(0.7), 0.01);
+    EXPECT_NEAR(d.claims[0].coefficients[1], 0.08 * std::sin(0.7), 0.01);
+  }
   expect_written_model_runs(d);
 }
 
@@ -566,6 +582,13 @@ TEST(Generator, DirectionAsymmetricViscousFriction) {
   const auto d = run(plant, "asymmetric viscous j2");
   EXPECT_NE(outcome(d, "asymmetric_friction", 2), Outcome::Missed) << describe(d);
   expect_only(d, {"asymmetric_friction@2", "offset@2"});
+  // Ambiguous with the offset by construction: the family's Coulomb column |sgn q̇| is the
+  // offset's column on moving samples (their smallest principal angle is zero), although the
+  // viscous part |q̇| is what this log holds; its coefficient is the planted a_v.
+  for (const offline::Claim& c : d.claims)
+    if (d.groups[c.groups[0]].key == "asymmetric_friction") {
+      EXPECT_NEAR(c.coefficients[1], 0.10, 0.03);
+    }
 }
 
 }  // namespace
