@@ -583,8 +583,8 @@ TEST(Generator, DirectionAsymmetricViscousFriction) {
   EXPECT_NE(outcome(d, "asymmetric_friction", 2), Outcome::Missed) << describe(d);
   expect_only(d, {"asymmetric_friction@2", "offset@2"});
   // Ambiguous with the offset by construction: the family's Coulomb column |sgn q̇| is the
-  // offset's column on moving samples (their smallest principal angle is nearly zero), although the
-  // viscous part |q̇| is what this log holds; its coefficient is the planted a_v.
+  // offset's column on moving samples (their smallest principal angle is nearly zero), although
+  // the viscous part |q̇| is what this log holds; its coefficient is the planted a_v.
   for (const offline::Claim& c : d.claims)
     if (d.groups[c.groups[0]].key == "asymmetric_friction") {
       EXPECT_NEAR(c.coefficients[1], 0.10, 0.03);
