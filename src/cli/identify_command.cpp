@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
 #include "read_command_logs.hpp"
@@ -56,6 +57,8 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
                                    {"moving", h[Regime::Moving].rmse},
                                    {"all", h.valid.rmse}});
   }
+  const std::string held_out_note = nothing_held_out_note(s, options.samples);
+  if (!held_out_note.empty()) std::printf("note: %s\n", held_out_note.c_str());
   std::printf("consistency: %s (min eigenvalue of M(q) %.4g kg·m²)\n",
               id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
   for (const auto& p : id.consistency.problems)
@@ -63,6 +66,7 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   for (const auto& n : id.friction_notes)
     std::printf("  friction: %s\n", n.c_str());
   fit["friction_notes"] = id.friction_notes;
+  if (!held_out_note.empty()) fit["heldout_note"] = held_out_note;
   fit["consistent"] = id.consistency.consistent();
   fit["problems"] = id.consistency.problems;
   fit["simulated"] = s.simulated;

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -21,6 +22,7 @@
 #include "planar_arm_generator.hpp"
 #include "tpf/dynamics/rnea.hpp"
 #include "tpf/estimation/nominal_model.hpp"
+#include "tpf/model/inertia.hpp"
 #include "tpf/model/load_robot.hpp"
 
 namespace tpf::test {
@@ -58,12 +60,15 @@ Diagnosis<2> run(const PlanarArmPlant& plant, const char* label) {
   auto d = offline::diagnose<2>(log, planar_model());
   std::printf("  [%s] %s\n", label, describe(d).c_str());
   for (const auto& t : d.trials)
-    if (t.improvement > 0.03 || t.selected)
+    if (t.improvement > 0.03 || t.selected || std::getenv("TPF_GENERATOR_TRIALS"))
       std::printf("    round %d %-62s %6.1f %% BIC %8.0f %5.1f SE share %.3f%s\n", t.round,
                   t.title.c_str(), 100 * t.improvement, t.bic_change, t.wald, t.distinct_share,
                   t.selected ? " SELECTED" : "");
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
+  if (d.cad_payload.claimed)
+    std::printf("    CAD payload claimed: %.3f kg, %.1f %%\n", d.cad_payload.mass,
+                100 * d.cad_payload.improvement);
   return d;
 }
 
@@ -156,13 +161,56 @@ TEST(Generator, ClosedFormDynamicsAgreeWithTheRobotFile) {
   }
 }
 
+TEST(Generator, ClosedFormDynamicsWithAPayloadAgreeWithTheRobotFilePlusThePayload) {
+  // The payload the generator plants (a point mass in the forearm's frame) is the one the CAD
+  // check looks for: the robot file's last link plus that body, through RNEA.
+  PlanarArm arm;
+  arm.payload_mass = 0.5;
+  arm.payload_com = {0.25, 0.04};
+  Model<double, 2> model = planar_model();
+  Inertia<double> payload;
+  payload.mass = 0.5;
+  payload.com = Vector3<double>(0.25, 0.0, 0.04);
+  model.inertias[2] =
+      Inertia<double>::from_parameters(model.inertias[2].parameters() + payload.parameters());
+  model.update_constants();
+  Data<double, 2> data;
+  for (const auto& [q, dq, ddq] : {std::tuple{V2(0.3, -1.1), V2(0.7, -0.4), V2(2.0, 1.5)},
+                                   std::tuple{V2(-2.0, 0.5), V2(-1.3, 2.1), V2(-0.5, 3.0)}}) {
+    const V2 expected = arm.inverse_dynamics(q, dq, ddq);
+    const V2 tau = rnea(model, data, q, dq, ddq);
+    EXPECT_NEAR(tau[0], expected[0], 1e-9);
+    EXPECT_NEAR(tau[1], expected[1], 1e-9);
+  }
+}
+
 TEST(Generator, CleanLogClaimsNothing) {
   for (std::uint64_t seed : {11u, 12u}) {
     PlanarArmPlant plant;
     plant.seed = seed;
     const auto d = run(plant, "clean");
     EXPECT_TRUE(d.claims.empty()) << describe(d);
+    // Nor a payload against the robot file's inertias (the robot file is the generator's arm).
+    EXPECT_FALSE(d.cad_payload.claimed) << d.cad_payload.mass << " kg";
   }
+}
+
+TEST(Generator, ALogShorterThanTheFirstHeldOutBlockSaysSoInsteadOfNoGain) {
+  // One file of 10 s: the interleaved split holds out nothing (the first held-out block starts at
+  // 15 s). Nothing is claimed, and the finding says that nothing is held out, not that no
+  // candidate lowers the held-out residual.
+  PlanarArmPlant plant;
+  plant.seed = 11;
+  plant.duration_s = 10.0;
+  plant.offset = {0.0, 0.3};
+  const auto d = run(plant, "10 s, nothing held out");
+  EXPECT_TRUE(d.claims.empty()) << describe(d);
+  bool said = false;
+  for (const auto& f : d.findings) {
+    said = said || f.find("nothing is held out") != std::string::npos;
+    EXPECT_EQ(f.find("none lowers the held-out residual"), std::string::npos) << f;
+  }
+  EXPECT_TRUE(said);
 }
 
 TEST(Generator, OffsetUnderAShortRangeIsNeverARipple) {
@@ -411,6 +459,136 @@ TEST(Generator, ASpringOfEveryFileIsClaimedAndTestedOutsideTheRange) {
       declared_sse += declared(k, 1) * declared(k, 1);
     }
   EXPECT_LT(written_sse, 0.8 * declared_sse);
+}
+
+// ---- The library's effects, each planted alone on a fresh motion --------------------------------
+
+TEST(Generator, APayloadIsFoundAgainstTheRobotFilesInertias) {
+  // 0.5 kg at (0.25, 0, 0.04) m of the forearm (a gripper and part): the identified rigid body
+  // absorbs it (it is not a missing effect then: no library claim), the CAD check finds it.
+  PlanarArmPlant plant;
+  plant.seed = 51;
+  plant.payload_mass = 0.5;
+  plant.payload_com = {0.25, 0.04};
+  const auto d = run(plant, "payload 0.5 kg");
+  const offline::CadPayloadCheck& c = d.cad_payload;
+  std::printf("    CAD check: %.3f kg at (%.3f, %.3f, %.3f) m, %.1f %% of the held-out SSE\n",
+              c.mass, c.centre.x(), c.centre.y(), c.centre.z(), 100 * c.improvement);
+  EXPECT_TRUE(d.claims.empty()) << describe(d);
+  EXPECT_TRUE(c.claimed);
+  EXPECT_NEAR(c.mass, 0.5, 0.05);
+  EXPECT_NEAR(c.centre.x(), 0.25, 0.03);
+  EXPECT_NEAR(c.centre.z(), 0.04, 0.03);
+}
+
+TEST(Generator, FrictionGrowingWithTheJointsOwnLoad) {
+  PlanarArmPlant plant;
+  plant.seed = 52;
+  plant.own_load = {0.05, 0.0};  // joint 1's level grows by 0.05·|G_1| (up to 0.5 N·m)
+  const auto d = run(plant, "own-load friction j1");
+  EXPECT_NE(outcome(d, "load_friction", 1), Outcome::Missed) << describe(d);
+  expect_only(d, {"load_friction@1", "neighbour_load_friction@1"});
+  for (const offline::Claim& c : d.claims)
+    if (d.groups[c.groups[0]].key == "load_friction") {
+      EXPECT_NEAR(c.coefficients[0], 0.05, 0.03);  // α_c
+    }
+}
+
+TEST(Generator, TemperatureDependentFrictionOfOneJoint) {
+  // A cold start under a heavy cycle: joint 2 warms 32 → 46 °C (rise 15 K, 40 s time constant)
+  // and its viscous friction falls by 3 %/K (by 42 % over the log). Joint 1 warms too (30 →
+  // 41 °C) with a friction that does not depend on it. (At 2 %/K over 9 K the term removes 2.7 %
+  // of joint 2's held-out SSE at 1.9 SE: not claimed, docs/identification.md.)
+  PlanarArmPlant plant;
+  plant.seed = 53;
+  plant.log_temperature = true;
+  plant.temperature_rise = {12, 15};
+  plant.thermal_viscous = {0.0, -0.03};
+  const auto d = run(plant, "thermal j2");
+  EXPECT_EQ(outcome(d, "thermal", 2), Outcome::Named) << describe(d);
+  expect_only(d, {"thermal@2"});
+  // β = b_2·(−0.03/K) = −0.006 N·m·s/rad/K: the sign (friction falls as it warms) and size.
+  if (!d.claims.empty()) {
+    EXPECT_NEAR(d.claims[0].coefficients[0], -0.006, 0.003);
+  }
+}
+
+TEST(Generator, TemperatureDependentFrictionOfEveryJoint) {
+  // Both joints warm by 20 K (40 s time constant), the viscous friction of each falls by 3 %/K:
+  // one relative coefficient of every joint. The every-joint form removes only 7.5 % of the
+  // weighted held-out SSE of both joints (13 SE): on joint 1 the term is 3.5 % of a residual
+  // that its friction memory dominates, so the 10 % rule refuses it there and joint 2's own
+  // form (15 %) is what is claimed. Asserted: thermal friction named on joint 2 or on every
+  // joint, nothing else claimed.
+  PlanarArmPlant plant;
+  plant.seed = 54;
+  plant.log_temperature = true;
+  plant.temperature_rise = {20, 20};
+  plant.thermal_viscous = {-0.03, -0.03};
+  const auto d = run(plant, "thermal, every joint");
+  EXPECT_TRUE(outcome(d, "thermal", 0) == Outcome::Named ||
+              outcome(d, "thermal", 2) == Outcome::Named)
+      << describe(d);
+  expect_only(d, {"thermal"});
+}
+
+TEST(Generator, ALoggedTemperatureAloneClaimsNothing) {
+  // Both joints warm, friction does not change with it: temperature columns on a clean log.
+  PlanarArmPlant plant;
+  plant.seed = 55;
+  plant.log_temperature = true;
+  const auto d = run(plant, "temperature logged, no thermal friction");
+  EXPECT_TRUE(d.claims.empty()) << describe(d);
+}
+
+TEST(Generator, MotionCouplingBetweenTheJoints) {
+  // Joint 1 gets 0.15 N·m·s/rad × q̇_2: the drag of joint 2's belt drive, which runs through
+  // joint 1's axis from a motor at the base.
+  PlanarArmPlant plant;
+  plant.seed = 56;
+  plant.coupling_velocity(0, 1) = 0.15;
+  const auto d = run(plant, "coupling j1 <- dq2");
+  EXPECT_EQ(outcome(d, "coupling", 1), Outcome::Named) << describe(d);
+  expect_only(d, {"coupling@1"});
+  if (!d.claims.empty()) {
+    EXPECT_NEAR(d.claims[0].coefficients[0], 0.15, 0.05);  // C_v,12
+    EXPECT_NEAR(d.claims[0].coefficients[1], 0.0, 0.05);   // C_a,12: none planted
+  }
+  expect_written_model_runs(d);
+}
+
+TEST(Generator, MotorSideRipple) {
+  // 0.08 N·m at 2 periods per motor revolution on joint 2 (gear ratio 100 of the robot file):
+  // 200 periods per output revolution, far above the output-ripple search (≤ 64).
+  PlanarArmPlant plant;
+  plant.seed = 57;
+  plant.motor_ripple_amplitude = {0.0, 0.08};
+  const auto d = run(plant, "motor ripple j2");
+  EXPECT_EQ(outcome(d, "ripple_motor", 2), Outcome::Named) << describe(d);
+  expect_only(d, {"ripple_motor@2"});
+  if (!d.claims.empty()) {  // a·sin(n r q + 0.7) = a cos 0.7·sin + a sin 0.7·cos
+    EXPECT_NEAR(d.claims[0].coefficients[0], 0.08 * std::cos(0.7), 0.01);
+    EXPECT_NEAR(d.claims[0].coefficients[1], 0.08 * std::sin(0.7), 0.01);
+  }
+  expect_written_model_runs(d);
+}
+
+TEST(Generator, DirectionAsymmetricViscousFriction) {
+  // Joint 2: b = 0.30 forward, 0.10 backward (a seal that drags one way).
+  PlanarArmPlant plant;
+  plant.seed = 58;
+  plant.viscous = {0.30, 0.20};
+  plant.viscous_asymmetry = {0.0, 0.10};
+  const auto d = run(plant, "asymmetric viscous j2");
+  EXPECT_NE(outcome(d, "asymmetric_friction", 2), Outcome::Missed) << describe(d);
+  expect_only(d, {"asymmetric_friction@2", "offset@2"});
+  // Ambiguous with the offset by construction: the family's Coulomb column |sgn q̇| is the
+  // offset's column on moving samples (their smallest principal angle is nearly zero), although
+  // the viscous part |q̇| is what this log holds; its coefficient is the planted a_v.
+  for (const offline::Claim& c : d.claims)
+    if (d.groups[c.groups[0]].key == "asymmetric_friction") {
+      EXPECT_NEAR(c.coefficients[1], 0.10, 0.03);
+    }
 }
 
 }  // namespace

@@ -62,23 +62,39 @@ double quantise(double value, double quantum) {
   return quantum > 0 ? quantum * std::round(value / quantum) : value;
 }
 
+// The forearm with the payload as one body: mass, first moment h about the elbow at the angle ψ
+// from the link's x axis (a point (x, 0, z) of the link at absolute angle a sits at
+// r·(cos(a + ψ), −sin(a + ψ)) in the plane, ψ = atan2(−z, x)), and inertia about the elbow axis.
+struct Forearm {
+  double mass, h, psi, inertia;
+};
+
+Forearm forearm(const PlanarArm& arm) {
+  const double hx = arm.m2 * arm.c2 + arm.payload_mass * arm.payload_com[0];
+  const double hz = arm.payload_mass * arm.payload_com[1];
+  return {arm.m2 + arm.payload_mass, std::hypot(hx, hz), std::atan2(-hz, hx),
+          arm.I2 + arm.m2 * arm.c2 * arm.c2 + arm.payload_mass * arm.payload_com.squaredNorm()};
+}
+
 }  // namespace
 
 Eigen::Vector2d PlanarArm::gravity(const Eigen::Vector2d& q) const {
   // Axes along y, gravity along −z: a point r along a link at absolute angle a sits at height
   // −r·sin(a); G = ∂V/∂q with V = Σ m g z.
-  const double a1 = q[0], a2 = q[0] + q[1];
-  const double g2 = -g * m2 * c2 * std::cos(a2);
-  return {-g * (m1 * c1 + m2 * L1) * std::cos(a1) + g2, g2};
+  const Forearm f = forearm(*this);
+  const double a1 = q[0], a2 = q[0] + q[1] + f.psi;
+  const double g2 = -g * f.h * std::cos(a2);
+  return {-g * (m1 * c1 + f.mass * L1) * std::cos(a1) + g2, g2};
 }
 
 Eigen::Vector2d PlanarArm::inverse_dynamics(const Eigen::Vector2d& q, const Eigen::Vector2d& dq,
                                             const Eigen::Vector2d& ddq) const {
-  const double c = std::cos(q[1]), s = std::sin(q[1]);
-  const double m11 = I1 + m1 * c1 * c1 + I2 + m2 * (L1 * L1 + c2 * c2 + 2 * L1 * c2 * c) + armature;
-  const double m12 = I2 + m2 * (c2 * c2 + L1 * c2 * c);
-  const double m22 = I2 + m2 * c2 * c2 + armature;
-  const double h = m2 * L1 * c2 * s;
+  const Forearm f = forearm(*this);
+  const double c = std::cos(q[1] + f.psi), s = std::sin(q[1] + f.psi);
+  const double m11 = I1 + m1 * c1 * c1 + f.inertia + f.mass * L1 * L1 + 2 * L1 * f.h * c + armature;
+  const double m12 = f.inertia + L1 * f.h * c;
+  const double m22 = f.inertia + armature;
+  const double h = L1 * f.h * s;
   Eigen::Vector2d tau;
   tau[0] = m11 * ddq[0] + m12 * ddq[1] - h * (2 * dq[0] * dq[1] + dq[1] * dq[1]);
   tau[1] = m12 * ddq[0] + m22 * ddq[1] + h * dq[0] * dq[0];
@@ -93,7 +109,9 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
   std::mt19937_64 rng(p.seed);
   std::uniform_real_distribution<double> frequency(0.5, 1.3), phase(0.0, 2 * M_PI);
   std::normal_distribution<double> unit(0.0, 1.0);
-  const PlanarArm arm;
+  PlanarArm arm;
+  arm.payload_mass = p.payload_mass;
+  arm.payload_com = p.payload_com;
   const double dt = 1.0 / p.rate_hz;
   const int lag = static_cast<int>(std::lround(p.delay_s * p.rate_hz));
   const int n = static_cast<int>(p.duration_s * p.rate_hz);
@@ -103,7 +121,7 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
   for (int j = 0; j < 2; ++j)
     path[j] = {p.centre[j], p.amplitude[j], frequency(rng), frequency(rng), phase(rng), phase(rng)};
 
-  std::vector<Eigen::Vector2d> q(total), dq(total), tau(total);
+  std::vector<Eigen::Vector2d> q(total), dq(total), tau(total), temperature(total);
   Eigen::Vector2d bristle = Eigen::Vector2d::Zero();  // Dahl deflection, rad
   double progress = 0.0;
   for (int k = 0; k < total; ++k) {
@@ -122,20 +140,28 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
       dq[k][j] = path[j].d1(progress) * speed;
       ddq[j] = path[j].d2(progress) * speed * speed + path[j].d1(progress) * speed_rate;
     }
-    Eigen::Vector2d effort = arm.inverse_dynamics(q[k], dq[k], ddq);
+    Eigen::Vector2d effort = arm.inverse_dynamics(q[k], dq[k], ddq) + p.coupling_velocity * dq[k] +
+                             p.coupling_acceleration * ddq;
     const Eigen::Vector2d load = arm.gravity(q[k]).cwiseAbs();
+    temperature[k] = p.temperature_start +
+                     p.temperature_rise * (1 - std::exp(-t / p.temperature_time_constant_s));
     for (int j = 0; j < 2; ++j) {
       const double v = dq[k][j];
       double level = v >= 0 ? p.coulomb_positive[j] : p.coulomb_negative[j];
+      level += p.own_load[j] * load[j];
       if (j == 0) level += p.neighbour_load * load[1];
+      const double viscous = (p.viscous[j] + (v >= 0 ? 1 : -1) * p.viscous_asymmetry[j]) *
+                             (1 + p.thermal_viscous[j] * (temperature[k][j] - 25.0));
       if (v != 0.0) {  // exact step of ż = v − σ0|v|z/level at constant v
         const double steady = (v > 0 ? 1.0 : -1.0) * level / p.bristle_stiffness[j];
         bristle[j] = steady + (bristle[j] - steady) *
                                   std::exp(-p.bristle_stiffness[j] * std::abs(v) * dt / level);
       }
-      effort[j] += p.bristle_stiffness[j] * bristle[j] + p.viscous[j] * v + p.offset[j] +
+      effort[j] += p.bristle_stiffness[j] * bristle[j] + viscous * v + p.offset[j] +
                    p.spring_stiffness[j] * (q[k][j] - p.spring_neutral[j]) +
-                   p.ripple_amplitude[j] * std::sin(p.ripple_cycles[j] * q[k][j]);
+                   p.ripple_amplitude[j] * std::sin(p.ripple_cycles[j] * q[k][j]) +
+                   p.motor_ripple_amplitude[j] *
+                       std::sin(p.motor_ripple_cycles[j] * arm.gear_ratio * q[k][j] + 0.7);
     }
     tau[k] = effort;
   }
@@ -146,7 +172,8 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
   log.source = "planar2-generator-seed" + std::to_string(p.seed);
   log.meta.set("source", "independent test generator (tests/generator), not the twin");
   log.columns = {"t", "q1", "q2", "dq1", "dq2", "tau1", "tau2"};
-  log.values.resize(n, 7);
+  if (p.log_temperature) log.columns.insert(log.columns.end(), {"temp1", "temp2"});
+  log.values.resize(n, static_cast<Eigen::Index>(log.columns.size()));
   for (int k = 0; k < n; ++k) {
     const int motion = k + lag;  // the effort logged now is the one of `lag` samples ago
     log.values(k, 0) = k * dt;
@@ -155,6 +182,7 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
       log.values(k, 3 + j) =
           quantise(dq[motion][j] + p.velocity_noise * unit(noise), p.velocity_quantum);
       log.values(k, 5 + j) = quantise(tau[k][j] + p.effort_noise * unit(noise), p.effort_quantum);
+      if (p.log_temperature) log.values(k, 7 + j) = quantise(temperature[motion][j], 0.1);
     }
   }
   return log;

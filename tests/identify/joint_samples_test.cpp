@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "offline/signal/acceleration.hpp"
 #include "offline/signal/segments.hpp"
@@ -81,6 +82,27 @@ TEST(JointSamples, ParallelExtractionMatchesTheDefinitionsBitForBit) {
   // Invalid: the 3 NaN velocities, and q̈ at both ends of every segment (log ends, gap, NaNs):
   // rows 0, 299, 302, 1199, 1200, 1499, 1501, 1999.
   EXPECT_EQ(s.invalid_count, 11u);
+}
+
+TEST(JointSamples, ALogShorterThanItsFirstHeldOutBlockSaysNothingIsHeldOut) {
+  // Issue 16, "messages that mislead": a one-file log shorter than 15 s holds out nothing, and
+  // identify's and diagnose's held-out figures are all NaN; the note says why and what to do.
+  const Eigen::VectorXd kt = Eigen::VectorXd::Ones(kSampleJoints);
+  const SampleOptions options;
+  const Log full = three_joint_log();  // 21 s: the block from 15 to 20 s is held out
+  EXPECT_EQ(nothing_held_out_note(extract_joint_samples(full, kt, options), options), "");
+  Log short_log = full;
+  short_log.values = full.values.topRows(500).eval();  // 5 s
+  const JointSamples s = extract_joint_samples(short_log, kt, options);
+  const std::string note = nothing_held_out_note(s, options);
+  EXPECT_NE(note.find("nothing is held out"), std::string::npos) << note;
+  EXPECT_NE(note.find("spans 4.99 s"), std::string::npos) << note;
+  EXPECT_NE(note.find("at least 20 s"), std::string::npos) << note;
+  EXPECT_NE(note.find("several --log"), std::string::npos) << note;
+  SampleOptions other_logs = options;  // the caller holds out other logs: nothing to say
+  other_logs.hold_out = false;
+  EXPECT_EQ(nothing_held_out_note(extract_joint_samples(short_log, kt, other_logs), other_logs),
+            "");
 }
 
 }  // namespace

@@ -133,6 +133,53 @@ TEST(LinePlot, NaNBreaksTheLineAndLongSeriesAreDecimated) {
   EXPECT_THROW(line_plot(options, {Series{"bad", vec({1, 2}), vec({1}), ""}}), Error);
 }
 
+TEST(LinePlot, EveryLegendEntryStaysInsideThePicture) {
+  // The measured report's residual plots have five long series names: in one row above the plot
+  // the first ones were drawn left of x = 0, so the traces "before" could not be told apart.
+  PlotOptions options;
+  options.title = "joint 1: residual";
+  options.width = 900;
+  options.height = 260;
+  std::vector<Series> series;
+  for (const char* name : {"Kt only", "after identification", "friction against the sensor",
+                           "friction against the sensor + current low-pass",
+                           "friction against the sensor + compensator trained against it"})
+    series.push_back({name, vec({0, 1, 2}), vec({0, 1, 0}), ""});
+  auto legend_rects = [](const std::string& svg) {
+    const std::size_t g = svg.find("<g class=\"legend\">");
+    EXPECT_NE(g, std::string::npos);
+    std::vector<std::pair<double, double>> xy;
+    const std::regex rect("<rect x=\"([-0-9.]+)\" y=\"([-0-9.]+)\"");
+    const std::string legend = svg.substr(g);
+    for (auto it = std::sregex_iterator(legend.begin(), legend.end(), rect);
+         it != std::sregex_iterator(); ++it)
+      xy.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+    return xy;
+  };
+  const std::string svg = line_plot(options, series);
+  const auto rects = legend_rects(svg);
+  ASSERT_EQ(rects.size(), series.size());
+  std::smatch height;
+  ASSERT_TRUE(std::regex_search(svg, height, std::regex("height=\"([0-9.]+)\" role")));
+  const double svg_height = std::stod(height[1]);
+  EXPECT_GT(svg_height, options.height);  // rows under the plot
+  for (const auto& [x, y] : rects) {
+    EXPECT_GE(x, 0.0);
+    EXPECT_LE(x, options.width - 12.0);
+    EXPECT_GT(y, options.height - 1.0);
+    EXPECT_LE(y + 12.0, svg_height);
+  }
+  // Two short names keep their place: one row above the plot, right-aligned, same height.
+  const std::string small = line_plot(options, {series[0], series[1]});
+  const auto above = legend_rects(small);
+  ASSERT_EQ(above.size(), 2u);
+  for (const auto& [x, y] : above) {
+    EXPECT_GE(x, PlotCanvas::kLeft);
+    EXPECT_EQ(y, 26.0);
+  }
+  EXPECT_NE(small.find("height=\"260\" role"), std::string::npos);
+}
+
 TEST(BarChart, BarsStartAtZeroAndHaveOneValuePerGroup) {
   PlotOptions options;
   options.width = 400;

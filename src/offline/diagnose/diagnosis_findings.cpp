@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "offline/identify/joint_samples.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/report/text_format.hpp"
 
@@ -204,7 +205,10 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
       std::any_of(d.trials.begin(), d.trials.end(), [&](const CandidateTrial& t) {
         return t.fails_transfer(options) || t.fails_outside(options);
       });
-  if (d.selected.empty())
+  const std::string nothing_held_out = nothing_held_out_note(d.samples, options.samples);
+  if (d.selected.empty() && !nothing_held_out.empty())
+    findings.push_back("No candidate effect can be claimed: " + nothing_held_out + ".");
+  else if (d.selected.empty())
     findings.push_back(
         "No candidate effect is claimed: none lowers the held-out residual by the threshold (" +
         format_sentence("%.0f %%", 100 * options.min_improvement) +

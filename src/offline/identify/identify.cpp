@@ -85,8 +85,12 @@ ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
   check.min_mass_eigenvalue = min_eigen;
   check.checks.push_back("mass matrix M(q) (rigid body + armature) positive definite at 200 poses");
   if (!(min_eigen > 0))
-    check.problems.push_back("M(q) is not positive definite (smallest eigenvalue " +
-                             std::to_string(min_eigen) + " kg·m²)");
+    check.problems.push_back(
+        "M(q) is not positive definite (smallest eigenvalue " + std::to_string(min_eigen) +
+        " kg·m²): the log does not excite every inertia the base parameters hold (too short, too "
+        "little acceleration, or joints that never accelerate independently), so the identified "
+        "inertial torque is not physical; log a longer excitation that accelerates every joint, "
+        "and judge the model on held-out data (tpf validate)");
   check.checks.push_back("friction: τ_c, τ_s, b, α ≥ 0, q̇_s > 0");
   const StribeckParameters<double, N>& f = nominal.friction;
   for (int j = 0; j < N; ++j) {
@@ -329,11 +333,12 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     if (linear.coulomb[j] < 0 || linear.viscous[j] < 0) {
       char text[320];
       std::snprintf(text, sizeof text,
-                    "joint %d: the linear least squares gave Coulomb %.4g and viscous %.4g %s: "
+                    "joint %d: the linear least squares gave Coulomb %.4g N*m and viscous %.4g "
+                    "N*m*s/rad: "
                     "friction cannot push the motion, so the effort does not follow sgn(q̇) and "
                     "q̇ as the model has them (an offset, a direction asymmetry or a delay can do "
                     "this: run tpf diagnose); the curve is fitted from 0",
-                    j + 1, linear.coulomb[j], linear.viscous[j], "N*m");
+                    j + 1, linear.coulomb[j], linear.viscous[j]);
       out.consistency.problems.push_back(text);
     }
   return out;

@@ -1,6 +1,7 @@
 #include "offline/identify/joint_samples.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 
 #include "offline/identify/parallel_halves.hpp"
@@ -31,6 +32,24 @@ std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
         (block % options.heldout_every) == options.heldout_every - 1;
   }
   return heldout;
+}
+
+std::string nothing_held_out_note(const JointSamples& s, const SampleOptions& options) {
+  if (!options.hold_out) return {};
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if (s.valid[static_cast<std::size_t>(k)] && s.heldout[static_cast<std::size_t>(k)]) return {};
+  const double span = s.size() > 0 ? s.t[s.size() - 1] - s.t[0] : 0.0;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "nothing is held out: a one-file log holds out one block of %.3g s in every %d, "
+                "the first from %.3g s on, and this log spans %.3g s, so every held-out figure is "
+                "NaN and nothing can be judged on held-out data. Pass a log of at least %.3g s, or "
+                "several --log (the last file is held out), or score the written model on another "
+                "log with tpf validate",
+                options.block_s, options.heldout_every,
+                options.block_s * (options.heldout_every - 1), span,
+                options.block_s * options.heldout_every);
+  return text;
 }
 
 namespace {

@@ -57,6 +57,11 @@ bool identification_column(std::string_view name);
 std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
                                              const SampleOptions& options);
 
+/// Empty when some valid sample of `samples` is held out (or `options.hold_out` is false: the
+/// caller holds out other logs); else a sentence saying that nothing is held out, why (a one-file
+/// log shorter than its first held-out block) and what to do.
+std::string nothing_held_out_note(const JointSamples& samples, const SampleOptions& options);
+
 /// Extracts the joint samples of `log`: q<j>, dq<j>, ddq<j> (or derive_acceleration of dq<j>),
 /// the effort i<j> or tau<j> converted to N·m with `torque_constant` (the robot file's K_t per
 /// joint, drive_units), temp<j> when every joint has one. Throws tpf::Error naming the log when

@@ -94,7 +94,49 @@ void PlotCanvas::set_legend(std::vector<std::pair<std::string, std::string>> ent
 }
 
 std::string PlotCanvas::svg() const {
-  const std::string w = std::to_string(options_.width), h = std::to_string(options_.height);
+  // Legend: right-aligned entries above the plot area (≈ 7 px per character) when they fit in one
+  // row between the left edge and the plot's right end; else rows under the x-axis label, from
+  // the plot's left end, the SVG taller by those rows (an entry never leaves the picture).
+  auto entry_width = [](const std::string& name) {
+    double characters = 0;  // UTF-8: count the bytes that start a character
+    for (const char c : name)
+      characters += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    return 22.0 + 7.0 * characters;
+  };
+  double row_width = 0;
+  for (const auto& entry : legend_)
+    row_width += entry_width(entry.first) + 10.0;
+  const bool legend_above = row_width - 10.0 <= plot_right();
+  std::string legend;
+  double height = options_.height;
+  if (legend_above) {
+    double x = plot_right();
+    for (auto it = legend_.rbegin(); it != legend_.rend(); ++it) {
+      x -= entry_width(it->first);
+      legend += "<rect x=\"" + svg_coordinate(x) +
+                "\" y=\"26\" width=\"12\" height=\"12\" rx=\"2\" "
+                "fill=\"" +
+                it->second + "\"/><text x=\"" + svg_coordinate(x + 16) + "\" y=\"36\">" +
+                html_escape(it->first) + "</text>";
+      x -= 10.0;
+    }
+  } else {
+    double x = plot_left(), y = options_.height + 4.0;
+    for (const auto& [name, colour] : legend_) {
+      if (x > plot_left() && x + entry_width(name) > plot_right()) {
+        x = plot_left();
+        y += 20.0;
+      }
+      legend += "<rect x=\"" + svg_coordinate(x) + "\" y=\"" + svg_coordinate(y) +
+                "\" width=\"12\" height=\"12\" rx=\"2\" fill=\"" + colour + "\"/><text x=\"" +
+                svg_coordinate(x + 16) + "\" y=\"" + svg_coordinate(y + 10) + "\">" +
+                html_escape(name) + "</text>";
+      x += entry_width(name) + 10.0;
+    }
+    height = y + 20.0;
+  }
+  const std::string w = std::to_string(options_.width);
+  const std::string h = legend_above ? std::to_string(options_.height) : svg_coordinate(height);
   const std::string id = "plot" + std::to_string(next_plot_id());
   const std::string left = svg_coordinate(plot_left()), right = svg_coordinate(plot_right());
   const std::string top = svg_coordinate(plot_top()), bottom = svg_coordinate(plot_bottom());
@@ -150,18 +192,6 @@ std::string PlotCanvas::svg() const {
     const std::string cy = svg_coordinate(0.5 * (plot_top() + plot_bottom()));
     s += "<text class=\"axis-label\" text-anchor=\"middle\" transform=\"translate(16 " + cy +
          ") rotate(-90)\">" + html_escape(options_.y_label) + "</text>\n";
-  }
-  // Legend: right-aligned entries above the plot area (≈ 7 px per character).
-  double x = plot_right();
-  std::string legend;
-  for (auto it = legend_.rbegin(); it != legend_.rend(); ++it) {
-    x -= 22.0 + 7.0 * static_cast<double>(it->first.size());
-    legend += "<rect x=\"" + svg_coordinate(x) +
-              "\" y=\"26\" width=\"12\" height=\"12\" rx=\"2\" "
-              "fill=\"" +
-              it->second + "\"/><text x=\"" + svg_coordinate(x + 16) + "\" y=\"36\">" +
-              html_escape(it->first) + "</text>";
-    x -= 10.0;
   }
   if (!legend.empty()) s += "<g class=\"legend\">" + legend + "</g>\n";
   s += "</svg>\n";

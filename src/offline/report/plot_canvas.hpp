@@ -51,7 +51,8 @@ class PlotCanvas {
 
   /// Categorical x axis: one label per slot, centred; replaces the numeric x ticks.
   void set_categories(std::vector<std::string> names);
-  /// Entries (name, colour) drawn as a legend above the plot area, right-aligned.
+  /// Entries (name, colour) drawn as a legend above the plot area, right-aligned; when they do
+  /// not fit in that row, in rows under the x-axis label (the SVG grows by them).
   void set_legend(std::vector<std::pair<std::string, std::string>> entries);
   /// Appends raw SVG elements to the clipped content group.
   void add(const std::string& element) { content_ += element; }
