@@ -1,4 +1,6 @@
 // `tpf simulate`: run the digital twin on a scenario file and write a log in the project format.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdint>
@@ -25,22 +27,30 @@ void run_simulate(const SimulateOptions& o) {
   const auto scenario = tpf::offline::load_scenario(o.scenario, o.robot);
   const double duration = o.duration > 0 ? o.duration : scenario.duration_s;
   const auto start = std::chrono::steady_clock::now();
+  // On a terminal the line is redrawn in place; into a file or a pipe (CI, `2> log`) a line is
+  // written at every tenth of the run instead of one per simulated second.
+  const bool terminal = ::isatty(STDERR_FILENO) == 1;
+  int last_tenth = -1;
   tpf::offline::ProgressSink progress;
   if (!o.quiet) {
     progress = [&](double fraction) {
+      const int tenth = static_cast<int>(10.0 * fraction);
+      if (!terminal && tenth == last_tenth) return;
+      last_tenth = tenth;
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::fprintf(stderr, "\rsimulate: %5.1f%%  %7.1f / %.1f s simulated  %6.1f s wall",
-                   100.0 * fraction, fraction * duration, duration, wall);
+      std::fprintf(stderr, "%ssimulate: %5.1f%%  %7.1f / %.1f s simulated  %6.1f s wall%s",
+                   terminal ? "\r" : "", 100.0 * fraction, fraction * duration, duration, wall,
+                   terminal ? "" : "\n");
       std::fflush(stderr);
     };
   }
   const auto summary = tpf::offline::simulate_to_file(scenario, o.seed, duration, o.out, progress);
   if (!o.quiet)
     std::fprintf(stderr,
-                 "\nsimulate: %s, %d joints, %s: wrote %zu rows (%zu cycles dropped on purpose) to "
+                 "%ssimulate: %s, %d joints, %s: wrote %zu rows (%zu cycles dropped on purpose) to "
                  "%s\n",
-                 scenario.robot_file.c_str(), scenario.joints,
+                 terminal ? "\n" : "", scenario.robot_file.c_str(), scenario.joints,
                  scenario.pads_file.empty() ? "no skin" : scenario.pads_file.c_str(), summary.rows,
                  summary.dropped_rows, o.out.c_str());
 }

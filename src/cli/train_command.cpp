@@ -1,5 +1,7 @@
 // `tpf train`: the friction compensator (TCN) from contact-free excitation logs and a nominal
 // model, with the run-time estimator's own features.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -69,7 +71,8 @@ void run_train(TrainCommandOptions o) {
   for (const std::string& name : o.without)
     options.masked_inputs.push_back(compensator_input_channel(name));
   const CompensatorTraining result = train_compensator(
-      traces, options, o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr));
+      traces, options,
+      o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr, ::isatty(STDERR_FILENO) == 1));
   for (const std::string& p : write_compensator(result, o.out))
     std::printf("train: wrote %s\n", p.c_str());
   for (std::size_t k = 0; k < result.results.size(); ++k) {

@@ -7,23 +7,24 @@
 
 namespace tpf::offline {
 
-TerminalProgressBar::TerminalProgressBar(std::ostream& out, int width)
-    : out_(out), width_(std::max(width, 1)) {}
+TerminalProgressBar::TerminalProgressBar(std::ostream& out, int width, bool redraw)
+    : out_(out), width_(std::max(width, 1)), redraw_(redraw) {}
 
 void TerminalProgressBar::update(double fraction, std::string_view status,
                                  double remaining_seconds) {
   fraction = std::clamp(std::isfinite(fraction) ? fraction : 0.0, 0.0, 1.0);
   const int filled = static_cast<int>(std::lround(fraction * width_));
-  out_ << "\r[" << std::string(filled, '#') << std::string(width_ - filled, '.') << "] ";
+  out_ << (redraw_ ? "\r[" : "[") << std::string(filled, '#') << std::string(width_ - filled, '.')
+       << "] ";
   char percent[8];
   std::snprintf(percent, sizeof percent, "%3d%%", static_cast<int>(std::lround(100 * fraction)));
   out_ << percent << "  " << status;
   if (remaining_seconds >= 0.0) out_ << "  ETA " << format_duration(remaining_seconds);
-  out_ << "   " << std::flush;
+  out_ << (redraw_ ? "   " : "\n") << std::flush;
 }
 
 void TerminalProgressBar::finish() {
-  out_ << '\n' << std::flush;
+  if (redraw_) out_ << '\n' << std::flush;
 }
 
 std::string format_duration(double seconds) {

@@ -396,8 +396,8 @@ TcnTrainResult train_tcn(const TcnDataset& dataset, const TcnTrainOptions& optio
   return TcnTrainer(dataset, options).train(progress);
 }
 
-TcnProgressCallback tcn_progress_bar(std::ostream& out) {
-  auto bar = std::make_shared<TerminalProgressBar>(out);
+TcnProgressCallback tcn_progress_bar(std::ostream& out, bool redraw) {
+  auto bar = std::make_shared<TerminalProgressBar>(out, 30, redraw);
   return [bar](const TcnTrainProgress& p) {
     char status[192];
     std::snprintf(status, sizeof status,

@@ -191,7 +191,8 @@ class TcnTrainer {
 TcnTrainResult train_tcn(const TcnDataset& dataset, const TcnTrainOptions& options,
                          const TcnProgressCallback& progress = {});
 
-/// A callback drawing a TerminalProgressBar on `out` ("epoch 12/200  loss …  val …  ETA …").
-TcnProgressCallback tcn_progress_bar(std::ostream& out);
+/// A callback drawing a TerminalProgressBar on `out` ("epoch 12/200  loss …  val …  ETA …"),
+/// redrawn in place when `redraw` (a terminal), a line per epoch otherwise.
+TcnProgressCallback tcn_progress_bar(std::ostream& out, bool redraw = true);
 
 }  // namespace tpf::offline
