@@ -21,8 +21,8 @@ inline offline::Log read_command_logs(const std::vector<std::string>& paths) {
   for (const std::string& n : notes)
     std::printf("note: %s\n", n.c_str());
   if (log.file_count() > 1) std::printf("%s\n", log.quality.summary(log.columns).c_str());
-  for (const std::string& line : offline::torque_sensor_report(log, log.joint_count()))
-    if (line.find("none") == std::string::npos) std::printf("%s\n", line.c_str());
+  for (const std::string& line : offline::torque_sensor_problems(log, log.joint_count()))
+    std::printf("%s\n", line.c_str());
   return log;
 }
 

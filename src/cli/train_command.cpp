@@ -45,10 +45,10 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& 
   for (const std::string& path : o.logs) {
     if (!o.quiet) std::fprintf(stderr, "train: reading %s\n", path.c_str());
     const Log log = read_log(path);
-    // Where the torque sensor is flat or missing, as identify and diagnose say it (a log with no
-    // sensor column at all needs no line): the sensor is never an input of the networks.
-    for (const std::string& line : torque_sensor_report(log, N))
-      if (line.find("none") == std::string::npos) std::printf("%s\n", line.c_str());
+    // Where the torque sensor is flat or missing, as identify and diagnose say it: the sensor is
+    // never an input of the networks.
+    for (const std::string& line : torque_sensor_problems(log, N))
+      std::printf("%s\n", line.c_str());
     setup.parameters = estimator_parameters_from_noise<N>(
         estimate_sensor_noise(log, setup.nominal.model.torque_constant));
     traces.push_back(replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0)));

@@ -35,6 +35,13 @@ std::string joint_ranges(const std::vector<int>& joints) {
   return text;
 }
 
+/// Whether the log has a tau_sensor<j> column for any of its joints.
+bool has_torque_sensor(const Log& log, int joints) {
+  for (int j = 1; j <= joints; ++j)
+    if (log.has(indexed_name("tau_sensor", j))) return true;
+  return false;
+}
+
 }  // namespace
 
 std::vector<std::vector<SensorColumn>> torque_sensor_columns(const Log& log, int joints) {
@@ -48,12 +55,14 @@ std::vector<std::vector<SensorColumn>> torque_sensor_columns(const Log& log, int
 }
 
 std::vector<std::string> torque_sensor_report(const Log& log, int joints) {
+  if (!has_torque_sensor(log, joints)) return {"torque sensor: none (no tau_sensor<j> column)"};
+  return torque_sensor_problems(log, joints);
+}
+
+std::vector<std::string> torque_sensor_problems(const Log& log, int joints) {
+  if (!has_torque_sensor(log, joints)) return {};
   const auto columns = torque_sensor_columns(log, joints);
   std::vector<std::string> lines;
-  bool none = true;
-  for (int j = 1; j <= joints; ++j)
-    none = none && !log.has(indexed_name("tau_sensor", j));
-  if (none) return {"torque sensor: none (no tau_sensor<j> column)"};
   for (std::size_t f = 0; f < columns.size(); ++f) {
     std::vector<int> missing, flat;
     std::string values;

@@ -39,4 +39,8 @@ inline bool sensor_usable(const std::vector<std::vector<SensorColumn>>& c, std::
 /// varies in every file.
 std::vector<std::string> torque_sensor_report(const Log& log, int joints);
 
+/// The lines of torque_sensor_report that name a missing or flat sensor: nothing for a log
+/// without any tau_sensor<j> column (a fitting command has nothing to say about it).
+std::vector<std::string> torque_sensor_problems(const Log& log, int joints);
+
 }  // namespace tpf::offline
