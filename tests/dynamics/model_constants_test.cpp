@@ -1,6 +1,7 @@
 // The fast forms (joint rotations by Rodrigues' formula on the model's constants, link inertias
 // about their origins precomputed, the gravity-only pass, the symmetric parallel-axis update) give
-// the textbook forms' numbers to rounding, on the 4-DoF arm and the 7-DoF Kinova Gen3.
+// the textbook forms' numbers to rounding, on the 4-DoF arm and the 7-DoF Kinova Gen3; so does
+// the regressor, whose joints take each link's wrench through their axes carried up the chain.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -17,6 +18,7 @@ template <int N>
 void expect_fast_forms_match_reference(const Model<double, N>& model, unsigned seed) {
   Data<double, N> data;
   reference::Workspace<N> ref;
+  Regressor<double, N> Y;
   std::mt19937_64 rng(seed);
   for (int trial = 0; trial < 50; ++trial) {
     const auto q = random_vector<N>(rng, 3.0), dq = random_vector<N>(rng, 2.0),
@@ -36,6 +38,9 @@ void expect_fast_forms_match_reference(const Model<double, N>& model, unsigned s
               kRounding);
     EXPECT_LT((compute_mass_matrix(model, data, q) - reference::mass_matrix(model, q)).norm(),
               kRounding);
+    compute_regressor(model, data, q, dq, ddq, Y);
+    const Regressor<double, N> Y_ref = reference::regressor(model, q, dq, ddq);
+    EXPECT_LT((Y - Y_ref).cwiseAbs().maxCoeff(), kRounding * (1.0 + Y_ref.cwiseAbs().maxCoeff()));
   }
 }
 

@@ -105,4 +105,52 @@ JointMatrix<double, N> mass_matrix(const Model<double, N>& model, const JointVec
   return M;
 }
 
+/// The regressor Y (N × 13N, tpf's column order) by carrying each link's 3 × 10 wrench matrices
+/// [F; M] (f = F π_k, n = M π_k at its origin) down the chain to every joint j ≤ k:
+/// M ← R M + [p]× R F, F ← R F; Y(j, π_k) = z_j · M in joint j's frame.
+template <int N>
+Regressor<double, N> regressor(const Model<double, N>& model, const JointVector<double, N>& q,
+                               const JointVector<double, N>& dq,
+                               const JointVector<double, N>& ddq) {
+  Workspace<N> w;
+  kinematics(model, w, q);
+  Regressor<double, N> Y = Regressor<double, N>::Zero();
+  Vector3<double> omega = Vector3<double>::Zero(), domega = Vector3<double>::Zero(),
+                  acc = -model.gravity;
+  for (int k = 1; k <= N; ++k) {
+    const Matrix3<double>& R = w.liMi[k].R;
+    const Vector3<double>& p = w.liMi[k].p;
+    const Vector3<double>& z = model.axes[k - 1];
+    acc = R.transpose() * (acc + domega.cross(p) + omega.cross(omega.cross(p)));
+    const Vector3<double> w_parent = R.transpose() * omega;
+    omega = w_parent + z * dq(k - 1);
+    domega = R.transpose() * domega + z * ddq(k - 1) + w_parent.cross(z * dq(k - 1));
+    auto L = [](const Vector3<double>& x) {  // I x = L(x) [Ixx Ixy Ixz Iyy Iyz Izz]ᵀ
+      Eigen::Matrix<double, 3, 6> l;
+      l << x.x(), x.y(), x.z(), 0, 0, 0, 0, x.x(), 0, x.y(), x.z(), 0, 0, 0, x.x(), 0, x.y(), x.z();
+      return l;
+    };
+    Eigen::Matrix<double, 3, 10> F = Eigen::Matrix<double, 3, 10>::Zero();
+    Eigen::Matrix<double, 3, 10> M = Eigen::Matrix<double, 3, 10>::Zero();
+    F.col(0) = acc;
+    F.middleCols<3>(1) = skew(domega) + skew(omega) * skew(omega);
+    M.middleCols<3>(1) = -skew(acc);
+    M.rightCols<6>() = L(domega) + skew(omega) * L(omega);
+    for (int j = k; j >= 1; --j) {
+      Y.template block<1, 10>(j - 1, 10 * (k - 1)) = model.axes[j - 1].transpose() * M;
+      if (j > 1) {
+        const Matrix3<double>& Rj = w.liMi[j].R;
+        M = (Rj * M + skew(w.liMi[j].p) * Rj * F).eval();
+        F = (Rj * F).eval();
+      }
+    }
+  }
+  for (int j = 0; j < N; ++j) {
+    Y(j, 10 * N + j) = ddq(j);
+    Y(j, 11 * N + j) = dq(j) > 0 ? 1.0 : (dq(j) < 0 ? -1.0 : 0.0);
+    Y(j, 12 * N + j) = dq(j);
+  }
+  return Y;
+}
+
 }  // namespace tpf::test::reference

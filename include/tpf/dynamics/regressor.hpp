@@ -1,6 +1,8 @@
 // The dynamics is linear in its parameters: τ = Y(q, q̇, q̈) π.
 #pragma once
 
+#include <array>
+
 #include "tpf/kinematics/forward_kinematics.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/model.hpp"
@@ -35,15 +37,21 @@ DynamicParameters<S, N> dynamic_parameters(const Model<S, N>& model,
 
 /// The regressor Y (N × 13N) with Y π = RNEA(q, q̇, q̈) + τ_c sgn(q̇) + b q̇ (friction that the
 /// motor must overcome, so measured torque = Y π). Each link's wrench at its origin is linear in
-/// its 10 parameters, [f; n] = A(ω, ω̇, a) π_k, with
-///   f = m a + ω̇ × h + ω × (ω × h),   n = I ω̇ + ω × (I ω) + h × a,
-/// and is carried down the chain to every joint j ≤ k: Y(j, π_k) = z_j · n_j. Allocation-free.
+/// its 10 parameters, [f; n] = [F; M] π_k (3 × 10 each, in link k's frame), with
+///   f = m a + ω̇ × h + ω × (ω × h),   n = I ω̇ + ω × (I ω) + h × a.
+/// Joint j ≤ k carries that wrench's moment about its own origin, z_j · (n + r × f) with r from
+/// joint j's origin to link k's, so
+///   Y(j, π_k) = u_jᵀ M + v_jᵀ F,   u_j = z_j and v_j = z_j × r, both in link k's frame,
+/// carried up the chain link by link (v ← Rᵀ(v + u × p), u ← Rᵀ u): O(N²) 3-vectors instead of
+/// moving every link's 3 × 10 wrench matrices down to each joint. Fills data.oMi as
+/// forward_kinematics does. Allocation-free.
 template <typename S, int N>
 void compute_regressor(const Model<S, N>& model, Data<S, N>& data,
                        const NoDeduce<JointVector<S, N>>& q, const NoDeduce<JointVector<S, N>>& dq,
                        const NoDeduce<JointVector<S, N>>& ddq, Regressor<S, N>& Y) {
   forward_kinematics(model, data, q);
   Y.setZero();
+  std::array<Vector3<S>, N> u, v;  // joint j's axis and z_j × r in the current link's frame
   Vector3<S> w = Vector3<S>::Zero(), dw = Vector3<S>::Zero(), a = -model.gravity;
   for (int k = 1; k <= N; ++k) {
     const Matrix3<S>& R = data.liMi[k].R;
@@ -56,29 +64,32 @@ void compute_regressor(const Model<S, N>& model, Data<S, N>& data,
     w = w_k;
     dw = dw_k;
     a = a_k;
+    for (int j = 0; j + 1 < k; ++j) {
+      v[j] = R.transpose() * (v[j] + u[j].cross(p));
+      u[j] = R.transpose() * u[j];
+    }
+    u[k - 1] = z;
+    v[k - 1].setZero();
 
-    // I x = L(x) [Ixx Ixy Ixz Iyy Iyz Izz]ᵀ
-    auto L = [](const NoDeduce<Vector3<S>>& x) {
-      Eigen::Matrix<S, 3, 6> l;
-      l << x.x(), x.y(), x.z(), S(0), S(0), S(0),  //
-          S(0), x.x(), S(0), x.y(), x.z(), S(0),   //
-          S(0), S(0), x.x(), S(0), x.y(), x.z();
-      return l;
-    };
-    Eigen::Matrix<S, 3, 10> F = Eigen::Matrix<S, 3, 10>::Zero();
-    Eigen::Matrix<S, 3, 10> M = Eigen::Matrix<S, 3, 10>::Zero();
-    F.col(0) = a;
-    F.template middleCols<3>(1) = skew(dw) + skew(w) * skew(w);
-    M.template middleCols<3>(1) = -skew(a);
-    M.template rightCols<6>() = L(dw) + skew(w) * L(w);
+    // F = [a | skew(ω̇) + skew(ω)² | 0],  M = [0 | −skew(a) | L(ω̇) + skew(ω) L(ω)], with
+    // I x = L(x) [Ixx Ixy Ixz Iyy Iyz Izz]ᵀ.
+    const Matrix3<S> F_h = skew(dw) + skew(w) * skew(w);
+    const Matrix3<S> M_h = -skew(a);
+    Eigen::Matrix<S, 3, 6> M_I;
+    M_I << dw.x(), dw.y(), dw.z(), S(0), S(0), S(0),  //
+        S(0), dw.x(), S(0), dw.y(), dw.z(), S(0),     //
+        S(0), S(0), dw.x(), S(0), dw.y(), dw.z();
+    Eigen::Matrix<S, 3, 6> L_w;
+    L_w << w.x(), w.y(), w.z(), S(0), S(0), S(0),  //
+        S(0), w.x(), S(0), w.y(), w.z(), S(0),     //
+        S(0), S(0), w.x(), S(0), w.y(), w.z();
+    M_I.noalias() += skew(w) * L_w;
 
-    for (int j = k; j >= 1; --j) {
-      Y.template block<1, 10>(j - 1, 10 * (k - 1)) = model.axes[j - 1].transpose() * M;
-      if (j > 1) {
-        const Matrix3<S>& Rj = data.liMi[j].R;
-        M = Rj * M + skew(data.liMi[j].p) * Rj * F;
-        F = Rj * F;
-      }
+    const int column = 10 * (k - 1);
+    for (int j = 0; j < k; ++j) {
+      Y(j, column) = v[j].dot(a);
+      Y.template block<1, 3>(j, column + 1) = u[j].transpose() * M_h + v[j].transpose() * F_h;
+      Y.template block<1, 6>(j, column + 4) = u[j].transpose() * M_I;
     }
   }
   for (int j = 0; j < N; ++j) {
