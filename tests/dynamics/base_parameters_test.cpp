@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "support/arm_fixture.hpp"
 
 namespace tpf::test {
@@ -39,6 +41,40 @@ TEST(BaseParameters, RankIsTheSameForAnotherSeed) {
   RandomStates a(41), b(42);
   EXPECT_EQ(find_base_parameters(stacked_regressor(a, 150)).size(),
             find_base_parameters(stacked_regressor(b, 150)).size());
+}
+
+TEST(BaseParameters, OfAnArmWithContinuousJoints) {
+  // The Gen3's joints 1, 3, 5 and 7 turn without limits (±∞ in the model): the base parameters
+  // are found from poses over a whole turn of those joints, and the reduced regressor reproduces
+  // the rigid-body torques of the robot file's inertias at fresh poses anywhere.
+  constexpr int N = 7;
+  const Model<double, N> model =
+      load_robot<double, N>(data_path("real/kinova-gen3/gen3.robot.json"));
+  ASSERT_FALSE(model.has_position_limits(0));
+  ASSERT_TRUE(model.has_position_limits(1));
+  const BaseParameters base = rigid_body_base_parameters(model);
+  EXPECT_GT(base.size(), 5 * N);  // ≥ 5 identifiable combinations per link and its armature
+  EXPECT_LT(base.size(), 11 * N);
+  const Eigen::VectorXd pi =
+      dynamic_parameters(model, JointVector<double, N>::Zero(), JointVector<double, N>::Zero())
+          .head(11 * N);
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Data<double, N> data;
+  Regressor<double, N> Y;
+  Eigen::MatrixXd W(50 * N, 11 * N);
+  for (int s = 0; s < 50; ++s) {
+    JointVector<double, N> q, dq, ddq;
+    for (int j = 0; j < N; ++j) {
+      q[j] = 6.0 * unit(rng);
+      dq[j] = 2.0 * unit(rng);
+      ddq[j] = 5.0 * unit(rng);
+    }
+    compute_regressor(model, data, q, dq, ddq, Y);
+    W.middleRows(s * N, N) = Y.leftCols(11 * N);
+  }
+  ASSERT_TRUE(W.allFinite());
+  EXPECT_LT((base.reduce(W) * base.project(pi) - W * pi).norm(), 1e-9 * (W * pi).norm());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "tpf/common/types.hpp"
@@ -54,7 +55,8 @@ struct Model {
   JointVector<S, N> gear_ratio = JointVector<S, N>::Ones();
   JointVector<S, N> torque_constant = JointVector<S, N>::Ones();  ///< [N·m/A], output side.
   JointVector<S, N> current_limit = JointVector<S, N>::Zero();    ///< [mA].
-  JointVector<S, N> lower = JointVector<S, N>::Zero();            ///< position limits [rad].
+  /// Position limits [rad]; ±∞ for a continuous joint (see has_position_limits).
+  JointVector<S, N> lower = JointVector<S, N>::Zero();
   JointVector<S, N> upper = JointVector<S, N>::Zero();
   JointVector<S, N> velocity_limit = JointVector<S, N>::Zero();  ///< [rad/s].
   JointVector<S, N> effort_limit = JointVector<S, N>::Zero();    ///< [N·m].
@@ -108,6 +110,13 @@ struct Model {
     for (int k = 0; k <= N; ++k)
       if (link_names[k] == link_name) return k;
     return -1;
+  }
+
+  /// Whether joint j (0-based) moves within finite limits lower < upper; a continuous joint has
+  /// ±∞ and no range to draw positions from.
+  bool has_position_limits(int j) const {
+    using std::isfinite;
+    return isfinite(lower[j]) && isfinite(upper[j]) && lower[j] < upper[j];
   }
 
   /// The same model in another scalar type (e.g. float for a controller).

@@ -68,8 +68,8 @@ BaseParameters rigid_body_base_parameters(const Model<double, N>& model) {
   for (int s = 0; s < kStates; ++s) {
     JointVector<double, N> q, dq, ddq;
     for (int j = 0; j < N; ++j) {
-      const bool limited = model.upper[j] > model.lower[j];
-      q[j] = limited ? uniform(model.lower[j], model.upper[j]) : uniform(-M_PI, M_PI);
+      q[j] = model.has_position_limits(j) ? uniform(model.lower[j], model.upper[j])
+                                          : uniform(-M_PI, M_PI);
       dq[j] = uniform(-2.0, 2.0);
       ddq[j] = uniform(-5.0, 5.0);
     }

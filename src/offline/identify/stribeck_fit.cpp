@@ -4,24 +4,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "offline/identify/stribeck_curve_cost.hpp"
 
 namespace tpf::offline {
 
-StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                         const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load) {
-  double x[7] = {std::max(start.coulomb, 0.0),
-                 std::max(start.coulomb, 0.0) * 1.3,
-                 std::clamp(start.stribeck_velocity, 2e-3, 1.0),
-                 std::clamp(start.stribeck_exponent, 0.5, 3.0),
-                 std::max(start.viscous, 0.0),
-                 fit_load ? std::max(start.load_coulomb, 0.0) : 0.0,
-                 fit_load ? std::max(start.load_viscous, 0.0) : 0.0};
+namespace {
+
+// One local fit from x (in place); returns the final cost.
+double solve_from(double* x, const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
+                  const Eigen::VectorXd& target, bool fit_load, const double* lower,
+                  const double* upper) {
   ceres::Problem problem;
   problem.AddResidualBlock(new StribeckCurveCost(dq, abs_gravity, target), nullptr, x);
-  const double lower[7] = {0, 0, 1e-3, 0.3, 0, 0, 0};
-  const double upper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
   for (int i = 0; i < 7; ++i) {
     problem.SetParameterLowerBound(x, i, lower[i]);
     problem.SetParameterUpperBound(x, i, upper[i]);
@@ -39,6 +35,35 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
   options.gradient_tolerance = 0.0;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
+  return summary.final_cost;
+}
+
+}  // namespace
+
+StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
+                         const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load) {
+  const double lower[7] = {0, 0, 1e-3, 0.3, 0, 0, 0};
+  const double upper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
+  // Three starts, from a narrow dip to one as wide as the motion (friction that falls over the
+  // whole range, which a linear fit shows as b < 0): the cost has a local minimum per width.
+  const double dip[3][2] = {{std::clamp(start.stribeck_velocity, 2e-3, 1.0), 1.3},
+                            {0.3, 1.5},
+                            {1.5, 2.0}};
+  double x[7], best_cost = std::numeric_limits<double>::infinity();
+  for (const auto& d : dip) {
+    double trial[7] = {std::max(start.coulomb, 0.0),
+                       std::max(start.coulomb, 0.0) * d[1],
+                       d[0],
+                       std::clamp(start.stribeck_exponent, 0.5, 3.0),
+                       std::max(start.viscous, 0.0),
+                       fit_load ? std::max(start.load_coulomb, 0.0) : 0.0,
+                       fit_load ? std::max(start.load_viscous, 0.0) : 0.0};
+    const double cost = solve_from(trial, dq, abs_gravity, target, fit_load, lower, upper);
+    if (cost < best_cost) {
+      best_cost = cost;
+      std::copy(trial, trial + 7, x);
+    }
+  }
   StribeckFit fit{{x[0], x[1], x[2], x[3], x[4], x[5], x[6]}, {}};
   static const char* kName[7] = {"τ_c", "τ_s", "q̇_s", "δ", "b", "α_c", "α_v"};
   for (int i = 0; i < 7; ++i) {
