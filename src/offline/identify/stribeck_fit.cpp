@@ -12,6 +12,11 @@ namespace tpf::offline {
 
 namespace {
 
+Eigen::VectorXd every_kth(const Eigen::VectorXd& v, Eigen::Index k) {
+  if (k == 1) return v;
+  return v(Eigen::seq(0, v.size() - 1, k));
+}
+
 // One local fit from x (in place); returns the final cost.
 double solve_from(double* x, const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
                   const Eigen::VectorXd& target, bool fit_load, const double* lower,
@@ -49,6 +54,11 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
   const double dip[3][2] = {{std::clamp(start.stribeck_velocity, 2e-3, 1.0), 1.3},
                             {0.3, 1.5},
                             {1.5, 2.0}};
+  // On more than 10 000 samples the starts race on every k-th (≈ 4 000) and the best one is
+  // refined on all: the basin is found at a fraction of the cost.
+  const Eigen::Index n = dq.size(), k = n > 10000 ? n / 4000 : 1;
+  const Eigen::VectorXd coarse_dq = every_kth(dq, k), coarse_g = every_kth(abs_gravity, k),
+                        coarse_target = every_kth(target, k);
   double x[7], best_cost = std::numeric_limits<double>::infinity();
   for (const auto& d : dip) {
     double trial[7] = {std::max(start.coulomb, 0.0),
@@ -58,12 +68,14 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
                        std::max(start.viscous, 0.0),
                        fit_load ? std::max(start.load_coulomb, 0.0) : 0.0,
                        fit_load ? std::max(start.load_viscous, 0.0) : 0.0};
-    const double cost = solve_from(trial, dq, abs_gravity, target, fit_load, lower, upper);
+    const double cost =
+        solve_from(trial, coarse_dq, coarse_g, coarse_target, fit_load, lower, upper);
     if (cost < best_cost) {
       best_cost = cost;
       std::copy(trial, trial + 7, x);
     }
   }
+  if (k > 1) solve_from(x, dq, abs_gravity, target, fit_load, lower, upper);
   StribeckFit fit{{x[0], x[1], x[2], x[3], x[4], x[5], x[6]}, {}};
   static const char* kName[7] = {"τ_c", "τ_s", "q̇_s", "δ", "b", "α_c", "α_v"};
   for (int i = 0; i < 7; ++i) {
