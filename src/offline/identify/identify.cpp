@@ -16,6 +16,7 @@
 #include "offline/identify/parallel_jobs.hpp"
 #include "offline/identify/sensor_friction.hpp"
 #include "offline/identify/stribeck_fit.hpp"
+#include "offline/report/text_format.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
@@ -155,6 +156,9 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
         std::clamp(linear.coulomb_asymmetry[j], -clamped.coulomb[j], clamped.coulomb[j]);
   }
   std::vector<std::vector<std::string>> notes(N);
+  // A joint whose gravity torque stays negligible (a vertical axis) has no load column to fit:
+  // α·|G| there would fit noise in |G| with an absurd α.
+  const double arm_gravity = abs_gravity.array().isFinite().select(abs_gravity, 0.0).maxCoeff();
   auto fit_joint = [&](int j) {
     std::vector<Eigen::Index> rows, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
@@ -198,9 +202,14 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
     linear_fit.viscous[j] = start.viscous;
     linear_fit.load_coulomb[j] = start.load_coulomb;
     linear_fit.load_viscous[j] = start.load_viscous;
+    const bool fit_load_here = fit_load && all.col(1).maxCoeff() > 1e-3 * arm_gravity;
+    if (fit_load && !fit_load_here)
+      notes[j].push_back("joint " + std::to_string(j + 1) + ": its gravity torque stays below " +
+                         "0.1 % of the arm's largest (" + format_number(arm_gravity, 3) +
+                         " N·m): no load-dependent friction fitted");
     const Eigen::MatrixXd strided = gather(stride);
     const StribeckFit fit =
-        fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load);
+        fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load_here);
     StribeckParameters<double, N> curve = clamped;
     curve.coulomb[j] = fit.curve.coulomb;
     curve.static_friction[j] = fit.curve.static_friction;
