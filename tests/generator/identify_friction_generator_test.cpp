@@ -30,7 +30,7 @@ using offline::Regime;
 struct HeldOutRms {
   double curve = 0, linear = 0;
   double dissipative = 0;  ///< the linear fit with τ_c, b ≥ 0 (= linear where both come out ≥ 0)
-  bool negative = false;   ///< the plain least-squares fit has τ_c < 0 or b < 0
+  bool negative = false;  ///< the plain least-squares fit has τ_c < 0 or b < 0
   Eigen::Index samples = 0;
 };
 
@@ -83,7 +83,8 @@ std::vector<HeldOutRms> curve_against_linear(const offline::Identification<N>& i
       return std::sqrt(sse / static_cast<double>(heldout.size()));
     };
     double sse_curve = 0;
-    for (Eigen::Index k : heldout) sse_curve += std::pow(id.residual(k, j), 2);
+    for (Eigen::Index k : heldout)
+      sse_curve += std::pow(id.residual(k, j), 2);
     out[j] = {std::sqrt(sse_curve / static_cast<double>(heldout.size())), heldout_rms(linear),
               heldout_rms(dissipative), (linear.array() < 0).any(),
               static_cast<Eigen::Index>(heldout.size())};
@@ -163,6 +164,27 @@ TEST(IdentifyFriction, CurveIsNoWorseThanLinearOnTheKinovaLogs) {
                                             dir + "logs/opti_traj_testing2.csv.gz"};
   expect_curve_no_worse<7>(offline::read_logs(fitting), model, "Kinova fitting files");
   expect_curve_no_worse<7>(offline::read_logs(testing), model, "Kinova testing files");
+}
+
+// The Gen3's joint 1 turns about the vertical: its gravity torque is zero up to rounding, so a
+// load column α·|G| there could only fit noise (it gave α_v ≈ 2.5e3). Held at zero and said; the
+// joints that carry gravity keep theirs.
+TEST(IdentifyFriction, NoLoadFrictionOnAVerticalAxis) {
+  const std::string dir = std::string(TPF_TEST_DATA_DIR) + "/real/kinova-gen3/";
+  const Model<double, 7> model = load_robot<double, 7>(dir + "gen3.robot.json");
+  const std::vector<std::string> fitting = {dir + "logs/RunTrajectory1.csv.gz",
+                                            dir + "logs/Trajectory1.csv.gz",
+                                            dir + "logs/RecordTrajectory_quadratic.csv.gz"};
+  const auto id = offline::identify<7>(offline::read_logs(fitting), model);
+  const auto& f = id.nominal.friction;
+  EXPECT_EQ(f.load_coulomb[0], 0.0);
+  EXPECT_EQ(f.load_viscous[0], 0.0);
+  EXPECT_GT(f.load_coulomb.tail(6).sum() + f.load_viscous.tail(6).sum(), 0.0);
+  std::vector<std::string> said;
+  for (const std::string& note : id.friction_notes)
+    if (note.find("its gravity torque stays below") != std::string::npos) said.push_back(note);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0].rfind("joint 1: ", 0), 0u) << said[0];
 }
 
 }  // namespace

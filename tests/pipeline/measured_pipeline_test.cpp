@@ -128,8 +128,8 @@ void expect_noise_floor(const std::filesystem::path& out, const MeasuredFloor& f
 // joint 2 it says why 60 % is missed held out: the fitting files never move it backwards, the
 // same model class fitted on the scored files stays above the target unfiltered and reaches it
 // only with the current low-passed; the held-out model does not reach it with any low-pass, as
-// its error below 2 Hz alone exceeds the target. In the reverse split the current carries an oscillation between 2 and 20 Hz that
-// the sensor does not show.
+// its error below 2 Hz alone exceeds the target. In the reverse split the current carries an
+// oscillation between 2 and 20 Hz that the sensor does not show.
 void expect_bound(const std::filesystem::path& out, const MeasuredResult& r) {
   const MeasuredBound& b = r.bound;
   ASSERT_EQ(b.maker.size(), 7u);

@@ -6,8 +6,7 @@
 namespace tpf::offline {
 
 JointStribeck fit_linear_friction(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                                  const Eigen::VectorXd& target, bool fit_load,
-                                  bool nonnegative) {
+                                  const Eigen::VectorXd& target, bool fit_load, bool nonnegative) {
   const int columns = fit_load ? 4 : 2;  // sgn, q̇, sgn·|G|, q̇·|G|
   Eigen::Matrix4d gram = Eigen::Matrix4d::Zero();
   Eigen::Vector4d moment = Eigen::Vector4d::Zero();
@@ -30,7 +29,8 @@ JointStribeck fit_linear_friction(const Eigen::VectorXd& dq, const Eigen::Vector
     Eigen::VectorXd m(n);
     for (int a = 0; a < n; ++a) {
       m[a] = moment[used[a]];
-      for (int b = 0; b < n; ++b) g(a, b) = gram(used[a], used[b]);
+      for (int b = 0; b < n; ++b)
+        g(a, b) = gram(used[a], used[b]);
     }
     const Eigen::LDLT<Eigen::MatrixXd> ldlt(g);
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) continue;
@@ -40,7 +40,8 @@ JointStribeck fit_linear_friction(const Eigen::VectorXd& dq, const Eigen::Vector
     if (sse < best_sse) {
       best_sse = sse;
       best.setZero();
-      for (int a = 0; a < n; ++a) best[used[a]] = x[a];
+      for (int a = 0; a < n; ++a)
+        best[used[a]] = x[a];
     }
   }
   JointStribeck out;

@@ -51,9 +51,8 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
   const double upper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
   // Three starts, from a narrow dip to one as wide as the motion (friction that falls over the
   // whole range, which a linear fit shows as b < 0): the cost has a local minimum per width.
-  const double dip[3][2] = {{std::clamp(start.stribeck_velocity, 2e-3, 1.0), 1.3},
-                            {0.3, 1.5},
-                            {1.5, 2.0}};
+  const double dip[3][2] = {
+      {std::clamp(start.stribeck_velocity, 2e-3, 1.0), 1.3}, {0.3, 1.5}, {1.5, 2.0}};
   // On more than 10 000 samples the starts race on every k-th (≈ 4 000) and the best one is
   // refined on all: the basin is found at a fraction of the cost.
   const Eigen::Index n = dq.size(), k = n > 10000 ? n / 4000 : 1;

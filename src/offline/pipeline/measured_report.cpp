@@ -223,9 +223,9 @@ std::string compensator_floor_sentence(const MeasuredFloor& f) {
     if (f.oracle_compensator_rmse[j] > (1.0 - target) * f.best_rmse[j])
       short_even_in_sample.push_back("joint " + joint + " " + change);
     else if (std::isfinite(f.compensator_rmse[j]) && !heldout_reaches)
-      reached_in_sample.push_back(
-          "joint " + joint + " " + change + " (held out " +
-          format_percent_change(f.best_rmse[j], f.compensator_rmse[j]) + ")");
+      reached_in_sample.push_back("joint " + joint + " " + change + " (held out " +
+                                  format_percent_change(f.best_rmse[j], f.compensator_rmse[j]) +
+                                  ")");
   }
   if (!short_even_in_sample.empty())
     text +=
