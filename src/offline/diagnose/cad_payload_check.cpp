@@ -106,6 +106,7 @@ class PayloadJudge {
 
 CadPayloadCheck judge_cad_payload(const DesignGrams& grams, const std::vector<FeatureGroup>& groups,
                                   const Eigen::VectorXd& cad, const std::vector<int>& selected,
+                                  const std::vector<TransferFold>& transfer,
                                   const FitSelection& selection,
                                   const Eigen::VectorXd& variance_inflation,
                                   const DiagnoseOptions& options) {
@@ -129,8 +130,19 @@ CadPayloadCheck judge_cad_payload(const DesignGrams& grams, const std::vector<Fe
     c.centre =
         Vector3<double>(fit.theta[payload[1]], fit.theta[payload[2]], fit.theta[payload[3]]) /
         c.mass;
-  c.claimed = fit.passes(options);
-  if (c.claimed) return c;
+  // A payload is the arm's: it must lower the held-out error of every file held out in turn.
+  for (const TransferFold& fold : transfer) {
+    const PayloadFit other =
+        PayloadJudge(fold.grams, cad, selection, 1.0).fit(joined(friction, effects), payload);
+    if (!(other.improvement >= c.transfer_improvement)) {
+      c.transfer_improvement = other.improvement;
+      c.transfer_file = fold.file;
+    }
+  }
+  const bool transfers =
+      std::isnan(c.transfer_improvement) || c.transfer_improvement >= options.min_improvement;
+  c.claimed = fit.passes(options) && transfers;
+  if (fit.passes(options)) return c;
   // Not beyond the selected effects: "ambiguous" with each selected effect that, left out,
   // frees a payload that passes, and whose columns the payload's nearly span.
   for (int g : selected) {

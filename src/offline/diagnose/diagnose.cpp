@@ -393,7 +393,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
 
   out.cad_payload = judge_cad_payload(
       grams, out.groups, cad_rigid_body(model, setup.base, out.groups, design.features()),
-      out.selected, selection, analysis.variance_inflation, options);
+      out.selected, transfer, selection, analysis.variance_inflation, options);
   out.findings = diagnosis_findings(out, options);
   return out;
 }

@@ -106,8 +106,9 @@ struct CandidateTrial {
 /// the robot file's inertias are right; an identified rigid body absorbs a payload (it is then
 /// not a missing effect).
 struct CadPayloadCheck {
-  /// It removes ≥ min_improvement of the held-out SSE beyond the selected effects, the BIC falls,
-  /// and the mass is positive and ≥ min_standard_errors standard errors.
+  /// It removes ≥ min_improvement of the held-out SSE beyond the selected effects (and of every
+  /// other file's, held out in turn), the BIC falls, and the mass is positive and
+  /// ≥ min_standard_errors standard errors.
   bool claimed = false;
   double improvement = 0.0;  ///< fraction of the held-out moving SSE removed (all joints)
   double bic_change = 0.0;
@@ -119,6 +120,10 @@ struct CadPayloadCheck {
   /// a payload and" those (indices into the groups), with those cos².
   std::vector<int> ambiguous_with;
   std::vector<double> ambiguous_shares;
+  /// A several-file log: the smallest improvement on the other files held out in turn, and that
+  /// file; NaN for a one-file log.
+  double transfer_improvement = std::numeric_limits<double>::quiet_NaN();
+  std::string transfer_file;
   bool ambiguous() const { return !ambiguous_with.empty(); }
 };
 

@@ -39,6 +39,18 @@ std::string ambiguous_payload_finding(const EffectDiagnosis& d, const CadPayload
                     c.mass, c.mass_standard_error, 100 * c.improvement);
 }
 
+/// A payload that passes on the selection's held-out file but not on another held out in turn.
+std::string untransferred_payload_finding(const CadPayloadCheck& c) {
+  return format_sentence(
+             "Against the robot file's inertias: a payload of %.3g ± %.2g kg on the last link "
+             "removes %.1f %% of the held-out residual sum of squares beside the selected "
+             "effects, ",
+             c.mass, c.mass_standard_error, 100 * c.improvement) +
+         format_sentence("but %.1f %% on ", 100 * c.transfer_improvement) + c.transfer_file +
+         " held out in turn: it does not transfer between files, so it is not the arm's and "
+         "is not claimed.";
+}
+
 /// The trial that selected the claim's group.
 const CandidateTrial* selected_trial(const EffectDiagnosis& d, const Claim& c) {
   for (const CandidateTrial& t : d.trials)
@@ -250,6 +262,9 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
   if (!d.heldout_split.empty()) findings.push_back(d.heldout_split);
   if (d.cad_payload.claimed) findings.push_back(payload_finding(d.cad_payload));
   if (d.cad_payload.ambiguous()) findings.push_back(ambiguous_payload_finding(d, d.cad_payload));
+  if (!d.cad_payload.claimed && d.cad_payload.transfer_improvement < options.min_improvement &&
+      d.cad_payload.improvement >= options.min_improvement && d.cad_payload.mass > 0)
+    findings.push_back(untransferred_payload_finding(d.cad_payload));
   const bool untransferred =
       std::any_of(d.trials.begin(), d.trials.end(), [&](const CandidateTrial& t) {
         return t.fails_transfer(options) || t.fails_outside(options);

@@ -123,7 +123,9 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
                                      {"mass_kg", c.mass},
                                      {"mass_standard_error_kg", c.mass_standard_error},
                                      {"centre_m", {c.centre.x(), c.centre.y(), c.centre.z()}},
-                                     {"ambiguous_with", payload_alternatives}};
+                                     {"ambiguous_with", payload_alternatives},
+                                     {"transfer_improvement_percent", 100 * c.transfer_improvement},
+                                     {"transfer_file", c.transfer_file}};
   j["findings"] = d.findings;
   j["notes"] = d.notes;
   // NaN is not JSON: write null.
