@@ -66,9 +66,12 @@ Diagnosis<2> run(const PlanarArmPlant& plant, const char* label) {
                   t.selected ? " SELECTED" : "");
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
-  if (d.cad_payload.claimed)
-    std::printf("    CAD payload claimed: %.3f kg, %.1f %%\n", d.cad_payload.mass,
-                100 * d.cad_payload.improvement);
+  const offline::CadPayloadCheck& c = d.cad_payload;
+  std::printf("    CAD payload check: %s, %.3f ± %.3f kg, %.1f %% beside the selected effects\n",
+              c.claimed       ? "claimed"
+              : c.ambiguous() ? "ambiguous"
+                              : "not claimed",
+              c.mass, c.mass_standard_error, 100 * c.improvement);
   return d;
 }
 
@@ -101,6 +104,19 @@ void expect_only(const Diagnosis<2>& d, const std::set<std::string>& allowed) {
             << "confident wrong name " << name << ": " << describe(d);
       }
     }
+}
+
+// The CAD check claims no payload the generator did not plant: no claim, or "ambiguous between
+// the payload and" a selected effect that is one of `planted`.
+void expect_no_unplanted_payload(const Diagnosis<2>& d, const std::set<std::string>& planted) {
+  const offline::CadPayloadCheck& c = d.cad_payload;
+  EXPECT_FALSE(c.claimed) << "payload " << c.mass << " ± " << c.mass_standard_error << " kg, "
+                          << 100 * c.improvement << " % beyond the selected effects";
+  for (int g : c.ambiguous_with) {
+    const std::string name = d.groups[g].key + "@" + std::to_string(d.groups[g].joint + 1);
+    EXPECT_TRUE(planted.count(name) || planted.count(d.groups[g].key))
+        << "payload ambiguous with " << name << ", not planted";
+  }
 }
 
 // What diagnose adds is what runs: the parameter file it writes, loaded into the run-time
@@ -221,6 +237,9 @@ TEST(Generator, OffsetUnderAShortRangeIsNeverARipple) {
   const auto d = run(plant, "offset, short range");
   EXPECT_NE(outcome(d, "offset", 2), Outcome::Missed) << describe(d);
   expect_only(d, {"offset@2", "asymmetric_friction@2"});
+  // A payload's gravity on the forearm is nearly constant over 0.4 rad of q2: without the selected
+  // offset beside it, the CAD check took 0.093 kg for the offset (−79.6 %).
+  expect_no_unplanted_payload(d, {"offset@2", "asymmetric_friction@2"});
 }
 
 TEST(Generator, AsymmetricCoulombIsNotASpring) {
@@ -269,6 +288,9 @@ TEST(Generator, SpringBesideGravityIsNotClaimedConfidently) {
     }
   }
   expect_only(d, {"spring@2", "offset@2"});
+  // … nor as a payload (its gravity is nearly linear in q2 over the range: 0.251 kg, −78.8 %,
+  // when the CAD check was not judged beside the selected spring).
+  expect_no_unplanted_payload(d, {"spring@2", "offset@2"});
 }
 
 TEST(Generator, RippleAndSpringOverAWideRange) {
@@ -334,6 +356,13 @@ TEST(Generator, AnOffsetMissingFromOneFileIsNotClaimed) {
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
   EXPECT_TRUE(d.claims.empty()) << describe(d);
+  // Nor as a payload against the robot file's inertias: a payload that absorbs the offset
+  // (0.058 ± 0.009 kg, −43.9 % on file 3) does not transfer to file 2 either.
+  EXPECT_FALSE(d.cad_payload.claimed) << d.cad_payload.mass << " kg";
+  std::printf("    CAD payload check: %.3f ± %.3f kg, %.1f %%; %.1f %% on %s held out in turn\n",
+              d.cad_payload.mass, d.cad_payload.mass_standard_error,
+              100 * d.cad_payload.improvement, 100 * d.cad_payload.transfer_improvement,
+              d.cad_payload.transfer_file.c_str());
   const offline::CandidateTrial* offset = first_trial(d, "offset", 2);
   ASSERT_NE(offset, nullptr);
   // It passes every test on the held-out file alone: the transfer is what refuses it.
@@ -589,6 +618,45 @@ TEST(Generator, DirectionAsymmetricViscousFriction) {
     if (d.groups[c.groups[0]].key == "asymmetric_friction") {
       EXPECT_NEAR(c.coefficients[1], 0.10, 0.03);
     }
+  // Judged beside the selected friction term, no payload (0.016 kg at (−0.32, 0, −0.34) m,
+  // −20.4 %, when it was judged alone).
+  expect_no_unplanted_payload(d, {"asymmetric_friction@2", "offset@2"});
+}
+
+// Acceleration coupling: with an identified rigid body (base parameters and armatures), [0; q̈_1]
+// on joint 2 is [q̈_2; q̈_1] (in the rigid body's span) minus [q̈_2; 0], the same column as −C·q̈_2
+// on joint 1. The planted joint is named, or the claim is ambiguous and lists it; never a
+// confident name of joint 1 alone.
+void expect_acceleration_coupling_of_joint_2(const Diagnosis<2>& d,
+                                             const std::set<std::string>& planted) {
+  EXPECT_NE(outcome(d, "coupling", 2), Outcome::Missed) << describe(d);
+  expect_only(d, planted);
+  for (const offline::Claim& c : d.claims)
+    for (std::size_t i = 0; i < c.groups.size(); ++i)
+      std::printf("    %s: %.1f %% of the held-out SSE of %s\n",
+                  d.groups[c.groups[i]].title.c_str(), 100 * c.improvements[i],
+                  c.scored_joints.empty() ? "its joint" : "joints 1 and 2");
+}
+
+TEST(Generator, AccelerationCouplingAloneIsNotNamedOnTheOtherJoint) {
+  // τ_2 += 0.1·q̈_1: a base-mounted elbow motor whose rotor turns with the forearm's absolute
+  // angle.
+  PlanarArmPlant plant;
+  plant.seed = 56;
+  plant.coupling_acceleration(1, 0) = 0.1;
+  const auto d = run(plant, "coupling j2 <- ddq1");
+  expect_acceleration_coupling_of_joint_2(d, {"coupling@2"});
+}
+
+TEST(Generator, AccelerationCouplingBesideVelocityCouplingIsNotNamedOnTheOtherJoint) {
+  // The same, with joint 1's belt drag 0.15·q̇_2 of MotionCouplingBetweenTheJoints: coupling of
+  // joint 1 is planted too, but joint 2's must not be absorbed into it unseen.
+  PlanarArmPlant plant;
+  plant.seed = 56;
+  plant.coupling_velocity(0, 1) = 0.15;
+  plant.coupling_acceleration(1, 0) = 0.1;
+  const auto d = run(plant, "coupling j1 <- dq2, j2 <- ddq1");
+  expect_acceleration_coupling_of_joint_2(d, {"coupling@1", "coupling@2"});
 }
 
 }  // namespace

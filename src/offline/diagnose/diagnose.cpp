@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "offline/diagnose/cad_payload_check.hpp"
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
 #include "offline/diagnose/residual_analysis.hpp"
@@ -288,43 +289,19 @@ NominalModel<double, N> declared_nominal(const NominalModel<double, N>& written,
   return declared;
 }
 
-/// A payload against the robot file's inertias (CAD): the rigid body held at the robot file's
-/// base parameters, friction refitted with and without a body on the last link.
+/// The robot file's (CAD) base parameters in the rigid body's columns, zero elsewhere.
 template <int N>
-CadPayloadCheck check_cad_payload(const Model<double, N>& model, const BaseParameters& base,
-                                  const DesignGrams& grams, const EffectDesign<N>& design,
-                                  const std::vector<FeatureGroup>& groups,
-                                  const FitSelection& selection, double min_improvement) {
-  const Eigen::VectorXd cad_values = base.project(
+Eigen::VectorXd cad_rigid_body(const Model<double, N>& model, const BaseParameters& base,
+                               const std::vector<FeatureGroup>& groups, Eigen::Index features) {
+  const Eigen::VectorXd values = base.project(
       dynamic_parameters(model, JointVector<double, N>::Zero(), JointVector<double, N>::Zero())
           .head(11 * N));
-  Eigen::VectorXd cad = Eigen::VectorXd::Zero(design.features());
-  std::vector<int> friction_columns, payload_columns;
-  for (const FeatureGroup& g : groups) {
+  Eigen::VectorXd cad = Eigen::VectorXd::Zero(features);
+  for (const FeatureGroup& g : groups)
     if (g.key == RigidBodyColumns::key)
       for (int i = 0; i < base.size(); ++i)
-        cad[g.columns[i]] = cad_values[i];
-    if (g.key == JointFrictionColumns::key)  // the sliding levels, not the friction held at rest
-      friction_columns.insert(friction_columns.end(), g.columns.begin(), g.columns.begin() + 2);
-    if (g.key == PayloadColumns::key) payload_columns = g.columns;
-  }
-  std::vector<int> with_payload = friction_columns;
-  with_payload.insert(with_payload.end(), payload_columns.begin(), payload_columns.end());
-  const Eigen::VectorXd without = refit_columns(grams, friction_columns, cad, selection);
-  const Eigen::VectorXd with = refit_columns(grams, with_payload, cad, selection);
-  const auto [sse0, n] = heldout_sse(heldout_table(grams, without), -1, selection.joint_weights);
-  const auto [sse1, n1] = heldout_sse(heldout_table(grams, with), -1, selection.joint_weights);
-  CadPayloadCheck c;
-  c.improvement = sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
-  c.bic_change = n * std::log(std::max(sse1, 1e-300) / std::max(sse0, 1e-300)) +
-                 10.0 * std::log(std::max(n, 2.0));
-  c.mass = with[payload_columns[0]];
-  if (c.mass > 0)
-    c.centre = Vector3<double>(with[payload_columns[1]], with[payload_columns[2]],
-                               with[payload_columns[3]]) /
-               c.mass;
-  c.claimed = c.improvement >= min_improvement && c.bic_change < 0 && c.mass > 0;
-  return c;
+        cad[g.columns[i]] = values[i];
+  return cad;
 }
 
 }  // namespace
@@ -414,8 +391,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
     }
   });
 
-  out.cad_payload = check_cad_payload(model, setup.base, grams, design, out.groups, selection,
-                                      options.min_improvement);
+  out.cad_payload = judge_cad_payload(
+      grams, out.groups, cad_rigid_body(model, setup.base, out.groups, design.features()),
+      out.selected, transfer, selection, analysis.variance_inflation, options);
   out.findings = diagnosis_findings(out, options);
   return out;
 }

@@ -28,6 +28,10 @@ struct DiagnoseOptions {
   /// … and two candidates whose parts outside the model are this collinear (cos² of the
   /// smallest principal angle) are indistinguishable from each other: "ambiguous between".
   double max_shared_share = 0.9;
+  /// A candidate of another joint nearly collinear (as above) with the one selected joins
+  /// its claim when it passes on its own joint, or removes at least this fraction of the
+  /// selected one's gain, both scored on the held-out SSE of the two joints.
+  double cross_joint_gain_ratio = 0.8;
   /// A claimed coefficient must be this many standard errors from zero (Wald statistic per
   /// column, standard errors inflated for the residual's autocorrelation).
   double min_standard_errors = 3.0;
@@ -42,6 +46,9 @@ struct DiagnoseOptions {
 struct Claim {
   std::vector<int> groups;  ///< indices into Diagnosis::groups; [0] is the one added to the model
   std::vector<double> improvements;  ///< held-out improvement of each (alone on the same model)
+  /// Empty: each improvement is on the joint it acts on. Else the claim names candidates of
+  /// different joints, and every improvement is on the weighted held-out SSE of these joints.
+  std::vector<int> scored_joints;
   std::vector<double> coefficients, standard_errors;  ///< of groups[0]'s columns
   double distinct_share = 1.0;  ///< sin² of groups[0] against the model it was added to
   bool written = true;          ///< in the parameter file (the run time evaluates it)
@@ -93,16 +100,31 @@ struct CandidateTrial {
   bool outside_untested() const { return extrapolates && std::isnan(outside_improvement); }
 };
 
-/// A payload judged against the robot file's inertias (CAD): the rigid body is held at the robot
-/// file's base parameters and friction refitted with and without the 10 inertial parameters of a
-/// body on the last link. Only meaningful when the robot file's inertias are right; an
-/// identified rigid body absorbs a payload (it is then not a missing effect).
+/// A payload judged against the robot file's inertias (CAD), after the selection: the rigid body
+/// is held at the robot file's base parameters; friction and the selected effects are refitted
+/// with and without the 10 inertial parameters of a body on the last link. Only meaningful when
+/// the robot file's inertias are right; an identified rigid body absorbs a payload (it is then
+/// not a missing effect).
 struct CadPayloadCheck {
-  bool claimed = false;      ///< improvement ≥ min_improvement, BIC falls and mass > 0
+  /// It removes ≥ min_improvement of the held-out SSE beyond the selected effects (and of every
+  /// other file's, held out in turn), the BIC falls, and the mass is positive and
+  /// ≥ min_standard_errors standard errors.
+  bool claimed = false;
   double improvement = 0.0;  ///< fraction of the held-out moving SSE removed (all joints)
   double bic_change = 0.0;
   double mass = 0.0;                                 ///< kg
+  double mass_standard_error = 0.0;                  ///< kg (inflated for autocorrelation)
   Vector3<double> centre = Vector3<double>::Zero();  ///< m, last link's frame
+  /// Not claimed, but it would be without one of the selected effects whose columns its own
+  /// nearly span (cos² of the smallest principal angle ≥ max_shared_share): "ambiguous between
+  /// a payload and" those (indices into the groups), with those cos².
+  std::vector<int> ambiguous_with;
+  std::vector<double> ambiguous_shares;
+  /// A several-file log: the smallest improvement on the other files held out in turn, and that
+  /// file; NaN for a one-file log.
+  double transfer_improvement = std::numeric_limits<double>::quiet_NaN();
+  std::string transfer_file;
+  bool ambiguous() const { return !ambiguous_with.empty(); }
 };
 
 /// What a diagnosis found, for an arm of any joint count (the samples' joint count): the passes

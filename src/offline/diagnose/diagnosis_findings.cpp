@@ -11,15 +11,44 @@ namespace tpf::offline {
 namespace {
 
 std::string payload_finding(const CadPayloadCheck& c) {
-  return format_sentence("Against the robot file's inertias: a payload of %.3g kg on the last link",
-                         c.mass) +
+  return format_sentence(
+             "Against the robot file's inertias: a payload of %.3g ± %.2g kg on the last link",
+             c.mass, c.mass_standard_error) +
          format_sentence(" at (%.3f, %.3f, %.3f) m in its frame", c.centre.x(), c.centre.y(),
                          c.centre.z()) +
          format_sentence(
              " — removes %.1f %% of the held-out residual sum of squares of the CAD "
-             "model (absorbed by the identified rigid body, so not a missing effect of "
-             "the identified model).",
+             "model beside the selected effects (absorbed by the identified rigid body, so not a "
+             "missing effect of the identified model).",
              100 * c.improvement);
+}
+
+/// A payload that the selected effects explain as well: no claim, the alternatives named.
+std::string ambiguous_payload_finding(const EffectDiagnosis& d, const CadPayloadCheck& c) {
+  std::string text =
+      "Against the robot file's inertias: ambiguous between a payload on the last "
+      "link and ";
+  for (std::size_t i = 0; i < c.ambiguous_with.size(); ++i)
+    text += (i ? " and " : "") + d.groups[c.ambiguous_with[i]].title +
+            format_sentence(" (cos² %.2f)", c.ambiguous_shares[i]);
+  return text + format_sentence(
+                    ": without it a payload would be claimed; beside it the payload is not "
+                    "(%.3g ± %.2g kg, removing %.1f %% of the held-out residual sum of squares), "
+                    "and on this log their columns are nearly collinear, so no payload is "
+                    "claimed.",
+                    c.mass, c.mass_standard_error, 100 * c.improvement);
+}
+
+/// A payload that passes on the selection's held-out file but not on another held out in turn.
+std::string untransferred_payload_finding(const CadPayloadCheck& c) {
+  return format_sentence(
+             "Against the robot file's inertias: a payload of %.3g ± %.2g kg on the last link "
+             "removes %.1f %% of the held-out residual sum of squares beside the selected "
+             "effects, ",
+             c.mass, c.mass_standard_error, 100 * c.improvement) +
+         format_sentence("but %.1f %% on ", 100 * c.transfer_improvement) + c.transfer_file +
+         " held out in turn: it does not transfer between files, so it is not the arm's and "
+         "is not claimed.";
 }
 
 /// The trial that selected the claim's group.
@@ -27,6 +56,31 @@ const CandidateTrial* selected_trial(const EffectDiagnosis& d, const Claim& c) {
   for (const CandidateTrial& t : d.trials)
     if (t.selected && t.title == d.groups[c.groups[0]].title) return &t;
   return nullptr;
+}
+
+/// "joints 1 and 2" of a claim scored on several joints.
+std::string joint_list(const std::vector<int>& joints) {
+  std::string text = "joints ";
+  for (std::size_t i = 0; i < joints.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == joints.size() ? " and " : ", ") + std::to_string(joints[i] + 1);
+  return text;
+}
+
+/// An ambiguous claim between candidates of different joints, each gain on the same joints.
+std::string cross_joint_finding(const EffectDiagnosis& d, const Claim& c,
+                                const std::string& coefficients) {
+  std::string text = "Ambiguous between ";
+  for (std::size_t i = 0; i < c.groups.size(); ++i) {
+    text += (i ? " and " : "") + d.groups[c.groups[i]].title;
+    text += std::isfinite(c.improvements[i])
+                ? format_sentence(" (removes %.1f %%)", 100 * c.improvements[i])
+                : std::string(" (declared)");
+  }
+  return text + " of the held-out residual sum of squares of " + joint_list(c.scored_joints) +
+         ": on this log their parts outside the model are nearly collinear (through the rigid "
+         "body they share), so the data cannot tell which joint it acts on and no coefficient "
+         "means much alone (the first: " +
+         coefficients + "); robot-file inertias known to be right would tell them apart.";
 }
 
 std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
@@ -43,6 +97,8 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
                "coefficients (N·m per unit of the term) ",
                100 * c.improvements[0]) +
            coefficients + " (" + (g.column_names.size() == 1 ? g.column_names[0] : g.key) + ").";
+  } else if (!c.scored_joints.empty()) {
+    text = cross_joint_finding(d, c, coefficients);
   } else {
     text = "Ambiguous between " + g.title +
            format_sentence(" (removes %.1f %%)", 100 * c.improvements[0]);
@@ -79,6 +135,10 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
         " Not written to the parameter file: the run-time nominal model cannot evaluate it "
         "(it keeps no past samples / has no temperature input); the 'written' table "
         "leaves it out.";
+  else if (!c.written && !c.scored_joints.empty())
+    text +=
+        " Not written to the parameter file: which joint's term it is changes the rigid body "
+        "fitted beside it; the written model is refitted without it.";
   else if (!c.written)
     text +=
         " Not written to the parameter file: the two would predict differently where this log "
@@ -201,6 +261,10 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
   std::vector<std::string> findings;
   if (!d.heldout_split.empty()) findings.push_back(d.heldout_split);
   if (d.cad_payload.claimed) findings.push_back(payload_finding(d.cad_payload));
+  if (d.cad_payload.ambiguous()) findings.push_back(ambiguous_payload_finding(d, d.cad_payload));
+  if (!d.cad_payload.claimed && d.cad_payload.transfer_improvement < options.min_improvement &&
+      d.cad_payload.improvement >= options.min_improvement && d.cad_payload.mass > 0)
+    findings.push_back(untransferred_payload_finding(d.cad_payload));
   const bool untransferred =
       std::any_of(d.trials.begin(), d.trials.end(), [&](const CandidateTrial& t) {
         return t.fails_transfer(options) || t.fails_outside(options);

@@ -114,11 +114,18 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   }
   j["written_model_heldout_rmse"] = written;
   const CadPayloadCheck& c = d.cad_payload;
+  nlohmann::json payload_alternatives = nlohmann::json::array();
+  for (int g : c.ambiguous_with)
+    payload_alternatives.push_back(d.groups[g].title);
   j["payload_against_robot_file"] = {{"claimed", c.claimed},
                                      {"heldout_improvement_percent", 100 * c.improvement},
                                      {"bic_change", c.bic_change},
                                      {"mass_kg", c.mass},
-                                     {"centre_m", {c.centre.x(), c.centre.y(), c.centre.z()}}};
+                                     {"mass_standard_error_kg", c.mass_standard_error},
+                                     {"centre_m", {c.centre.x(), c.centre.y(), c.centre.z()}},
+                                     {"ambiguous_with", payload_alternatives},
+                                     {"transfer_improvement_percent", 100 * c.transfer_improvement},
+                                     {"transfer_file", c.transfer_file}};
   j["findings"] = d.findings;
   j["notes"] = d.notes;
   // NaN is not JSON: write null.

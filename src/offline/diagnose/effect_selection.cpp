@@ -28,9 +28,6 @@ std::pair<double, double> heldout_sse(const RegimeTable& t, int joint, const Eig
   return {sse, count};
 }
 
-namespace {
-
-// Σ_j w_j Σ_(selected regimes) of the training Grams: [φ; y; 1] over every joint row.
 Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& selection) {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(grams.features + 2, grams.features + 2);
   for (int j = 0; j < grams.joints; ++j)
@@ -40,6 +37,8 @@ Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& sele
             (selection.joint_weights.size() ? selection.joint_weights[j] : 1.0) * grams.at(j, r, 0);
   return A;
 }
+
+namespace {
 
 /// The state of a forward selection: the model so far and the library it draws from.
 class ForwardSelection {
@@ -114,18 +113,7 @@ class ForwardSelection {
   CandidateTrial try_candidate(int g, int round, const std::vector<int>& model) const {
     const FeatureGroup& group = groups_[g];
     const std::vector<int> own = energetic(group);
-    // A periodic effect must explain what an offset and a slope of its joint cannot: it is
-    // judged on top of them (over a short range a sine is one or the other).
-    std::vector<int> reference = columns_;
-    std::vector<int> reference_model = model;
-    for (const std::string& beside : group.judged_beside)
-      for (const FeatureGroup& other : groups_)
-        if (other.joint == group.joint && other.key == beside)
-          for (int c : other.columns)
-            if (std::find(reference.begin(), reference.end(), c) == reference.end()) {
-              reference.push_back(c);
-              if (alive(c)) reference_model.push_back(c);
-            }
+    const auto [reference, reference_model] = reference_for(group, model);
     std::vector<int> trial_columns = reference;
     trial_columns.insert(trial_columns.end(), own.begin(), own.end());
     const Eigen::VectorXd trial_theta = fit_columns(grams_, trial_columns, selection_);
@@ -172,6 +160,41 @@ class ForwardSelection {
     return trial;
   }
 
+  /// The model a candidate is judged on top of (its columns, and the live ones of them): a
+  /// periodic effect must explain what an offset and a slope of its joint cannot (over a short
+  /// range a sine is one or the other).
+  std::pair<std::vector<int>, std::vector<int>> reference_for(const FeatureGroup& group,
+                                                              const std::vector<int>& model) const {
+    std::vector<int> reference = columns_;
+    std::vector<int> reference_model = model;
+    for (const std::string& beside : group.judged_beside)
+      for (const FeatureGroup& other : groups_)
+        if (other.joint == group.joint && other.key == beside)
+          for (int c : other.columns)
+            if (std::find(reference.begin(), reference.end(), c) == reference.end()) {
+              reference.push_back(c);
+              if (alive(c)) reference_model.push_back(c);
+            }
+    return {reference, reference_model};
+  }
+
+  /// Held-out gain of candidate g on top of the model, on the weighted moving SSE of `joints`:
+  /// candidates of different joints scored alike.
+  double gain_on(int g, const std::vector<int>& joints, const std::vector<int>& model) const {
+    const std::vector<int> reference = reference_for(groups_[g], model).first;
+    std::vector<int> with = reference;
+    for (int c : energetic(groups_[g]))
+      with.push_back(c);
+    const RegimeTable t0 = heldout_table(grams_, fit_columns(grams_, reference, selection_));
+    const RegimeTable t1 = heldout_table(grams_, fit_columns(grams_, with, selection_));
+    double sse0 = 0, sse1 = 0;
+    for (int j : joints) {
+      sse0 += selection_.joint_weights[j] * heldout_sse(t0, j, selection_.joint_weights).first;
+      sse1 += selection_.joint_weights[j] * heldout_sse(t1, j, selection_.joint_weights).first;
+    }
+    return sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
+  }
+
   /// Held-out samples in motion of `joint` in `fold`.
   static double moving_heldout_count(const DesignGrams& fold, int joint) {
     double n = 0;
@@ -205,8 +228,9 @@ class ForwardSelection {
   }
 
   /// The claim for `best`: alone, or ambiguous with the eligible candidates of its joint whose
-  /// parts outside the model are nearly collinear with its own, and with the model group whose
-  /// removal frees it most when the model's own columns nearly span it.
+  /// parts outside the model are nearly collinear with its own, with the candidates of other
+  /// joints that are (cross_joint_alternatives), and with the model group whose removal frees it
+  /// most when the model's own columns nearly span it.
   Claim name_claim(int best, const std::vector<int>& eligible, const std::vector<double>& gain,
                    const std::vector<int>& model) const {
     Claim claim;
@@ -224,6 +248,7 @@ class ForwardSelection {
         claim.improvements.push_back(gain[g]);
       }
     }
+    add_cross_joint_alternatives(best, eligible, model, claim);
     claim.distinct_share = distinct_share(A_, model, own);
     if (claim.distinct_share < options_.min_distinct_share) {
       int partner = -1;
@@ -241,6 +266,42 @@ class ForwardSelection {
       }
     }
     return claim;
+  }
+
+  /// A candidate of another joint whose part outside the model is nearly collinear with best's
+  /// (through the rigid body: with identified armatures, coupling [0; q̈_1] on joint 2 is
+  /// −[q̈_2; 0] on joint 1) and that explains the same residual: eligible itself, or removing
+  /// cross_joint_gain_ratio of best's gain, both on the weighted held-out SSE of the two joints.
+  /// Then every alternative's gain is given on the joints of the claim (a per-joint gain would
+  /// score each on its own joint only, where its twin's term does not show).
+  void add_cross_joint_alternatives(int best, const std::vector<int>& eligible,
+                                    const std::vector<int>& model, Claim& claim) const {
+    const FeatureGroup& b = groups_[best];
+    if (b.joint < 0) return;
+    const std::vector<int> own = energetic(b);
+    std::vector<int> joints{b.joint};
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      const FeatureGroup& other = groups_[g];
+      if (other.declared || used_[g] || other.joint < 0 || other.joint == b.joint) continue;
+      const std::vector<int> theirs = energetic(other);
+      if (theirs.empty() || shared_share(A_, model, own, theirs) < options_.max_shared_share)
+        continue;
+      const bool is_eligible =
+          std::find(eligible.begin(), eligible.end(), static_cast<int>(g)) != eligible.end();
+      const std::vector<int> pair{b.joint, other.joint};
+      if (!is_eligible && gain_on(static_cast<int>(g), pair, model) <
+                              options_.cross_joint_gain_ratio * gain_on(best, pair, model))
+        continue;
+      claim.groups.push_back(static_cast<int>(g));
+      claim.improvements.push_back(0.0);
+      if (std::find(joints.begin(), joints.end(), other.joint) == joints.end())
+        joints.push_back(other.joint);
+    }
+    if (joints.size() == 1) return;
+    std::sort(joints.begin(), joints.end());
+    claim.scored_joints = joints;
+    for (std::size_t i = 0; i < claim.groups.size(); ++i)
+      claim.improvements[i] = gain_on(claim.groups[i], joints, model);
   }
 
   /// The coefficients of `best` on the model it joined, with their standard errors.

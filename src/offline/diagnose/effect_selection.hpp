@@ -17,6 +17,10 @@ namespace tpf::offline {
 /// The held-out residual table of θ (per joint: static, static-to-kinetic, moving, all).
 RegimeTable heldout_table(const DesignGrams& grams, const Eigen::VectorXd& theta);
 
+/// Σ_j w_j of the training Grams of the regimes `selection` fits on: [φ; y; 1] over every
+/// joint's rows.
+Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& selection);
+
 /// Held-out SSE and sample count over moving samples (static-to-kinetic and moving) of `joint`,
 /// or of every joint weighted by w when joint < 0. At rest the effort holds whatever friction the
 /// motion left (memory), which would only add history noise to the score.
