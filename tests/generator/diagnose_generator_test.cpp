@@ -72,6 +72,13 @@ Diagnosis<2> run(const PlanarArmPlant& plant, const char* label) {
               : c.ambiguous() ? "ambiguous"
                               : "not claimed",
               c.mass, c.mass_standard_error, 100 * c.improvement);
+  // What a claim prints is the gain of what it writes: added to the model as it stands (not
+  // beside its joint's offset and slope, which a periodic effect is also judged against).
+  for (const offline::Claim& claim : d.claims) {
+    if (!claim.scored_joints.empty()) continue;
+    EXPECT_GE(claim.improvements[0], offline::DiagnoseOptions{}.min_improvement)
+        << label << ": " << d.groups[claim.groups[0]].title;
+  }
   return d;
 }
 

@@ -51,7 +51,10 @@ struct Claim {
   std::vector<int> scored_joints;
   std::vector<double> coefficients, standard_errors;  ///< of groups[0]'s columns
   double distinct_share = 1.0;  ///< sin² of groups[0] against the model it was added to
-  bool written = true;          ///< in the parameter file (the run time evaluates it)
+  /// groups[0] judged beside other columns of its joint (CandidateTrial::model_improvement):
+  /// its gain on top of them; improvements[0] is then its gain on the model alone. Else NaN.
+  double beside_improvement = std::numeric_limits<double>::quiet_NaN();
+  bool written = true;  ///< in the parameter file (the run time evaluates it)
   bool ambiguous() const { return groups.size() > 1; }
 };
 
@@ -67,6 +70,10 @@ struct CandidateTrial {
   double bic_change = 0.0;      ///< held-out BIC change (negative favours the candidate)
   double wald = 0.0;            ///< min over columns of |θ|/SE (SE inflated for autocorrelation)
   double distinct_share = 1.0;  ///< sin² of the smallest angle to the model's columns
+  /// A candidate judged beside other columns of its joint (a periodic effect beside its joint's
+  /// offset and spring, FeatureGroup::judged_beside): `improvement` is its gain on top of them,
+  /// this its gain added to the model alone, which is what a claim writes. NaN otherwise.
+  double model_improvement = std::numeric_limits<double>::quiet_NaN();
   /// A several-file log: the smallest improvement on the other files, each held out in turn
   /// (fitted on the rest), and that file; NaN for a one-file log. A candidate is claimed only if
   /// this too reaches min_improvement: it lowers the held-out error of every file, not of one.
@@ -83,7 +90,13 @@ struct CandidateTrial {
   bool selected = false;
   /// Passes the tests on the selection's held-out file alone.
   bool passes_heldout(const DiagnoseOptions& o) const {
-    return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors;
+    return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors &&
+           !fails_alone(o);
+  }
+  /// Explains the residual beside the columns it is judged with, but added to the model alone
+  /// (what would be written) lowers the held-out error by less than min_improvement.
+  bool fails_alone(const DiagnoseOptions& o) const {
+    return !(model_improvement >= o.min_improvement || std::isnan(model_improvement));
   }
   /// Passed every test on the selection's held-out file but made another file worse.
   bool fails_transfer(const DiagnoseOptions& o) const {

@@ -95,6 +95,12 @@ class ForwardSelection {
     if (eligible.empty()) return false;
     const int best = best_candidate(eligible, gain);
     Claim claim = name_claim(best, eligible, gain, model);
+    for (const CandidateTrial& t : out.trials)
+      if (t.round == round && t.title == groups_[best].title &&
+          std::isfinite(t.model_improvement) && claim.scored_joints.empty()) {
+        claim.beside_improvement = claim.improvements[0];
+        claim.improvements[0] = t.model_improvement;
+      }
     used_[best] = true;
     in_model_.push_back(best);
     out.selected.push_back(best);
@@ -138,6 +144,16 @@ class ForwardSelection {
       th[static_cast<Eigen::Index>(i)] = trial_theta[own[i]];
     trial.wald = std::sqrt(std::max(th.dot(S * th), 0.0) / std::max(sigma2, 1e-300));
     trial.distinct_share = distinct_share(A_, reference_model, own);
+    if (reference.size() != columns_.size()) {
+      std::vector<int> alone = columns_;
+      alone.insert(alone.end(), own.begin(), own.end());
+      const auto [sse_model, n_model] =
+          heldout_sse(heldout_table(grams_, theta_), group.joint, selection_.joint_weights);
+      const auto [sse_alone, n_alone] =
+          heldout_sse(heldout_table(grams_, fit_columns(grams_, alone, selection_)), group.joint,
+                      selection_.joint_weights);
+      trial.model_improvement = sse_model > 0 ? 1.0 - sse_alone / sse_model : 0.0;
+    }
     for (const TransferFold& fold : transfer_) {
       const double gain = fold_improvement(fold.grams, reference, trial_columns, group.joint);
       if (!(gain >= trial.transfer_improvement)) {
