@@ -73,7 +73,10 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   }
   if (!a.params.empty()) {
     tpf::save_nominal_model<N>(a.params, d.nominal, log.source, "");
-    std::printf("wrote %s\n", a.params.c_str());
+    std::printf("wrote %s%s\n", a.params.c_str(),
+                d.refitted ? ": the written model refitted on every sample, the held-out ones "
+                             "included (the tables above are of its fit without them)"
+                           : "");
   }
 }
 

@@ -73,7 +73,10 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   tpf::save_nominal_model<N>(a.out, id.nominal, log.source, fit.dump());
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("wrote %s (%.1f s)\n", a.out.c_str(), wall);
+  std::printf("wrote %s (%.1f s)%s\n", a.out.c_str(), wall,
+              id.refitted ? ": the model refitted on every sample, the held-out ones included "
+                            "(the held-out figures above are of its fit without them)"
+                          : "");
 }
 
 }  // namespace

@@ -200,6 +200,17 @@ void held_out_folds(const Log& log, const FileSplit& split, const EffectDesign<N
   }
 }
 
+/// The part of `theta` outside the friction, which the friction curves are fitted beside.
+Eigen::VectorXd non_friction_part(const std::vector<FeatureGroup>& groups,
+                                  const Eigen::VectorXd& theta) {
+  Eigen::VectorXd part = theta;
+  for (const FeatureGroup& g : groups)
+    if (g.written_to == WrittenTo::kFriction || g.written_to == WrittenTo::kNothing)
+      for (int c : g.columns)
+        part[c] = 0.0;
+  return part;
+}
+
 /// The effort predictions pass 4 needs, in one pass over the samples.
 struct EffectPredictions {
   Eigen::MatrixXd selected, declared;  ///< the selected and the declared linear models
@@ -220,12 +231,7 @@ EffectPredictions predict_effects(const EffectDesign<N>& design, const EffectDia
       part[c] = from[c];
     thetas.push_back(part);
   }
-  Eigen::VectorXd non_friction = sel.theta_written;
-  for (const FeatureGroup& g : d.groups)
-    if (g.written_to == WrittenTo::kFriction || g.written_to == WrittenTo::kNothing)
-      for (int c : g.columns)
-        non_friction[c] = 0.0;
-  thetas.push_back(non_friction);
+  thetas.push_back(non_friction_part(d.groups, sel.theta_written));
   thetas.push_back(only_family<RigidBodyColumns>(d.groups, sel.theta_declared));
   std::vector<Eigen::MatrixXd> p = design.predict_each(d.samples, thetas);
   EffectPredictions out;
@@ -287,6 +293,27 @@ NominalModel<double, N> declared_nominal(const NominalModel<double, N>& written,
       fit_friction_curves<N>(s, declared_rigid_prediction, inputs.abs_gravity, linear, false, 20000)
           .parameters;
   return declared;
+}
+
+/// The written model refitted on every row, held-out ones included (EffectSelection::theta_final),
+/// each joint's friction curve or linear fit as chosen on the held-out rows: what the parameter
+/// file gets once the selection and the curves are judged.
+template <int N>
+NominalModel<double, N> refitted_on_every_row(
+    const EffectDesign<N>& design, const std::vector<FeatureGroup>& groups,
+    const Eigen::VectorXd& theta_final, const BaseParameters& base, const CandidateInputs& inputs,
+    const JointSamples& s, const Model<double, N>& model, const std::vector<char>& linear_joints) {
+  NominalModel<double, N> final_model;
+  final_model.model = model;
+  final_model.base_count = base.size();
+  bool load_selected = false;
+  const StribeckParameters<double, N> linear =
+      write_effects(groups, theta_final, base, inputs, final_model, load_selected);
+  const Eigen::MatrixXd non_friction = design.predict(s, non_friction_part(groups, theta_final));
+  final_model.friction = fit_friction_curves<N>(with_every_row(s), non_friction, inputs.abs_gravity,
+                                                linear, load_selected, 20000, linear_joints)
+                             .parameters;
+  return final_model;
 }
 
 /// The robot file's (CAD) base parameters in the rigid body's columns, zero elsewhere.
@@ -375,10 +402,11 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   // declared model as identify fits it (a copy of the extended one before its friction is fitted,
   // every part but the model and the base columns replaced), at once: independent fits.
   const NominalModel<double, N> before_friction = nominal;
+  FrictionCurves<N> curves;
   parallel_jobs(2, [&](int model) {
     if (model == 0) {
-      FrictionCurves<N> curves = fit_friction_curves<N>(s, p.non_friction, inputs.abs_gravity,
-                                                        linear, load_selected, 20000);
+      curves = fit_friction_curves<N>(s, p.non_friction, inputs.abs_gravity, linear, load_selected,
+                                      20000);
       nominal.friction = curves.parameters;
       for (const std::string& note : curves.notes)
         out.notes.push_back("friction curve: " + note);
@@ -390,6 +418,12 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
       out.written_before = split_regime_stats(s, nominal_residual(out.declared, s), true);
     }
   });
+
+  out.judged = out.nominal;
+  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
+  if (out.refitted)
+    out.nominal = refitted_on_every_row(design, out.groups, sel.theta_final, setup.base, inputs, s,
+                                        model, curves.linear_written);
 
   out.cad_payload = judge_cad_payload(
       grams, out.groups, cad_rigid_body(model, setup.base, out.groups, design.features()),

@@ -172,7 +172,13 @@ struct EffectDiagnosis {
 /// The diagnosis of an N-joint arm: what was found and the nominal model it writes.
 template <int N>
 struct Diagnosis : EffectDiagnosis {
-  NominalModel<double, N> nominal;  ///< the declared model plus the selected effects
+  /// The declared model plus the selected effects, refitted on every row once judged
+  /// (`refitted`; the held-out tables are of its fit on the training rows).
+  NominalModel<double, N> nominal;
+  bool refitted = false;
+  /// The same model fitted on the training rows: what residual_written, written_after and
+  /// effect_terms are of (equal to `nominal` when nothing is held out).
+  NominalModel<double, N> judged;
   /// The declared model as identify fits it (rigid body and friction curves, nothing added):
   /// what `written_before` scores; beside `nominal` it shows what a folded payload does.
   NominalModel<double, N> declared;

@@ -74,6 +74,9 @@ class ForwardSelection {
     out.after = heldout_table(grams_, out.theta_selected);
     const std::vector<int> written = written_columns(out);
     out.theta_written = with_held_friction(fit_columns(grams_, written, selection_), written);
+    FitSelection every = selection_;
+    every.heldout_rows = true;
+    out.theta_final = with_held_friction(fit_columns(grams_, written, every), written, every);
     return out;
   }
 
@@ -370,7 +373,11 @@ class ForwardSelection {
   /// on motion, which it leaves unchanged.
   Eigen::VectorXd with_held_friction(const Eigen::VectorXd& moving_theta,
                                      const std::vector<int>& used) const {
-    FitSelection at_rest = selection_;
+    return with_held_friction(moving_theta, used, selection_);
+  }
+  Eigen::VectorXd with_held_friction(const Eigen::VectorXd& moving_theta,
+                                     const std::vector<int>& used, const FitSelection& rows) const {
+    FitSelection at_rest = rows;
     at_rest.regimes = {true, false, false};
     std::vector<int> held;
     for (const FeatureGroup& g : groups_)

@@ -54,6 +54,9 @@ struct EffectSelection {
   /// written (so that the declared parameters are not the ones fitted beside them), plus the
   /// held friction.
   Eigen::VectorXd theta_written;
+  /// theta_written's columns refitted on every row, held-out ones included (and the held
+  /// friction with them): what the parameter file gets once the selection is judged.
+  Eigen::VectorXd theta_final;
 };
 
 /// Selection on `grams` over `groups` (declared ones first), fitting on `selection`'s rows with

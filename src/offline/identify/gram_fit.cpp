@@ -37,7 +37,8 @@ Eigen::VectorXd solve_normal_equations(const Eigen::MatrixXd& A, const Eigen::Ve
   return d.asDiagonal() * cod.solve(Eigen::VectorXd(d.asDiagonal() * b));
 }
 
-// Σ_j w_j Σ_r G over the selected training rows: A = Σφ_cφ_cᵀ, b = Σφ_c(y − φᵀθ_fixed).
+// Σ_j w_j Σ_r G over the selected training rows (and held-out ones, FitSelection::heldout_rows): A
+// = Σφ_cφ_cᵀ, b = Σφ_c(y − φᵀθ_fixed).
 void normal_equations(const DesignGrams& grams, const std::vector<int>& columns,
                       const Eigen::VectorXd* fixed, const FitSelection& selection,
                       Eigen::MatrixXd& A, Eigen::VectorXd& b) {
@@ -49,7 +50,9 @@ void normal_equations(const DesignGrams& grams, const std::vector<int>& columns,
     const double w = selection.joint_weights.size() ? selection.joint_weights[j] : 1.0;
     for (int r = 0; r < DesignGrams::kRegimes; ++r) {
       if (!selection.regimes[r]) continue;
-      const Eigen::MatrixXd& g = grams.at(j, r, 0);
+      Eigen::MatrixXd both;  // training + held-out rows, only for the final fit
+      if (selection.heldout_rows) both = grams.at(j, r, 0) + grams.at(j, r, 1);
+      const Eigen::MatrixXd& g = selection.heldout_rows ? both : grams.at(j, r, 0);
       for (int a = 0; a < m; ++a) {
         b[a] += w * g(columns[a], p);
         if (fixed) b[a] -= w * g.row(columns[a]).head(p).dot(*fixed);

@@ -35,6 +35,9 @@ struct DesignGrams {
 struct FitSelection {
   std::array<bool, DesignGrams::kRegimes> regimes{true, true, true};
   Eigen::VectorXd joint_weights;  ///< w_j (1/σ_j²); empty = all 1
+  /// The held-out rows too: the final fit of a model chosen on held-out data, which the file
+  /// gets once nothing is left to judge.
+  bool heldout_rows = false;
 };
 
 /// θ over `columns` (others zero) minimising Σ_j w_j Σ_(training rows of j) r² with column

@@ -141,9 +141,11 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
                                       const Eigen::MatrixXd& rigid_prediction,
                                       const Eigen::MatrixXd& abs_gravity,
                                       const StribeckParameters<double, N>& linear, bool fit_load,
-                                      int samples_per_joint) {
+                                      int samples_per_joint,
+                                      const std::vector<char>& linear_joints) {
   FrictionCurves<N> out;
   out.parameters = linear;
+  out.linear_written.assign(N, 0);
   out.heldout_rms_curve = Eigen::VectorXd::Constant(N, std::nan(""));
   out.heldout_rms_linear = out.heldout_rms_curve;
   StribeckParameters<double, N> clamped = linear;  // what the linear fit can write
@@ -175,6 +177,7 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
       return s.effort(k, j) - rigid_prediction(k, j) - held;
     };
     if (rows.size() < 50) {
+      out.linear_written[static_cast<std::size_t>(j)] = 1;
       out.parameters.coulomb[j] = out.parameters.static_friction[j] = clamped.coulomb[j];
       out.parameters.viscous[j] = clamped.viscous[j];
       notes[j].push_back("joint " + std::to_string(j + 1) + ": fewer than 50 moving samples, " +
@@ -207,6 +210,19 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
       notes[j].push_back("joint " + std::to_string(j + 1) + ": its gravity torque stays below " +
                          "0.1 % of the arm's largest (" + format_number(arm_gravity, 3) +
                          " N·m): no load-dependent friction fitted");
+    auto write_linear = [&] {
+      out.linear_written[static_cast<std::size_t>(j)] = 1;
+      out.parameters.coulomb[j] = out.parameters.static_friction[j] = linear_fit.coulomb[j];
+      out.parameters.viscous[j] = linear_fit.viscous[j];
+      out.parameters.load_coulomb[j] = linear_fit.load_coulomb[j];
+      out.parameters.load_viscous[j] = linear_fit.load_viscous[j];
+      out.parameters.coulomb_asymmetry[j] =
+          std::clamp(clamped.coulomb_asymmetry[j], -linear_fit.coulomb[j], linear_fit.coulomb[j]);
+    };
+    if (!linear_joints.empty() && linear_joints[static_cast<std::size_t>(j)]) {
+      write_linear();  // the final fit on every row: the choice made on the held-out rows
+      return;
+    }
     const Eigen::MatrixXd strided = gather(stride);
     const StribeckFit fit =
         fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load_here);
@@ -245,12 +261,7 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
                     "viscous fit's (%.4g) on the same samples: the linear fit is written",
                     out.heldout_rms_curve[j], out.heldout_rms_linear[j]);
       notes[j].push_back(joint + text);
-      out.parameters.coulomb[j] = out.parameters.static_friction[j] = linear_fit.coulomb[j];
-      out.parameters.viscous[j] = linear_fit.viscous[j];
-      out.parameters.load_coulomb[j] = linear_fit.load_coulomb[j];
-      out.parameters.load_viscous[j] = linear_fit.load_viscous[j];
-      out.parameters.coulomb_asymmetry[j] =
-          std::clamp(clamped.coulomb_asymmetry[j], -linear_fit.coulomb[j], linear_fit.coulomb[j]);
+      write_linear();
       return;
     }
     for (const std::string& b : fit.at_bound)
@@ -271,6 +282,80 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
   for (const auto& n : notes)
     out.notes.insert(out.notes.end(), n.begin(), n.end());
   return out;
+}
+
+namespace {
+
+template <int N>
+struct FittedNominal {
+  NominalModel<double, N> nominal;
+  Eigen::MatrixXd rigid;                 ///< the rigid body's prediction of every sample
+  StribeckParameters<double, N> linear;  ///< the linear friction the curves start from
+  std::vector<char> linear_written;      ///< per joint (FrictionCurves::linear_written)
+};
+
+// The linear fit on `selection`'s rows (rigid base parameters + Coulomb + viscous), then the
+// rigid body's prediction and the friction curves on the non-held-out rows of `s`.
+template <int N>
+FittedNominal<N> fit_nominal(const Model<double, N>& model, const EffectDesign<N>& design,
+                             const DesignGrams& grams, const std::vector<int>& columns,
+                             const FitSelection& selection, const BaseParameters& base,
+                             const Log& log, const JointSamples& s, const Eigen::MatrixXd& load,
+                             const IdentifyOptions& options, const std::vector<char>& linear_joints,
+                             std::vector<std::string>& notes) {
+  const Eigen::VectorXd theta = fit_columns(grams, columns, selection);
+  FittedNominal<N> out;
+  NominalModel<double, N>& nominal = out.nominal;
+  nominal.model = model;
+  nominal.base_count = base.size();
+  Eigen::VectorXd rigid_theta = Eigen::VectorXd::Zero(design.features());
+  StribeckParameters<double, N>& linear = out.linear;
+  using Friction = JointFrictionColumns;
+  for (const FeatureGroup& g : design.groups()) {
+    if (g.key == RigidBodyColumns::key) {
+      for (int i = 0; i < base.size(); ++i) {
+        nominal.base_columns[i] = base.independent[i];
+        nominal.base_values[i] = theta[g.columns[i]];
+        rigid_theta[g.columns[i]] = theta[g.columns[i]];
+      }
+    } else if (g.key == Friction::key) {
+      linear.coulomb[g.joint] = theta[g.columns[Friction::kCoulomb]];
+      linear.static_friction[g.joint] = theta[g.columns[Friction::kCoulomb]];
+      linear.viscous[g.joint] = theta[g.columns[Friction::kViscous]];
+    }
+  }
+  out.rigid = design.predict(s, rigid_theta);
+  Eigen::MatrixXd friction_reference = out.rigid;
+  if (options.friction_from_sensor) {
+    // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
+    Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
+    for (int i = 0; i < nominal.base_count; ++i)
+      if (nominal.base_columns[i] >= 10 * N && nominal.base_columns[i] < 11 * N)
+        armature[nominal.base_columns[i] - 10 * N] = nominal.base_values[i];
+    SensorFrictionReference sensor = sensor_friction_reference(log, s, armature, out.rigid);
+    friction_reference = std::move(sensor.reference);
+    for (int j = 0; j < N; ++j)
+      if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {
+        linear.coulomb[j] = linear.static_friction[j] = sensor.coulomb[j];
+        linear.viscous[j] = sensor.viscous[j];
+      }
+    notes.push_back(sensor.note);
+  }
+  FrictionCurves<N> curves =
+      fit_friction_curves<N>(s, friction_reference, load, linear, options.fit_load_friction,
+                             options.friction_samples_per_joint, linear_joints);
+  nominal.friction = curves.parameters;
+  notes.insert(notes.end(), curves.notes.begin(), curves.notes.end());
+  out.linear_written = std::move(curves.linear_written);
+  return out;
+}
+
+}  // namespace
+
+JointSamples with_every_row(const JointSamples& samples) {
+  JointSamples every = samples;
+  std::fill(every.heldout.begin(), every.heldout.end(), 0);
+  return every;
 }
 
 template <int N>
@@ -310,52 +395,14 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     out.joint_weights[j] = 1.0 / (sigma[j] * sigma[j]);
   }
   selection.joint_weights = out.joint_weights;
-  theta = fit_columns(grams, columns, selection);
-
-  NominalModel<double, N>& nominal = out.nominal;
-  nominal.model = model;
-  nominal.base_count = base.size();
-  Eigen::VectorXd rigid_theta = Eigen::VectorXd::Zero(design.features());
-  StribeckParameters<double, N> linear;
-  using Friction = JointFrictionColumns;
-  for (const FeatureGroup& g : design.groups()) {
-    if (g.key == RigidBodyColumns::key) {
-      for (int i = 0; i < base.size(); ++i) {
-        nominal.base_columns[i] = base.independent[i];
-        nominal.base_values[i] = theta[g.columns[i]];
-        rigid_theta[g.columns[i]] = theta[g.columns[i]];
-      }
-    } else if (g.key == Friction::key) {
-      linear.coulomb[g.joint] = theta[g.columns[Friction::kCoulomb]];
-      linear.static_friction[g.joint] = theta[g.columns[Friction::kCoulomb]];
-      linear.viscous[g.joint] = theta[g.columns[Friction::kViscous]];
-    }
-  }
 
   say("identify: pass 2/3: rigid-body prediction, friction curves (Ceres)");
-  const Eigen::MatrixXd rigid = design.predict(s, rigid_theta);
   const Eigen::MatrixXd load = gravity_load(model, s);
-  Eigen::MatrixXd friction_reference = rigid;
-  if (options.friction_from_sensor) {
-    // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
-    Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
-    for (int i = 0; i < nominal.base_count; ++i)
-      if (nominal.base_columns[i] >= 10 * N && nominal.base_columns[i] < 11 * N)
-        armature[nominal.base_columns[i] - 10 * N] = nominal.base_values[i];
-    SensorFrictionReference sensor = sensor_friction_reference(log, s, armature, rigid);
-    friction_reference = std::move(sensor.reference);
-    for (int j = 0; j < N; ++j)
-      if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {
-        linear.coulomb[j] = linear.static_friction[j] = sensor.coulomb[j];
-        linear.viscous[j] = sensor.viscous[j];
-      }
-    out.friction_notes.push_back(sensor.note);
-  }
-  FrictionCurves<N> curves =
-      fit_friction_curves<N>(s, friction_reference, load, linear, options.fit_load_friction,
-                             options.friction_samples_per_joint);
-  nominal.friction = curves.parameters;
-  out.friction_notes.insert(out.friction_notes.end(), curves.notes.begin(), curves.notes.end());
+  const FittedNominal<N> fitted = fit_nominal(model, design, grams, columns, selection, base, log,
+                                              s, load, options, {}, out.friction_notes);
+  const NominalModel<double, N>& nominal = fitted.nominal;
+  const Eigen::MatrixXd& rigid = fitted.rigid;
+  const StribeckParameters<double, N>& linear = fitted.linear;
 
   say("identify: pass 3/3: validation on held-out blocks");
   // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has
@@ -375,7 +422,19 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   parallel_jobs(2, [&](int split) {
     (split == 0 ? out.heldout : out.training) = split_regime_stats(s, out.residual, split == 0);
   });
-  out.consistency = check_consistency(nominal);
+  out.nominal = nominal;
+  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
+  if (out.refitted) {
+    // The model is judged; the file gets it refitted on every row (the held-out ones too).
+    say("identify: the model refitted on every sample, held-out ones included, for the file");
+    FitSelection every = selection;
+    every.heldout_rows = true;
+    std::vector<std::string> unused;
+    out.nominal = fit_nominal(model, design, grams, columns, every, base, log, with_every_row(s),
+                              load, options, fitted.linear_written, unused)
+                      .nominal;
+  }
+  out.consistency = check_consistency(out.nominal);
   if (!(out.consistency.min_mass_eigenvalue > 0) && s.ddq.cwiseAbs().maxCoeff() == 0.0)
     out.consistency.problems.push_back(
         "every acceleration of the log is zero (its ddq<j> columns?): the inertias are not "
@@ -404,7 +463,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                                                const JointSamples&);              \
   template FrictionCurves<N> fit_friction_curves<N>(                              \
       const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,        \
-      const StribeckParameters<double, N>&, bool, int);
+      const StribeckParameters<double, N>&, bool, int, const std::vector<char>&);
 TPF_INSTANTIATE_IDENTIFY(1)
 TPF_INSTANTIATE_IDENTIFY(2)
 TPF_INSTANTIATE_IDENTIFY(3)

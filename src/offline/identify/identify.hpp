@@ -39,9 +39,14 @@ struct ConsistencyCheck {
 /// The identified model and its quality.
 template <int N>
 struct Identification {
+  /// What the parameter file gets: fitted on the training rows, judged on the held-out ones,
+  /// then refitted on every row (`refitted`) where rows were held out.
   NominalModel<double, N> nominal;
+  bool refitted = false;
   JointSamples samples;
-  Eigen::MatrixXd residual;           ///< effort − prediction, per sample and joint (NaN invalid)
+  /// effort − prediction of the model fitted on the training rows, per sample and joint (NaN
+  /// invalid): what `heldout` and `training` score.
+  Eigen::MatrixXd residual;
   std::vector<RegimeStats> heldout;   ///< per joint, residual on held-out blocks per regime
   std::vector<RegimeStats> training;  ///< per joint, on the training blocks
   Eigen::VectorXd joint_weights;      ///< 1/σ_j² of the weighted least squares
@@ -54,7 +59,8 @@ template <int N>
 struct FrictionCurves {
   StribeckParameters<double, N> parameters;
   Eigen::VectorXd heldout_rms_curve, heldout_rms_linear;  ///< per joint, friction target
-  std::vector<std::string> notes;  ///< per joint: parameters at a bound, linear kept, …
+  std::vector<std::string> notes;    ///< per joint: parameters at a bound, linear kept, …
+  std::vector<char> linear_written;  ///< per joint: the linear fit is written, not the curve
 };
 
 /// Identifies the model of the N-joint arm described by `model` (the robot file) from `log`:
@@ -90,12 +96,18 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
 /// they are subtracted from the target and kept). On the held-out non-static samples the curve
 /// must do at least as well as `linear` (its Coulomb and viscous clamped at ≥ 0): where it does
 /// not, the linear fit is kept and a note says so; parameters that end at a bound are noted.
-/// Samples where rigid_prediction is NaN are left out.
+/// Samples where rigid_prediction is NaN are left out. `linear_joints` (the linear_written of an
+/// earlier fit, for the final fit on every row, where nothing is held out to choose by): the
+/// joints whose linear fit is written without a curve.
 template <int N>
 FrictionCurves<N> fit_friction_curves(const JointSamples& samples,
                                       const Eigen::MatrixXd& rigid_prediction,
                                       const Eigen::MatrixXd& abs_gravity,
                                       const StribeckParameters<double, N>& linear, bool fit_load,
-                                      int samples_per_joint);
+                                      int samples_per_joint,
+                                      const std::vector<char>& linear_joints = {});
+
+/// `samples` with no row held out: the final fit of a model chosen on held-out data.
+JointSamples with_every_row(const JointSamples& samples);
 
 }  // namespace tpf::offline
