@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "kinova_logs.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
@@ -155,27 +156,18 @@ TEST(IdentifyFriction, CurveIsNoWorseThanLinearOnTheGeneratorsLogs) {
 }
 
 TEST(IdentifyFriction, CurveIsNoWorseThanLinearOnTheKinovaLogs) {
-  const std::string dir = std::string(TPF_TEST_DATA_DIR) + "/real/kinova-gen3/";
-  const Model<double, 7> model = load_robot<double, 7>(dir + "gen3.robot.json");
-  const std::vector<std::string> fitting = {dir + "logs/RunTrajectory1.csv.gz",
-                                            dir + "logs/Trajectory1.csv.gz",
-                                            dir + "logs/RecordTrajectory_quadratic.csv.gz"};
-  const std::vector<std::string> testing = {dir + "logs/opti_traj_testing1.csv.gz",
-                                            dir + "logs/opti_traj_testing2.csv.gz"};
-  expect_curve_no_worse<7>(offline::read_logs(fitting), model, "Kinova fitting files");
-  expect_curve_no_worse<7>(offline::read_logs(testing), model, "Kinova testing files");
+  const Model<double, 7> model = kinova_model();
+  expect_curve_no_worse<7>(offline::read_logs(kinova_fitting_files()), model,
+                           "Kinova fitting files");
+  expect_curve_no_worse<7>(offline::read_logs(kinova_testing_files()), model,
+                           "Kinova testing files");
 }
 
 // The Gen3's joint 1 turns about the vertical: its gravity torque is zero up to rounding, so a
 // load column α·|G| there could only fit noise (it gave α_v ≈ 2.5e3). Held at zero and said; the
 // joints that carry gravity keep theirs.
 TEST(IdentifyFriction, NoLoadFrictionOnAVerticalAxis) {
-  const std::string dir = std::string(TPF_TEST_DATA_DIR) + "/real/kinova-gen3/";
-  const Model<double, 7> model = load_robot<double, 7>(dir + "gen3.robot.json");
-  const std::vector<std::string> fitting = {dir + "logs/RunTrajectory1.csv.gz",
-                                            dir + "logs/Trajectory1.csv.gz",
-                                            dir + "logs/RecordTrajectory_quadratic.csv.gz"};
-  const auto id = offline::identify<7>(offline::read_logs(fitting), model);
+  const auto id = offline::identify<7>(offline::read_logs(kinova_fitting_files()), kinova_model());
   const auto& f = id.nominal.friction;
   EXPECT_EQ(f.load_coulomb[0], 0.0);
   EXPECT_EQ(f.load_viscous[0], 0.0);

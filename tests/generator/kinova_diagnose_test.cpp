@@ -8,21 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "kinova_logs.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/log/read_logs.hpp"
-#include "tpf/model/load_robot.hpp"
 
 namespace tpf::test {
 namespace {
 
 TEST(DiagnoseKinova, ClaimsOnlyWhatLowersTheErrorOfTheModelItWrites) {
-  const std::string dir = std::string(TPF_TEST_DATA_DIR) + "/real/kinova-gen3/";
-  const Model<double, 7> model = load_robot<double, 7>(dir + "gen3.robot.json");
-  const std::vector<std::string> fitting = {dir + "logs/RunTrajectory1.csv.gz",
-                                            dir + "logs/Trajectory1.csv.gz",
-                                            dir + "logs/RecordTrajectory_quadratic.csv.gz"};
   const offline::DiagnoseOptions options;
-  const auto d = offline::diagnose<7>(offline::read_logs(fitting), model, options);
+  const auto d =
+      offline::diagnose<7>(offline::read_logs(kinova_fitting_files()), kinova_model(), options);
   for (const offline::Claim& c : d.claims) {
     if (!c.scored_joints.empty()) continue;
     EXPECT_GE(c.improvements[0], options.min_improvement) << d.groups[c.groups[0]].title;
