@@ -217,11 +217,12 @@ struct EffectPredictions {
   std::vector<Eigen::MatrixXd> terms;  ///< per selected effect, as the written model has it
   Eigen::MatrixXd non_friction;        ///< written, outside the friction (curves fit it)
   Eigen::MatrixXd declared_rigid;      ///< the declared rigid body (its curves fit it)
+  Eigen::MatrixXd final_non_friction;  ///< non_friction of the model refitted on every row
 };
 
 template <int N>
 EffectPredictions predict_effects(const EffectDesign<N>& design, const EffectDiagnosis& d,
-                                  const EffectSelection& sel) {
+                                  const EffectSelection& sel, bool refitted) {
   std::vector<Eigen::VectorXd> thetas{sel.theta_selected, sel.theta_before};
   for (std::size_t e = 0; e < d.selected.size(); ++e) {
     // A written effect's term as the written model holds it; the others as selected.
@@ -233,14 +234,17 @@ EffectPredictions predict_effects(const EffectDesign<N>& design, const EffectDia
   }
   thetas.push_back(non_friction_part(d.groups, sel.theta_written));
   thetas.push_back(only_family<RigidBodyColumns>(d.groups, sel.theta_declared));
+  if (refitted) thetas.push_back(non_friction_part(d.groups, sel.theta_final));
   std::vector<Eigen::MatrixXd> p = design.predict_each(d.samples, thetas);
   EffectPredictions out;
   out.selected = std::move(p[0]);
   out.declared = std::move(p[1]);
   for (std::size_t e = 0; e < d.selected.size(); ++e)
     out.terms.push_back(std::move(p[e + 2]));
-  out.non_friction = std::move(p[p.size() - 2]);
-  out.declared_rigid = std::move(p.back());
+  const std::size_t next = d.selected.size() + 2;
+  out.non_friction = std::move(p[next]);
+  out.declared_rigid = std::move(p[next + 1]);
+  if (refitted) out.final_non_friction = std::move(p[next + 2]);
   return out;
 }
 
@@ -295,24 +299,23 @@ NominalModel<double, N> declared_nominal(const NominalModel<double, N>& written,
   return declared;
 }
 
-/// The written model refitted on every row, held-out ones included (EffectSelection::theta_final),
-/// each joint's friction curve or linear fit as chosen on the held-out rows: what the parameter
-/// file gets once the selection and the curves are judged.
+/// The written model refitted on every row, held-out ones included (EffectSelection::theta_final,
+/// `non_friction` its prediction outside the friction), each joint's friction curve or linear
+/// fit as chosen on the held-out rows (`judged`): what the parameter file gets once the
+/// selection and the curves are judged.
 template <int N>
 NominalModel<double, N> refitted_on_every_row(
-    const EffectDesign<N>& design, const std::vector<FeatureGroup>& groups,
-    const Eigen::VectorXd& theta_final, const BaseParameters& base, const CandidateInputs& inputs,
-    const JointSamples& s, const Model<double, N>& model, const std::vector<char>& linear_joints) {
+    const std::vector<FeatureGroup>& groups, const Eigen::VectorXd& theta_final,
+    const Eigen::MatrixXd& non_friction, const BaseParameters& base, const CandidateInputs& inputs,
+    const JointSamples& s, const Model<double, N>& model, const FrictionCurves<N>& judged) {
   NominalModel<double, N> final_model;
   final_model.model = model;
   final_model.base_count = base.size();
   bool load_selected = false;
   const StribeckParameters<double, N> linear =
       write_effects(groups, theta_final, base, inputs, final_model, load_selected);
-  const Eigen::MatrixXd non_friction = design.predict(s, non_friction_part(groups, theta_final));
-  final_model.friction = fit_friction_curves<N>(with_every_row(s), non_friction, inputs.abs_gravity,
-                                                linear, load_selected, 20000, linear_joints)
-                             .parameters;
+  final_model.friction = refit_friction_curves<N>(s, non_friction, inputs.abs_gravity, linear,
+                                                  load_selected, 20000, judged);
   return final_model;
 }
 
@@ -388,7 +391,8 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   out.after = sel.after;
 
   say("diagnose: pass 4/4: refit with the selected effects");
-  EffectPredictions p = predict_effects(design, out, sel);
+  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
+  EffectPredictions p = predict_effects(design, out, sel, out.refitted);
   out.residual_after = s.effort - p.selected;
   out.residual_before = s.effort - p.declared;
   out.effect_terms = std::move(p.terms);
@@ -420,10 +424,9 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   });
 
   out.judged = out.nominal;
-  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
   if (out.refitted)
-    out.nominal = refitted_on_every_row(design, out.groups, sel.theta_final, setup.base, inputs, s,
-                                        model, curves.linear_written);
+    out.nominal = refitted_on_every_row(out.groups, sel.theta_final, p.final_non_friction,
+                                        setup.base, inputs, s, model, curves);
 
   out.cad_payload = judge_cad_payload(
       grams, out.groups, cad_rigid_body(model, setup.base, out.groups, design.features()),

@@ -136,13 +136,22 @@ void note_non_dissipative_linear(const Eigen::MatrixXd& training,
   notes.push_back(joint + text);
 }
 
+namespace {
+
+// Joint j's curve in fit_stribeck's terms.
 template <int N>
-FrictionCurves<N> fit_friction_curves(const JointSamples& s,
-                                      const Eigen::MatrixXd& rigid_prediction,
-                                      const Eigen::MatrixXd& abs_gravity,
-                                      const StribeckParameters<double, N>& linear, bool fit_load,
-                                      int samples_per_joint,
-                                      const std::vector<char>& linear_joints) {
+JointStribeck joint_stribeck(const StribeckParameters<double, N>& p, int j) {
+  return {p.coulomb[j], p.static_friction[j], p.stribeck_velocity[j], p.stribeck_exponent[j],
+          p.viscous[j], p.load_coulomb[j],    p.load_viscous[j]};
+}
+
+// fit_friction_curves, and with `judged` refit_friction_curves (every row; each joint's choice
+// and curve from `judged`).
+template <int N>
+FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& rigid_prediction,
+                                  const Eigen::MatrixXd& abs_gravity,
+                                  const StribeckParameters<double, N>& linear, bool fit_load,
+                                  int samples_per_joint, const FrictionCurves<N>* judged) {
   FrictionCurves<N> out;
   out.parameters = linear;
   out.linear_written.assign(N, 0);
@@ -166,7 +175,7 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
     for (Eigen::Index k = 0; k < s.size(); ++k)
       if (s.valid[k] && s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid &&
           std::isfinite(rigid_prediction(k, j)))
-        (s.heldout[k] ? heldout : rows).push_back(k);
+        (s.heldout[k] && !judged ? heldout : rows).push_back(k);
     // Friction target without the held terms (asymmetry, neighbour load), and the linear curve.
     auto target_at = [&](Eigen::Index k) {
       const JointVector<double, N> abs_g = abs_gravity.row(k).transpose();
@@ -219,13 +228,15 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
       out.parameters.coulomb_asymmetry[j] =
           std::clamp(clamped.coulomb_asymmetry[j], -linear_fit.coulomb[j], linear_fit.coulomb[j]);
     };
-    if (!linear_joints.empty() && linear_joints[static_cast<std::size_t>(j)]) {
+    if (judged && judged->linear_written[static_cast<std::size_t>(j)]) {
       write_linear();  // the final fit on every row: the choice made on the held-out rows
       return;
     }
     const Eigen::MatrixXd strided = gather(stride);
     const StribeckFit fit =
-        fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load_here);
+        judged ? refine_stribeck(strided.col(0), strided.col(1), strided.col(2),
+                                 joint_stribeck(judged->parameters, j), fit_load_here)
+               : fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load_here);
     StribeckParameters<double, N> curve = clamped;
     curve.coulomb[j] = fit.curve.coulomb;
     curve.static_friction[j] = fit.curve.static_friction;
@@ -284,79 +295,89 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& s,
   return out;
 }
 
+}  // namespace
+
+template <int N>
+FrictionCurves<N> fit_friction_curves(const JointSamples& s,
+                                      const Eigen::MatrixXd& rigid_prediction,
+                                      const Eigen::MatrixXd& abs_gravity,
+                                      const StribeckParameters<double, N>& linear, bool fit_load,
+                                      int samples_per_joint) {
+  return friction_curves<N>(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
+                            nullptr);
+}
+
+template <int N>
+StribeckParameters<double, N> refit_friction_curves(const JointSamples& s,
+                                                    const Eigen::MatrixXd& rigid_prediction,
+                                                    const Eigen::MatrixXd& abs_gravity,
+                                                    const StribeckParameters<double, N>& linear,
+                                                    bool fit_load, int samples_per_joint,
+                                                    const FrictionCurves<N>& judged) {
+  return friction_curves<N>(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
+                            &judged)
+      .parameters;
+}
+
 namespace {
 
+// The linear fit θ as a nominal model without curves: rigid base parameters and the linear
+// friction (Coulomb + viscous) the curves start from.
 template <int N>
-struct FittedNominal {
+struct LinearNominal {
   NominalModel<double, N> nominal;
-  Eigen::MatrixXd rigid;                 ///< the rigid body's prediction of every sample
+  Eigen::VectorXd rigid_theta;           ///< θ's rigid-body columns, zero elsewhere
   StribeckParameters<double, N> linear;  ///< the linear friction the curves start from
-  std::vector<char> linear_written;      ///< per joint (FrictionCurves::linear_written)
 };
 
-// The linear fit on `selection`'s rows (rigid base parameters + Coulomb + viscous), then the
-// rigid body's prediction and the friction curves on the non-held-out rows of `s`.
 template <int N>
-FittedNominal<N> fit_nominal(const Model<double, N>& model, const EffectDesign<N>& design,
-                             const DesignGrams& grams, const std::vector<int>& columns,
-                             const FitSelection& selection, const BaseParameters& base,
-                             const Log& log, const JointSamples& s, const Eigen::MatrixXd& load,
-                             const IdentifyOptions& options, const std::vector<char>& linear_joints,
-                             std::vector<std::string>& notes) {
-  const Eigen::VectorXd theta = fit_columns(grams, columns, selection);
-  FittedNominal<N> out;
-  NominalModel<double, N>& nominal = out.nominal;
-  nominal.model = model;
-  nominal.base_count = base.size();
-  Eigen::VectorXd rigid_theta = Eigen::VectorXd::Zero(design.features());
-  StribeckParameters<double, N>& linear = out.linear;
+LinearNominal<N> linear_nominal(const Model<double, N>& model, const EffectDesign<N>& design,
+                                const BaseParameters& base, const Eigen::VectorXd& theta) {
+  LinearNominal<N> out;
+  out.nominal.model = model;
+  out.nominal.base_count = base.size();
+  out.rigid_theta = Eigen::VectorXd::Zero(design.features());
   using Friction = JointFrictionColumns;
   for (const FeatureGroup& g : design.groups()) {
     if (g.key == RigidBodyColumns::key) {
       for (int i = 0; i < base.size(); ++i) {
-        nominal.base_columns[i] = base.independent[i];
-        nominal.base_values[i] = theta[g.columns[i]];
-        rigid_theta[g.columns[i]] = theta[g.columns[i]];
+        out.nominal.base_columns[i] = base.independent[i];
+        out.nominal.base_values[i] = theta[g.columns[i]];
+        out.rigid_theta[g.columns[i]] = theta[g.columns[i]];
       }
     } else if (g.key == Friction::key) {
-      linear.coulomb[g.joint] = theta[g.columns[Friction::kCoulomb]];
-      linear.static_friction[g.joint] = theta[g.columns[Friction::kCoulomb]];
-      linear.viscous[g.joint] = theta[g.columns[Friction::kViscous]];
+      out.linear.coulomb[g.joint] = out.linear.static_friction[g.joint] =
+          theta[g.columns[Friction::kCoulomb]];
+      out.linear.viscous[g.joint] = theta[g.columns[Friction::kViscous]];
     }
   }
-  out.rigid = design.predict(s, rigid_theta);
-  Eigen::MatrixXd friction_reference = out.rigid;
-  if (options.friction_from_sensor) {
-    // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
-    Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
-    for (int i = 0; i < nominal.base_count; ++i)
-      if (nominal.base_columns[i] >= 10 * N && nominal.base_columns[i] < 11 * N)
-        armature[nominal.base_columns[i] - 10 * N] = nominal.base_values[i];
-    SensorFrictionReference sensor = sensor_friction_reference(log, s, armature, out.rigid);
-    friction_reference = std::move(sensor.reference);
-    for (int j = 0; j < N; ++j)
-      if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {
-        linear.coulomb[j] = linear.static_friction[j] = sensor.coulomb[j];
-        linear.viscous[j] = sensor.viscous[j];
-      }
-    notes.push_back(sensor.note);
-  }
-  FrictionCurves<N> curves =
-      fit_friction_curves<N>(s, friction_reference, load, linear, options.fit_load_friction,
-                             options.friction_samples_per_joint, linear_joints);
-  nominal.friction = curves.parameters;
-  notes.insert(notes.end(), curves.notes.begin(), curves.notes.end());
-  out.linear_written = std::move(curves.linear_written);
   return out;
 }
 
-}  // namespace
-
-JointSamples with_every_row(const JointSamples& samples) {
-  JointSamples every = samples;
-  std::fill(every.heldout.begin(), every.heldout.end(), 0);
-  return every;
+// What the friction curves are fitted against: the rigid prediction, or with
+// friction_from_sensor effort − (τ_sensor + I_a·q̈) where the joint's sensor varies (its linear
+// start then from the same target).
+template <int N>
+Eigen::MatrixXd friction_reference(const Log& log, const JointSamples& s,
+                                   const Eigen::MatrixXd& rigid, const IdentifyOptions& options,
+                                   LinearNominal<N>& fit, std::vector<std::string>& notes) {
+  if (!options.friction_from_sensor) return rigid;
+  // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
+  Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
+  for (int i = 0; i < fit.nominal.base_count; ++i)
+    if (fit.nominal.base_columns[i] >= 10 * N && fit.nominal.base_columns[i] < 11 * N)
+      armature[fit.nominal.base_columns[i] - 10 * N] = fit.nominal.base_values[i];
+  SensorFrictionReference sensor = sensor_friction_reference(log, s, armature, rigid);
+  for (int j = 0; j < N; ++j)
+    if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {
+      fit.linear.coulomb[j] = fit.linear.static_friction[j] = sensor.coulomb[j];
+      fit.linear.viscous[j] = sensor.viscous[j];
+    }
+  notes.push_back(sensor.note);
+  return std::move(sensor.reference);
 }
+
+}  // namespace
 
 template <int N>
 Identification<N> identify(const Log& log, const Model<double, N>& model,
@@ -397,12 +418,38 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   selection.joint_weights = out.joint_weights;
 
   say("identify: pass 2/3: rigid-body prediction, friction curves (Ceres)");
+  // Judged on the held-out rows, the model is then refitted on every row for the file.
+  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
+  FitSelection every = selection;
+  every.heldout_rows = true;
+  LinearNominal<N> fit =
+      linear_nominal(model, design, base, fit_columns(grams, columns, selection));
+  LinearNominal<N> final_fit =
+      out.refitted ? linear_nominal(model, design, base, fit_columns(grams, columns, every)) : fit;
+  std::vector<Eigen::MatrixXd> rigids = design.predict_each(
+      s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
+                      : std::vector<Eigen::VectorXd>{fit.rigid_theta});
+  const Eigen::MatrixXd& rigid = rigids.front();
   const Eigen::MatrixXd load = gravity_load(model, s);
-  const FittedNominal<N> fitted = fit_nominal(model, design, grams, columns, selection, base, log,
-                                              s, load, options, {}, out.friction_notes);
-  const NominalModel<double, N>& nominal = fitted.nominal;
-  const Eigen::MatrixXd& rigid = fitted.rigid;
-  const StribeckParameters<double, N>& linear = fitted.linear;
+  const Eigen::MatrixXd reference =
+      friction_reference(log, s, rigid, options, fit, out.friction_notes);
+  const FrictionCurves<N> curves =
+      fit_friction_curves<N>(s, reference, load, fit.linear, options.fit_load_friction,
+                             options.friction_samples_per_joint);
+  out.friction_notes.insert(out.friction_notes.end(), curves.notes.begin(), curves.notes.end());
+  NominalModel<double, N> nominal = fit.nominal;
+  nominal.friction = curves.parameters;
+  const StribeckParameters<double, N>& linear = fit.linear;
+  out.nominal = nominal;
+  if (out.refitted) {
+    std::vector<std::string> unused;
+    const Eigen::MatrixXd final_reference =
+        friction_reference(log, s, rigids.back(), options, final_fit, unused);
+    out.nominal = final_fit.nominal;
+    out.nominal.friction = refit_friction_curves<N>(s, final_reference, load, final_fit.linear,
+                                                    options.fit_load_friction,
+                                                    options.friction_samples_per_joint, curves);
+  }
 
   say("identify: pass 3/3: validation on held-out blocks");
   // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has
@@ -422,18 +469,6 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   parallel_jobs(2, [&](int split) {
     (split == 0 ? out.heldout : out.training) = split_regime_stats(s, out.residual, split == 0);
   });
-  out.nominal = nominal;
-  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
-  if (out.refitted) {
-    // The model is judged; the file gets it refitted on every row (the held-out ones too).
-    say("identify: the model refitted on every sample, held-out ones included, for the file");
-    FitSelection every = selection;
-    every.heldout_rows = true;
-    std::vector<std::string> unused;
-    out.nominal = fit_nominal(model, design, grams, columns, every, base, log, with_every_row(s),
-                              load, options, fitted.linear_written, unused)
-                      .nominal;
-  }
   out.consistency = check_consistency(out.nominal);
   if (!(out.consistency.min_mass_eigenvalue > 0) && s.ddq.cwiseAbs().maxCoeff() == 0.0)
     out.consistency.problems.push_back(
@@ -463,7 +498,10 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                                                const JointSamples&);              \
   template FrictionCurves<N> fit_friction_curves<N>(                              \
       const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,        \
-      const StribeckParameters<double, N>&, bool, int, const std::vector<char>&);
+      const StribeckParameters<double, N>&, bool, int);                           \
+  template StribeckParameters<double, N> refit_friction_curves<N>(                \
+      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,        \
+      const StribeckParameters<double, N>&, bool, int, const FrictionCurves<N>&);
 TPF_INSTANTIATE_IDENTIFY(1)
 TPF_INSTANTIATE_IDENTIFY(2)
 TPF_INSTANTIATE_IDENTIFY(3)

@@ -96,18 +96,23 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
 /// they are subtracted from the target and kept). On the held-out non-static samples the curve
 /// must do at least as well as `linear` (its Coulomb and viscous clamped at ≥ 0): where it does
 /// not, the linear fit is kept and a note says so; parameters that end at a bound are noted.
-/// Samples where rigid_prediction is NaN are left out. `linear_joints` (the linear_written of an
-/// earlier fit, for the final fit on every row, where nothing is held out to choose by): the
-/// joints whose linear fit is written without a curve.
+/// Samples where rigid_prediction is NaN are left out.
 template <int N>
 FrictionCurves<N> fit_friction_curves(const JointSamples& samples,
                                       const Eigen::MatrixXd& rigid_prediction,
                                       const Eigen::MatrixXd& abs_gravity,
                                       const StribeckParameters<double, N>& linear, bool fit_load,
-                                      int samples_per_joint,
-                                      const std::vector<char>& linear_joints = {});
+                                      int samples_per_joint);
 
-/// `samples` with no row held out: the final fit of a model chosen on held-out data.
-JointSamples with_every_row(const JointSamples& samples);
+/// The final fit of curves already judged (`judged`, from fit_friction_curves on the training
+/// rows): every row, the held-out ones included; each joint keeps its linear fit or its curve as
+/// chosen there, the curve refined from the judged one.
+template <int N>
+StribeckParameters<double, N> refit_friction_curves(const JointSamples& samples,
+                                                    const Eigen::MatrixXd& rigid_prediction,
+                                                    const Eigen::MatrixXd& abs_gravity,
+                                                    const StribeckParameters<double, N>& linear,
+                                                    bool fit_load, int samples_per_joint,
+                                                    const FrictionCurves<N>& judged);
 
 }  // namespace tpf::offline

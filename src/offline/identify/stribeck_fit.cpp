@@ -17,6 +17,28 @@ Eigen::VectorXd every_kth(const Eigen::VectorXd& v, Eigen::Index k) {
   return v(Eigen::seq(0, v.size() - 1, k));
 }
 
+// Bounds of x = [τ_c, τ_s, q̇_s, δ, b, α_c, α_v].
+constexpr double kLower[7] = {0, 0, 1e-3, 0.3, 0, 0, 0};
+constexpr double kUpper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
+
+// The curve of x, and the names of its parameters that ended at a bound.
+StribeckFit with_bounds_named(const double* x, bool fit_load, const double* lower,
+                              const double* upper) {
+  StribeckFit fit{{x[0], x[1], x[2], x[3], x[4], x[5], x[6]}, {}};
+  static const char* kName[7] = {"τ_c", "τ_s", "q̇_s", "δ", "b", "α_c", "α_v"};
+  for (int i = 0; i < 7; ++i) {
+    if (!fit_load && i >= 5) continue;
+    const double scale = std::max({std::abs(lower[i]), std::abs(x[i]), 1e-12});
+    if (std::abs(x[i] - lower[i]) <= 1e-6 * scale)
+      fit.at_bound.push_back(std::string(kName[i]) + " at its lower bound " +
+                             std::to_string(lower[i]).substr(0, 5));
+    else if (upper[i] < 1e12 && std::abs(x[i] - upper[i]) <= 1e-6 * scale)
+      fit.at_bound.push_back(std::string(kName[i]) + " at its upper bound " +
+                             std::to_string(upper[i]).substr(0, 5));
+  }
+  return fit;
+}
+
 // One local fit from x (in place); returns the final cost.
 double solve_from(double* x, const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
                   const Eigen::VectorXd& target, bool fit_load, const double* lower,
@@ -47,8 +69,6 @@ double solve_from(double* x, const Eigen::VectorXd& dq, const Eigen::VectorXd& a
 
 StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
                          const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load) {
-  const double lower[7] = {0, 0, 1e-3, 0.3, 0, 0, 0};
-  const double upper[7] = {1e12, 1e12, 2.0, 4.0, 1e12, 1e12, 1e12};
   // Three starts, from a narrow dip to one as wide as the motion (friction that falls over the
   // whole range, which a linear fit shows as b < 0): the cost has a local minimum per width.
   const double dip[3][2] = {
@@ -68,26 +88,28 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
                        fit_load ? std::max(start.load_coulomb, 0.0) : 0.0,
                        fit_load ? std::max(start.load_viscous, 0.0) : 0.0};
     const double cost =
-        solve_from(trial, coarse_dq, coarse_g, coarse_target, fit_load, lower, upper);
+        solve_from(trial, coarse_dq, coarse_g, coarse_target, fit_load, kLower, kUpper);
     if (cost < best_cost) {
       best_cost = cost;
       std::copy(trial, trial + 7, x);
     }
   }
-  if (k > 1) solve_from(x, dq, abs_gravity, target, fit_load, lower, upper);
-  StribeckFit fit{{x[0], x[1], x[2], x[3], x[4], x[5], x[6]}, {}};
-  static const char* kName[7] = {"τ_c", "τ_s", "q̇_s", "δ", "b", "α_c", "α_v"};
-  for (int i = 0; i < 7; ++i) {
-    if (!fit_load && i >= 5) continue;
-    const double scale = std::max({std::abs(lower[i]), std::abs(x[i]), 1e-12});
-    if (std::abs(x[i] - lower[i]) <= 1e-6 * scale)
-      fit.at_bound.push_back(std::string(kName[i]) + " at its lower bound " +
-                             std::to_string(lower[i]).substr(0, 5));
-    else if (upper[i] < 1e12 && std::abs(x[i] - upper[i]) <= 1e-6 * scale)
-      fit.at_bound.push_back(std::string(kName[i]) + " at its upper bound " +
-                             std::to_string(upper[i]).substr(0, 5));
-  }
-  return fit;
+  if (k > 1) solve_from(x, dq, abs_gravity, target, fit_load, kLower, kUpper);
+  return with_bounds_named(x, fit_load, kLower, kUpper);
+}
+
+StribeckFit refine_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
+                            const Eigen::VectorXd& target, const JointStribeck& curve,
+                            bool fit_load) {
+  double x[7] = {std::max(curve.coulomb, 0.0),
+                 std::max(curve.static_friction, 0.0),
+                 std::clamp(curve.stribeck_velocity, kLower[2], kUpper[2]),
+                 std::clamp(curve.stribeck_exponent, kLower[3], kUpper[3]),
+                 std::max(curve.viscous, 0.0),
+                 fit_load ? std::max(curve.load_coulomb, 0.0) : 0.0,
+                 fit_load ? std::max(curve.load_viscous, 0.0) : 0.0};
+  solve_from(x, dq, abs_gravity, target, fit_load, kLower, kUpper);
+  return with_bounds_named(x, fit_load, kLower, kUpper);
 }
 
 }  // namespace tpf::offline

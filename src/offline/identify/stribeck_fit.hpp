@@ -29,4 +29,9 @@ struct StribeckFit {
 StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
                          const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load);
 
+/// The same fit, one start: `curve` (a curve fitted on part of these samples), refined.
+StribeckFit refine_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
+                            const Eigen::VectorXd& target, const JointStribeck& curve,
+                            bool fit_load);
+
 }  // namespace tpf::offline
