@@ -18,7 +18,7 @@ std::vector<int> moving_columns(const FeatureGroup& g) {
   return c;
 }
 
-std::vector<int> joined(std::vector<int> a, const std::vector<int>& b) {
+std::vector<int> concatenated(std::vector<int> a, const std::vector<int>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
@@ -46,7 +46,7 @@ class PayloadJudge {
         A_(training_gram(grams, selection)) {}
 
   PayloadFit fit(const std::vector<int>& beside, const std::vector<int>& payload) const {
-    const std::vector<int> with_payload = joined(beside, payload);
+    const std::vector<int> with_payload = concatenated(beside, payload);
     const Eigen::VectorXd without = refit_columns(grams_, beside, cad_, selection_);
     PayloadFit f;
     f.theta = refit_columns(grams_, with_payload, cad_, selection_);
@@ -112,15 +112,15 @@ CadPayloadCheck judge_cad_payload(const DesignGrams& grams, const std::vector<Fe
                                   const DiagnoseOptions& options) {
   std::vector<int> friction, payload;
   for (const FeatureGroup& g : groups) {
-    if (g.key == JointFrictionColumns::key) friction = joined(friction, moving_columns(g));
+    if (g.key == JointFrictionColumns::key) friction = concatenated(friction, moving_columns(g));
     if (g.key == PayloadColumns::key) payload = g.columns;
   }
   std::vector<int> effects;
   for (int g : selected)
-    effects = joined(effects, moving_columns(groups[g]));
+    effects = concatenated(effects, moving_columns(groups[g]));
   const PayloadJudge judge(grams, cad, selection,
                            variance_inflation.size() ? variance_inflation.maxCoeff() : 1.0);
-  const PayloadFit fit = judge.fit(joined(friction, effects), payload);
+  const PayloadFit fit = judge.fit(concatenated(friction, effects), payload);
   CadPayloadCheck c;
   c.improvement = fit.improvement;
   c.bic_change = fit.bic_change;
@@ -133,7 +133,7 @@ CadPayloadCheck judge_cad_payload(const DesignGrams& grams, const std::vector<Fe
   // A payload is the arm's: it must lower the held-out error of every file held out in turn.
   for (const TransferFold& fold : transfer) {
     const PayloadFit other =
-        PayloadJudge(fold.grams, cad, selection, 1.0).fit(joined(friction, effects), payload);
+        PayloadJudge(fold.grams, cad, selection, 1.0).fit(concatenated(friction, effects), payload);
     if (!(other.improvement >= c.transfer_improvement)) {
       c.transfer_improvement = other.improvement;
       c.transfer_file = fold.file;
@@ -148,7 +148,7 @@ CadPayloadCheck judge_cad_payload(const DesignGrams& grams, const std::vector<Fe
   for (int g : selected) {
     std::vector<int> others = friction;
     for (int e : selected)
-      if (e != g) others = joined(others, moving_columns(groups[e]));
+      if (e != g) others = concatenated(others, moving_columns(groups[e]));
     const std::vector<int> own = moving_columns(groups[g]);
     const double shared = judge.shared(others, payload, own);
     if (judge.fit(others, payload).passes(options) && shared >= options.max_shared_share) {

@@ -391,7 +391,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   out.after = sel.after;
 
   say("diagnose: pass 4/4: refit with the selected effects");
-  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
+  out.refitted = holds_rows_out(s);
   EffectPredictions p = predict_effects(design, out, sel, out.refitted);
   out.residual_after = s.effort - p.selected;
   out.residual_before = s.effort - p.declared;

@@ -107,6 +107,8 @@ ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
   return check;
 }
 
+namespace {
+
 // Where plain least squares of τ_c·sgn(q̇) + b·q̇ (either sign) beats the written friction on the
 // held-out samples by more than 0.5 %, it is because a coefficient is negative: the target falls
 // with speed faster than any dissipative curve (all coefficients ≥ 0) can follow. Said, with both
@@ -135,8 +137,6 @@ void note_non_dissipative_linear(const Eigen::MatrixXd& training,
                 free.coulomb, free.viscous, std::sqrt(sse_free / n), std::sqrt(sse_written / n));
   notes.push_back(joint + text);
 }
-
-namespace {
 
 // Joint j's curve in fit_stribeck's terms.
 template <int N>
@@ -419,7 +419,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
 
   say("identify: pass 2/3: rigid-body prediction, friction curves (Ceres)");
   // Judged on the held-out rows, the model is then refitted on every row for the file.
-  out.refitted = std::any_of(s.heldout.begin(), s.heldout.end(), [](char h) { return h != 0; });
+  out.refitted = holds_rows_out(s);
   FitSelection every = selection;
   every.heldout_rows = true;
   LinearNominal<N> fit =

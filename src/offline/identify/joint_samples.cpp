@@ -1,5 +1,6 @@
 #include "offline/identify/joint_samples.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
@@ -21,6 +22,11 @@ bool identification_column(std::string_view name) {
   for (const std::string_view read : {"q", "dq", "ddq", "i", "tau", "temp", "tau_sensor"})
     if (prefix == read) return true;
   return false;
+}
+
+bool holds_rows_out(const JointSamples& samples) {
+  return std::any_of(samples.heldout.begin(), samples.heldout.end(),
+                     [](char held) { return held != 0; });
 }
 
 std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,

@@ -52,6 +52,9 @@ struct JointSamples {
 /// friction reference and report). A reader may skip the others (ground truth, pads) unparsed.
 bool identification_column(std::string_view name);
 
+/// Some row is held out (a file or blocks).
+bool holds_rows_out(const JointSamples& samples);
+
 /// The interleaved held-out blocks of times `t`: block_s long from t[0], every heldout_every-th
 /// held out (1), the others 0.
 std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
