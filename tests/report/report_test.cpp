@@ -297,6 +297,12 @@ TEST(HtmlReport, SampleReportIsWellFormedSelfContainedAndEscaped) {
   EXPECT_NE(html.find("<td class=\"num better\">\u221288.6\u00a0%</td>"), std::string::npos);
   EXPECT_NE(html.find("<td class=\"num worse\">+3.2\u00a0%</td>"), std::string::npos);
   EXPECT_NE(html.find("<td>static-to-kinetic</td>"), std::string::npos);
+  // A table wider than the page scrolls in its own box; numeric headers wrap.
+  EXPECT_NE(html.find("<div class=\"table-scroll\"><table>"), std::string::npos);
+  EXPECT_NE(html.find(".table-scroll { max-width: 100%; overflow-x: auto; }"), std::string::npos);
+  EXPECT_EQ(html.find("th.num { text-align: right; font-variant-numeric: tabular-nums; "
+                      "white-space: nowrap"),
+            std::string::npos);
   // Plot ids are unique so clip paths do not collide.
   const std::regex ids("clipPath id=\"(plot[0-9]+)\"");
   std::set<std::string> seen;

@@ -249,7 +249,8 @@ std::string low_pass_sentence(const MeasuredResult& r) {
     taus += (j ? " / " : " ") + format_number(1000 * r.low_pass_time_constants[j], 3);
   return "'friction against the sensor': identify --friction-from-sensor, each joint's friction "
          "fitted against its torque sensor (K_t·i − (τ_sensor + I_a·q̈)) instead of against "
-         "the effort less a rigid body that 8.8 s cannot identify. '+ current low-pass': the "
+         "the effort less the rigid body identified on the same few seconds of motion. '+ "
+         "current low-pass': the "
          "same with the motor current through a causal first-order low-pass, time constant "
          "chosen per joint on the fitting files (joints 1–7, ms:" +
          taus +
@@ -285,9 +286,12 @@ Table measured_table(const MeasuredSplit& split, double target) {
     row.push_back(std::to_string(s.samples));
     row.push_back(format_fixed(split.columns[1].rmse[j], 3));
     for (std::size_t c = 2; c < split.columns.size(); ++c)
-      row.push_back(rmse_cell(maker, split.columns[c].rmse[j]));
-    const std::vector<std::string> names = estimates_meeting_target(split, joint, target);
-    row.push_back(names.empty() ? "no" : "yes: " + joined(names, ", "));
+      row.push_back(rmse_cell(maker, split.columns[c].rmse[j]) +
+                    (meets_target(maker, split.columns[c].rmse[j], target) ? " \u2713" : ""));
+    const std::size_t meeting = estimates_meeting_target(split, joint, target).size();
+    row.push_back(meeting == 0 ? "no"
+                               : "yes (\u2713): " + std::to_string(meeting) + " of " +
+                                     std::to_string(split.columns.size() - 2));
     t.rows.push_back(row);
   }
   return t;

@@ -31,7 +31,10 @@ caption { caption-side: top; text-align: left; color: var(--muted); padding-bott
 th, td { padding: 5px 12px; border-bottom: 1px solid var(--line); text-align: left; }
 th { background: #eef1f5; font-weight: 600; border-bottom: 2px solid #c9d0da; }
 tbody tr:nth-child(even) td { background: #fafbfc; }
-td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
+td.num { white-space: nowrap; }
+th { vertical-align: bottom; }
+.table-scroll { max-width: 100%; overflow-x: auto; }
 td.better { color: #1b7d3a; font-weight: 600; }
 td.worse { color: #b3261e; font-weight: 600; }
 figure { margin: 16px 0 22px; }
@@ -104,7 +107,8 @@ void HtmlReport::links(const std::vector<Link>& links) {
 }
 
 void HtmlReport::table(const Table& table) {
-  body_ += "<table>\n";
+  // Headers wrap; a table still wider than the page scrolls inside it, never past its edge.
+  body_ += "<div class=\"table-scroll\"><table>\n";
   if (!table.caption.empty()) body_ += "<caption>" + html_escape(table.caption) + "</caption>\n";
   // A column is numeric when all its non-empty body cells are.
   std::vector<bool> numeric(table.header.size(), true);
@@ -131,7 +135,7 @@ void HtmlReport::table(const Table& table) {
     }
     body_ += "</tr>\n";
   }
-  body_ += "</tbody>\n</table>\n";
+  body_ += "</tbody>\n</table></div>\n";
 }
 
 void HtmlReport::figure(const std::string& svg, const std::string& caption) {
