@@ -206,6 +206,33 @@ TEST(BarChart, BarsStartAtZeroAndHaveOneValuePerGroup) {
   EXPECT_THROW(bar_chart(options, {"a"}, {{"x", {1.0, 2.0}, ""}}), Error);
 }
 
+// Category names wider than their slot wrap after a space or a hyphen instead of running into
+// their neighbours (diagnose's chart: 12 groups "j1 static-to-kinetic" … in 900 px).
+TEST(BarChart, LongCategoryNamesWrapInsideTheirSlot) {
+  PlotOptions options;
+  options.width = 900;
+  options.height = 320;
+  std::vector<std::string> groups;
+  for (int j = 1; j <= 4; ++j)
+    for (const char* regime : {"static", "static-to-kinetic", "moving"})
+      groups.push_back(std::string("j").append(std::to_string(j)).append(" ").append(regime));
+  const std::string svg =
+      bar_chart(options, groups, {{"before", std::vector<double>(12, 1.0), ""}});
+  EXPECT_TRUE(test::check_tags(svg).empty()) << test::check_tags(svg);
+  const double slot = (900 - PlotCanvas::kLeft - PlotCanvas::kRight) / 12.0;
+  const std::regex line("<tspan x=\"[-0-9.]+\" dy=\"(0|13)\">([^<]*)</tspan>");
+  int lines = 0;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), line); it != std::sregex_iterator();
+       ++it, ++lines) {
+    const std::string text = (*it)[2];
+    EXPECT_LE(7.0 * static_cast<double>(text.size()), slot + 7.0) << text;
+  }
+  EXPECT_GE(lines, 8);  // the four "static-to-kinetic" names on two or three lines each
+  EXPECT_NE(svg.find(">j1 static-</tspan>"), std::string::npos);
+  EXPECT_NE(svg.find(">to-kinetic</tspan>"), std::string::npos);
+  EXPECT_NE(svg.find(">j1 static</text>"), std::string::npos);  // fits: one line, no tspan
+}
+
 TEST(Histogram, BinsAndShares) {
   EXPECT_EQ(bin_counts(vec({0, 0.1, 0.5, 0.99, 1.0, 2.0, kNaN}), 0.0, 1.0, 2),
             (std::vector<std::size_t>{2, 3}));

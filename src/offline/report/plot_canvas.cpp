@@ -3,6 +3,8 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "offline/report/text_format.hpp"
 
@@ -43,6 +45,36 @@ std::string standalone_svg(const std::vector<std::string>& plots, int width, int
   return s + "</svg>\n";
 }
 namespace {
+
+// `text` in lines of about `width` characters, broken after a space or a hyphen; the last of
+// `max_lines` lines takes whatever is left.
+std::vector<std::string> wrap_label(const std::string& text, std::size_t width,
+                                    std::size_t max_lines) {
+  auto characters = [](const std::string& t) {
+    std::size_t n = 0;  // UTF-8: count the bytes that start a character
+    for (const char c : t)
+      n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    return n;
+  };
+  std::vector<std::string> pieces;  // each ends at a break opportunity
+  std::string piece;
+  for (const char c : text) {
+    piece += c;
+    if (c == ' ' || c == '-') pieces.push_back(std::move(piece)), piece.clear();
+  }
+  if (!piece.empty()) pieces.push_back(piece);
+  std::vector<std::string> lines{""};
+  for (const std::string& p : pieces) {
+    if (!lines.back().empty() && characters(lines.back() + p) > width + 1 &&
+        lines.size() < max_lines)
+      lines.emplace_back();
+    lines.back() += p;
+  }
+  for (std::string& line : lines)
+    while (!line.empty() && line.back() == ' ')
+      line.pop_back();
+  return lines;
+}
 
 std::string tick_label(double value, int decimals, double step) {
   if (std::abs(step) < 1e-4 || std::abs(value) >= 1e6) return format_number(value, 3);
@@ -169,9 +201,21 @@ std::string PlotCanvas::svg() const {
            tick_label(v, x_ticks_.decimals, x_ticks_.step) + "</text>";
     }
   } else {
-    for (std::size_t i = 0; i < categories_.size(); ++i)
-      s += "<text x=\"" + svg_coordinate(x_(static_cast<double>(i) + 0.5)) + "\" y=\"" + tick_y +
-           "\">" + html_escape(categories_[i]) + "</text>";
+    // A name wider than its slot (≈ 7 px a character) wraps after a space or a hyphen, onto at
+    // most 3 lines (2 when an x-axis label sits below), so neighbours never overlap.
+    const double slot = x_(1.0) - x_(0.0);
+    const std::size_t width = static_cast<std::size_t>(std::max(4.0, slot / 7.0));
+    const std::size_t lines = options_.x_label.empty() ? 3 : 2;
+    for (std::size_t i = 0; i < categories_.size(); ++i) {
+      const std::string x = svg_coordinate(x_(static_cast<double>(i) + 0.5));
+      s += "<text x=\"" + x + "\" y=\"" + tick_y + "\">";
+      const std::vector<std::string> wrapped = wrap_label(categories_[i], width, lines);
+      for (std::size_t k = 0; k < wrapped.size(); ++k)
+        s += (wrapped.size() == 1 ? std::string()
+                                  : "<tspan x=\"" + x + "\" dy=\"" + (k ? "13" : "0") + "\">") +
+             html_escape(wrapped[k]) + (wrapped.size() == 1 ? "" : "</tspan>");
+      s += "</text>";
+    }
   }
   s += "</g>\n";
   // Data, clipped to the plot area.
