@@ -192,204 +192,49 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
   return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
 }
 
-// The step, once per register width (a target attribute cannot depend on a template argument;
-// the two copies differ only in the register width). A hidden vector is V registers. Each
-// block's axpys z += W_j[:, c]·x_j[c] are dealt by column c to A partial sums (A·V ≥ 4
-// independent chains), the lagged taps (read from the rings) first and the current tap (the
-// input just computed) last; then z = (bias + skip) + the partial sums, ReLU. Block 0's skip is
-// its projection, one more matrix on the current input. This sums in another order than the
-// portable path and rounds each multiply-add once (FMA): equal to rounding
+// The step, once per register width: tcn_x86_step_body.hpp, included below for each. A hidden
+// vector is V registers. Each block's axpys z += W_j[:, c]·x_j[c] are dealt by column c to A
+// partial sums (A·V ≥ 4 independent chains), the lagged taps (read from the rings) first and the
+// current tap (the input just computed) last; then z = (bias + skip) + the partial sums, ReLU.
+// Block 0's skip is its projection, one more matrix on the current input. This sums in another
+// order than the portable path and rounds each multiply-add once (FMA): equal to rounding
 // (tests/nn/tcn_kernel_test.cpp). Weights, rings and outputs are read and written unaligned.
 
-/// (acc_0 + acc_1) + (acc_2 + acc_3) of register v (A = 4), acc_0 + acc_1 (A = 2), acc_0.
-template <int A, int V, typename Register>
-TPF_TCN_AVX2 Register sum256(Register (&acc)[A][V], int v) noexcept {
-  if constexpr (A == 1)
-    return acc[0][v];
-  else if constexpr (A == 2)
-    return add(acc[0][v], acc[1][v]);
-  else
-    return add(add(acc[0][v], acc[1][v]), add(acc[2][v], acc[3][v]));
-}
+#define TPF_TCN_INLINE TPF_TCN_AVX2
+#define TPF_TCN_TARGET "avx2,fma"
+#define TPF_TCN_BYTES 32
+#define TPF_TCN_LOAD load256
+#define TPF_TCN_SPLAT splat256
+#define TPF_TCN_SUM sum256
+#define TPF_TCN_AXPYS axpys256
+#define TPF_TCN_STEP step_avx2
+#include "tpf/nn/tcn_x86_step_body.hpp"
+#undef TPF_TCN_INLINE
+#undef TPF_TCN_TARGET
+#undef TPF_TCN_BYTES
+#undef TPF_TCN_LOAD
+#undef TPF_TCN_SPLAT
+#undef TPF_TCN_SUM
+#undef TPF_TCN_AXPYS
+#undef TPF_TCN_STEP
 
-/// acc[c mod A] += W[:, c]·x[c] for c < Columns (W: V registers × Columns, column-major).
-template <int A, int V, int Columns, typename S, typename Register>
-TPF_TCN_AVX2 void axpys256(Register (&acc)[A][V], const S* W, const S* x) noexcept {
-  constexpr int lanes = 32 / int(sizeof(S));
-  for (int first = 0; first < Columns; first += A) {
-#pragma GCC unroll 4
-    for (int a = 0; a < A; ++a) {
-      if (first + a >= Columns) break;
-      const S* column = W + (first + a) * V * lanes;
-      const Register s = splat256(x + first + a);
-#pragma GCC unroll 8
-      for (int v = 0; v < V; ++v)
-        acc[a][v] = fmadd(load256(column + v * lanes), s, acc[a][v]);
-    }
-  }
-}
-
-/// Tcn::step in 256-bit registers (see the comment above).
-template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
-__attribute__((target("avx2,fma"))) void step_avx2(
-    const TcnWeights<S, In, Hidden, Levels, Kernel, Out>& w, const TcnStepBuffers<S>& b) noexcept {
-  using Shape = TcnShape<Levels, Kernel>;
-  using Register = decltype(load256(static_cast<const S*>(nullptr)));
-  constexpr int lanes = 32 / int(sizeof(S)), V = Hidden / lanes, A = V == 1 ? 4 : V == 2 ? 2 : 1;
-  static_assert(Hidden % lanes == 0, "a hidden vector fills whole registers");
-  constexpr std::array<int, Levels + 1> offsets = Shape::hidden_history_offsets();
-  Register acc[A][V], h[V];
-
-  // Block 0: z = b + P·x(t) + Σ_j W_j·x(t − j).
-#pragma GCC unroll 8
-  for (int v = 0; v < V; ++v) {
-    acc[0][v] = load256(w.input_bias.data() + v * lanes);
-#pragma GCC unroll 4
-    for (int a = 1; a < A; ++a)
-      acc[a][v] = Register{};
-  }
-  for (int j = Kernel - 1; j >= 0; --j) {
-    const int column = b.input_head - j < 0 ? b.input_head - j + Kernel : b.input_head - j;
-    axpys256<A, V, In>(acc, w.input_taps[j].data(), b.input_history + In * column);
-  }
-  axpys256<A, V, In>(acc, w.input_projection.data(), b.input_history + In * b.input_head);
-#pragma GCC unroll 8
-  for (int v = 0; v < V; ++v)
-    h[v] = relu(sum256(acc, v));
-
-  // Blocks 1 … L−1: z = b_l + h + Σ_j W_{l,j}·h(t − j·d_l), the ring holding h's past.
-  for (int l = 1; l < Levels; ++l) {
-    const int length = Shape::history_length(l), dilation = Shape::dilation(l);
-    S* const ring = b.hidden_history + Hidden * offsets[l];
-    S* const current = ring + Hidden * b.heads[l];
-#pragma GCC unroll 8
-    for (int v = 0; v < V; ++v) {
-      store(current + v * lanes, h[v]);
-      acc[0][v] = add(load256(w.bias[l - 1].data() + v * lanes), h[v]);
-#pragma GCC unroll 4
-      for (int a = 1; a < A; ++a)
-        acc[a][v] = Register{};
-    }
-    for (int j = Kernel - 1; j > 0; --j) {
-      const int lagged = b.heads[l] - j * dilation;
-      const S* x = ring + Hidden * (lagged < 0 ? lagged + length : lagged);
-      axpys256<A, V, Hidden>(acc, w.taps[l - 1][j].data(), x);
-    }
-    axpys256<A, V, Hidden>(acc, w.taps[l - 1][0].data(), current);
-#pragma GCC unroll 8
-    for (int v = 0; v < V; ++v)
-      h[v] = relu(sum256(acc, v));
-  }
-
-#pragma GCC unroll 8
-  for (int v = 0; v < V; ++v)
-    store(b.hidden + v * lanes, h[v]);
-  if constexpr (Out == 1) {
-    Register low = Register{}, high = Register{};
-#pragma GCC unroll 8
-    for (int v = 0; v < V; ++v) {
-      low = fmadd(load256(w.low_weight.data() + v * lanes), h[v], low);
-      high = fmadd(load256(w.high_weight.data() + v * lanes), h[v], high);
-    }
-    *b.low = w.low_bias[0] + lane_sum(low);
-    *b.high = w.high_bias[0] + lane_sum(high);
-  }
-}
-
-/// (acc_0 + acc_1) + (acc_2 + acc_3) of register v (A = 4), acc_0 + acc_1 (A = 2), acc_0.
-template <int A, int V, typename Register>
-TPF_TCN_AVX512 Register sum512(Register (&acc)[A][V], int v) noexcept {
-  if constexpr (A == 1)
-    return acc[0][v];
-  else if constexpr (A == 2)
-    return add(acc[0][v], acc[1][v]);
-  else
-    return add(add(acc[0][v], acc[1][v]), add(acc[2][v], acc[3][v]));
-}
-
-/// acc[c mod A] += W[:, c]·x[c] for c < Columns (W: V registers × Columns, column-major).
-template <int A, int V, int Columns, typename S, typename Register>
-TPF_TCN_AVX512 void axpys512(Register (&acc)[A][V], const S* W, const S* x) noexcept {
-  constexpr int lanes = 64 / int(sizeof(S));
-  for (int first = 0; first < Columns; first += A) {
-#pragma GCC unroll 4
-    for (int a = 0; a < A; ++a) {
-      if (first + a >= Columns) break;
-      const S* column = W + (first + a) * V * lanes;
-      const Register s = splat512(x + first + a);
-#pragma GCC unroll 8
-      for (int v = 0; v < V; ++v)
-        acc[a][v] = fmadd(load512(column + v * lanes), s, acc[a][v]);
-    }
-  }
-}
-
-/// Tcn::step in 512-bit registers (see the comment above).
-template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
-__attribute__((target("avx512f"))) void step_avx512(
-    const TcnWeights<S, In, Hidden, Levels, Kernel, Out>& w, const TcnStepBuffers<S>& b) noexcept {
-  using Shape = TcnShape<Levels, Kernel>;
-  using Register = decltype(load512(static_cast<const S*>(nullptr)));
-  constexpr int lanes = 64 / int(sizeof(S)), V = Hidden / lanes, A = V == 1 ? 4 : V == 2 ? 2 : 1;
-  static_assert(Hidden % lanes == 0, "a hidden vector fills whole registers");
-  constexpr std::array<int, Levels + 1> offsets = Shape::hidden_history_offsets();
-  Register acc[A][V], h[V];
-
-  // Block 0: z = b + P·x(t) + Σ_j W_j·x(t − j).
-#pragma GCC unroll 8
-  for (int v = 0; v < V; ++v) {
-    acc[0][v] = load512(w.input_bias.data() + v * lanes);
-#pragma GCC unroll 4
-    for (int a = 1; a < A; ++a)
-      acc[a][v] = Register{};
-  }
-  for (int j = Kernel - 1; j >= 0; --j) {
-    const int column = b.input_head - j < 0 ? b.input_head - j + Kernel : b.input_head - j;
-    axpys512<A, V, In>(acc, w.input_taps[j].data(), b.input_history + In * column);
-  }
-  axpys512<A, V, In>(acc, w.input_projection.data(), b.input_history + In * b.input_head);
-#pragma GCC unroll 8
-  for (int v = 0; v < V; ++v)
-    h[v] = relu(sum512(acc, v));
-
-  // Blocks 1 … L−1: z = b_l + h + Σ_j W_{l,j}·h(t − j·d_l), the ring holding h's past.
-  for (int l = 1; l < Levels; ++l) {
-    const int length = Shape::history_length(l), dilation = Shape::dilation(l);
-    S* const ring = b.hidden_history + Hidden * offsets[l];
-    S* const current = ring + Hidden * b.heads[l];
-#pragma GCC unroll 8
-    for (int v = 0; v < V; ++v) {
-      store(current + v * lanes, h[v]);
-      acc[0][v] = add(load512(w.bias[l - 1].data() + v * lanes), h[v]);
-#pragma GCC unroll 4
-      for (int a = 1; a < A; ++a)
-        acc[a][v] = Register{};
-    }
-    for (int j = Kernel - 1; j > 0; --j) {
-      const int lagged = b.heads[l] - j * dilation;
-      const S* x = ring + Hidden * (lagged < 0 ? lagged + length : lagged);
-      axpys512<A, V, Hidden>(acc, w.taps[l - 1][j].data(), x);
-    }
-    axpys512<A, V, Hidden>(acc, w.taps[l - 1][0].data(), current);
-#pragma GCC unroll 8
-    for (int v = 0; v < V; ++v)
-      h[v] = relu(sum512(acc, v));
-  }
-
-#pragma GCC unroll 8
-  for (int v = 0; v < V; ++v)
-    store(b.hidden + v * lanes, h[v]);
-  if constexpr (Out == 1) {
-    Register low = Register{}, high = Register{};
-#pragma GCC unroll 8
-    for (int v = 0; v < V; ++v) {
-      low = fmadd(load512(w.low_weight.data() + v * lanes), h[v], low);
-      high = fmadd(load512(w.high_weight.data() + v * lanes), h[v], high);
-    }
-    *b.low = w.low_bias[0] + lane_sum(low);
-    *b.high = w.high_bias[0] + lane_sum(high);
-  }
-}
+#define TPF_TCN_INLINE TPF_TCN_AVX512
+#define TPF_TCN_TARGET "avx512f"
+#define TPF_TCN_BYTES 64
+#define TPF_TCN_LOAD load512
+#define TPF_TCN_SPLAT splat512
+#define TPF_TCN_SUM sum512
+#define TPF_TCN_AXPYS axpys512
+#define TPF_TCN_STEP step_avx512
+#include "tpf/nn/tcn_x86_step_body.hpp"
+#undef TPF_TCN_INLINE
+#undef TPF_TCN_TARGET
+#undef TPF_TCN_BYTES
+#undef TPF_TCN_LOAD
+#undef TPF_TCN_SPLAT
+#undef TPF_TCN_SUM
+#undef TPF_TCN_AXPYS
+#undef TPF_TCN_STEP
 
 #undef TPF_TCN_AVX2
 #undef TPF_TCN_AVX512
