@@ -91,7 +91,8 @@ void register_diagnose_command(CLI::App& app) {
       "diagnose",
       "Fit the declared model, find which candidate physical effect (load-dependent friction, "
       "ripple, payload, temperature, spring, delay, coupling) explains the residual on held-out "
-      "data, add it, refit and report before/after");
+      "data, add it, refit and report before/after; --params gets the model refitted on every "
+      "sample");
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz); several are read as one, each file its own segment")
       ->required()

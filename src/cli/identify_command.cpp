@@ -89,7 +89,8 @@ void register_identify_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "identify",
       "Identify rigid-body base parameters (with armature) and Stribeck + load-dependent friction "
-      "from a log by weighted least squares and Ceres; validate on held-out blocks");
+      "from a log by weighted least squares and Ceres; validate on held-out data (the last file "
+      "of several, else every 4th 5 s block), then write the model refitted on every sample");
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz; i<j> in mA or tau<j> in N·m); several are read as "
                   "one, each file its own segment")
