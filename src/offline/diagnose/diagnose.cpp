@@ -273,29 +273,17 @@ StribeckParameters<double, N> write_effects(const std::vector<FeatureGroup>& gro
 /// The declared model as identify fits it: the declared rigid body and friction curves, nothing
 /// added.
 template <int N>
-NominalModel<double, N> declared_nominal(const NominalModel<double, N>& written,
-                                         const std::vector<FeatureGroup>& groups,
+NominalModel<double, N> declared_nominal(const Model<double, N>& model,
+                                         const EffectDesign<N>& design,
                                          const Eigen::VectorXd& theta_declared,
                                          const BaseParameters& base, const JointSamples& s,
                                          const Eigen::MatrixXd& declared_rigid_prediction,
                                          const CandidateInputs& inputs) {
-  NominalModel<double, N> declared = written;
-  declared.added = AddedEffects<double, N>{};
-  StribeckParameters<double, N> linear;
-  using Friction = JointFrictionColumns;
-  for (const FeatureGroup& g : groups) {
-    if (g.key == RigidBodyColumns::key) {
-      for (int i = 0; i < base.size(); ++i)
-        declared.base_values[i] = theta_declared[g.columns[i]];
-    } else if (g.key == Friction::key) {
-      linear.coulomb[g.joint] = linear.static_friction[g.joint] =
-          theta_declared[g.columns[Friction::kCoulomb]];
-      linear.viscous[g.joint] = theta_declared[g.columns[Friction::kViscous]];
-    }
-  }
-  declared.friction =
-      fit_friction_curves<N>(s, declared_rigid_prediction, inputs.abs_gravity, linear, false, 20000)
-          .parameters;
+  const LinearNominal<N> fit = linear_nominal(model, design, base, theta_declared);
+  NominalModel<double, N> declared = fit.nominal;
+  declared.friction = fit_friction_curves<N>(s, declared_rigid_prediction, inputs.abs_gravity,
+                                             fit.linear, false, 20000)
+                          .parameters;
   return declared;
 }
 
@@ -403,12 +391,10 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   const StribeckParameters<double, N> linear =
       write_effects(out.groups, sel.theta_written, setup.base, inputs, nominal, load_selected);
   // The written models on the held-out samples: the extended one (what --params holds) and the
-  // declared model as identify fits it (a copy of the extended one before its friction is fitted,
-  // every part but the model and the base columns replaced), at once: independent fits.
-  const NominalModel<double, N> before_friction = nominal;
+  // declared model as identify fits it, at once: independent fits.
   FrictionCurves<N> curves;
-  parallel_jobs(2, [&](int model) {
-    if (model == 0) {
+  parallel_jobs(2, [&](int job) {
+    if (job == 0) {
       curves = fit_friction_curves<N>(s, p.non_friction, inputs.abs_gravity, linear, load_selected,
                                       20000);
       nominal.friction = curves.parameters;
@@ -417,8 +403,8 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
       out.residual_written = nominal_residual(nominal, s);
       out.written_after = split_regime_stats(s, out.residual_written, true);
     } else {
-      out.declared = declared_nominal(before_friction, out.groups, sel.theta_declared, setup.base,
-                                      s, p.declared_rigid, inputs);
+      out.declared = declared_nominal(model, design, sel.theta_declared, setup.base, s,
+                                      p.declared_rigid, inputs);
       out.written_before = split_regime_stats(s, nominal_residual(out.declared, s), true);
     }
   });

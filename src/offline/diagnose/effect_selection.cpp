@@ -98,17 +98,17 @@ class ForwardSelection {
     if (eligible.empty()) return false;
     const int best = best_candidate(eligible, gain);
     Claim claim = name_claim(best, eligible, gain, model);
-    for (const CandidateTrial& t : out.trials)
-      if (t.round == round && t.title == groups_[best].title &&
-          std::isfinite(t.model_improvement) && claim.scored_joints.empty()) {
-        claim.beside_improvement = claim.improvements[0];
-        claim.improvements[0] = t.model_improvement;
-      }
     used_[best] = true;
     in_model_.push_back(best);
     out.selected.push_back(best);
-    for (CandidateTrial& t : out.trials)
-      if (t.round == round && t.title == groups_[best].title) t.selected = true;
+    for (CandidateTrial& t : out.trials) {
+      if (t.round != round || t.title != groups_[best].title) continue;
+      t.selected = true;
+      if (std::isfinite(t.model_improvement) && claim.scored_joints.empty()) {
+        claim.beside_improvement = claim.improvements[0];  // the claim gives what is written
+        claim.improvements[0] = t.model_improvement;
+      }
+    }
     columns_.insert(columns_.end(), groups_[best].columns.begin(), groups_[best].columns.end());
     theta_ = fit_columns(grams_, columns_, selection_);
     add_coefficients(best, claim);

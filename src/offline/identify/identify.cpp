@@ -319,17 +319,6 @@ StribeckParameters<double, N> refit_friction_curves(const JointSamples& s,
       .parameters;
 }
 
-namespace {
-
-// The linear fit θ as a nominal model without curves: rigid base parameters and the linear
-// friction (Coulomb + viscous) the curves start from.
-template <int N>
-struct LinearNominal {
-  NominalModel<double, N> nominal;
-  Eigen::VectorXd rigid_theta;           ///< θ's rigid-body columns, zero elsewhere
-  StribeckParameters<double, N> linear;  ///< the linear friction the curves start from
-};
-
 template <int N>
 LinearNominal<N> linear_nominal(const Model<double, N>& model, const EffectDesign<N>& design,
                                 const BaseParameters& base, const Eigen::VectorXd& theta) {
@@ -353,6 +342,8 @@ LinearNominal<N> linear_nominal(const Model<double, N>& model, const EffectDesig
   }
   return out;
 }
+
+namespace {
 
 // What the friction curves are fitted against: the rigid prediction, or with
 // friction_from_sensor effort − (τ_sensor + I_a·q̈) where the joint's sensor varies (its linear
@@ -490,18 +481,20 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   return out;
 }
 
-#define TPF_INSTANTIATE_IDENTIFY(N)                                               \
-  template Identification<N> identify<N>(const Log&, const Model<double, N>&,     \
-                                         const IdentifyOptions&);                 \
-  template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&); \
-  template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,    \
-                                               const JointSamples&);              \
-  template FrictionCurves<N> fit_friction_curves<N>(                              \
-      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,        \
-      const StribeckParameters<double, N>&, bool, int);                           \
-  template StribeckParameters<double, N> refit_friction_curves<N>(                \
-      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,        \
-      const StribeckParameters<double, N>&, bool, int, const FrictionCurves<N>&);
+#define TPF_INSTANTIATE_IDENTIFY(N)                                                            \
+  template Identification<N> identify<N>(const Log&, const Model<double, N>&,                  \
+                                         const IdentifyOptions&);                              \
+  template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);              \
+  template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                 \
+                                               const JointSamples&);                           \
+  template FrictionCurves<N> fit_friction_curves<N>(                                           \
+      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,                     \
+      const StribeckParameters<double, N>&, bool, int);                                        \
+  template StribeckParameters<double, N> refit_friction_curves<N>(                             \
+      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,                     \
+      const StribeckParameters<double, N>&, bool, int, const FrictionCurves<N>&);              \
+  template LinearNominal<N> linear_nominal<N>(const Model<double, N>&, const EffectDesign<N>&, \
+                                              const BaseParameters&, const Eigen::VectorXd&);
 TPF_INSTANTIATE_IDENTIFY(1)
 TPF_INSTANTIATE_IDENTIFY(2)
 TPF_INSTANTIATE_IDENTIFY(3)

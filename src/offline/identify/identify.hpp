@@ -104,6 +104,22 @@ FrictionCurves<N> fit_friction_curves(const JointSamples& samples,
                                       const StribeckParameters<double, N>& linear, bool fit_load,
                                       int samples_per_joint);
 
+template <int N>
+class EffectDesign;
+
+/// A linear fit θ of `design`'s columns as a nominal model without curves: its rigid base
+/// parameters, and the linear friction (Coulomb + viscous) the curves start from.
+template <int N>
+struct LinearNominal {
+  NominalModel<double, N> nominal;
+  Eigen::VectorXd rigid_theta;           ///< θ's rigid-body columns, zero elsewhere
+  StribeckParameters<double, N> linear;  ///< the linear friction the curves start from
+};
+
+template <int N>
+LinearNominal<N> linear_nominal(const Model<double, N>& model, const EffectDesign<N>& design,
+                                const BaseParameters& base, const Eigen::VectorXd& theta);
+
 /// The final fit of curves already judged (`judged`, from fit_friction_curves on the training
 /// rows): every row, the held-out ones included; each joint keeps its linear fit or its curve as
 /// chosen there, the curve refined from the judged one.

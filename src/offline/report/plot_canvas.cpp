@@ -46,16 +46,18 @@ std::string standalone_svg(const std::vector<std::string>& plots, int width, int
 }
 namespace {
 
+// Characters of UTF-8 `text` (the bytes that start one): widths are estimated per character.
+std::size_t characters(const std::string& text) {
+  std::size_t n = 0;
+  for (const char c : text)
+    n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  return n;
+}
+
 // `text` in lines of about `width` characters, broken after a space or a hyphen; the last of
 // `max_lines` lines takes whatever is left.
 std::vector<std::string> wrap_label(const std::string& text, std::size_t width,
                                     std::size_t max_lines) {
-  auto characters = [](const std::string& t) {
-    std::size_t n = 0;  // UTF-8: count the bytes that start a character
-    for (const char c : t)
-      n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-    return n;
-  };
   std::vector<std::string> pieces;  // each ends at a break opportunity
   std::string piece;
   for (const char c : text) {
@@ -130,10 +132,7 @@ std::string PlotCanvas::svg() const {
   // row between the left edge and the plot's right end; else rows under the x-axis label, from
   // the plot's left end, the SVG taller by those rows (an entry never leaves the picture).
   auto entry_width = [](const std::string& name) {
-    double characters = 0;  // UTF-8: count the bytes that start a character
-    for (const char c : name)
-      characters += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-    return 22.0 + 7.0 * characters;
+    return 22.0 + 7.0 * static_cast<double>(characters(name));
   };
   double row_width = 0;
   for (const auto& entry : legend_)
