@@ -7,4 +7,9 @@ set(TPF_NATIVE_FLAGS "")
 if(TPF_NATIVE)
   set(TPF_NATIVE_FLAGS -march=native)
   add_compile_options(${TPF_NATIVE_FLAGS})
+  # GCC 12's AVX-512 intrinsics start from _mm512_undefined_ps/pd (`__m512 __Y = __Y;`), which
+  # -Wuninitialized then reports inside Eigen's pmax (GCC bug 105593, a false positive).
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+    add_compile_options(-Wno-uninitialized -Wno-maybe-uninitialized)
+  endif()
 endif()

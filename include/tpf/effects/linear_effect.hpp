@@ -10,14 +10,23 @@
 namespace tpf {
 
 /// τ_j += Σ_c φ_c(x)·θ_jc for every joint j, with φ = Effect::basis(x, j, ·) and θ_j =
-/// effect.coefficients(j, ·) (Effect::kColumns of each). Allocation-free.
+/// effect.coefficients(j, ·) (Effect::kColumns of each). A joint whose θ_j is all zero (the effect
+/// not added there) is skipped: its basis is not evaluated. Allocation-free.
+template <typename S, std::size_t M>
+bool all_zero(const std::array<S, M>& values) noexcept {
+  for (const S v : values)
+    if (v != S(0)) return false;
+  return true;
+}
+
 template <typename Effect, typename S, int N>
 void add_linear_effect_torque(const Effect& effect, const EffectInput<S, N>& x,
                               JointVector<S, N>& tau) noexcept {
   std::array<S, Effect::kColumns> phi{}, theta{};
   for (int j = 0; j < N; ++j) {
-    Effect::basis(x, j, phi.data());
     effect.coefficients(j, theta.data());
+    if (all_zero(theta)) continue;
+    Effect::basis(x, j, phi.data());
     S sum = S(0);
     for (int c = 0; c < Effect::kColumns; ++c)
       sum += phi[c] * theta[c];

@@ -31,12 +31,12 @@ class AccelerationFilter {
     // (I − hA) = [[1, −h], [hω², 1 + 2hζω]], right side [v + 0; a + hω²·q̇].
     const S w2 = omega_ * omega_;
     const S d = S(1) + S(2) * h * zeta_ * omega_;
-    const S det = d + h * h * w2;
+    const S inverse_det = S(1) / (d + h * h * w2);
     for (int j = 0; j < N; ++j) {
       const S r1 = velocity_[j];
       const S r2 = acceleration_[j] + h * w2 * dq[j];
-      velocity_[j] = (d * r1 + h * r2) / det;
-      acceleration_[j] = (r2 - h * w2 * r1) / det;
+      velocity_[j] = (d * r1 + h * r2) * inverse_det;
+      acceleration_[j] = (r2 - h * w2 * r1) * inverse_det;
     }
     return acceleration_;
   }

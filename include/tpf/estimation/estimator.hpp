@@ -295,7 +295,7 @@ class Estimator {
       sigma[j] = s;
     }
     out.wrench =
-        estimate_contact_force(jacobian_, contact_frame_in_world(data_, g.link, g.normal), evidence,
+        estimate_contact_force(jacobian_, pad_contact_frame_in_world(data_, g), evidence,
                                sigma, skin_.normal_force(pad), parameters_.wrench);
     out.wrench.pad = pad;
     out.wrench.point_world = point;

@@ -65,12 +65,13 @@ S viscous_coefficient(const StribeckParameters<S, N>& p, int j, S abs_gravity) {
 }
 
 /// Friction of joint j without the neighbour-load terms: τ_f = g_j(q̇)·sgn(q̇) + (b + α_v|G|)·q̇
-/// + a_c·|sgn(q̇)| + a_v·|q̇|, with sgn(0) = 0.
+/// + a_c·|sgn(q̇)| + a_v·|q̇|, with sgn(0) = 0 (g_j, its pow and exp, is then not evaluated).
 template <typename S, int N>
 S stribeck_friction(const StribeckParameters<S, N>& p, int j, S dq, S abs_gravity = S(0)) {
   using std::abs;
   const S sign = dq > S(0) ? S(1) : (dq < S(0) ? S(-1) : S(0));
-  return stribeck_level(p, j, dq, abs_gravity) * sign +
+  const S level = sign != S(0) ? stribeck_level(p, j, dq, abs_gravity) : S(0);
+  return level * sign +
          viscous_coefficient(p, j, abs_gravity) * dq + p.coulomb_asymmetry[j] * abs(sign) +
          p.viscous_asymmetry[j] * abs(dq);
 }

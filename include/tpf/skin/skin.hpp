@@ -17,13 +17,15 @@
 namespace tpf {
 
 /// A pad's fixed geometry in scalar S: link index (1..N), centre and unit outward normal in the
-/// link frame [m], area [m²].
+/// link frame [m], area [m²], and its contact frame's axes in the link frame
+/// (contact_frame_in_link(normal), computed once).
 template <typename S>
 struct PadGeometry {
   int link = 0;
   Vector3<S> center = Vector3<S>::Zero();
   Vector3<S> normal = Vector3<S>::UnitZ();
   S area = S(0);
+  Matrix3<S> contact_frame = Matrix3<S>::Identity();
 };
 
 /// Skin settings: the detector of every pad, and the pressure-to-force gain of the normal-force
@@ -70,8 +72,9 @@ class Skin {
       const Pad& pad = layout[k];
       if (pad.link < 1 || pad.link > joints)
         throw Error::at(source, 0, pad.name, "link index outside 1.." + std::to_string(joints));
-      geometry_[k] = {pad.link, pad.center.cast<S>(), pad.normal.normalized().cast<S>(),
-                      S(pad.area)};
+      const Vector3<S> normal = pad.normal.normalized().cast<S>();
+      geometry_[k] = {pad.link, pad.center.cast<S>(), normal, S(pad.area),
+                      contact_frame_in_link(normal)};
       detectors_[k] = PadContactDetector<S>(settings.detector);
     }
   }
@@ -163,6 +166,13 @@ class Skin {
 template <typename S, int N>
 Vector3<S> pad_point_in_world(const Data<S, N>& data, const PadGeometry<S>& pad) {
   return world_point(data, pad.link, pad.center);
+}
+
+/// The pad's contact frame in world coordinates (z = outward normal, see contact_frame_in_link):
+/// oMi[link].R·contact_frame. Needs forward_kinematics first.
+template <typename S, int N>
+Matrix3<S> pad_contact_frame_in_world(const Data<S, N>& data, const PadGeometry<S>& pad) {
+  return data.oMi[pad.link].R * pad.contact_frame;
 }
 
 /// Outward normal n_world = oMi[link].R·n of a pad, world frame. Needs forward_kinematics first.

@@ -141,7 +141,7 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
                                   tr.force_tactile.row(r).transpose())
                                      .transpose();
       const ContactForce<S> f = estimate_contact_force(
-          J, contact_frame_in_world(data, g.link, g.normal), proprio.torque, S(0), no_prior);
+          J, pad_contact_frame_in_world(data, g), proprio.torque, S(0), no_prior);
       tr.force_proprioceptive.row(r) = f.force_world.transpose().template cast<double>();
     }
   }
