@@ -33,11 +33,13 @@ namespace tpf {
 /// Levels·K matrix–vector products (O(Levels·Hidden²·K)) whatever the dilation; it allocates
 /// nothing, throws nothing and never branches on data size.
 ///
-/// Kernel: on x86-64 (GCC, clang) a translation unit not compiled for AVX-512 steps a float or
-/// double network whose hidden vector fills whole 32-byte registers (16 floats, 32 doubles, …)
-/// in AVX-512 or AVX2 + FMA registers where the CPU has them (tcn_x86_kernels.hpp; chosen when
-/// the Tcn is constructed, kernel()), equal to the portable path to rounding. Elsewhere, and
-/// in an AVX-512 build (TPF_NATIVE=ON), the compile-time path below (Eigen, add_taps).
+/// Kernel: on x86-64 (GCC, clang), whatever the translation unit's flags, a float or double
+/// network whose hidden vector fills whole 32-byte registers (16 floats, 32 doubles, …) steps in
+/// AVX-512 or AVX2 + FMA registers where the CPU has them (tcn_x86_kernels.hpp; chosen when the
+/// Tcn is constructed, kernel()), equal to the portable path to rounding. These kernels also
+/// keep each block's pending sums (the lagged taps' part of a future z, rebuild_pending), so
+/// that each broadcast input serves all K taps. Elsewhere, the compile-time path below (Eigen,
+/// add_taps), which reads only the rings.
 template <typename S, int In, int Hidden, int Levels, int Kernel = 4, int Out = 1>
 class Tcn {
  public:
@@ -151,16 +153,24 @@ class Tcn {
   /// (docs/performance.md). Groups of kInterleave networks at a time, as many as keep their
   /// accumulators in half the vector registers. Where add_taps already sums by columns into
   /// several accumulators (a hidden vector in one register) the networks step in turn, which
-  /// measured as fast. Allocation-free.
+  /// measured as fast. Networks stepped in turn go from the last to the first if `backwards`: a
+  /// caller that alternates it starts each call on the weights the previous one used last, still
+  /// in the L1 cache where all M networks' weights are not (the order changes no result).
+  /// Allocation-free.
   template <std::size_t M>
-  static void step_together(std::array<Tcn, M>& nets, const std::array<Input, M>& inputs) noexcept {
+  static void step_together(std::array<Tcn, M>& nets, const std::array<Input, M>& inputs,
+                            bool backwards = false) noexcept {
 #ifdef TPF_TCN_DISPATCH
     if (std::any_of(nets.begin(), nets.end(),
                     [](const Tcn& t) { return t.kernel_ != TcnKernel::Portable; })) {
-      for (std::size_t n = 0; n < M; ++n)
+      for (std::size_t i = 0; i < M; ++i) {
+        const std::size_t n = backwards ? M - 1 - i : i;
         nets[n].step(inputs[n]);
+      }
       return;
     }
+#else
+    (void)backwards;
 #endif
     if constexpr (kColumnAccumulators > 1) {
       // Each step already keeps several independent chains busy (add_taps): in turn is as fast.

@@ -227,12 +227,18 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 }
 
 // The step, once per register width: tcn_x86_step_body.hpp, included below for each. A hidden
-// vector is V registers. Each block's axpys z += W_j[:, c]·x_j[c] are dealt by column c to A
-// partial sums (A·V ≥ 4 independent chains), the lagged taps (read from the rings) first and the
-// current tap (the input just computed) last; then z = (bias + skip) + the partial sums, ReLU.
-// Block 0's skip is its projection, one more matrix on the current input. This sums in another
-// order than the portable path and rounds each multiply-add once (FMA): equal to rounding
-// (tests/nn/tcn_kernel_test.cpp). Weights, rings and outputs are read and written unaligned.
+// vector is V registers, taken R at a time (row_registers). Each block splits its taps by when
+// their sum is needed:
+//   now    z = (bias + skip + pending(t)) + W_0·x(t) (+ P·x(t), block 0's projection), the axpys
+//          dealt by column to A sums (A·R ≥ 4 chains): the critical path from block to block;
+//   later  pending(t + j·d) += W_j·x(t) for 1 ≤ j < K, K − 1 taps on one broadcast of each x_c,
+//          each dealt to B sums ((K − 1)·R·B ≥ 6 chains); its slot t + (K − 1)·d starts at zero.
+// Every x_c is broadcast once for `now` and once for `later` instead of once per tap, and
+// `later` of block l comes after `now` of block l + 1 in the instruction stream, so the vector
+// unit fills the waits of the critical path with it. The sum of the lagged taps thus runs from
+// the oldest tap to the newest, one FMA at a time; the order differs from the portable path's
+// and each multiply-add rounds once: equal to rounding (tests/nn/tcn_kernel_test.cpp). Weights,
+// rings, pending sums and outputs are read and written unaligned.
 
 #define TPF_TCN_INLINE TPF_TCN_AVX2
 #define TPF_TCN_TARGET "avx2,fma"

@@ -5,7 +5,8 @@
 //   TPF_TCN_TARGET     the step's target string             TPF_TCN_BYTES  register width, bytes
 //   TPF_TCN_REGISTERS  vector registers of the width (16 or 32)
 //   TPF_TCN_LOAD, TPF_TCN_SPLAT                             the width's load and broadcast
-//   TPF_TCN_SUM, TPF_TCN_ROWS, TPF_TCN_STEP                 the names this body defines
+//   TPF_TCN_SUM, TPF_TCN_NOW, TPF_TCN_LATER, TPF_TCN_LATER_ALL, TPF_TCN_STEP
+//                      the names this body defines
 // (A target attribute cannot depend on a template argument, and GCC 12 and clang 14 refuse a
 // body shared through an always_inline function across targets, hence an included body.)
 
