@@ -141,7 +141,7 @@ TEST(TcnKernel, NewNetworkUsesTheWidestSupportedKernel) {
                                                                    : TcnKernel::Portable;
   EXPECT_EQ(k, widest);
 #else
-  EXPECT_EQ(k, TcnKernel::Portable);  // an AVX-512 build or not x86-64: the compile-time path
+  EXPECT_EQ(k, TcnKernel::Portable);  // not x86-64 (GCC, clang): the compile-time path
 #endif
   EXPECT_EQ((Tcn<float, 5, 12, 4>().kernel()), TcnKernel::Portable);  // 48 bytes: no kernel fits
 }

@@ -29,12 +29,15 @@ class PerJointTcnCompensator {
   /// τ_TCN,j = network_j(x_j) for every joint.
   /// The networks step together (Tcn::step_together: in turn with the run-time kernel or where
   /// one step already has several chains of multiply-adds, interleaved where it is a single
-  /// chain): the same result as stepping each in turn, bit for bit.
+  /// chain): the same result as stepping each in turn, bit for bit. In turn, every other call
+  /// goes from the last network to the first, so that it starts on the weights still in the L1
+  /// cache (4 float 16-channel networks: ≈ 57 kB of weights against a 32 kB L1).
   const Output& step(const Input& x) noexcept {
     std::array<typename Network::Input, N> inputs;
     for (int j = 0; j < N; ++j)
       inputs[j] = joint_input(x, j);
-    Network::step_together(networks_, inputs);
+    Network::step_together(networks_, inputs, backwards_);
+    backwards_ = !backwards_;
     for (int j = 0; j < N; ++j)
       output_[j] = static_cast<S>(networks_[j].output()[0]);
     return output_;
@@ -58,6 +61,7 @@ class PerJointTcnCompensator {
  private:
   std::array<Network, N> networks_{};
   Output output_ = Output::Zero();
+  bool backwards_ = false;  ///< the next step goes from the last network to the first
 };
 
 }  // namespace tpf

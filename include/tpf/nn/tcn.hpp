@@ -33,11 +33,13 @@ namespace tpf {
 /// Levels·K matrix–vector products (O(Levels·Hidden²·K)) whatever the dilation; it allocates
 /// nothing, throws nothing and never branches on data size.
 ///
-/// Kernel: on x86-64 (GCC, clang) a translation unit not compiled for AVX-512 steps a float or
-/// double network whose hidden vector fills whole 32-byte registers (16 floats, 32 doubles, …)
-/// in AVX-512 or AVX2 + FMA registers where the CPU has them (tcn_x86_kernels.hpp; chosen when
-/// the Tcn is constructed, kernel()), equal to the portable path to rounding. Elsewhere, and
-/// in an AVX-512 build (TPF_NATIVE=ON), the compile-time path below (Eigen, add_taps).
+/// Kernel: on x86-64 (GCC, clang), whatever the translation unit's flags, a float or double
+/// network whose hidden vector fills whole 32-byte registers (16 floats, 32 doubles, …) steps in
+/// AVX-512 or AVX2 + FMA registers where the CPU has them (tcn_x86_kernels.hpp; chosen when the
+/// Tcn is constructed, kernel()), equal to the portable path to rounding. These kernels also
+/// keep each block's pending sums (the lagged taps' part of a future z, rebuild_pending), so
+/// that each broadcast input serves all K taps. Elsewhere, the compile-time path below (Eigen,
+/// add_taps), which reads only the rings.
 template <typename S, int In, int Hidden, int Levels, int Kernel = 4, int Out = 1>
 class Tcn {
  public:
@@ -68,6 +70,7 @@ class Tcn {
   bool use_kernel(TcnKernel kernel) noexcept {
     if (!tcn_kernel_fits<S, Hidden>(kernel) || !tcn_kernel_supported(kernel)) return false;
     kernel_ = kernel;
+    rebuild_pending();
     return true;
   }
 
@@ -95,6 +98,7 @@ class Tcn {
       hidden_ = z.cwiseMax(S(0));
     }
     apply_heads();
+    rebuild_pending();
   }
 
   /// Advances one sample: pushes x(t) and returns output(t) = low(t) + high(t) [N·m].
@@ -149,16 +153,24 @@ class Tcn {
   /// (docs/performance.md). Groups of kInterleave networks at a time, as many as keep their
   /// accumulators in half the vector registers. Where add_taps already sums by columns into
   /// several accumulators (a hidden vector in one register) the networks step in turn, which
-  /// measured as fast. Allocation-free.
+  /// measured as fast. Networks stepped in turn go from the last to the first if `backwards`: a
+  /// caller that alternates it starts each call on the weights the previous one used last, still
+  /// in the L1 cache where all M networks' weights are not (the order changes no result).
+  /// Allocation-free.
   template <std::size_t M>
-  static void step_together(std::array<Tcn, M>& nets, const std::array<Input, M>& inputs) noexcept {
+  static void step_together(std::array<Tcn, M>& nets, const std::array<Input, M>& inputs,
+                            bool backwards = false) noexcept {
 #ifdef TPF_TCN_DISPATCH
     if (std::any_of(nets.begin(), nets.end(),
                     [](const Tcn& t) { return t.kernel_ != TcnKernel::Portable; })) {
-      for (std::size_t n = 0; n < M; ++n)
+      for (std::size_t i = 0; i < M; ++i) {
+        const std::size_t n = backwards ? M - 1 - i : i;
         nets[n].step(inputs[n]);
+      }
       return;
     }
+#else
+    (void)backwards;
 #endif
     if constexpr (kColumnAccumulators > 1) {
       // Each step already keeps several independent chains busy (add_taps): in turn is as fast.
@@ -207,6 +219,7 @@ class Tcn {
                                       heads_[0],
                                       hidden_history_.data(),
                                       heads_.data(),
+                                      pending_.data(),
                                       hidden_.data(),
                                       &low,
                                       &high};
@@ -243,6 +256,37 @@ class Tcn {
 
   HiddenColumn history_column(int level, int column) noexcept {
     return HiddenColumn(hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column));
+  }
+  /// Block l's input at ring column `column` (the raw input for l = 0).
+  template <int Columns>
+  Eigen::Map<const Eigen::Matrix<S, Columns, 1>, Eigen::Unaligned> block_input(
+      int level, int column) const noexcept {
+    const S* p = level == 0 ? input_history_.col(column).data()
+                            : hidden_history_.data() + Hidden * (kHiddenOffsets[level] + column);
+    return Eigen::Map<const Eigen::Matrix<S, Columns, 1>, Eigen::Unaligned>(p);
+  }
+
+  /// Sets the x86 kernels' pending sums (TcnStepBuffers::pending) from the rings: slot
+  /// heads_[l] + m of block l (m = 0 … (K − 1)·d_l) to Σ_{j ≥ 1, j·d_l > m} W_{l,j}·h_{l−1}(t + m −
+  /// j·d_l), t the next step. After reset() and a change of kernel; the kernels keep them from
+  /// then on (the portable path reads only the rings).
+  void rebuild_pending() noexcept {
+    if (kernel_ == TcnKernel::Portable) return;
+    for (int l = 0; l < Levels; ++l) {
+      const int length = Shape::history_length(l), dilation = Shape::dilation(l);
+      for (int m = 0; m < length; ++m) {
+        HiddenColumn slot(pending_.data() +
+                          Hidden * (kPendingOffsets[l] + (heads_[l] + m) % length));
+        slot.setZero();
+        for (int j = Kernel - 1; j >= 1 && j * dilation > m; --j) {
+          const int column = wrap(heads_[l] + m - j * dilation, length);
+          if (l == 0)
+            slot.noalias() += weights_.input_taps[j] * block_input<In>(0, column);
+          else
+            slot.noalias() += weights_.taps[l - 1][j] * block_input<Hidden>(l, column);
+        }
+      }
+    }
   }
 
   /// Vector registers of the target (AVX-512: 32 × 64 bytes; AVX: 16 × 32; SSE2: 16 × 16).
@@ -423,6 +467,7 @@ class Tcn {
     last_input_.setZero();
     input_history_.setZero();
     hidden_history_.fill(S(0));
+    pending_.fill(S(0));
     heads_.fill(0);
     hidden_.setZero();
     low_.setZero();
@@ -431,11 +476,15 @@ class Tcn {
   }
 
   static constexpr std::array<int, Levels + 1> kHiddenOffsets = Shape::hidden_history_offsets();
+  static constexpr std::array<int, Levels + 1> kPendingOffsets = Shape::pending_offsets();
 
   Weights weights_;
   Eigen::Matrix<S, In, Kernel> input_history_;  ///< ring of the raw inputs (block 0, d = 1)
   /// Rings of blocks 1 … Levels−1, Hidden × ((K − 1)·d_l + 1) each, column-major, back to back.
   alignas(64) std::array<S, Hidden * Shape::hidden_history_columns> hidden_history_{};
+  /// Every block's pending sums for the x86 kernels, Hidden × ((K − 1)·d_l + 1) each (see
+  /// rebuild_pending).
+  alignas(64) std::array<S, Hidden * Shape::pending_columns> pending_{};
   std::array<int, Levels> heads_{};  ///< next column to write in each ring
   Input last_input_;                 ///< last finite input, stands in for a non-finite one
   long skipped_inputs_ = 0;

@@ -33,6 +33,17 @@ struct TcnShape {
   }
   /// Σ_{l ≥ 1} ((K − 1)·d_l + 1): columns of all hidden-block histories together.
   static constexpr int hidden_history_columns = hidden_history_offsets()[Levels];
+
+  /// Column offset of block l ≥ 0 in the one buffer of the blocks' pending sums (one slot per
+  /// ring column: block l's pending ring is as long as its input ring).
+  static constexpr std::array<int, Levels + 1> pending_offsets() {
+    std::array<int, Levels + 1> offset{};
+    for (int l = 0; l < Levels; ++l)
+      offset[l + 1] = offset[l] + history_length(l);
+    return offset;
+  }
+  /// Σ_l ((K − 1)·d_l + 1): slots of all blocks' pending sums together.
+  static constexpr int pending_columns = pending_offsets()[Levels];
 };
 
 }  // namespace tpf

@@ -7,9 +7,9 @@
 #include "tpf/nn/tcn_architecture.hpp"
 #include "tpf/nn/tcn_weights.hpp"
 
-// A translation unit compiled for AVX-512 (TPF_NATIVE=ON) keeps Tcn's compile-time code path;
-// elsewhere on x86-64 the step runs in the widest registers the CPU has.
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__AVX512F__)
+// On x86-64 (GCC, clang) the step runs in the widest registers the CPU has, whatever the
+// translation unit's flags (TPF_NATIVE=ON included).
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
 #define TPF_TCN_DISPATCH 1
 #include <immintrin.h>
 #endif
@@ -76,14 +76,48 @@ struct TcnStepBuffers {
   int input_head;
   S* hidden_history;  ///< rings of blocks 1 … Levels−1, back to back (Tcn::hidden_history_)
   const int* heads;   ///< Levels entries
-  S* hidden;          ///< out: h_{L−1}(t), Hidden
-  S* low;             ///< out (Out == 1): low(t) = c_low + A_low·h_{L−1}(t)
-  S* high;            ///< out (Out == 1): high(t)
+  /// Every block's pending sums, back to back (Tcn::pending_, TcnShape::pending_offsets): slot
+  /// (heads[l] + m) mod ((K − 1)·d_l + 1) of block l holds Σ_{j ≥ 1, j·d_l ≥ m} W_{l,j}·h_{l−1}(t
+  /// + m − j·d_l), the lagged taps' part of z_l(t + m) that is known before t + m (heads[0] =
+  /// input_head for block 0).
+  S* pending;
+  S* hidden;  ///< out: h_{L−1}(t), Hidden
+  S* low;     ///< out (Out == 1): low(t) = c_low + A_low·h_{L−1}(t)
+  S* high;    ///< out (Out == 1): high(t)
 };
 
 #ifdef TPF_TCN_DISPATCH
 
 namespace tcn_x86 {
+
+/// i mod n for i in [0, 2n), without a branch.
+constexpr int wrap(int i, int n) noexcept {
+  return i - n * int(i >= n);
+}
+
+/// Registers of a hidden vector (V in all) that one pass over a block's columns keeps in
+/// accumulators: the largest divisor R of V whose (current_sums(R) + K − 1)·R accumulators leave
+/// 4 of the width's `registers` free.
+constexpr int current_sums(int rows) noexcept {
+  return rows >= 4 ? 1 : 4 / rows;
+}
+constexpr int lagged_sums(int rows, int K) noexcept {
+  return (K - 1) * rows >= 6 ? 1 : 2;
+}
+constexpr int row_registers(int V, int K, int registers) noexcept {
+  for (int rows = V; rows > 1; --rows)
+    if (V % rows == 0 && (current_sums(rows) + K - 1) * rows <= registers - 4) return rows;
+  return 1;
+}
+
+/// One block's operands in a step: its taps W_0 … W_{K−1} (Hidden × columns each), its input
+/// x(t) and its pending sums for t, t + d, …, t + (K − 1)·d (TcnStepBuffers::pending).
+template <typename S, int K>
+struct BlockStep {
+  const S* taps[K];
+  const S* x;
+  S* pending[K];
+};
 
 #define TPF_TCN_AVX2 __attribute__((target("avx2,fma"), always_inline)) inline
 #define TPF_TCN_AVX512 __attribute__((target("avx512f"), always_inline)) inline
@@ -193,20 +227,29 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 }
 
 // The step, once per register width: tcn_x86_step_body.hpp, included below for each. A hidden
-// vector is V registers. Each block's axpys z += W_j[:, c]·x_j[c] are dealt by column c to A
-// partial sums (A·V ≥ 4 independent chains), the lagged taps (read from the rings) first and the
-// current tap (the input just computed) last; then z = (bias + skip) + the partial sums, ReLU.
-// Block 0's skip is its projection, one more matrix on the current input. This sums in another
-// order than the portable path and rounds each multiply-add once (FMA): equal to rounding
-// (tests/nn/tcn_kernel_test.cpp). Weights, rings and outputs are read and written unaligned.
+// vector is V registers, taken R at a time (row_registers). Each block splits its taps by when
+// their sum is needed:
+//   now    z = (bias + skip + pending(t)) + W_0·x(t) (+ P·x(t), block 0's projection), the axpys
+//          dealt by column to A sums (A·R ≥ 4 chains): the critical path from block to block;
+//   later  pending(t + j·d) += W_j·x(t) for 1 ≤ j < K, K − 1 taps on one broadcast of each x_c,
+//          each dealt to B sums ((K − 1)·R·B ≥ 6 chains); its slot t + (K − 1)·d starts at zero.
+// Every x_c is broadcast once for `now` and once for `later` instead of once per tap, and
+// `later` of block l comes after `now` of block l + 1 in the instruction stream, so the vector
+// unit fills the waits of the critical path with it. The sum of the lagged taps thus runs from
+// the oldest tap to the newest, one FMA at a time; the order differs from the portable path's
+// and each multiply-add rounds once: equal to rounding (tests/nn/tcn_kernel_test.cpp). Weights,
+// rings, pending sums and outputs are read and written unaligned.
 
 #define TPF_TCN_INLINE TPF_TCN_AVX2
 #define TPF_TCN_TARGET "avx2,fma"
 #define TPF_TCN_BYTES 32
 #define TPF_TCN_LOAD load256
 #define TPF_TCN_SPLAT splat256
+#define TPF_TCN_REGISTERS 16
 #define TPF_TCN_SUM sum256
-#define TPF_TCN_AXPYS axpys256
+#define TPF_TCN_NOW now256
+#define TPF_TCN_LATER later256
+#define TPF_TCN_LATER_ALL later_all256
 #define TPF_TCN_STEP step_avx2
 #include "tpf/nn/tcn_x86_step_body.hpp"
 #undef TPF_TCN_INLINE
@@ -215,7 +258,10 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #undef TPF_TCN_LOAD
 #undef TPF_TCN_SPLAT
 #undef TPF_TCN_SUM
-#undef TPF_TCN_AXPYS
+#undef TPF_TCN_NOW
+#undef TPF_TCN_LATER
+#undef TPF_TCN_LATER_ALL
+#undef TPF_TCN_REGISTERS
 #undef TPF_TCN_STEP
 
 #define TPF_TCN_INLINE TPF_TCN_AVX512
@@ -223,8 +269,11 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #define TPF_TCN_BYTES 64
 #define TPF_TCN_LOAD load512
 #define TPF_TCN_SPLAT splat512
+#define TPF_TCN_REGISTERS 32
 #define TPF_TCN_SUM sum512
-#define TPF_TCN_AXPYS axpys512
+#define TPF_TCN_NOW now512
+#define TPF_TCN_LATER later512
+#define TPF_TCN_LATER_ALL later_all512
 #define TPF_TCN_STEP step_avx512
 #include "tpf/nn/tcn_x86_step_body.hpp"
 #undef TPF_TCN_INLINE
@@ -233,7 +282,10 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #undef TPF_TCN_LOAD
 #undef TPF_TCN_SPLAT
 #undef TPF_TCN_SUM
-#undef TPF_TCN_AXPYS
+#undef TPF_TCN_NOW
+#undef TPF_TCN_LATER
+#undef TPF_TCN_LATER_ALL
+#undef TPF_TCN_REGISTERS
 #undef TPF_TCN_STEP
 
 #undef TPF_TCN_AVX2

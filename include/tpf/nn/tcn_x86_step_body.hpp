@@ -1,39 +1,106 @@
 // The body of one x86 TCN step kernel, included once per register width by
 // tcn_x86_kernels.hpp with these names defined (no include guard: it is meant to be included
 // twice):
-//   TPF_TCN_INLINE  the helpers' attributes (target, always_inline)
-//   TPF_TCN_TARGET  the step's target string            TPF_TCN_BYTES  register width, bytes
-//   TPF_TCN_LOAD, TPF_TCN_SPLAT                          the width's load and broadcast
-//   TPF_TCN_SUM, TPF_TCN_AXPYS, TPF_TCN_STEP             the names this body defines
+//   TPF_TCN_INLINE     the helpers' attributes (target, always_inline)
+//   TPF_TCN_TARGET     the step's target string             TPF_TCN_BYTES  register width, bytes
+//   TPF_TCN_REGISTERS  vector registers of the width (16 or 32)
+//   TPF_TCN_LOAD, TPF_TCN_SPLAT                             the width's load and broadcast
+//   TPF_TCN_SUM, TPF_TCN_NOW, TPF_TCN_LATER, TPF_TCN_LATER_ALL, TPF_TCN_STEP
+//                      the names this body defines
 // (A target attribute cannot depend on a template argument, and GCC 12 and clang 14 refuse a
 // body shared through an always_inline function across targets, hence an included body.)
 
-/// (acc_0 + acc_1) + (acc_2 + acc_3) of register v (A = 4), acc_0 + acc_1 (A = 2), acc_0.
-template <int A, int V, typename Register>
-TPF_TCN_INLINE Register TPF_TCN_SUM(Register (&acc)[A][V], int v) noexcept {
+/// (acc_0 + acc_1) + (acc_2 + acc_3) of register r (A = 4), acc_0 + acc_1 (A = 2), acc_0.
+template <int A, int R, typename Register>
+TPF_TCN_INLINE Register TPF_TCN_SUM(Register (&acc)[A][R], int r) noexcept {
   if constexpr (A == 1)
-    return acc[0][v];
+    return acc[0][r];
   else if constexpr (A == 2)
-    return add(acc[0][v], acc[1][v]);
+    return add(acc[0][r], acc[1][r]);
   else
-    return add(add(acc[0][v], acc[1][v]), add(acc[2][v], acc[3][v]));
+    return add(add(acc[0][r], acc[1][r]), add(acc[2][r], acc[3][r]));
 }
 
-/// acc[c mod A] += W[:, c]·x[c] for c < Columns (W: V registers × Columns, column-major).
-template <int A, int V, int Columns, typename S, typename Register>
-TPF_TCN_INLINE void TPF_TCN_AXPYS(Register (&acc)[A][V], const S* W, const S* x) noexcept {
+/// z += W_0·x (+ P·x, block 0's projection) for the R registers of the hidden vector from
+/// element `row` on, x a block's input at t (Columns values; W_0, P: Hidden × Columns,
+/// column-major), the axpys dealt by column c to A sums (c mod A) with z in the first.
+template <int A, int R, int Hidden, int Columns, bool Projection, typename S, typename Register>
+TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const S* tap, const S* projection, const S* x,
+                                int row) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S));
+  Register acc[A][R];
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r) {
+    acc[0][r] = z[r];
+#pragma GCC unroll 4
+    for (int a = 1; a < A; ++a)
+      acc[a][r] = Register{};
+  }
   for (int first = 0; first < Columns; first += A) {
 #pragma GCC unroll 4
     for (int a = 0; a < A; ++a) {
-      if (first + a >= Columns) break;
-      const S* column = W + (first + a) * V * lanes;
-      const Register s = TPF_TCN_SPLAT(x + first + a);
+      const int c = first + a;
+      if (c >= Columns) break;
+      const Register s = TPF_TCN_SPLAT(x + c);
 #pragma GCC unroll 8
-      for (int v = 0; v < V; ++v)
-        acc[a][v] = fmadd(TPF_TCN_LOAD(column + v * lanes), s, acc[a][v]);
+      for (int r = 0; r < R; ++r) {
+        const int at = c * Hidden + row + r * lanes;
+        acc[a][r] = fmadd(TPF_TCN_LOAD(tap + at), s, acc[a][r]);
+        if constexpr (Projection) acc[a][r] = fmadd(TPF_TCN_LOAD(projection + at), s, acc[a][r]);
+      }
     }
   }
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r)
+    z[r] = TPF_TCN_SUM(acc, r);
+}
+
+/// pending[j] += W_j·x for 1 ≤ j < K (the pending sum of time t + j·d; j = K − 1 starts it), for
+/// the R registers from element `row` on, each tap's axpys dealt by column c to B sums (c mod B);
+/// each broadcast x_c serves the K − 1 taps.
+template <int B, int R, int K, int Hidden, int Columns, typename S, typename Register>
+TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x, S* const (&pending)[K],
+                                  int row) noexcept {
+  constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S));
+  Register acc[K][B][R];
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r)
+#pragma GCC unroll 16
+    for (int j = 1; j < K; ++j) {
+      acc[j][0][r] = j == K - 1 ? Register{} : TPF_TCN_LOAD(pending[j] + row + r * lanes);
+#pragma GCC unroll 4
+      for (int a = 1; a < B; ++a)
+        acc[j][a][r] = Register{};
+    }
+  for (int first = 0; first < Columns; first += B) {
+#pragma GCC unroll 4
+    for (int a = 0; a < B; ++a) {
+      const int c = first + a;
+      if (c >= Columns) break;
+      const Register s = TPF_TCN_SPLAT(x + c);
+#pragma GCC unroll 8
+      for (int r = 0; r < R; ++r)
+#pragma GCC unroll 16
+        for (int j = 1; j < K; ++j)
+          acc[j][a][r] =
+              fmadd(TPF_TCN_LOAD(taps[j] + c * Hidden + row + r * lanes), s, acc[j][a][r]);
+    }
+  }
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r)
+#pragma GCC unroll 16
+    for (int j = 1; j < K; ++j)
+      store(pending[j] + row + r * lanes, TPF_TCN_SUM(acc[j], r));
+}
+
+/// pending[j] += W_j·x for the whole hidden vector (TPF_TCN_LATER by R registers at a time).
+template <int R, int K, int Hidden, int Columns, typename S>
+TPF_TCN_INLINE void TPF_TCN_LATER_ALL(const tcn_x86::BlockStep<S, K>& block) noexcept {
+  using Register = decltype(TPF_TCN_LOAD(static_cast<const S*>(nullptr)));
+  constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S)), B = tcn_x86::lagged_sums(R, K);
+#pragma GCC unroll 8
+  for (int row = 0; row < Hidden; row += R * lanes)
+    TPF_TCN_LATER<B, R, K, Hidden, Columns, S, Register>(block.taps, block.x, block.pending, row);
 }
 
 /// Tcn::step in TPF_TCN_BYTES-byte registers (see tcn_x86_kernels.hpp).
@@ -43,52 +110,73 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   using Shape = TcnShape<Levels, Kernel>;
   using Register = decltype(TPF_TCN_LOAD(static_cast<const S*>(nullptr)));
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S)), V = Hidden / lanes,
-                A = V == 1   ? 4
-                    : V == 2 ? 2
-                             : 1;
+                R = tcn_x86::row_registers(V, Kernel, TPF_TCN_REGISTERS),
+                A = tcn_x86::current_sums(R);
   static_assert(Hidden % lanes == 0, "a hidden vector fills whole registers");
-  constexpr std::array<int, Levels + 1> offsets = Shape::hidden_history_offsets();
-  Register acc[A][V], h[V];
+  constexpr std::array<int, Levels + 1> rings = Shape::hidden_history_offsets(),
+                                        pendings = Shape::pending_offsets();
+  Register h[V];
 
-  // Block 0: z = b + P·x(t) + Σ_j W_j·x(t − j).
-#pragma GCC unroll 8
-  for (int v = 0; v < V; ++v) {
-    acc[0][v] = TPF_TCN_LOAD(w.input_bias.data() + v * lanes);
-#pragma GCC unroll 4
-    for (int a = 1; a < A; ++a)
-      acc[a][v] = Register{};
+  // Block 0: z = b + pending(t) + P·x(t) + W_0·x(t), h = ReLU(z).
+  tcn_x86::BlockStep<S, Kernel> block;
+  for (int j = 0; j < Kernel; ++j) {
+    block.taps[j] = w.input_taps[j].data();
+    block.pending[j] = b.pending + Hidden * tcn_x86::wrap(b.input_head + j, Kernel);
   }
-  for (int j = Kernel - 1; j >= 0; --j) {
-    const int column = b.input_head - j < 0 ? b.input_head - j + Kernel : b.input_head - j;
-    TPF_TCN_AXPYS<A, V, In>(acc, w.input_taps[j].data(), b.input_history + In * column);
-  }
-  TPF_TCN_AXPYS<A, V, In>(acc, w.input_projection.data(), b.input_history + In * b.input_head);
+  block.x = b.input_history + In * b.input_head;
 #pragma GCC unroll 8
-  for (int v = 0; v < V; ++v)
-    h[v] = relu(TPF_TCN_SUM(acc, v));
+  for (int row = 0; row < Hidden; row += R * lanes) {
+    Register z[R];
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r)
+      z[r] = add(TPF_TCN_LOAD(w.input_bias.data() + row + r * lanes),
+                 TPF_TCN_LOAD(block.pending[0] + row + r * lanes));
+    TPF_TCN_NOW<A, R, Hidden, In, true>(z, block.taps[0], w.input_projection.data(), block.x, row);
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r)
+      h[row / lanes + r] = relu(z[r]);
+  }
 
-  // Blocks 1 … L−1: z = b_l + h + Σ_j W_{l,j}·h(t − j·d_l), the ring holding h's past.
+  // Block l ≥ 1: z = b_l + h + pending(t) + W_{l,0}·h, h = h_{l−1}(t) also written to block
+  // l's ring (the portable path's history). Then the previous block's lagged taps:
+  // pending(t + j·d) += W_j·x(t); they wait on nothing that follows, so they come after what
+  // does in the instruction stream and fill the vector unit while it waits.
+#pragma GCC unroll 16
   for (int l = 1; l < Levels; ++l) {
     const int length = Shape::history_length(l), dilation = Shape::dilation(l);
-    S* const ring = b.hidden_history + Hidden * offsets[l];
-    S* const current = ring + Hidden * b.heads[l];
-#pragma GCC unroll 8
-    for (int v = 0; v < V; ++v) {
-      store(current + v * lanes, h[v]);
-      acc[0][v] = add(TPF_TCN_LOAD(w.bias[l - 1].data() + v * lanes), h[v]);
-#pragma GCC unroll 4
-      for (int a = 1; a < A; ++a)
-        acc[a][v] = Register{};
+    tcn_x86::BlockStep<S, Kernel> next;
+    for (int j = 0; j < Kernel; ++j) {
+      next.taps[j] = w.taps[l - 1][j].data();
+      next.pending[j] =
+          b.pending + Hidden * (pendings[l] + tcn_x86::wrap(b.heads[l] + j * dilation, length));
     }
-    for (int j = Kernel - 1; j > 0; --j) {
-      const int lagged = b.heads[l] - j * dilation;
-      const S* x = ring + Hidden * (lagged < 0 ? lagged + length : lagged);
-      TPF_TCN_AXPYS<A, V, Hidden>(acc, w.taps[l - 1][j].data(), x);
-    }
-    TPF_TCN_AXPYS<A, V, Hidden>(acc, w.taps[l - 1][0].data(), current);
+    S* const current = b.hidden_history + Hidden * (rings[l] + b.heads[l]);
+    next.x = current;
 #pragma GCC unroll 8
     for (int v = 0; v < V; ++v)
-      h[v] = relu(TPF_TCN_SUM(acc, v));
+      store(current + v * lanes, h[v]);
+    Register out[V];
+#pragma GCC unroll 8
+    for (int row = 0; row < Hidden; row += R * lanes) {
+      Register z[R];
+#pragma GCC unroll 8
+      for (int r = 0; r < R; ++r)
+        z[r] = add(add(TPF_TCN_LOAD(w.bias[l - 1].data() + row + r * lanes), h[row / lanes + r]),
+                   TPF_TCN_LOAD(next.pending[0] + row + r * lanes));
+      TPF_TCN_NOW<A, R, Hidden, Hidden, false>(z, next.taps[0], static_cast<const S*>(nullptr),
+                                               current, row);
+#pragma GCC unroll 8
+      for (int r = 0; r < R; ++r)
+        out[row / lanes + r] = relu(z[r]);
+    }
+#pragma GCC unroll 8
+    for (int v = 0; v < V; ++v)
+      h[v] = out[v];
+    if (l == 1)
+      TPF_TCN_LATER_ALL<R, Kernel, Hidden, In>(block);
+    else
+      TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden>(block);
+    block = next;
   }
 
 #pragma GCC unroll 8
@@ -104,4 +192,5 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
     *b.low = w.low_bias[0] + lane_sum(low);
     *b.high = w.high_bias[0] + lane_sum(high);
   }
+  TPF_TCN_LATER_ALL<R, Kernel, Hidden, Levels == 1 ? In : Hidden>(block);
 }
