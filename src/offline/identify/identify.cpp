@@ -35,25 +35,41 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& s, const Eigen::
 }
 
 template <int N>
-Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
+std::vector<Eigen::MatrixXd> nominal_residuals(
+    const std::vector<const NominalModel<double, N>*>& nominals, const JointSamples& s) {
   const Eigen::Index n = s.size();
-  Eigen::MatrixXd residual(n, N);
-  const NominalLinks<double, N> links = nominal_links(nominal);  // once, not per sample
+  std::vector<Eigen::MatrixXd> residuals;
+  std::vector<NominalLinks<double, N>> links;  // once per model, not per sample
+  for (const NominalModel<double, N>* nominal : nominals) {
+    residuals.emplace_back(n, N);
+    links.push_back(nominal_links(*nominal));
+  }
+  if (nominals.empty()) return residuals;
   auto work = [&](Eigen::Index begin, Eigen::Index end) {
     Data<double, N> data;
     JointVector<double, N> rigid, friction;
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
-        residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+        for (Eigen::MatrixXd& residual : residuals)
+          residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
         continue;
       }
       const JointVector<double, N> q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
-      predict_effort(nominal, links, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
-      residual.row(k) = s.effort.row(k) - (rigid + friction).transpose();
+      forward_kinematics(nominals.front()->model, data, q);
+      for (std::size_t m = 0; m < nominals.size(); ++m) {
+        predict_effort_at_pose(*nominals[m], links[m], data, q, dq, s.ddq.row(k).transpose(), rigid,
+                               friction);
+        residuals[m].row(k) = s.effort.row(k) - (rigid + friction).transpose();
+      }
     }
   };
   parallel_halves(n, work);
-  return residual;
+  return residuals;
+}
+
+template <int N>
+Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
+  return std::move(nominal_residuals<N>({&nominal}, s).front());
 }
 
 template <int N>
@@ -487,6 +503,8 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);              \
   template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                 \
                                                const JointSamples&);                           \
+  template std::vector<Eigen::MatrixXd> nominal_residuals<N>(                                  \
+      const std::vector<const NominalModel<double, N>*>&, const JointSamples&);                \
   template FrictionCurves<N> fit_friction_curves<N>(                                           \
       const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,                     \
       const StribeckParameters<double, N>&, bool, int);                                        \
