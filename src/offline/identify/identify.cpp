@@ -363,11 +363,14 @@ namespace {
 
 // What the friction curves are fitted against: the rigid prediction, or with
 // friction_from_sensor effort − (τ_sensor + I_a·q̈) where the joint's sensor varies (its linear
-// start then from the same target).
+// start then from the same target, kept in `from_sensor`): `rigid` itself, not a copy, or
+// `from_sensor`.
 template <int N>
-Eigen::MatrixXd friction_reference(const Log& log, const JointSamples& s,
-                                   const Eigen::MatrixXd& rigid, const IdentifyOptions& options,
-                                   LinearNominal<N>& fit, std::vector<std::string>& notes) {
+const Eigen::MatrixXd& friction_reference(const Log& log, const JointSamples& s,
+                                          const Eigen::MatrixXd& rigid,
+                                          const IdentifyOptions& options, LinearNominal<N>& fit,
+                                          std::vector<std::string>& notes,
+                                          Eigen::MatrixXd& from_sensor) {
   if (!options.friction_from_sensor) return rigid;
   // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
   Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
@@ -381,7 +384,8 @@ Eigen::MatrixXd friction_reference(const Log& log, const JointSamples& s,
       fit.linear.viscous[j] = sensor.viscous[j];
     }
   notes.push_back(sensor.note);
-  return std::move(sensor.reference);
+  from_sensor = std::move(sensor.reference);
+  return from_sensor;
 }
 
 }  // namespace
@@ -438,8 +442,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                       : std::vector<Eigen::VectorXd>{fit.rigid_theta});
   const Eigen::MatrixXd& rigid = rigids.front();
   const Eigen::MatrixXd load = gravity_load(model, s);
-  const Eigen::MatrixXd reference =
-      friction_reference(log, s, rigid, options, fit, out.friction_notes);
+  Eigen::MatrixXd sensor_reference;
+  const Eigen::MatrixXd& reference =
+      friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);
   const FrictionCurves<N> curves =
       fit_friction_curves<N>(s, reference, load, fit.linear, options.fit_load_friction,
                              options.friction_samples_per_joint);
@@ -450,8 +455,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.nominal = nominal;
   if (out.refitted) {
     std::vector<std::string> unused;
-    const Eigen::MatrixXd final_reference =
-        friction_reference(log, s, rigids.back(), options, final_fit, unused);
+    Eigen::MatrixXd final_sensor_reference;
+    const Eigen::MatrixXd& final_reference = friction_reference(
+        log, s, rigids.back(), options, final_fit, unused, final_sensor_reference);
     out.nominal = final_fit.nominal;
     out.nominal.friction = refit_friction_curves<N>(s, final_reference, load, final_fit.linear,
                                                     options.fit_load_friction,
