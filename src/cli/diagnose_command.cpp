@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "heap_reuse.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/log/read_logs.hpp"
@@ -108,6 +109,7 @@ void register_diagnose_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
+    reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
   });

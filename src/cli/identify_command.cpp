@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "heap_reuse.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/identify/joint_samples.hpp"
@@ -109,6 +110,7 @@ void register_identify_command(CLI::App& app) {
                 "gear, instead of effort - rigid-body prediction");
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
+    reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
   });

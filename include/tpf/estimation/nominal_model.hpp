@@ -113,11 +113,30 @@ NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
 /// rounding), and G(q) by a gravity-only pass when the friction is load dependent.
 /// Allocation-free, no exceptions.
 template <typename S, int N>
+void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
+                            Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
+                            const NoDeduce<JointVector<S, N>>& dq,
+                            const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
+                            JointVector<S, N>& friction) noexcept;
+
+template <typename S, int N>
 void predict_effort(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
                     Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
                     const NoDeduce<JointVector<S, N>>& dq, const NoDeduce<JointVector<S, N>>& ddq,
                     JointVector<S, N>& rigid, JointVector<S, N>& friction) noexcept {
   forward_kinematics(nominal.model, data, q);
+  predict_effort_at_pose(nominal, links, data, q, dq, ddq, rigid, friction);
+}
+
+/// predict_effort on the link transforms already in data.liMi (forward_kinematics of
+/// nominal.model at q first): models of one robot evaluated at one sample share one forward
+/// kinematics. The same operations, so the same result. Allocation-free, no exceptions.
+template <typename S, int N>
+void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
+                            Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
+                            const NoDeduce<JointVector<S, N>>& dq,
+                            const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
+                            JointVector<S, N>& friction) noexcept {
   rigid = link_parameter_torque(nominal.model, links.rigid, data, dq, ddq) +
           added_effort(nominal, q, dq, ddq);
   JointVector<S, N> abs_gravity = JointVector<S, N>::Zero();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <utility>
 
 #include "offline/diagnose/cad_payload_check.hpp"
 #include "offline/diagnose/diagnosis_findings.hpp"
@@ -56,14 +57,15 @@ DeclaredFit fit_declared(const EffectDesign<N>& declared, const JointSamples& s,
   }
   selection.joint_weights = fit.joint_weights;
   theta = fit_columns(grams, declared.declared_columns(), selection);
-  const std::vector<Eigen::MatrixXd> predictions =
+  std::vector<Eigen::MatrixXd> predictions =
       declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
-  fit.residual = s.effort - predictions[0];
+  fit.residual = std::move(predictions[0]);  // in place: effort − prediction
+  fit.residual = s.effort - fit.residual;
   fit.viscous.resize(N);
   for (const FeatureGroup& g : declared.groups())
     if (g.key == JointFrictionColumns::key)
       fit.viscous[g.joint] = std::max(theta[g.columns[JointFrictionColumns::kViscous]], 0.0);
-  fit.rigid_prediction = predictions[1];
+  fit.rigid_prediction = std::move(predictions[1]);
   return fit;
 }
 
@@ -381,8 +383,10 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   say("diagnose: pass 4/4: refit with the selected effects");
   out.refitted = holds_rows_out(s);
   EffectPredictions p = predict_effects(design, out, sel, out.refitted);
-  out.residual_after = s.effort - p.selected;
-  out.residual_before = s.effort - p.declared;
+  out.residual_after = std::move(p.selected);  // in place: effort − prediction
+  out.residual_after = s.effort - out.residual_after;
+  out.residual_before = std::move(p.declared);
+  out.residual_before = s.effort - out.residual_before;
   out.effect_terms = std::move(p.terms);
   NominalModel<double, N>& nominal = out.nominal;
   nominal.model = model;
@@ -391,22 +395,25 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   const StribeckParameters<double, N> linear =
       write_effects(out.groups, sel.theta_written, setup.base, inputs, nominal, load_selected);
   // The written models on the held-out samples: the extended one (what --params holds) and the
-  // declared model as identify fits it, at once: independent fits.
+  // declared model as identify fits it: independent fits at once, then both residuals in one
+  // pass (one forward kinematics per sample).
   FrictionCurves<N> curves;
   parallel_jobs(2, [&](int job) {
-    if (job == 0) {
+    if (job == 0)
       curves = fit_friction_curves<N>(s, p.non_friction, inputs.abs_gravity, linear, load_selected,
                                       20000);
-      nominal.friction = curves.parameters;
-      for (const std::string& note : curves.notes)
-        out.notes.push_back("friction curve: " + note);
-      out.residual_written = nominal_residual(nominal, s);
-      out.written_after = split_regime_stats(s, out.residual_written, true);
-    } else {
+    else
       out.declared = declared_nominal(model, design, sel.theta_declared, setup.base, s,
                                       p.declared_rigid, inputs);
-      out.written_before = split_regime_stats(s, nominal_residual(out.declared, s), true);
-    }
+  });
+  nominal.friction = curves.parameters;
+  for (const std::string& note : curves.notes)
+    out.notes.push_back("friction curve: " + note);
+  std::vector<Eigen::MatrixXd> residuals = nominal_residuals<N>({&nominal, &out.declared}, s);
+  out.residual_written = std::move(residuals[0]);
+  parallel_jobs(2, [&](int job) {
+    (job == 0 ? out.written_after : out.written_before) =
+        split_regime_stats(s, job == 0 ? out.residual_written : residuals[1], true);
   });
 
   out.judged = out.nominal;

@@ -131,7 +131,8 @@ std::vector<int> EffectDesign<N>::declared_columns() const {
 }
 
 template <int N>
-void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws) const {
+void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws,
+                           const std::vector<char>& filled) const {
   const JointVector<double, N> q = s.q.row(k).transpose();
   const JointVector<double, N> dq = s.dq.row(k).transpose();
   const JointVector<double, N> ddq = s.ddq.row(k).transpose();
@@ -147,10 +148,20 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws)
   for (int j = 0; j < N; ++j) {
     double* out = &ws.local(j, 0);  // row-major workspace: this joint's local features
     for (int g : joint_groups_[j]) {
-      fills_[g](row, j, out);
+      if (filled.empty() || filled[static_cast<std::size_t>(g)]) fills_[g](row, j, out);
       out += groups_[g].columns.size();
     }
   }
+}
+
+template <int N>
+std::vector<char> EffectDesign<N>::groups_in_use(const std::vector<Eigen::VectorXd>& thetas) const {
+  std::vector<char> used(groups_.size(), 0);
+  for (std::size_t g = 0; g < groups_.size(); ++g)
+    for (const Eigen::VectorXd& theta : thetas)
+      for (int c : groups_[g].columns)
+        used[g] = used[g] || theta[c] != 0.0;
+  return used;
 }
 
 template <int N>
@@ -234,9 +245,12 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
       for (std::size_t a = 0; a < local_[j].size(); ++a)
         local_theta[j](static_cast<Eigen::Index>(a), i) = thetas[i][local_[j][a]];
   }
+  // A group whose coefficients are zero in every θ_i adds only zeros: its features are not
+  // computed (they stay zero in the workspace), the products keep their order.
+  const std::vector<char> used = groups_in_use(thetas);
   parallel_halves(n, [&](Eigen::Index begin, Eigen::Index end) {
     Workspace ws;
-    ws.local.resize(N, max_local_);
+    ws.local.setZero(N, max_local_);
     Eigen::RowVectorXd values(m);
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
@@ -244,7 +258,7 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
           p.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
         continue;
       }
-      fill(s, k, ws);
+      fill(s, k, ws, used);
       for (int j = 0; j < N; ++j) {
         values.noalias() = ws.local.row(j).head(local_theta[j].rows()) * local_theta[j];
         for (int i = 0; i < m; ++i)

@@ -71,8 +71,13 @@ class EffectDesign {
   struct Workspace;
   /// Fills of one family: its columns of joint row `joint` of a sample.
   using FillColumns = void (*)(const SampleRow<N>&, int joint, double* out);
-  /// Fills the local features of every joint row of sample k into `ws.local` (N × max local).
-  void fill(const JointSamples& samples, Eigen::Index k, Workspace& ws) const;
+  /// Fills the local features of every joint row of sample k into `ws.local` (N × max local):
+  /// those of the groups `filled` marks (one entry per group; empty: every group). The features
+  /// of the other groups are left as they are (zero in a workspace zeroed once).
+  void fill(const JointSamples& samples, Eigen::Index k, Workspace& ws,
+            const std::vector<char>& filled = {}) const;
+  /// Per group: whether any of `thetas` has a non-zero coefficient in its columns.
+  std::vector<char> groups_in_use(const std::vector<Eigen::VectorXd>& thetas) const;
   /// Adds the groups the family types of the tuple `Families` offer, in registration order.
   template <typename Families>
   void add_families(const DesignContext& context);

@@ -35,25 +35,41 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& s, const Eigen::
 }
 
 template <int N>
-Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
+std::vector<Eigen::MatrixXd> nominal_residuals(
+    const std::vector<const NominalModel<double, N>*>& nominals, const JointSamples& s) {
   const Eigen::Index n = s.size();
-  Eigen::MatrixXd residual(n, N);
-  const NominalLinks<double, N> links = nominal_links(nominal);  // once, not per sample
+  std::vector<Eigen::MatrixXd> residuals;
+  std::vector<NominalLinks<double, N>> links;  // once per model, not per sample
+  for (const NominalModel<double, N>* nominal : nominals) {
+    residuals.emplace_back(n, N);
+    links.push_back(nominal_links(*nominal));
+  }
+  if (nominals.empty()) return residuals;
   auto work = [&](Eigen::Index begin, Eigen::Index end) {
     Data<double, N> data;
     JointVector<double, N> rigid, friction;
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
-        residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+        for (Eigen::MatrixXd& residual : residuals)
+          residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
         continue;
       }
       const JointVector<double, N> q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
-      predict_effort(nominal, links, data, q, dq, s.ddq.row(k).transpose(), rigid, friction);
-      residual.row(k) = s.effort.row(k) - (rigid + friction).transpose();
+      forward_kinematics(nominals.front()->model, data, q);
+      for (std::size_t m = 0; m < nominals.size(); ++m) {
+        predict_effort_at_pose(*nominals[m], links[m], data, q, dq, s.ddq.row(k).transpose(), rigid,
+                               friction);
+        residuals[m].row(k) = s.effort.row(k) - (rigid + friction).transpose();
+      }
     }
   };
   parallel_halves(n, work);
-  return residual;
+  return residuals;
+}
+
+template <int N>
+Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
+  return std::move(nominal_residuals<N>({&nominal}, s).front());
 }
 
 template <int N>
@@ -347,11 +363,14 @@ namespace {
 
 // What the friction curves are fitted against: the rigid prediction, or with
 // friction_from_sensor effort − (τ_sensor + I_a·q̈) where the joint's sensor varies (its linear
-// start then from the same target).
+// start then from the same target, kept in `from_sensor`): `rigid` itself, not a copy, or
+// `from_sensor`.
 template <int N>
-Eigen::MatrixXd friction_reference(const Log& log, const JointSamples& s,
-                                   const Eigen::MatrixXd& rigid, const IdentifyOptions& options,
-                                   LinearNominal<N>& fit, std::vector<std::string>& notes) {
+const Eigen::MatrixXd& friction_reference(const Log& log, const JointSamples& s,
+                                          const Eigen::MatrixXd& rigid,
+                                          const IdentifyOptions& options, LinearNominal<N>& fit,
+                                          std::vector<std::string>& notes,
+                                          Eigen::MatrixXd& from_sensor) {
   if (!options.friction_from_sensor) return rigid;
   // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
   Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
@@ -365,7 +384,8 @@ Eigen::MatrixXd friction_reference(const Log& log, const JointSamples& s,
       fit.linear.viscous[j] = sensor.viscous[j];
     }
   notes.push_back(sensor.note);
-  return std::move(sensor.reference);
+  from_sensor = std::move(sensor.reference);
+  return from_sensor;
 }
 
 }  // namespace
@@ -422,8 +442,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                       : std::vector<Eigen::VectorXd>{fit.rigid_theta});
   const Eigen::MatrixXd& rigid = rigids.front();
   const Eigen::MatrixXd load = gravity_load(model, s);
-  const Eigen::MatrixXd reference =
-      friction_reference(log, s, rigid, options, fit, out.friction_notes);
+  Eigen::MatrixXd sensor_reference;
+  const Eigen::MatrixXd& reference =
+      friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);
   const FrictionCurves<N> curves =
       fit_friction_curves<N>(s, reference, load, fit.linear, options.fit_load_friction,
                              options.friction_samples_per_joint);
@@ -434,8 +455,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.nominal = nominal;
   if (out.refitted) {
     std::vector<std::string> unused;
-    const Eigen::MatrixXd final_reference =
-        friction_reference(log, s, rigids.back(), options, final_fit, unused);
+    Eigen::MatrixXd final_sensor_reference;
+    const Eigen::MatrixXd& final_reference = friction_reference(
+        log, s, rigids.back(), options, final_fit, unused, final_sensor_reference);
     out.nominal = final_fit.nominal;
     out.nominal.friction = refit_friction_curves<N>(s, final_reference, load, final_fit.linear,
                                                     options.fit_load_friction,
@@ -487,6 +509,8 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);              \
   template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                 \
                                                const JointSamples&);                           \
+  template std::vector<Eigen::MatrixXd> nominal_residuals<N>(                                  \
+      const std::vector<const NominalModel<double, N>*>&, const JointSamples&);                \
   template FrictionCurves<N> fit_friction_curves<N>(                                           \
       const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,                     \
       const StribeckParameters<double, N>&, bool, int);                                        \

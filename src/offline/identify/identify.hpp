@@ -85,6 +85,12 @@ template <int N>
 Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal,
                                  const JointSamples& samples);
 
+/// nominal_residual of each of `nominals`, models of one robot (equal `model`), in one pass: one
+/// forward kinematics per sample for all of them.
+template <int N>
+std::vector<Eigen::MatrixXd> nominal_residuals(
+    const std::vector<const NominalModel<double, N>*>& nominals, const JointSamples& samples);
+
 /// Per-joint regime statistics of `residual` over the held-out (or training) samples only.
 std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
                                             const Eigen::MatrixXd& residual, bool heldout);
