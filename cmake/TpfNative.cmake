@@ -9,8 +9,9 @@ if(TPF_NATIVE)
   add_compile_options(${TPF_NATIVE_FLAGS})
   # Two false positives of GCC 12 in its AVX-512 intrinsics as Eigen uses them: they start from
   # _mm512_undefined_ps/pd (`__m512 __Y = __Y;`), which -Wuninitialized reports inside Eigen's
-  # pmax (GCC bug 105593); and -Warray-bounds reports Eigen's masked 512-bit loads of vectors
-  # shorter than a register, whose masked-off lanes are never read.
+  # pmax (GCC bug 105593); and -Warray-bounds reports the 512-bit loads in Eigen's vectorised
+  # loops for vectors shorter than a register, in the branch that checks the size first and that
+  # such vectors never take.
   if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
     add_compile_options(-Wno-uninitialized -Wno-maybe-uninitialized -Wno-array-bounds)
   endif()
