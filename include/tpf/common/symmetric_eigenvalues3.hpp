@@ -15,8 +15,8 @@ inline constexpr double kSeriesLimit = 0.01;
 /// The Jacobi rotation of a small angle without square roots: t = tan θ and c = cos θ for
 /// tan 2θ = 2x, |x| ≤ kSeriesLimit, by their series t = x(1 − x² + 2x⁴ − 5x⁶ + 14x⁸)
 /// (Catalan numbers) and c = (1 + t²)^(−1/2) = 1 − u/2 + 3u²/8 − 5u³/16, u = t²: the first
-/// terms left out (42x¹⁰, 35u⁴/128) are below 3e-17 relative. After the first sweep most rotations are
-/// this small.
+/// terms left out (42x¹⁰, 35u⁴/128) are below 3e-17 relative. After the first sweep most rotations
+/// are this small.
 template <typename S>
 void small_rotation(S x, S& t, S& c) noexcept {
   const S z = x * x;

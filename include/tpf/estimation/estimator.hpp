@@ -294,9 +294,8 @@ class Estimator {
                                        : static_sigma_[j];
       sigma[j] = s;
     }
-    out.wrench =
-        estimate_contact_force(jacobian_, pad_contact_frame_in_world(data_, g), evidence,
-                               sigma, skin_.normal_force(pad), parameters_.wrench);
+    out.wrench = estimate_contact_force(jacobian_, pad_contact_frame_in_world(data_, g), evidence,
+                                        sigma, skin_.normal_force(pad), parameters_.wrench);
     out.wrench.pad = pad;
     out.wrench.point_world = point;
     if (skin_.contact_count() == 1 && out.wrench.force_world.allFinite()) {

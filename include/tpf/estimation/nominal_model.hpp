@@ -101,33 +101,6 @@ NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
   return links;
 }
 
-/// Predicted effort (joint torque the drive must produce) [N·m], split in two:
-///   rigid    = Y_b(q,q̇,q̈)·π_b + added(q,q̇,q̈)
-///              (rigid body incl. armature, plus ripple, spring, offset and coupling when added),
-///   friction = stribeck_friction(nominal.friction, q̇, |G(q)|): Stribeck + viscous with load
-///              dependence, direction asymmetry and neighbour load (see StribeckParameters),
-///              G = G(q) of nominal.model [N·m], sgn(0) = 0: at rest the sliding friction is not
-///              predicted (it is whatever the drive settled at; the estimator's FSM handles it).
-/// The per-cycle form: one forward kinematics (left in data.liMi / data.oMi at q), Y_b·π_b by
-/// Newton–Euler on the link form `links` = nominal_links(nominal) (equal to the regressor form to
-/// rounding), and G(q) by a gravity-only pass when the friction is load dependent.
-/// Allocation-free, no exceptions.
-template <typename S, int N>
-void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
-                            Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
-                            const NoDeduce<JointVector<S, N>>& dq,
-                            const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
-                            JointVector<S, N>& friction) noexcept;
-
-template <typename S, int N>
-void predict_effort(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
-                    Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
-                    const NoDeduce<JointVector<S, N>>& dq, const NoDeduce<JointVector<S, N>>& ddq,
-                    JointVector<S, N>& rigid, JointVector<S, N>& friction) noexcept {
-  forward_kinematics(nominal.model, data, q);
-  predict_effort_at_pose(nominal, links, data, q, dq, ddq, rigid, friction);
-}
-
 /// predict_effort on the link transforms already in data.liMi (forward_kinematics of
 /// nominal.model at q first): models of one robot evaluated at one sample share one forward
 /// kinematics. The same operations, so the same result. Allocation-free, no exceptions.
@@ -143,6 +116,26 @@ void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLink
   if (links.load_dependent)
     abs_gravity = link_parameter_gravity(nominal.model, links.load, data).cwiseAbs();
   friction = stribeck_friction(nominal.friction, dq, abs_gravity);
+}
+
+/// Predicted effort (joint torque the drive must produce) [N·m], split in two:
+///   rigid    = Y_b(q,q̇,q̈)·π_b + added(q,q̇,q̈)
+///              (rigid body incl. armature, plus ripple, spring, offset and coupling when added),
+///   friction = stribeck_friction(nominal.friction, q̇, |G(q)|): Stribeck + viscous with load
+///              dependence, direction asymmetry and neighbour load (see StribeckParameters),
+///              G = G(q) of nominal.model [N·m], sgn(0) = 0: at rest the sliding friction is not
+///              predicted (it is whatever the drive settled at; the estimator's FSM handles it).
+/// The per-cycle form: one forward kinematics (left in data.liMi / data.oMi at q), Y_b·π_b by
+/// Newton–Euler on the link form `links` = nominal_links(nominal) (equal to the regressor form to
+/// rounding), and G(q) by a gravity-only pass when the friction is load dependent.
+/// Allocation-free, no exceptions.
+template <typename S, int N>
+void predict_effort(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
+                    Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
+                    const NoDeduce<JointVector<S, N>>& dq, const NoDeduce<JointVector<S, N>>& ddq,
+                    JointVector<S, N>& rigid, JointVector<S, N>& friction) noexcept {
+  forward_kinematics(nominal.model, data, q);
+  predict_effort_at_pose(nominal, links, data, q, dq, ddq, rigid, friction);
 }
 
 /// predict_effort with the link form built on the spot (a few dozen copies): for offline callers

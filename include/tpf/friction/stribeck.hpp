@@ -71,9 +71,8 @@ S stribeck_friction(const StribeckParameters<S, N>& p, int j, S dq, S abs_gravit
   using std::abs;
   const S sign = dq > S(0) ? S(1) : (dq < S(0) ? S(-1) : S(0));
   const S level = sign != S(0) ? stribeck_level(p, j, dq, abs_gravity) : S(0);
-  return level * sign +
-         viscous_coefficient(p, j, abs_gravity) * dq + p.coulomb_asymmetry[j] * abs(sign) +
-         p.viscous_asymmetry[j] * abs(dq);
+  return level * sign + viscous_coefficient(p, j, abs_gravity) * dq +
+         p.coulomb_asymmetry[j] * abs(sign) + p.viscous_asymmetry[j] * abs(dq);
 }
 
 /// Neighbour-load part of joint j's friction: Σ_k≠j (β_jk·sgn(q̇_j) + γ_jk·q̇_j)·|G_k|.

@@ -140,8 +140,8 @@ EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S,
       tr.torque_tactile.row(r) = (J.template topRows<3>().transpose().template cast<double>() *
                                   tr.force_tactile.row(r).transpose())
                                      .transpose();
-      const ContactForce<S> f = estimate_contact_force(
-          J, pad_contact_frame_in_world(data, g), proprio.torque, S(0), no_prior);
+      const ContactForce<S> f = estimate_contact_force(J, pad_contact_frame_in_world(data, g),
+                                                       proprio.torque, S(0), no_prior);
       tr.force_proprioceptive.row(r) = f.force_world.transpose().template cast<double>();
     }
   }
