@@ -29,20 +29,20 @@ TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const S* tap, const S* project
                                 int row) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S));
   Register acc[A][R];
-#pragma GCC unroll 8
+  TPF_TCN_UNROLL(8)
   for (int r = 0; r < R; ++r) {
     acc[0][r] = z[r];
-#pragma GCC unroll 4
+    TPF_TCN_UNROLL(4)
     for (int a = 1; a < A; ++a)
       acc[a][r] = Register{};
   }
   for (int first = 0; first < Columns; first += A) {
-#pragma GCC unroll 4
+    TPF_TCN_UNROLL(4)
     for (int a = 0; a < A; ++a) {
       const int c = first + a;
       if (c >= Columns) break;
       const Register s = TPF_TCN_SPLAT(x + c);
-#pragma GCC unroll 8
+      TPF_TCN_UNROLL(8)
       for (int r = 0; r < R; ++r) {
         const int at = c * Hidden + row + r * lanes;
         acc[a][r] = fmadd(TPF_TCN_LOAD(tap + at), s, acc[a][r]);
@@ -50,7 +50,7 @@ TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const S* tap, const S* project
       }
     }
   }
-#pragma GCC unroll 8
+  TPF_TCN_UNROLL(8)
   for (int r = 0; r < R; ++r)
     z[r] = TPF_TCN_SUM(acc, r);
 }
@@ -63,34 +63,33 @@ TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x, S* cons
                                   int row) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S));
   Register acc[K][B][R];
-#pragma GCC unroll 8
+  TPF_TCN_UNROLL(8)
   for (int r = 0; r < R; ++r)
-#pragma GCC unroll 16
-    for (int j = 1; j < K; ++j) {
-      acc[j][0][r] = j == K - 1 ? Register{} : TPF_TCN_LOAD(pending[j] + row + r * lanes);
-#pragma GCC unroll 4
-      for (int a = 1; a < B; ++a)
-        acc[j][a][r] = Register{};
-    }
+    TPF_TCN_UNROLL(16)
+  for (int j = 1; j < K; ++j) {
+    acc[j][0][r] = j == K - 1 ? Register{} : TPF_TCN_LOAD(pending[j] + row + r * lanes);
+    TPF_TCN_UNROLL(4)
+    for (int a = 1; a < B; ++a)
+      acc[j][a][r] = Register{};
+  }
   for (int first = 0; first < Columns; first += B) {
-#pragma GCC unroll 4
+    TPF_TCN_UNROLL(4)
     for (int a = 0; a < B; ++a) {
       const int c = first + a;
       if (c >= Columns) break;
       const Register s = TPF_TCN_SPLAT(x + c);
-#pragma GCC unroll 8
+      TPF_TCN_UNROLL(8)
       for (int r = 0; r < R; ++r)
-#pragma GCC unroll 16
-        for (int j = 1; j < K; ++j)
-          acc[j][a][r] =
-              fmadd(TPF_TCN_LOAD(taps[j] + c * Hidden + row + r * lanes), s, acc[j][a][r]);
+        TPF_TCN_UNROLL(16)
+      for (int j = 1; j < K; ++j)
+        acc[j][a][r] = fmadd(TPF_TCN_LOAD(taps[j] + c * Hidden + row + r * lanes), s, acc[j][a][r]);
     }
   }
-#pragma GCC unroll 8
+  TPF_TCN_UNROLL(8)
   for (int r = 0; r < R; ++r)
-#pragma GCC unroll 16
-    for (int j = 1; j < K; ++j)
-      store(pending[j] + row + r * lanes, TPF_TCN_SUM(acc[j], r));
+    TPF_TCN_UNROLL(16)
+  for (int j = 1; j < K; ++j)
+    store(pending[j] + row + r * lanes, TPF_TCN_SUM(acc[j], r));
 }
 
 /// pending[j] += W_j·x for the whole hidden vector (TPF_TCN_LATER by R registers at a time).
@@ -98,7 +97,7 @@ template <int R, int K, int Hidden, int Columns, typename S>
 TPF_TCN_INLINE void TPF_TCN_LATER_ALL(const tcn_x86::BlockStep<S, K>& block) noexcept {
   using Register = decltype(TPF_TCN_LOAD(static_cast<const S*>(nullptr)));
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S)), B = tcn_x86::lagged_sums(R, K);
-#pragma GCC unroll 8
+  TPF_TCN_UNROLL(8)
   for (int row = 0; row < Hidden; row += R * lanes)
     TPF_TCN_LATER<B, R, K, Hidden, Columns, S, Register>(block.taps, block.x, block.pending, row);
 }
@@ -124,15 +123,15 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
     block.pending[j] = b.pending + Hidden * tcn_x86::wrap(b.input_head + j, Kernel);
   }
   block.x = b.input_history + In * b.input_head;
-#pragma GCC unroll 8
+  TPF_TCN_UNROLL(8)
   for (int row = 0; row < Hidden; row += R * lanes) {
     Register z[R];
-#pragma GCC unroll 8
+    TPF_TCN_UNROLL(8)
     for (int r = 0; r < R; ++r)
       z[r] = add(TPF_TCN_LOAD(w.input_bias.data() + row + r * lanes),
                  TPF_TCN_LOAD(block.pending[0] + row + r * lanes));
     TPF_TCN_NOW<A, R, Hidden, In, true>(z, block.taps[0], w.input_projection.data(), block.x, row);
-#pragma GCC unroll 8
+    TPF_TCN_UNROLL(8)
     for (int r = 0; r < R; ++r)
       h[row / lanes + r] = relu(z[r]);
   }
@@ -141,7 +140,7 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   // l's ring (the portable path's history). Then the previous block's lagged taps:
   // pending(t + j·d) += W_j·x(t); they wait on nothing that follows, so they come after what
   // does in the instruction stream and fill the vector unit while it waits.
-#pragma GCC unroll 16
+  TPF_TCN_UNROLL(16)
   for (int l = 1; l < Levels; ++l) {
     const int length = Shape::history_length(l), dilation = Shape::dilation(l);
     tcn_x86::BlockStep<S, Kernel> next;
@@ -152,24 +151,24 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
     }
     S* const current = b.hidden_history + Hidden * (rings[l] + b.heads[l]);
     next.x = current;
-#pragma GCC unroll 8
+    TPF_TCN_UNROLL(8)
     for (int v = 0; v < V; ++v)
       store(current + v * lanes, h[v]);
     Register out[V];
-#pragma GCC unroll 8
+    TPF_TCN_UNROLL(8)
     for (int row = 0; row < Hidden; row += R * lanes) {
       Register z[R];
-#pragma GCC unroll 8
+      TPF_TCN_UNROLL(8)
       for (int r = 0; r < R; ++r)
         z[r] = add(add(TPF_TCN_LOAD(w.bias[l - 1].data() + row + r * lanes), h[row / lanes + r]),
                    TPF_TCN_LOAD(next.pending[0] + row + r * lanes));
       TPF_TCN_NOW<A, R, Hidden, Hidden, false>(z, next.taps[0], static_cast<const S*>(nullptr),
                                                current, row);
-#pragma GCC unroll 8
+      TPF_TCN_UNROLL(8)
       for (int r = 0; r < R; ++r)
         out[row / lanes + r] = relu(z[r]);
     }
-#pragma GCC unroll 8
+    TPF_TCN_UNROLL(8)
     for (int v = 0; v < V; ++v)
       h[v] = out[v];
     if (l == 1)
@@ -179,12 +178,12 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
     block = next;
   }
 
-#pragma GCC unroll 8
+  TPF_TCN_UNROLL(8)
   for (int v = 0; v < V; ++v)
     store(b.hidden + v * lanes, h[v]);
   if constexpr (Out == 1) {
     Register low = Register{}, high = Register{};
-#pragma GCC unroll 8
+    TPF_TCN_UNROLL(8)
     for (int v = 0; v < V; ++v) {
       low = fmadd(TPF_TCN_LOAD(w.low_weight.data() + v * lanes), h[v], low);
       high = fmadd(TPF_TCN_LOAD(w.high_weight.data() + v * lanes), h[v], high);
