@@ -24,24 +24,24 @@ struct TcnShape {
   /// R = 1 + (K − 1)·(2^Levels − 1) samples.
   static constexpr int receptive_field = 1 + (Kernel - 1) * ((1 << Levels) - 1);
 
-  /// Column offset of block l ≥ 1 in the one buffer that holds all hidden-block histories.
-  static constexpr std::array<int, Levels + 1> hidden_history_offsets() {
+  /// Column offsets of the histories of blocks first..Levels − 1 laid end to end in one buffer
+  /// (entry l is block l's; the entries up to `first` are 0).
+  static constexpr std::array<int, Levels + 1> history_offsets(int first) {
     std::array<int, Levels + 1> offset{};
-    for (int l = 1; l < Levels; ++l)
+    for (int l = first; l < Levels; ++l)
       offset[l + 1] = offset[l] + history_length(l);
     return offset;
+  }
+  /// Column offset of block l ≥ 1 in the one buffer that holds all hidden-block histories.
+  static constexpr std::array<int, Levels + 1> hidden_history_offsets() {
+    return history_offsets(1);
   }
   /// Σ_{l ≥ 1} ((K − 1)·d_l + 1): columns of all hidden-block histories together.
   static constexpr int hidden_history_columns = hidden_history_offsets()[Levels];
 
   /// Column offset of block l ≥ 0 in the one buffer of the blocks' pending sums (one slot per
   /// ring column: block l's pending ring is as long as its input ring).
-  static constexpr std::array<int, Levels + 1> pending_offsets() {
-    std::array<int, Levels + 1> offset{};
-    for (int l = 0; l < Levels; ++l)
-      offset[l + 1] = offset[l] + history_length(l);
-    return offset;
-  }
+  static constexpr std::array<int, Levels + 1> pending_offsets() { return history_offsets(0); }
   /// Σ_l ((K − 1)·d_l + 1): slots of all blocks' pending sums together.
   static constexpr int pending_columns = pending_offsets()[Levels];
 };

@@ -270,17 +270,6 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #define TPF_TCN_LATER_ALL later_all256
 #define TPF_TCN_STEP step_avx2
 #include "tpf/nn/tcn_x86_step_body.hpp"
-#undef TPF_TCN_INLINE
-#undef TPF_TCN_TARGET
-#undef TPF_TCN_BYTES
-#undef TPF_TCN_LOAD
-#undef TPF_TCN_SPLAT
-#undef TPF_TCN_SUM
-#undef TPF_TCN_NOW
-#undef TPF_TCN_LATER
-#undef TPF_TCN_LATER_ALL
-#undef TPF_TCN_REGISTERS
-#undef TPF_TCN_STEP
 
 #define TPF_TCN_INLINE TPF_TCN_AVX512
 #define TPF_TCN_TARGET "avx512f"
@@ -294,20 +283,12 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #define TPF_TCN_LATER_ALL later_all512
 #define TPF_TCN_STEP step_avx512
 #include "tpf/nn/tcn_x86_step_body.hpp"
-#undef TPF_TCN_INLINE
-#undef TPF_TCN_TARGET
-#undef TPF_TCN_BYTES
-#undef TPF_TCN_LOAD
-#undef TPF_TCN_SPLAT
-#undef TPF_TCN_SUM
-#undef TPF_TCN_NOW
-#undef TPF_TCN_LATER
-#undef TPF_TCN_LATER_ALL
-#undef TPF_TCN_REGISTERS
-#undef TPF_TCN_STEP
 
 #undef TPF_TCN_AVX2
 #undef TPF_TCN_AVX512
+#undef TPF_TCN_UNROLL
+#undef TPF_TCN_PRAGMA
+#undef TPF_TCN_SANITIZED
 
 }  // namespace tcn_x86
 

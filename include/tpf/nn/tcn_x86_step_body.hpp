@@ -1,6 +1,6 @@
 // The body of one x86 TCN step kernel, included once per register width by
 // tcn_x86_kernels.hpp with these names defined (no include guard: it is meant to be included
-// twice):
+// twice; it undefines them at its end):
 //   TPF_TCN_INLINE     the helpers' attributes (target, always_inline)
 //   TPF_TCN_TARGET     the step's target string             TPF_TCN_BYTES  register width, bytes
 //   TPF_TCN_REGISTERS  vector registers of the width (16 or 32)
@@ -193,3 +193,16 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   }
   TPF_TCN_LATER_ALL<R, Kernel, Hidden, Levels == 1 ? In : Hidden>(block);
 }
+
+// This width's parameters end here; the next inclusion defines its own.
+#undef TPF_TCN_INLINE
+#undef TPF_TCN_TARGET
+#undef TPF_TCN_BYTES
+#undef TPF_TCN_LOAD
+#undef TPF_TCN_SPLAT
+#undef TPF_TCN_SUM
+#undef TPF_TCN_NOW
+#undef TPF_TCN_LATER
+#undef TPF_TCN_LATER_ALL
+#undef TPF_TCN_REGISTERS
+#undef TPF_TCN_STEP
