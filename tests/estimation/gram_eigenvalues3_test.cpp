@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -30,7 +31,8 @@ std::vector<Jacobian34> low_rank_jacobians() {
     const Vector3<double> a = Vector3<double>(normal(rng), normal(rng), normal(rng)).normalized();
     Vector3<double> n = a.cross(Vector3<double>(normal(rng), normal(rng), normal(rng)));
     n.normalize();
-    const double angle = k % 3 == 2 ? M_PI / 2 : std::pow(10.0, -8.0 * unit(rng)) * M_PI / 2;
+    const double angle =
+        k % 3 == 2 ? std::numbers::pi / 2 : std::pow(10.0, -8.0 * unit(rng)) * std::numbers::pi / 2;
     const double length = k % 3 == 2 ? 1.0 : std::pow(10.0, 6.0 * unit(rng) - 3.0);
     const double scale = std::pow(10.0, 3.0 * unit(rng) - 1.5);
     Jacobian34 j = Jacobian34::Zero();
