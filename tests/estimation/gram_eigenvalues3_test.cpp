@@ -15,7 +15,7 @@
 namespace tpf::test {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kDoubleEpsilon = std::numeric_limits<double>::epsilon();
 using Jacobian34 = Eigen::Matrix<double, 3, 4>;
 
 /// Random 3×4 Jacobians with one or two nonzero columns, in any of the four places: the two
@@ -74,9 +74,9 @@ TEST(GramEigenvalues3, ClosedFormAgreesWithTheLongDoubleReference) {
       EXPECT_EQ(lambda[1], 0.0);
     }
   }
-  EXPECT_LE(worst, 4 * kEps);  // the bound symmetric_eigenvalues3 keeps
+  EXPECT_LE(worst, 4 * kDoubleEpsilon);  // the bound symmetric_eigenvalues3 keeps
   EXPECT_LE(worst_relative, 1e-12);
-  EXPECT_LE(worst_zero, 4 * kEps);
+  EXPECT_LE(worst_zero, 4 * kDoubleEpsilon);
   EXPECT_GT(relative_cases, 1000);
   EXPECT_GT(rank_one_cases, 500);
 }
