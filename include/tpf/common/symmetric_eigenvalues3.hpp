@@ -12,36 +12,56 @@ namespace tpf {
 /// |x| = |a_pq/(a_qq − a_pp)| up to which small_rotation is exact to rounding in double.
 inline constexpr double kSeriesLimit = 0.01;
 
-/// The Jacobi rotation of a small angle without square roots: t = tan θ and c = cos θ for
-/// tan 2θ = 2x, |x| ≤ kSeriesLimit, by their series t = x(1 − x² + 2x⁴ − 5x⁶ + 14x⁸)
-/// (Catalan numbers) and c = (1 + t²)^(−1/2) = 1 − u/2 + 3u²/8 − 5u³/16, u = t²: the first
-/// terms left out (42x¹⁰, 35u⁴/128) are below 3e-17 relative. After the first sweep most rotations
-/// are this small.
+/// A plane rotation by θ: t = tan θ, c = cos θ, s = sin θ.
 template <typename S>
-void small_rotation(S x, S& t, S& c) noexcept {
-  const S z = x * x;
-  t = x * (S(1) + z * (S(-1) + z * (S(2) + z * (S(-5) + z * S(14)))));
-  const S u = t * t;
-  c = S(1) + u * (S(-0.5) + u * (S(0.375) + u * S(-0.3125)));
+struct PlaneRotation {
+  S t, c, s;
+};
+
+/// The Jacobi rotation of a small angle without square roots, for tan 2θ = 2x, |x| ≤ kSeriesLimit:
+/// t, c and s each a series in z = x² (Catalan numbers for t = x(1 − z + 2z² − 5z³ + 14z⁴);
+/// c = 1 − z/2 + 11z²/8 − 69z³/16 + 1843z⁴/128, s = x(1 − 3z/2 + 31z²/8 − 187z³/16 + 4859z⁴/128)),
+/// evaluated side by side in Estrin's form, so that s and c wait on one division and ≈ 3
+/// multiply-adds, not on t; the first terms left out (42z⁵, …) are below 2e-18 relative. After
+/// the first sweep most rotations are this small.
+template <typename S>
+PlaneRotation<S> small_rotation(S x) noexcept {
+  const S z = x * x, z2 = z * z;
+  return {x * ((S(1) - z) + z2 * ((S(2) + z * S(-5)) + z2 * S(14))),
+          (S(1) + z * S(-0.5)) + z2 * ((S(1.375) + z * S(-4.3125)) + z2 * S(14.3984375)),
+          x * ((S(1) + z * S(-1.5)) + z2 * ((S(3.875) + z * S(-11.6875)) + z2 * S(37.9609375)))};
+}
+
+/// The Jacobi rotation that zeroes a_pq (≠ 0) given d = a_qq − a_pp: tan θ = t, the smaller root of
+/// t² + 2τt − 1 = 0, τ = d/(2a_pq), i.e. t = 2a_pq/w with w = d + sgn(d)·√(d² + 4a_pq²); then
+/// c = |w|/√(w² + 4a_pq²) = |w|/√(2√(d² + 4a_pq²)·|w|) and s = sgn(d)·2a_pq/√(…), so that c and s
+/// do not wait on t. Small angles by small_rotation.
+template <typename S>
+PlaneRotation<S> jacobi_rotation(S difference, S apq) noexcept {
+  using std::abs, std::sqrt;
+  if (abs(apq) <= S(kSeriesLimit) * abs(difference)) return small_rotation(apq / difference);
+  const S root = sqrt(difference * difference + S(4) * apq * apq);
+  const S w = difference >= S(0) ? difference + root : difference - root;  // |w| ≥ root > 0
+  const S inverse = S(1) / sqrt(S(2) * root * abs(w));                     // 1/√(w² + 4a_pq²)
+  return {S(2) * apq / w, abs(w) * inverse,
+          (difference >= S(0) ? S(2) * apq : S(-2) * apq) * inverse};
 }
 
 /// The eigenvalues of a symmetric 3×3 A (its upper triangle is read), ascending. Cyclic Jacobi:
-/// each rotation zeroes one off-diagonal entry a_pq (tan θ = t, the smaller root of
-/// t² + 2τt − 1 = 0, τ = (a_qq − a_pp)/(2a_pq)), sweeps (0,1), (0,2), (1,2) until every
-/// off-diagonal entry is zero or negligible against its diagonal pair (a_pq² ≤ (ε/16)²·|a_pp·a_qq|,
-/// the relative criterion: a positive semidefinite matrix keeps its small eigenvalues to about
-/// ε·λ_max absolute, as Eigen's QR iteration does and better), at most 10 sweeps (3 or 4 in
-/// practice: the convergence is quadratic). Against a long-double reference on Gram matrices
-/// J·Jᵀ and clustered spectra the error is ≤ 2.2 ε·λ_max (Eigen's SelfAdjointEigenSolver:
-/// ≤ 9 ε·λ_max), ≤ 3e-13 relative on λ_min ≥ 4e-4·λ_max, the contact force's rank threshold
-/// (tests/estimation/symmetric_eigenvalues3_test.cpp).
-/// Entries up to ≈ 1e150 (a squared difference must not overflow); a non-finite entry gives
-/// non-finite eigenvalues. Allocation-free; rotations of a small angle (most after the first sweep)
-/// take no square root (small_rotation). Cheaper than Eigen's solver for eigenvalues
-/// only (docs/performance.md).
+/// each rotation zeroes one off-diagonal entry a_pq (jacobi_rotation), sweeps (0,1), (0,2), (1,2)
+/// until every off-diagonal entry is zero or negligible against its diagonal pair (a_pq² ≤
+/// (ε/16)²·|a_pp·a_qq|, the relative criterion: a positive semidefinite matrix keeps its small
+/// eigenvalues to about ε·λ_max absolute, as Eigen's QR iteration does and better), at most 10
+/// sweeps (3 or 4 in practice: the convergence is quadratic). Against a long-double reference on
+/// Gram matrices J·Jᵀ and clustered spectra the error is ≤ 2.5 ε·λ_max (Eigen's
+/// SelfAdjointEigenSolver: ≤ 9 ε·λ_max), ≤ 4e-13 relative on λ_min ≥ 4e-4·λ_max, the contact
+/// force's rank threshold (tests/estimation/symmetric_eigenvalues3_test.cpp). Entries up to ≈ 1e150
+/// (a squared difference must not overflow); a non-finite entry gives non-finite eigenvalues.
+/// Allocation-free; rotations of a small angle (most after the first sweep) take no square root
+/// (small_rotation). Cheaper than Eigen's solver for eigenvalues only (docs/performance.md).
 template <typename S>
 Vector3<S> symmetric_eigenvalues3(const Matrix3<S>& a) noexcept {
-  using std::abs, std::sqrt;
+  using std::abs;
   constexpr S tiny =
       (std::numeric_limits<S>::epsilon() / 16) * (std::numeric_limits<S>::epsilon() / 16);
   S d0 = a(0, 0), d1 = a(1, 1), d2 = a(2, 2);
@@ -52,17 +72,7 @@ Vector3<S> symmetric_eigenvalues3(const Matrix3<S>& a) noexcept {
       apq = S(0);
       return;
     }
-    const S difference = aqq - app;
-    S t, c, s;
-    if (abs(apq) <= S(kSeriesLimit) * abs(difference)) {
-      small_rotation(apq / difference, t, c);
-      s = t * c;
-    } else {
-      const S root = sqrt(difference * difference + S(4) * apq * apq);
-      t = S(2) * apq / (difference >= S(0) ? difference + root : difference - root);
-      c = S(1) / sqrt(S(1) + t * t);
-      s = t * c;
-    }
+    const auto [t, c, s] = jacobi_rotation(aqq - app, apq);
     app -= t * apq;
     aqq += t * apq;
     apq = S(0);

@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "tpf/common/cholesky3.hpp"
-#include "tpf/common/symmetric_eigenvalues3.hpp"
+#include "tpf/common/gram_eigenvalues3.hpp"
 #include "tpf/common/types.hpp"
 
 namespace tpf {
@@ -61,7 +61,8 @@ struct ContactForce {
 /// block, normal fixed by the pad, has inverse condition ≥ min_inverse_condition); when the shear
 /// is unobservable, `valid` is false and the numbers say why. Allocation-free.
 ///
-/// Cost: the 3×3 eigenvalues by cyclic Jacobi rotations (symmetric_eigenvalues3: to ≈ ε·λ_max,
+/// Cost: the 3×3 eigenvalues in closed form where at most two joints move the pad
+/// (gram_eigenvalues3), else by cyclic Jacobi rotations (symmetric_eigenvalues3: to ≈ ε·λ_max,
 /// where Eigen's closed form loses the smallest eigenvalue to ≈ 1e-13·λ_max, which the rank test
 /// cannot afford), the 2×2 shear block's in closed form, the solve by a written-out Cholesky factor
 /// (A is positive definite through the priors); the factorisation changed from Eigen's pivoting
@@ -76,7 +77,7 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   const Eigen::Matrix<S, 3, N> Jc = R_contact.transpose() * J_world.template topRows<3>();
   const Matrix3<S> info = Jc * Jc.transpose();  // J_c J_cᵀ, symmetric 3×3: the geometry alone
 
-  const Vector3<S> lambda = symmetric_eigenvalues3(info).cwiseMax(S(0));  // ascending
+  const Vector3<S> lambda = gram_eigenvalues3(Jc, info).cwiseMax(S(0));  // ascending
   const S lambda_max = lambda[2];
   if (!(lambda_max > S(0))) return out;  // the pad's link does not move with any joint
   out.inverse_condition = sqrt(lambda[0] / lambda_max);

@@ -28,8 +28,9 @@ namespace tpf {
 
 /// External torque and contact force of an N-joint arm with P skin pads, per cycle:
 ///  1. q̈: the sample's, or the filtered derivative of q̇ (AccelerationFilter);
-///  2. nominal model: τ_dyn, τ_fric = predict_effort(q, q̇, q̈) (also leaves the link poses in
-///     the workspace); τ_res = τ_meas − τ_dyn − τ_fric;
+///  2. nominal model: τ_dyn, τ_fric = predict_effort(q, q̇, q̈) on the joint transforms alone
+///     (the link poses are computed in step 7, up to the contacted pad's link, only with a
+///     contact); τ_res = τ_meas − τ_dyn − τ_fric;
 ///  3. skin: filtered pressure, hysteresis, contact flags and onset times (Skin);
 ///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
 ///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s, τ_fric) (compensator_input; τ_fric is step 2's);
@@ -171,12 +172,13 @@ class Estimator {
     return 0;
   }
 
-  /// 2. Nominal model (one forward kinematics: data_.oMi is at q for the wrench):
+  /// 2. Nominal model on the joint transforms (data_.liMi at q; the world poses wait for step 7):
   /// τ_res = τ_meas − τ_dyn − τ_fric.
   void nominal_residual(const Sample& sample, const Vector& ddq) noexcept {
     Output& out = output_;
-    predict_effort(nominal_, links_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
-                   out.effort_friction);
+    joint_transforms(nominal_.model, data_, sample.q);
+    predict_effort_at_pose(nominal_, links_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
+                           out.effort_friction);
     out.residual = sample.effort - out.effort_rigid - out.effort_friction;
   }
 
@@ -278,6 +280,7 @@ class Estimator {
     const int pad = skin_.most_loaded();
     if (pad < 0) return 0;
     const PadGeometry<S>& g = skin_.geometry(pad);
+    link_poses(nominal_.model, data_, g.link);  // on step 2's joint transforms
     const Vector3<S> point = pad_point_in_world(data_, g);
     point_jacobian(nominal_.model, data_, g.link, point, jacobian_);
     // A joint that stopped in contact took its baseline from the moving estimate it held

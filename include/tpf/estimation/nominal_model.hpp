@@ -101,9 +101,10 @@ NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
   return links;
 }
 
-/// predict_effort on the link transforms already in data.liMi (forward_kinematics of
-/// nominal.model at q first): models of one robot evaluated at one sample share one forward
-/// kinematics. The same operations, so the same result. Allocation-free, no exceptions.
+/// predict_effort on the link transforms already in data.liMi (joint_transforms or
+/// forward_kinematics of nominal.model at q first; the world poses are not read): models of one
+/// robot evaluated at one sample share one kinematics. The same operations, so the same result.
+/// Allocation-free, no exceptions.
 template <typename S, int N>
 void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
                             Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <limits>
 
 #include "tpf/common/types.hpp"
 
@@ -38,11 +39,15 @@ class RepeatedReadingDetector {
   /// Feeds one sample; returns the mask of channels frozen now (bit k: channel k repeated for more
   /// than `limit` samples in a row).
   std::uint32_t update(const Reading& reading) noexcept {
+    // Branch-free: the same instructions whichever channels repeat.
     std::uint32_t frozen = 0;
+    const int limit = limit_ > 0 ? limit_ : std::numeric_limits<int>::max();
     for (int k = 0; k < static_cast<int>(runs_.size()); ++k) {
-      const bool same = (reading.row(k).array() == last_.row(k).array()).all();
-      runs_[k] = same ? runs_[k] + 1 : 0;
-      if (limit_ > 0 && runs_[k] > limit_) frozen |= 1u << k;
+      int same = 1;
+      for (int c = 0; c < C; ++c)
+        same &= static_cast<int>(reading(k, c) == last_(k, c));
+      runs_[k] = (runs_[k] + 1) * same;
+      frozen |= static_cast<std::uint32_t>(runs_[k] > limit) << k;
     }
     last_ = reading;
     return frozen;

@@ -49,25 +49,36 @@ void joint_transforms(const Model<S, N>& model, Data<S, N>& data,
     detail::joint_transform(model, data, k, q(k - 1));
 }
 
-/// Link poses for joint positions q [rad], from the base to link `last_link` (every link by
-/// default; a Jacobian at a point of link k needs links 1..k): data.liMi[k] (as joint_transforms),
-/// data.oMi[k] = data.oMi[k−1] · data.liMi[k] (oMi[0] = identity, the base is the world frame), and
-/// data.axis_world[k] = oMi[k].R · axis_k. Links beyond `last_link` keep what they held.
-/// Allocation-free.
+/// Link poses from the joint transforms already in data.liMi (joint_transforms at q first), from
+/// the base to link `last_link`: data.oMi[k] = data.oMi[k−1] · data.liMi[k] (oMi[0] = identity, the
+/// base is the world frame) and data.axis_world[k] = oMi[k].R · axis_k. Links beyond `last_link`
+/// keep what they held. A per-cycle caller whose dynamics ran on joint_transforms pays for the
+/// poses only where it needs them (a contact Jacobian at link k: links 1..k). Allocation-free.
 template <typename S, int N>
-void forward_kinematics(const Model<S, N>& model, Data<S, N>& data,
-                        const NoDeduce<JointVector<S, N>>& q, int last_link = N) noexcept {
-  assert(model.constants_current() && "Model::update_constants() after editing the model");
+void link_poses(const Model<S, N>& model, Data<S, N>& data, int last_link = N) noexcept {
   assert(last_link >= 0 && last_link <= N);
   data.oMi[0] = Transform<S>{};
   for (int k = 1; k <= last_link; ++k) {
-    detail::joint_transform(model, data, k, q(k - 1));
     const Transform<S>& parent = data.oMi[k - 1];
     data.oMi[k].R.noalias() = parent.R * data.liMi[k].R;
     data.oMi[k].p.noalias() = parent.R * data.liMi[k].p;
     data.oMi[k].p += parent.p;
     detail::world_axis(model, data, k);
   }
+}
+
+/// Link poses for joint positions q [rad], from the base to link `last_link` (every link by
+/// default; a Jacobian at a point of link k needs links 1..k): data.liMi[k] (as joint_transforms)
+/// and, as link_poses, data.oMi[k] and data.axis_world[k]. Links beyond `last_link` keep what they
+/// held. Allocation-free.
+template <typename S, int N>
+void forward_kinematics(const Model<S, N>& model, Data<S, N>& data,
+                        const NoDeduce<JointVector<S, N>>& q, int last_link = N) noexcept {
+  assert(model.constants_current() && "Model::update_constants() after editing the model");
+  assert(last_link >= 0 && last_link <= N);
+  for (int k = 1; k <= last_link; ++k)
+    detail::joint_transform(model, data, k, q(k - 1));
+  link_poses(model, data, last_link);
 }
 
 /// World position of a point given in link k's frame. Needs forward_kinematics first.
