@@ -12,7 +12,7 @@ template <int N>
 IdentificationSetup<N> prepare_identification(const Log& log, const Model<double, N>& model,
                                               const SampleOptions& options) {
   IdentificationSetup<N> setup{
-      extract_joint_samples(log, model.torque_constant.template cast<double>(), options), {}};
+      extract_joint_samples(log, model.torque_constant.template cast<double>(), options), {}, {}};
   setup.base = rigid_body_base_parameters(model);
   return setup;
 }
