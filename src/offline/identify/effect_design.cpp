@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "offline/effects/effect_columns.hpp"
+#include "offline/identify/gram_rank_update.hpp"
 #include "offline/identify/parallel_halves.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/regressor.hpp"
@@ -173,19 +174,22 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
   auto work = [&](Eigen::Index begin, Eigen::Index end, DesignGrams& out) {
     Workspace ws;
     ws.local.resize(N, max_local_);
-    // Local Gram and row buffer per (joint, regime, split).
-    std::vector<Eigen::MatrixXd> gram, buffer;
+    // Local Gram and row buffer per (joint, regime, split): kBlock rows of [features, y, 1], each
+    // row_stride apart (zero padding, read by the Gram's tiles).
+    std::vector<Eigen::MatrixXd> gram;
+    std::vector<std::vector<double>> buffer;
+    std::vector<Eigen::Index> row_stride;
     std::vector<int> fill_count(N * 6, 0);
     for (int j = 0; j < N; ++j)
       for (int b = 0; b < 6; ++b) {
         const int width = static_cast<int>(local_[j].size()) + 2;
         gram.push_back(Eigen::MatrixXd::Zero(width, width));
-        buffer.push_back(Eigen::MatrixXd::Zero(kBlock, width));
+        row_stride.push_back(gram_row_stride(width));
+        buffer.emplace_back(static_cast<std::size_t>(kBlock * row_stride.back()), 0.0);
       }
     auto flush = [&](int slot) {
       if (fill_count[slot] == 0) return;
-      const auto rows = buffer[slot].topRows(fill_count[slot]);
-      gram[slot].selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
+      add_lower_gram(gram[slot], buffer[slot].data(), fill_count[slot], row_stride[slot]);
       fill_count[slot] = 0;
     };
     for (Eigen::Index k = begin; k < end; k += stride) {
@@ -196,8 +200,9 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
         if (r == Regime::Invalid) continue;
         const int slot = j * 6 + regime_index(r) * 2 + (s.heldout[k] ? 1 : 0);
         const int width = static_cast<int>(local_[j].size());
-        auto row = buffer[slot].row(fill_count[slot]);
-        row.head(width) = ws.local.row(j).head(width);
+        double* row = buffer[slot].data() + fill_count[slot] * row_stride[slot];
+        const double* features = &ws.local(j, 0);  // row-major: this joint's local features
+        std::copy(features, features + width, row);
         row[width] = s.effort(k, j);
         row[width + 1] = 1.0;
         if (++fill_count[slot] == kBlock) flush(slot);
