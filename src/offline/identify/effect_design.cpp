@@ -8,6 +8,7 @@
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/gram_rank_update.hpp"
 #include "offline/identify/parallel_halves.hpp"
+#include "offline/identify/theta_products.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/dynamics/rnea.hpp"
@@ -243,12 +244,13 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   for (int i = 0; i < m; ++i)
     predictions.emplace_back(n, N);
   // Per joint: local features × parameter sets.
-  std::vector<Eigen::MatrixXd> local_theta(N);
+  std::vector<ThetaProducts> local_theta;
   for (int j = 0; j < N; ++j) {
-    local_theta[j].resize(static_cast<Eigen::Index>(local_[j].size()), m);
+    Eigen::MatrixXd local(static_cast<Eigen::Index>(local_[j].size()), m);
     for (int i = 0; i < m; ++i)
       for (std::size_t a = 0; a < local_[j].size(); ++a)
-        local_theta[j](static_cast<Eigen::Index>(a), i) = thetas[i][local_[j][a]];
+        local(static_cast<Eigen::Index>(a), i) = thetas[i][local_[j][a]];
+    local_theta.emplace_back(local);
   }
   // A group whose coefficients are zero in every θ_i adds only zeros: its features are not
   // computed (they stay zero in the workspace), the products keep their order.
@@ -256,7 +258,7 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   parallel_halves(n, [&](Eigen::Index begin, Eigen::Index end) {
     Workspace ws;
     ws.local.setZero(N, max_local_);
-    Eigen::RowVectorXd values(m);
+    std::vector<double> values(static_cast<std::size_t>(m));
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
         for (Eigen::MatrixXd& p : predictions)
@@ -265,9 +267,9 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
       }
       fill(s, k, ws, used);
       for (int j = 0; j < N; ++j) {
-        values.noalias() = ws.local.row(j).head(local_theta[j].rows()) * local_theta[j];
+        local_theta[j].apply(&ws.local(j, 0), values.data());  // row-major: joint j's features
         for (int i = 0; i < m; ++i)
-          predictions[i](k, j) = values[i];
+          predictions[i](k, j) = values[static_cast<std::size_t>(i)];
       }
     }
   });
