@@ -45,14 +45,15 @@ TEST(GramRankUpdate, EqualsEigensRankUpdateBitForBit) {
           before(i, j) = normal(rng);  // a Gram already holding earlier blocks (and an upper part)
       Eigen::MatrixXd expected = before;
       expected.selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
-      const Eigen::Index stride = offline::gram_row_stride(size);
-      ASSERT_GE(stride, size + 7);
-      std::vector<double> buffer(static_cast<std::size_t>(depth * stride), 0.0);
-      for (Eigen::Index k = 0; k < depth; ++k)
-        for (Eigen::Index i = 0; i < size; ++i)
-          buffer[static_cast<std::size_t>(k * stride + i)] = rows(k, i);
+      offline::GramRowBlock block(size, depth);
+      for (Eigen::Index k = 0; k < depth; ++k) {
+        const Eigen::RowVectorXd row = rows.row(k);
+        block.append(row.data(), size);
+      }
+      EXPECT_TRUE(block.full());
       Eigen::MatrixXd got = before;
-      offline::add_lower_gram(got, buffer.data(), depth, stride);
+      block.add_to_lower(got);
+      EXPECT_EQ(block.rows(), 0);
       EXPECT_EQ(differing_bits(expected, got), 0);
       EXPECT_TRUE(got.triangularView<Eigen::StrictlyUpper>().toDenseMatrix() ==
                   before.triangularView<Eigen::StrictlyUpper>().toDenseMatrix());
@@ -64,9 +65,27 @@ TEST(GramRankUpdate, EqualsEigensRankUpdateBitForBit) {
 
 TEST(GramRankUpdate, EmptyBlockChangesNothing) {
   Eigen::MatrixXd G = Eigen::MatrixXd::Identity(4, 4);
-  const std::vector<double> none(static_cast<std::size_t>(offline::gram_row_stride(4)), 0.0);
-  offline::add_lower_gram(G, none.data(), 0, offline::gram_row_stride(4));
+  offline::GramRowBlock(4, 8).add_to_lower(G);
   EXPECT_TRUE(G == Eigen::MatrixXd::Identity(4, 4));
+}
+
+// The augmented design row [φ, y, 1] and a reused block: the Gram of each block of rows alone.
+TEST(GramRankUpdate, AugmentedRowsOfReusedBlock) {
+  std::mt19937_64 rng(29);
+  offline::GramRowBlock block(11, 40);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(11, 11), got = expected;
+  for (int round = 0; round < 3; ++round) {
+    const Eigen::Index depth = 40 - 13 * round;
+    Eigen::MatrixXd rows = random_rows(depth, 11, rng);
+    rows.col(10).setOnes();
+    for (Eigen::Index k = 0; k < depth; ++k) {
+      const Eigen::RowVectorXd row = rows.row(k);
+      block.append_augmented(row.data(), row[9]);
+    }
+    expected.selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
+    block.add_to_lower(got);
+    EXPECT_EQ(differing_bits(expected, got), 0) << "round " << round;
+  }
 }
 
 }  // namespace

@@ -175,24 +175,16 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
   auto work = [&](Eigen::Index begin, Eigen::Index end, DesignGrams& out) {
     Workspace ws;
     ws.local.resize(N, max_local_);
-    // Local Gram and row buffer per (joint, regime, split): kBlock rows of [features, y, 1], each
-    // row_stride apart (zero padding, read by the Gram's tiles).
+    // Local Gram and block of rows [features, y, 1] per (joint, regime, split).
     std::vector<Eigen::MatrixXd> gram;
-    std::vector<std::vector<double>> buffer;
-    std::vector<Eigen::Index> row_stride;
-    std::vector<int> fill_count(N * 6, 0);
+    std::vector<GramRowBlock> buffer;
     for (int j = 0; j < N; ++j)
       for (int b = 0; b < 6; ++b) {
         const int width = static_cast<int>(local_[j].size()) + 2;
         gram.push_back(Eigen::MatrixXd::Zero(width, width));
-        row_stride.push_back(gram_row_stride(width));
-        buffer.emplace_back(static_cast<std::size_t>(kBlock * row_stride.back()), 0.0);
+        buffer.emplace_back(width, kBlock);
       }
-    auto flush = [&](int slot) {
-      if (fill_count[slot] == 0) return;
-      add_lower_gram(gram[slot], buffer[slot].data(), fill_count[slot], row_stride[slot]);
-      fill_count[slot] = 0;
-    };
+    auto flush = [&](int slot) { buffer[slot].add_to_lower(gram[slot]); };
     for (Eigen::Index k = begin; k < end; k += stride) {
       if (!s.valid[k]) continue;
       fill(s, k, ws);
@@ -200,13 +192,9 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
         const Regime r = s.regimes[j][k];
         if (r == Regime::Invalid) continue;
         const int slot = j * 6 + regime_index(r) * 2 + (s.heldout[k] ? 1 : 0);
-        const int width = static_cast<int>(local_[j].size());
-        double* row = buffer[slot].data() + fill_count[slot] * row_stride[slot];
-        const double* features = &ws.local(j, 0);  // row-major: this joint's local features
-        std::copy(features, features + width, row);
-        row[width] = s.effort(k, j);
-        row[width + 1] = 1.0;
-        if (++fill_count[slot] == kBlock) flush(slot);
+        // ws.local is row-major: joint j's features are contiguous.
+        buffer[slot].append_augmented(&ws.local(j, 0), s.effort(k, j));
+        if (buffer[slot].full()) flush(slot);
       }
     }
     out = DesignGrams(N, features_);

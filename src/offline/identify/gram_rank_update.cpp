@@ -17,13 +17,13 @@ namespace tpf::offline {
 namespace {
 
 using Index = Eigen::Index;
-using RowBlock = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>, 0,
-                            Eigen::OuterStride<>>;
-
-/// Eigen's own: the rows as the columns of a size × depth matrix.
-void eigen_rank_update(Eigen::MatrixXd& G, const double* rows, Index depth, Index stride) {
-  const RowBlock columns(rows, G.rows(), depth, Eigen::OuterStride<>(stride));
-  G.selfadjointView<Eigen::Lower>().rankUpdate(columns);
+/// Eigen's own on the rows gathered from their panels.
+void eigen_rank_update(Eigen::MatrixXd& G, const double* panels, Index depth, Index panel_stride) {
+  Eigen::MatrixXd rows(depth, G.rows());
+  for (Index k = 0; k < depth; ++k)
+    for (Index i = 0; i < G.rows(); ++i)
+      rows(k, i) = panels[(i / 4) * panel_stride + k * 4 + i % 4];
+  G.selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
 }
 
 #if TPF_GRAM_AVX
@@ -72,41 +72,48 @@ std::vector<std::pair<Index, Index>> split_sum_quads(Index size, Index mc) {
 }
 
 /// Σ r_k[i]·r_k[j … j + 3] over k in [begin, end) as Eigen's one-packet path sums it: the even
-/// and the odd k of whole groups of 8 apart, added, then the rest in order.
-__attribute__((target("avx"))) void add_split_sums(const double* rows, Index stride, Index i,
-                                                   Index j, Index begin, Index end, double* sums) {
+/// and the odd k of whole groups of 8 apart, added, then the rest in order; added to `sums`.
+__attribute__((target("avx"))) void add_split_sums(const double* panels, Index panel_stride,
+                                                   Index i, Index j, Index begin, Index end,
+                                                   double* sums) {
+  const double* row_i = panels + (i / 4) * panel_stride + i % 4;
+  const double* quad = panels + (j / 4) * panel_stride;
   const Index peeled = begin + ((end - begin) & ~Index{7});
   __m256d even = _mm256_setzero_pd(), odd = _mm256_setzero_pd();
   for (Index k = begin; k < peeled; k += 2) {
-    const double* r0 = rows + k * stride;
-    const double* r1 = r0 + stride;
-    even = _mm256_add_pd(even, _mm256_mul_pd(_mm256_broadcast_sd(r0 + i), _mm256_loadu_pd(r0 + j)));
-    odd = _mm256_add_pd(odd, _mm256_mul_pd(_mm256_broadcast_sd(r1 + i), _mm256_loadu_pd(r1 + j)));
+    even = _mm256_add_pd(
+        even, _mm256_mul_pd(_mm256_broadcast_sd(row_i + 4 * k), _mm256_loadu_pd(quad + 4 * k)));
+    odd = _mm256_add_pd(odd, _mm256_mul_pd(_mm256_broadcast_sd(row_i + 4 * k + 4),
+                                           _mm256_loadu_pd(quad + 4 * k + 4)));
   }
   __m256d sum = _mm256_add_pd(even, odd);
-  for (Index k = peeled; k < end; ++k) {
-    const double* r = rows + k * stride;
-    sum = _mm256_add_pd(sum, _mm256_mul_pd(_mm256_broadcast_sd(r + i), _mm256_loadu_pd(r + j)));
-  }
+  for (Index k = peeled; k < end; ++k)
+    sum = _mm256_add_pd(
+        sum, _mm256_mul_pd(_mm256_broadcast_sd(row_i + 4 * k), _mm256_loadu_pd(quad + 4 * k)));
   _mm256_storeu_pd(sums, _mm256_add_pd(_mm256_loadu_pd(sums), sum));
 }
 
 /// G.lower += Σ_{k in [begin, end)} r_k r_kᵀ, each entry's sum from zero in k order, then added:
-/// tiles of 8 rows × 4 columns, one AVX lane per entry (multiply, then add: no fused rounding).
-__attribute__((target("avx"))) void add_sequential_sums(Eigen::MatrixXd& G, const double* rows,
-                                                        Index stride, Index begin, Index end) {
+/// tiles of 8 rows × 4 columns (two panels against one), one AVX lane per entry (multiply, then
+/// add: no fused rounding).
+__attribute__((target("avx"))) void add_sequential_sums(Eigen::MatrixXd& G, const double* panels,
+                                                        Index panel_stride, Index begin,
+                                                        Index end) {
   const Index size = G.rows();
   alignas(32) double tile[4][8];
   for (Index jb = 0; jb < size; jb += 4)
     for (Index ib = jb; ib < size; ib += 8) {
+      const double* rows_low = panels + (ib / 4) * panel_stride;
+      const double* rows_high = rows_low + panel_stride;
+      const double* columns = panels + (jb / 4) * panel_stride;
       __m256d low[4], high[4];
       for (int c = 0; c < 4; ++c)
         low[c] = high[c] = _mm256_setzero_pd();
       for (Index k = begin; k < end; ++k) {
-        const double* r = rows + k * stride;
-        const __m256d a0 = _mm256_loadu_pd(r + ib), a1 = _mm256_loadu_pd(r + ib + 4);
+        const __m256d a0 = _mm256_loadu_pd(rows_low + 4 * k);
+        const __m256d a1 = _mm256_loadu_pd(rows_high + 4 * k);
         for (int c = 0; c < 4; ++c) {
-          const __m256d b = _mm256_broadcast_sd(r + jb + c);
+          const __m256d b = _mm256_broadcast_sd(columns + 4 * k + c);
           low[c] = _mm256_add_pd(low[c], _mm256_mul_pd(a0, b));
           high[c] = _mm256_add_pd(high[c], _mm256_mul_pd(a1, b));
         }
@@ -130,17 +137,39 @@ bool cpu_has_avx() {
 
 }  // namespace
 
-Index gram_row_stride(Index size) {
-  return (size + 7 + 3) / 4 * 4;  // a tile of 8 rows may start 1 before the end
+GramRowBlock::GramRowBlock(Index size, Index capacity)
+    : size_(size), capacity_(capacity), panel_stride_(4 * capacity) {
+  panels_.assign(static_cast<std::size_t>(((size + 3) / 4 + 1) * panel_stride_), 0.0);
 }
 
-void add_lower_gram(Eigen::MatrixXd& G, const double* rows, Index depth, Index stride) {
+void GramRowBlock::append(const double* values, Index count) {
+  for (Index c = 0; c < count; ++c)
+    at(rows_, c) = values[c];
+  ++rows_;
+}
+
+void GramRowBlock::append_augmented(const double* features, double y) {
+  const Index count = size_ - 2;
+  double* row = &at(rows_, 0);
+  Index c = 0;
+  for (; c + 4 <= count; c += 4, row += panel_stride_)
+    std::copy_n(features + c, 4, row);
+  for (; c < count; ++c)
+    at(rows_, c) = features[c];
+  at(rows_, count) = y;
+  at(rows_, count + 1) = 1.0;
+  ++rows_;
+}
+
+void GramRowBlock::add_to_lower(Eigen::MatrixXd& G) {
+  const Index depth = rows_;
+  rows_ = 0;
   if (depth == 0) return;
+  const double* panels = panels_.data();
 #if TPF_GRAM_AVX
   if (kEigenKernelKnown && cpu_has_avx()) {
-    const Index size = G.rows();
-    const auto [kc, mc] = eigen_blocking(size, depth);
-    const std::vector<std::pair<Index, Index>> quads = split_sum_quads(size, mc);
+    const auto [kc, mc] = eigen_blocking(size_, depth);
+    const std::vector<std::pair<Index, Index>> quads = split_sum_quads(size_, mc);
     std::vector<double> split(4 * quads.size());
     for (Index k2 = 0; k2 < depth; k2 += kc) {
       const Index end = std::min(k2 + kc, depth);
@@ -149,9 +178,9 @@ void add_lower_gram(Eigen::MatrixXd& G, const double* rows, Index depth, Index s
         const auto [i, j] = quads[q];
         for (int c = 0; c < 4; ++c)
           split[4 * q + c] = G(i, j + c);
-        add_split_sums(rows, stride, i, j, k2, end, &split[4 * q]);
+        add_split_sums(panels, panel_stride_, i, j, k2, end, &split[4 * q]);
       }
-      add_sequential_sums(G, rows, stride, k2, end);
+      add_sequential_sums(G, panels, panel_stride_, k2, end);
       for (std::size_t q = 0; q < quads.size(); ++q)
         for (int c = 0; c < 4; ++c)
           G(quads[q].first, quads[q].second + c) = split[4 * q + c];
@@ -159,7 +188,7 @@ void add_lower_gram(Eigen::MatrixXd& G, const double* rows, Index depth, Index s
     return;
   }
 #endif
-  eigen_rank_update(G, rows, depth, stride);
+  eigen_rank_update(G, panels, depth, panel_stride_);
 }
 
 }  // namespace tpf::offline

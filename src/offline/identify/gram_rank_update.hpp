@@ -4,20 +4,38 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace tpf::offline {
 
-/// Width of a row buffer for add_lower_gram: `size` and the padding its tiles of 8 read past
-/// the end (their products are discarded).
-Eigen::Index gram_row_stride(Eigen::Index size);
+/// Up to `capacity` rows of `size` values, stored as the Gram kernel reads them: panels of four
+/// columns, each holding its four values of every row contiguously, and a zero panel past the
+/// last (a tile of 8 columns may start in the last panel).
+class GramRowBlock {
+ public:
+  GramRowBlock(Eigen::Index size, Eigen::Index capacity);
 
-/// G.lower += Σ_{k < depth} r_k r_kᵀ, r_k = rows[k·stride … k·stride + G.rows()), stride ≥
-/// gram_row_stride(G.rows()). Every entry is summed in the order Eigen's SSE2 product kernel sums
-/// it (its blocking of the depth, each entry's partial sum started from zero, and the entries its
-/// one-packet rows sum as even and odd halves), without fused multiply-adds: the result equals
-/// Eigen's rankUpdate to the last bit (tests/identify/gram_rank_update_test.cpp). Where Eigen
-/// itself is compiled with AVX or FMA (TPF_NATIVE) or the CPU lacks AVX, Eigen's rankUpdate runs.
-void add_lower_gram(Eigen::MatrixXd& G, const double* rows, Eigen::Index depth,
-                    Eigen::Index stride);
+  Eigen::Index rows() const { return rows_; }
+  bool full() const { return rows_ == capacity_; }
+  /// Appends the row [values[0 … size), …]: its first `count` values (the rest stay zero).
+  void append(const double* values, Eigen::Index count);
+  /// Appends the augmented design row [φ, y, 1], φ = features[0 … size − 2).
+  void append_augmented(const double* features, double y);
+  /// G.lower += Σ r rᵀ over the rows appended since the last call (G is size × size), then
+  /// empties the block. Every entry is summed in the order Eigen's SSE2 product kernel sums it
+  /// (its blocking of the depth, each entry's partial sum started from zero, and the entries its
+  /// one-packet rows sum as even and odd halves), without fused multiply-adds: the result equals
+  /// Eigen's rankUpdate to the last bit (tests/identify/gram_rank_update_test.cpp). Where Eigen
+  /// itself is compiled with AVX or FMA (TPF_NATIVE) or the CPU lacks AVX, Eigen's rankUpdate
+  /// runs.
+  void add_to_lower(Eigen::MatrixXd& G);
+
+ private:
+  double& at(Eigen::Index row, Eigen::Index column) {
+    return panels_[static_cast<std::size_t>((column / 4) * panel_stride_ + row * 4 + column % 4)];
+  }
+  Eigen::Index size_, capacity_, panel_stride_, rows_ = 0;
+  std::vector<double> panels_;
+};
 
 }  // namespace tpf::offline
