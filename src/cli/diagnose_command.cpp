@@ -41,12 +41,13 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   IdentificationSetup<N> setup = prepare_diagnosis(log, model, options.samples);
   const tpf::BaseParameters base = setup.base;
   const auto regressors = setup.regressors;
+  const auto abs_gravity = setup.abs_gravity;
   IdentifyOptions identify_options;
   identify_options.samples = options.samples;
   identify_options.progress = options.progress;
   Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification<N>(log, id, options.samples, identify_out, start);
-  return diagnose<N>(log, model, {std::move(id.samples), base, regressors}, options);
+  return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
 }
 
 template <int N>

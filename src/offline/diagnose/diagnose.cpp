@@ -70,14 +70,15 @@ DeclaredFit fit_declared(const EffectDesign<N>& declared, const JointSamples& s,
 }
 
 template <int N>
-CandidateInputs candidate_inputs(const Model<double, N>& model, const JointSamples& s,
-                                 const ResidualAnalysis& analysis, const DeclaredFit& fit) {
+CandidateInputs candidate_inputs(const Model<double, N>& model, const IdentificationSetup<N>& setup,
+                                 const JointSamples& s, const ResidualAnalysis& analysis,
+                                 const DeclaredFit& fit) {
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
   inputs.ripple_motor_cycles = analysis.ripple_motor_cycles;
   inputs.prediction_rate = analysis.prediction_rate;
-  inputs.abs_gravity = gravity_load(model, s);
+  inputs.abs_gravity = setup_gravity_load(setup, model, s);
   inputs.reference_temperature =
       s.temperature.cols() == N
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -332,6 +333,7 @@ IdentificationSetup<N> prepare_diagnosis(const Log& log, const Model<double, N>&
   IdentificationSetup<N> setup = prepare_identification(log, model, options);
   setup.regressors = std::make_shared<const SampleRegressors<N>>(
       model, EffectDesign<N>::regressor_columns(setup.base.independent, true), setup.samples);
+  setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(gravity_load(model, setup.samples));
   return setup;
 }
 
@@ -382,7 +384,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
 
   say("diagnose: pass 3/4: candidate effects");
   const EffectDesign<N> design(model, setup.base, s, regressors,
-                               candidate_inputs(model, s, analysis, fit), threshold);
+                               candidate_inputs(model, setup, s, analysis, fit), threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();

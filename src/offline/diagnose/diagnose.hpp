@@ -197,7 +197,8 @@ template <int N>
 Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, IdentificationSetup<N> setup,
                       const DiagnoseOptions& options);
 
-/// prepare_identification with the regressors diagnose reads (a superset of identify's).
+/// prepare_identification with the regressors diagnose reads (a superset of identify's) and the
+/// gravity load both read.
 template <int N>
 IdentificationSetup<N> prepare_diagnosis(const Log& log, const Model<double, N>& model,
                                          const SampleOptions& options);

@@ -30,7 +30,7 @@ void eigen_rank_update(Eigen::MatrixXd& G, const double* panels, Index depth, In
 
 using Traits = Eigen::internal::gebp_traits<double, double>;
 // The kernel whose order is reproduced: 4 × 4 register blocks of 2-double packets.
-constexpr bool kEigenKernelKnown = Traits::mr == 4 && Traits::nr == 4 && Traits::LhsProgress == 2;
+constexpr bool kGramOrderKnown = Traits::mr == 4 && Traits::nr == 4 && Traits::LhsProgress == 2;
 
 /// Eigen's blocking of the depth (kc) and of the rows (mc) for this rank update
 /// (SelfadjointProduct.h, GeneralMatrixMatrixTriangular.h): they depend on the CPU's caches.
@@ -128,7 +128,7 @@ __attribute__((target("avx"))) void add_sequential_sums(Eigen::MatrixXd& G, cons
     }
 }
 
-bool cpu_has_avx() {
+bool cpu_runs_gram_kernel() {
   static const bool has = __builtin_cpu_supports("avx");
   return has;
 }
@@ -153,7 +153,8 @@ void GramRowBlock::append_augmented(const double* features, double y) {
   double* row = &at(rows_, 0);
   Index c = 0;
   for (; c + 4 <= count; c += 4, row += panel_stride_)
-    std::copy_n(features + c, 4, row);
+    for (int lane = 0; lane < 4; ++lane)  // a loop of 4, not a call to memmove
+      row[lane] = features[c + lane];
   for (; c < count; ++c)
     at(rows_, c) = features[c];
   at(rows_, count) = y;
@@ -167,7 +168,7 @@ void GramRowBlock::add_to_lower(Eigen::MatrixXd& G) {
   if (depth == 0) return;
   const double* panels = panels_.data();
 #if TPF_GRAM_AVX
-  if (kEigenKernelKnown && cpu_has_avx()) {
+  if (kGramOrderKnown && cpu_runs_gram_kernel()) {
     const auto [kc, mc] = eigen_blocking(size_, depth);
     const std::vector<std::pair<Index, Index>> quads = split_sum_quads(size_, mc);
     std::vector<double> split(4 * quads.size());

@@ -19,7 +19,15 @@ struct IdentificationSetup {
   /// Y of `samples`, computed once for a caller that runs identify and then diagnose on one log
   /// (prepare_diagnosis); empty: each computes the columns it reads.
   std::shared_ptr<const SampleRegressors<N>> regressors;
+  /// gravity_load of `samples`, computed once for both in the same way (prepare_diagnosis);
+  /// empty: each computes it.
+  std::shared_ptr<const Eigen::MatrixXd> abs_gravity;
 };
+
+/// setup.abs_gravity where it is given, else gravity_load(model, setup.samples).
+template <int N>
+Eigen::MatrixXd setup_gravity_load(const IdentificationSetup<N>& setup,
+                                   const Model<double, N>& model, const JointSamples& samples);
 
 /// extract_joint_samples(log) with the model's torque constants (the log must have exactly N
 /// joints: tpf::Error naming the log otherwise), rigid_body_base_parameters(model).

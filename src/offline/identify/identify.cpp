@@ -448,7 +448,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
       s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
                       : std::vector<Eigen::VectorXd>{fit.rigid_theta});
   const Eigen::MatrixXd& rigid = rigids.front();
-  const Eigen::MatrixXd load = gravity_load(model, s);
+  const Eigen::MatrixXd load = setup_gravity_load(setup, model, s);
   Eigen::MatrixXd sensor_reference;
   const Eigen::MatrixXd& reference =
       friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);

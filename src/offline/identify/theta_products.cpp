@@ -26,10 +26,10 @@ void eigen_products(const Eigen::MatrixXd& thetas, const double* phi, double* ou
 #if TPF_THETA_AVX
 
 // The kernel whose order is reproduced: 2-double packets, products then sums.
-constexpr bool kEigenKernelKnown = Eigen::internal::packet_traits<double>::size == 2 &&
-                                   !Eigen::internal::packet_traits<double>::HasHalfPacket;
+constexpr bool kProductOrderKnown = Eigen::internal::packet_traits<double>::size == 2 &&
+                                    !Eigen::internal::packet_traits<double>::HasHalfPacket;
 
-bool cpu_has_avx() {
+bool cpu_runs_product_kernel() {
   static const bool has = __builtin_cpu_supports("avx");
   return has;
 }
@@ -74,7 +74,7 @@ ThetaProducts::ThetaProducts(const Eigen::MatrixXd& thetas)
 void ThetaProducts::apply(const double* phi, double* out) const {
 #if TPF_THETA_AVX
   // One θ: Eigen takes the product as a dot product, summed in another order; its own runs.
-  if (kEigenKernelKnown && thetas_.cols() > 1 && cpu_has_avx()) {
+  if (kProductOrderKnown && thetas_.cols() > 1 && cpu_runs_product_kernel()) {
     avx_products(by_feature_.data(), thetas_.rows(), padded_sets_, thetas_.cols(), phi, out);
     return;
   }
