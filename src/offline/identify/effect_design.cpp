@@ -6,7 +6,7 @@
 #include <type_traits>
 
 #include "offline/effects/effect_columns.hpp"
-#include "offline/identify/gram_rank_update.hpp"
+#include "offline/identify/gram_row_block.hpp"
 #include "offline/identify/parallel_halves.hpp"
 #include "offline/identify/theta_products.hpp"
 #include "tpf/common/error.hpp"

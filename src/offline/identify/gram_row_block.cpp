@@ -1,4 +1,4 @@
-#include "offline/identify/gram_rank_update.hpp"
+#include "offline/identify/gram_row_block.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -17,6 +17,7 @@ namespace tpf::offline {
 namespace {
 
 using Index = Eigen::Index;
+
 /// Eigen's own on the rows gathered from their panels.
 void eigen_rank_update(Eigen::MatrixXd& G, const double* panels, Index depth, Index panel_stride) {
   Eigen::MatrixXd rows(depth, G.rows());
@@ -73,6 +74,7 @@ std::vector<std::pair<Index, Index>> split_sum_quads(Index size, Index mc) {
 
 /// Σ r_k[i]·r_k[j … j + 3] over k in [begin, end) as Eigen's one-packet path sums it: the even
 /// and the odd k of whole groups of 8 apart, added, then the rest in order; added to `sums`.
+/// j is a multiple of 4 (split_sum_quads): the four columns are one panel.
 __attribute__((target("avx"))) void add_split_sums(const double* panels, Index panel_stride,
                                                    Index i, Index j, Index begin, Index end,
                                                    double* sums) {
@@ -142,8 +144,8 @@ GramRowBlock::GramRowBlock(Index size, Index capacity)
   panels_.assign(static_cast<std::size_t>(((size + 3) / 4 + 1) * panel_stride_), 0.0);
 }
 
-void GramRowBlock::append(const double* values, Index count) {
-  for (Index c = 0; c < count; ++c)
+void GramRowBlock::append(const double* values) {
+  for (Index c = 0; c < size_; ++c)
     at(rows_, c) = values[c];
   ++rows_;
 }

@@ -17,15 +17,15 @@ class GramRowBlock {
 
   Eigen::Index rows() const { return rows_; }
   bool full() const { return rows_ == capacity_; }
-  /// Appends the row [values[0 … size), …]: its first `count` values (the rest stay zero).
-  void append(const double* values, Eigen::Index count);
+  /// Appends the row values[0 … size).
+  void append(const double* values);
   /// Appends the augmented design row [φ, y, 1], φ = features[0 … size − 2).
   void append_augmented(const double* features, double y);
   /// G.lower += Σ r rᵀ over the rows appended since the last call (G is size × size), then
   /// empties the block. Every entry is summed in the order Eigen's SSE2 product kernel sums it
   /// (its blocking of the depth, each entry's partial sum started from zero, and the entries its
   /// one-packet rows sum as even and odd halves), without fused multiply-adds: the result equals
-  /// Eigen's rankUpdate to the last bit (tests/identify/gram_rank_update_test.cpp). Where Eigen
+  /// Eigen's rankUpdate to the last bit (tests/identify/gram_row_block_test.cpp). Where Eigen
   /// itself is compiled with AVX or FMA (TPF_NATIVE) or the CPU lacks AVX, Eigen's rankUpdate
   /// runs.
   void add_to_lower(Eigen::MatrixXd& G);

@@ -1,7 +1,7 @@
 // The Gram kernel of identify and diagnose against Eigen's rankUpdate: the same bits, entry by
 // entry, over the shapes Eigen blocks differently (row blocks, depth blocks, the one-packet rows
 // it sums as even and odd halves) and values over many magnitudes.
-#include "offline/identify/gram_rank_update.hpp"
+#include "offline/identify/gram_row_block.hpp"
 
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ int differing_bits(const Eigen::MatrixXd& expected, const Eigen::MatrixXd& got) 
   return differing;
 }
 
-TEST(GramRankUpdate, EqualsEigensRankUpdateBitForBit) {
+TEST(GramRowBlock, EqualsEigensRankUpdateBitForBit) {
   std::mt19937_64 rng(17);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (Eigen::Index size : {1, 2, 3, 5, 8, 13, 16, 27, 30, 33, 46, 50, 61, 70, 75}) {
@@ -48,7 +48,7 @@ TEST(GramRankUpdate, EqualsEigensRankUpdateBitForBit) {
       offline::GramRowBlock block(size, depth);
       for (Eigen::Index k = 0; k < depth; ++k) {
         const Eigen::RowVectorXd row = rows.row(k);
-        block.append(row.data(), size);
+        block.append(row.data());
       }
       EXPECT_TRUE(block.full());
       Eigen::MatrixXd got = before;
@@ -63,14 +63,14 @@ TEST(GramRankUpdate, EqualsEigensRankUpdateBitForBit) {
   }
 }
 
-TEST(GramRankUpdate, EmptyBlockChangesNothing) {
+TEST(GramRowBlock, EmptyBlockChangesNothing) {
   Eigen::MatrixXd G = Eigen::MatrixXd::Identity(4, 4);
   offline::GramRowBlock(4, 8).add_to_lower(G);
   EXPECT_TRUE(G == Eigen::MatrixXd::Identity(4, 4));
 }
 
 // The augmented design row [φ, y, 1] and a reused block: the Gram of each block of rows alone.
-TEST(GramRankUpdate, AugmentedRowsOfReusedBlock) {
+TEST(GramRowBlock, AugmentedRowsOfReusedBlock) {
   std::mt19937_64 rng(29);
   offline::GramRowBlock block(11, 40);
   Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(11, 11), got = expected;
