@@ -97,7 +97,8 @@ void EffectDesign<N>::index_joint_groups() {
   for (int j = 0; j < N; ++j) {
     for (std::size_t g = 0; g < groups_.size(); ++g)
       if (groups_[g].joint == -1 || groups_[g].joint == j) {
-        joint_groups_[j].push_back(static_cast<int>(g));
+        joint_groups_[j].push_back(
+            {static_cast<int>(g), fills_[g], static_cast<int>(groups_[g].columns.size())});
         local_[j].insert(local_[j].end(), groups_[g].columns.begin(), groups_[g].columns.end());
       }
     max_local_ = std::max<int>(max_local_, static_cast<int>(local_[j].size()));
@@ -149,9 +150,9 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws,
       {q, dq, ddq, model_.gear_ratio}, ws.Y, direction, held, base_columns_, candidates_, s, k};
   for (int j = 0; j < N; ++j) {
     double* out = &ws.local(j, 0);  // row-major workspace: this joint's local features
-    for (int g : joint_groups_[j]) {
-      if (filled.empty() || filled[static_cast<std::size_t>(g)]) fills_[g](row, j, out);
-      out += groups_[g].columns.size();
+    for (const JointGroup& g : joint_groups_[j]) {
+      if (filled.empty() || filled[static_cast<std::size_t>(g.group)]) g.fill(row, j, out);
+      out += g.width;
     }
   }
 }
