@@ -10,7 +10,7 @@
 namespace tpf::test {
 namespace {
 
-const std::string kData = TPF_TEST_DATA_DIR;
+const std::string kShippedData = TPF_TEST_DATA_DIR;
 
 // The "(… s)" wall time identify prints after the file name.
 std::string without_wall_time(const std::string& text) {
@@ -19,10 +19,10 @@ std::string without_wall_time(const std::string& text) {
 
 TEST(CliIdentifyThenDiagnose, GivesTheFilesAndPrintoutOfBothCommands) {
   CliSandbox box("identify_then_diagnose");
-  const std::string robot = " --robot " + kData + "/bench1.robot.json";
+  const std::string robot = " --robot " + kShippedData + "/bench1.robot.json";
   // A static threshold other than the default: both fits must take it.
   const std::string fit = " --log log.csv" + robot + " --static-velocity 2e-4";
-  ASSERT_EQ(box.tpf("simulate --scenario " + kData +
+  ASSERT_EQ(box.tpf("simulate --scenario " + kShippedData +
                     "/scenarios/bench1-excitation.json --seed 3 --duration 20 --out log.csv")
                 .exit_code,
             0);
