@@ -3,9 +3,11 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -28,6 +30,30 @@ struct DiagnoseArgs {
   double static_velocity = 1e-4, min_improvement = 0.10;
   bool quiet = false;
 };
+
+/// Refuses an --identify-out that names the file of another output (the later write would
+/// replace it), before the log is read.
+void refuse_shared_output(const DiagnoseArgs& a) {
+  if (a.identify_out.empty()) return;
+  const auto canonical = [](const std::string& path) {  // of files that need not exist yet
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+    const std::filesystem::path full =
+        error ? absolute : std::filesystem::weakly_canonical(absolute, error);
+    return error ? std::filesystem::path(path) : full;
+  };
+  const auto same_file = [&](const std::string& other) {
+    return !other.empty() && canonical(other) == canonical(a.identify_out);
+  };
+  for (const auto& [option, path] :
+       {std::pair<const char*, const std::string&>{"--report", a.report},
+        {"--json", a.json},
+        {"--params", a.params}})
+    if (same_file(path))
+      throw tpf::Error::at(
+          a.identify_out, 0, "--identify-out",
+          std::string("also given as ") + option + ": each output needs its own file");
+}
 
 /// With --identify-out: identify (its defaults) on the samples diagnose then takes over, read
 /// and regressed once; prints and writes what `tpf identify` would.
@@ -140,6 +166,7 @@ void register_diagnose_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
+    refuse_shared_output(*a);
     reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });

@@ -2,6 +2,7 @@
 // the files and the printout of the two commands run apart, byte for byte.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <regex>
 #include <string>
 
@@ -49,6 +50,14 @@ TEST(CliIdentifyThenDiagnose, GivesTheFilesAndPrintoutOfBothCommands) {
   // Not a vacuous comparison: a diagnosis that found an effect, and identify's table.
   EXPECT_NE(both.out.find("Found: "), std::string::npos) << both.out;
   EXPECT_NE(both.out.find("held-out residual RMSE"), std::string::npos) << both.out;
+
+  // One file for two outputs is refused before the log is read, naming the file and the options.
+  const CliResult shared =
+      box.tpf("diagnose --quiet" + fit + " --params ./same.json --identify-out same.json");
+  EXPECT_EQ(shared.exit_code, 1);
+  EXPECT_NE(shared.err.find("same.json: --identify-out: also given as --params"), std::string::npos)
+      << shared.err;
+  EXPECT_FALSE(std::filesystem::exists(box / "same.json"));
 
   // An identify file that cannot be written is named (identify's own error).
   const CliResult unwritable = box.tpf("diagnose --quiet" + fit + " --identify-out missing/p.json");
