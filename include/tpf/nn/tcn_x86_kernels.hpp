@@ -141,8 +141,8 @@ struct BlockStep {
 #endif
 
 // The same few operations on each register type, overloaded by scalar (load, broadcast) or
-// register type: unaligned load and store, broadcast, fused multiply-add, add, max with 0 and
-// the sum of the lanes.
+// register type: unaligned load and store, broadcast from memory or of one lane, fused
+// multiply-add, add, max with 0 and the sum of the lanes.
 TPF_TCN_AVX2 __m256 load256(const float* p) {
   return _mm256_loadu_ps(p);
 }
@@ -154,6 +154,14 @@ TPF_TCN_AVX2 __m256 splat256(const float* p) {
 }
 TPF_TCN_AVX2 __m256d splat256(const double* p) {
   return _mm256_broadcast_sd(p);
+}
+TPF_TCN_AVX2 __m256 splat_lane(__m256 a, int lane) {
+  return _mm256_permutevar8x32_ps(a, _mm256_set1_epi32(lane));
+}
+TPF_TCN_AVX2 __m256d splat_lane(__m256d a, int lane) {
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(
+      _mm256_castpd_ps(a), _mm256_setr_epi32(2 * lane, 2 * lane + 1, 2 * lane, 2 * lane + 1,
+                                             2 * lane, 2 * lane + 1, 2 * lane, 2 * lane + 1)));
 }
 TPF_TCN_AVX2 void store(float* p, __m256 v) {
   _mm256_storeu_ps(p, v);
@@ -201,6 +209,13 @@ TPF_TCN_AVX512 __m512 splat512(const float* p) {
 TPF_TCN_AVX512 __m512d splat512(const double* p) {
   return _mm512_set1_pd(*p);
 }
+// (Zero-masking forms: GCC 12 warns of the unmasked forms' undefined pass-through operand.)
+TPF_TCN_AVX512 __m512 splat_lane(__m512 a, int lane) {
+  return _mm512_maskz_permutexvar_ps(__mmask16(0xFFFF), _mm512_set1_epi32(lane), a);
+}
+TPF_TCN_AVX512 __m512d splat_lane(__m512d a, int lane) {
+  return _mm512_maskz_permutexvar_pd(__mmask8(0xFF), _mm512_set1_epi64(lane), a);
+}
 TPF_TCN_AVX512 void store(float* p, __m512 v) {
   _mm512_storeu_ps(p, v);
 }
@@ -219,7 +234,6 @@ TPF_TCN_AVX512 __m512 add(__m512 a, __m512 b) {
 TPF_TCN_AVX512 __m512d add(__m512d a, __m512d b) {
   return _mm512_add_pd(a, b);
 }
-// (The zero-masking forms: GCC 12 warns of the unmasked form's undefined pass-through operand.)
 TPF_TCN_AVX512 __m512 relu(__m512 a) {
   return _mm512_maskz_max_ps(__mmask16(0xFFFF), a, _mm512_setzero_ps());
 }
@@ -251,9 +265,11 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 //          dealt by column to A sums (A·R ≥ 4 chains): the critical path from block to block;
 //   later  pending(t + j·d) += W_j·x(t) for 1 ≤ j < K, K − 1 taps on one broadcast of each x_c,
 //          each dealt to B sums ((K − 1)·R·B ≥ 6 chains); its slot t + (K − 1)·d starts at zero.
-// Every x_c is broadcast once for `now` and once for `later` instead of once per tap, and
-// `later` of block l comes after `now` of block l + 1 in the instruction stream, so the vector
-// unit fills the waits of the critical path with it. The sum of the lagged taps thus runs from
+// Every x_c is broadcast once for `now` and once for `later` instead of once per tap, both from
+// the registers that hold x (a lane permute; only block 0's raw input is loaded from memory): a
+// step's 64-byte weight loads keep the load ports busy, a permute runs beside the FMAs. `later`
+// of block l comes after `now` of block l + 1 in the instruction stream, so the vector unit
+// fills the waits of the critical path with it. The sum of the lagged taps thus runs from
 // the oldest tap to the newest, one FMA at a time; the order differs from the portable path's
 // and each multiply-add rounds once: equal to rounding (tests/nn/tcn_kernel_test.cpp). Weights,
 // rings, pending sums and outputs are read and written unaligned.

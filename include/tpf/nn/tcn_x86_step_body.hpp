@@ -57,9 +57,12 @@ TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const S* tap, const S* project
 
 /// pending[j] += W_j·x for 1 ≤ j < K (the pending sum of time t + j·d; j = K − 1 starts it), for
 /// the R registers from element `row` on, each tap's axpys dealt by column c to B sums (c mod B);
-/// each broadcast x_c serves the K − 1 taps.
-template <int B, int R, int K, int Hidden, int Columns, typename S, typename Register>
-TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x, S* const (&pending)[K],
+/// each broadcast x_c serves the K − 1 taps. x is broadcast from `x_registers` (V registers) if
+/// InRegisters, else loaded from `x` (block 0's raw input).
+template <int B, int R, int K, int Hidden, int Columns, bool InRegisters, int V, typename S,
+          typename Register>
+TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x,
+                                  const Register (&x_registers)[V], S* const (&pending)[K],
                                   int row) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S));
   Register acc[K][B][R];
@@ -77,7 +80,11 @@ TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x, S* cons
     for (int a = 0; a < B; ++a) {
       const int c = first + a;
       if (c >= Columns) break;
-      const Register s = TPF_TCN_SPLAT(x + c);
+      Register s;
+      if constexpr (InRegisters)
+        s = splat_lane(x_registers[c / lanes], c % lanes);
+      else
+        s = TPF_TCN_SPLAT(x + c);
       TPF_TCN_UNROLL(8)
       for (int r = 0; r < R; ++r)
         TPF_TCN_UNROLL(16)
@@ -93,13 +100,15 @@ TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x, S* cons
 }
 
 /// pending[j] += W_j·x for the whole hidden vector (TPF_TCN_LATER by R registers at a time).
-template <int R, int K, int Hidden, int Columns, typename S>
-TPF_TCN_INLINE void TPF_TCN_LATER_ALL(const tcn_x86::BlockStep<S, K>& block) noexcept {
-  using Register = decltype(TPF_TCN_LOAD(static_cast<const S*>(nullptr)));
+template <int R, int K, int Hidden, int Columns, bool InRegisters, int V, typename S,
+          typename Register>
+TPF_TCN_INLINE void TPF_TCN_LATER_ALL(const tcn_x86::BlockStep<S, K>& block,
+                                      const Register (&x_registers)[V]) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S)), B = tcn_x86::lagged_sums(R, K);
   TPF_TCN_UNROLL(8)
   for (int row = 0; row < Hidden; row += R * lanes)
-    TPF_TCN_LATER<B, R, K, Hidden, Columns, S, Register>(block.taps, block.x, block.pending, row);
+    TPF_TCN_LATER<B, R, K, Hidden, Columns, InRegisters, V, S, Register>(
+        block.taps, block.x, x_registers, block.pending, row);
 }
 
 /// Tcn::step in TPF_TCN_BYTES-byte registers (see tcn_x86_kernels.hpp).
@@ -114,7 +123,9 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   static_assert(Hidden % lanes == 0, "a hidden vector fills whole registers");
   constexpr std::array<int, Levels + 1> rings = Shape::hidden_history_offsets(),
                                         pendings = Shape::pending_offsets();
-  Register h[V];
+  // h: the current block's input; lagged_input: the input of the block whose lagged taps are
+  // still to add (broadcast from registers: the weights' loads already fill the load ports).
+  Register h[V], lagged_input[V];
 
   // Block 0: z = b + pending(t) + P·x(t) + W_0·x(t), h = ReLU(z).
   tcn_x86::BlockStep<S, Kernel> block;
@@ -168,13 +179,15 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
       for (int r = 0; r < R; ++r)
         out[row / lanes + r] = relu(z[r]);
     }
-    TPF_TCN_UNROLL(8)
-    for (int v = 0; v < V; ++v)
-      h[v] = out[v];
     if (l == 1)
-      TPF_TCN_LATER_ALL<R, Kernel, Hidden, In>(block);
+      TPF_TCN_LATER_ALL<R, Kernel, Hidden, In, false>(block, h);
     else
-      TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden>(block);
+      TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden, true>(block, lagged_input);
+    TPF_TCN_UNROLL(8)
+    for (int v = 0; v < V; ++v) {
+      lagged_input[v] = h[v];
+      h[v] = out[v];
+    }
     block = next;
   }
 
@@ -191,7 +204,10 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
     *b.low = w.low_bias[0] + lane_sum(low);
     *b.high = w.high_bias[0] + lane_sum(high);
   }
-  TPF_TCN_LATER_ALL<R, Kernel, Hidden, Levels == 1 ? In : Hidden>(block);
+  if constexpr (Levels == 1)
+    TPF_TCN_LATER_ALL<R, Kernel, Hidden, In, false>(block, lagged_input);
+  else
+    TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden, true>(block, lagged_input);
 }
 
 // This width's parameters end here; the next inclusion defines its own.

@@ -189,21 +189,9 @@ std::pair<std::size_t, std::size_t> count_line_ends(const char* begin, const cha
   return {first, second};
 }
 
-}  // namespace
-
-CsvTable read_csv_table(const std::filesystem::path& path,
-                        const std::vector<std::string>* keep_columns) {
-  if (keep_columns == nullptr) return read_csv_table(path, ColumnFilter{});
-  return read_csv_table(path, [keep_columns](std::string_view name) {
-    return std::find(keep_columns->begin(), keep_columns->end(), name) != keep_columns->end();
-  });
-}
-
-CsvTable read_csv_table(const std::filesystem::path& path, const ColumnFilter& keep_column) {
-  const std::string file = path.string();
-  const FileText file_text(path);
-  const std::string_view text = file_text.text();
-
+/// The table in `text`, the contents of `file`.
+CsvTable parse_csv_table(const std::string& file, std::string_view text,
+                         const ColumnFilter& keep_column) {
   CsvTable table;
   Log& log = table.log;
   log.source = file;
@@ -306,6 +294,28 @@ CsvTable read_csv_table(const std::filesystem::path& path, const ColumnFilter& k
   for (std::size_t c = 0; c < columns; ++c)
     log.quality.missing_per_column[c] = first.missing[c] + second.missing[c];
   return table;
+}
+
+}  // namespace
+
+CsvTable read_csv_table(const std::filesystem::path& path, const ColumnFilter& keep_column) {
+  const FileText file_text(path);
+  try {
+    CsvTable table = parse_csv_table(path.string(), file_text.text(), keep_column);
+    file_text.check_complete();
+    return table;
+  } catch (const Error&) {
+    file_text.check_complete();  // what failed to parse was the zeros past a truncated file's end
+    throw;
+  }
+}
+
+CsvTable read_csv_table(const std::filesystem::path& path,
+                        const std::vector<std::string>* keep_columns) {
+  if (keep_columns == nullptr) return read_csv_table(path, ColumnFilter{});
+  return read_csv_table(path, [keep_columns](std::string_view name) {
+    return std::find(keep_columns->begin(), keep_columns->end(), name) != keep_columns->end();
+  });
 }
 
 Log read_log(const std::filesystem::path& path, const ColumnFilter& keep_column) {
