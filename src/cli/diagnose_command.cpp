@@ -1,14 +1,18 @@
 // `tpf diagnose`: fit the declared model, trace the residual to missing effects, add them, refit,
 // and report before and after on held-out data.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
 #include "heap_reuse.hpp"
+#include "identification_printout.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/log/read_logs.hpp"
@@ -22,10 +26,55 @@ namespace {
 
 struct DiagnoseArgs {
   std::vector<std::string> logs;
-  std::string robot, report, json, params;
+  std::string robot, report, json, params, identify_out;
   double static_velocity = 1e-4, min_improvement = 0.10;
   bool quiet = false;
 };
+
+/// Refuses an --identify-out that names the file of another output (the later write would
+/// replace it), before the log is read.
+void refuse_shared_output(const DiagnoseArgs& a) {
+  if (a.identify_out.empty()) return;
+  const auto canonical = [](const std::string& path) {  // of files that need not exist yet
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+    const std::filesystem::path full =
+        error ? absolute : std::filesystem::weakly_canonical(absolute, error);
+    return error ? std::filesystem::path(path) : full;
+  };
+  const auto same_file = [&](const std::string& other) {
+    return !other.empty() && canonical(other) == canonical(a.identify_out);
+  };
+  for (const auto& [option, path] :
+       {std::pair<const char*, const std::string&>{"--report", a.report},
+        {"--json", a.json},
+        {"--params", a.params}})
+    if (same_file(path))
+      throw tpf::Error::at(
+          a.identify_out, 0, "--identify-out",
+          std::string("also given as ") + option + ": each output needs its own file");
+}
+
+/// With --identify-out: identify (its defaults) on the samples diagnose then takes over, read
+/// and regressed once; prints and writes what `tpf identify` would.
+template <int N>
+tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
+                                                  const tpf::Model<double, N>& model,
+                                                  const tpf::offline::DiagnoseOptions& options,
+                                                  const std::string& identify_out) {
+  using namespace tpf::offline;
+  const auto start = std::chrono::steady_clock::now();
+  IdentificationSetup<N> setup = prepare_diagnosis(log, model, options.samples);
+  const tpf::BaseParameters base = setup.base;
+  const auto regressors = setup.regressors;
+  const auto abs_gravity = setup.abs_gravity;
+  IdentifyOptions identify_options;
+  identify_options.samples = options.samples;
+  identify_options.progress = options.progress;
+  Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
+  tpf::cli::print_and_save_identification<N>(log, id, options.samples, identify_out, start);
+  return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
+}
 
 template <int N>
 void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
@@ -35,7 +84,10 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   options.min_improvement = a.min_improvement;
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
-  const auto d = diagnose<N>(log, tpf::load_robot<double, N>(a.robot), options);
+  const auto model = tpf::load_robot<double, N>(a.robot);
+  const auto d = a.identify_out.empty()
+                     ? diagnose<N>(log, model, options)
+                     : identify_then_diagnose<N>(log, model, options, a.identify_out);
   if (d.samples.simulated) std::printf("SIMULATED log (digital twin)\n");
   for (const auto& f : d.findings)
     std::printf("%s\n", f.c_str());
@@ -102,6 +154,11 @@ void register_diagnose_command(CLI::App& app) {
   cmd->add_option("--report", a->report, "HTML report to write");
   cmd->add_option("--json", a->json, "The same numbers as JSON");
   cmd->add_option("--params", a->params, "Parameter file of the extended model (tpf-params)");
+  cmd->add_option(
+      "--identify-out", a->identify_out,
+      "Also identify the declared model first, as `tpf identify --out FILE` with its "
+      "defaults and this --static-velocity would (the same file and table, printed "
+      "before the diagnosis): the log is read and its regressors computed once for both");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str();
   cmd->add_option("--min-improvement", a->min_improvement,
@@ -109,6 +166,7 @@ void register_diagnose_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
+    refuse_shared_output(*a);
     reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });

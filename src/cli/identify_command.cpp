@@ -3,12 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "heap_reuse.hpp"
+#include "identification_printout.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/identify/joint_samples.hpp"
@@ -30,6 +30,7 @@ struct IdentifyArgs {
 template <int N>
 void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   using namespace tpf::offline;
+  using tpf::cli::print_and_save_identification;
   const auto start = std::chrono::steady_clock::now();
   IdentifyOptions options;
   options.samples.regimes.static_velocity = a.static_velocity;
@@ -38,46 +39,8 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const auto model = tpf::load_robot<double, N>(a.robot);
-  const auto id = identify<N>(log, model, options);
-  const auto& s = id.samples;
-  std::printf("%s%s: %ld samples (%zu skipped for a missing value), effort in %s\n",
-              s.simulated ? "SIMULATED log " : "log ", log.source.c_str(),
-              static_cast<long>(s.size()), s.invalid_count, s.units.name());
-  std::printf("held-out residual RMSE [%s]     static  static-to-kinetic   moving      all\n",
-              s.units.name());
-  nlohmann::json fit;
-  for (int j = 0; j < N; ++j) {
-    const auto& h = id.heldout[j];
-    // Fitted in N·m; printed in the log's unit (mA for a log of currents).
-    const auto in_log_unit = [&](double tau) { return s.units.to_effort(j, tau); };
-    std::printf("  joint %d  %28.3f %18.3f %8.3f %8.3f\n", j + 1,
-                in_log_unit(h[Regime::Static].rmse), in_log_unit(h[Regime::StaticToKinetic].rmse),
-                in_log_unit(h[Regime::Moving].rmse), in_log_unit(h.valid.rmse));
-    fit["heldout_rmse"].push_back({{"static", h[Regime::Static].rmse},
-                                   {"static-to-kinetic", h[Regime::StaticToKinetic].rmse},
-                                   {"moving", h[Regime::Moving].rmse},
-                                   {"all", h.valid.rmse}});
-  }
-  const std::string held_out_note = nothing_held_out_note(s, options.samples);
-  if (!held_out_note.empty()) std::printf("note: %s\n", held_out_note.c_str());
-  std::printf("consistency: %s (min eigenvalue of M(q) %.4g kg·m²)\n",
-              id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
-  for (const auto& p : id.consistency.problems)
-    std::printf("  problem: %s\n", p.c_str());
-  for (const auto& n : id.friction_notes)
-    std::printf("  friction: %s\n", n.c_str());
-  fit["friction_notes"] = id.friction_notes;
-  if (!held_out_note.empty()) fit["heldout_note"] = held_out_note;
-  fit["consistent"] = id.consistency.consistent();
-  fit["problems"] = id.consistency.problems;
-  fit["simulated"] = s.simulated;
-  tpf::save_nominal_model<N>(a.out, id.nominal, log.source, fit.dump());
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("wrote %s (%.1f s)%s\n", a.out.c_str(), wall,
-              id.refitted ? ": the model refitted on every sample, the held-out ones included "
-                            "(the held-out figures above are of its fit without them)"
-                          : "");
+  print_and_save_identification<N>(log, identify<N>(log, model, options), options.samples, a.out,
+                                   start);
 }
 
 }  // namespace

@@ -70,14 +70,15 @@ DeclaredFit fit_declared(const EffectDesign<N>& declared, const JointSamples& s,
 }
 
 template <int N>
-CandidateInputs candidate_inputs(const Model<double, N>& model, const JointSamples& s,
-                                 const ResidualAnalysis& analysis, const DeclaredFit& fit) {
+CandidateInputs candidate_inputs(const Model<double, N>& model, const IdentificationSetup<N>& setup,
+                                 const JointSamples& s, const ResidualAnalysis& analysis,
+                                 const DeclaredFit& fit) {
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
   inputs.ripple_motor_cycles = analysis.ripple_motor_cycles;
   inputs.prediction_rate = analysis.prediction_rate;
-  inputs.abs_gravity = gravity_load(model, s);
+  inputs.abs_gravity = setup_gravity_load(setup, model, s);
   inputs.reference_temperature =
       s.temperature.cols() == N
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -327,13 +328,29 @@ Eigen::VectorXd cad_rigid_body(const Model<double, N>& model, const BaseParamete
 }  // namespace
 
 template <int N>
+IdentificationSetup<N> prepare_diagnosis(const Log& log, const Model<double, N>& model,
+                                         const SampleOptions& options) {
+  IdentificationSetup<N> setup = prepare_identification(log, model, options);
+  setup.regressors = std::make_shared<const SampleRegressors<N>>(
+      model, EffectDesign<N>::regressor_columns(setup.base.independent, true), setup.samples);
+  setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(gravity_load(model, setup.samples));
+  return setup;
+}
+
+template <int N>
 Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
+                      const DiagnoseOptions& options) {
+  IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
+  return diagnose(log, model, std::move(setup), options);
+}
+
+template <int N>
+Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, IdentificationSetup<N> setup,
                       const DiagnoseOptions& options) {
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
   Diagnosis<N> out;
-  IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
   out.samples = std::move(setup.samples);
   const FileSplit split = split_by_file(log, out.samples, options);
   out.heldout_split = split_sentence(log, split, out.samples, options);
@@ -347,8 +364,11 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   selection.regimes = {false, true, true};
 
   say("diagnose: pass 1/4: declared model");
-  const auto regressors = std::make_shared<const SampleRegressors<N>>(
-      model, EffectDesign<N>::regressor_columns(setup.base.independent, true), s);
+  const auto regressors =
+      setup.regressors
+          ? setup.regressors
+          : std::make_shared<const SampleRegressors<N>>(
+                model, EffectDesign<N>::regressor_columns(setup.base.independent, true), s);
   const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
   const DeclaredFit fit = fit_declared(declared, s, selection);
   selection.joint_weights = fit.joint_weights;
@@ -364,7 +384,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
 
   say("diagnose: pass 3/4: candidate effects");
   const EffectDesign<N> design(model, setup.base, s, regressors,
-                               candidate_inputs(model, s, analysis, fit), threshold);
+                               candidate_inputs(model, setup, s, analysis, fit), threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
   out.groups = design.groups();
@@ -428,8 +448,12 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
   return out;
 }
 
-#define TPF_INSTANTIATE_DIAGNOSE(N) \
-  template Diagnosis<N> diagnose<N>(const Log&, const Model<double, N>&, const DiagnoseOptions&);
+#define TPF_INSTANTIATE_DIAGNOSE(N)                                                               \
+  template Diagnosis<N> diagnose<N>(const Log&, const Model<double, N>&, const DiagnoseOptions&); \
+  template Diagnosis<N> diagnose<N>(const Log&, const Model<double, N>&, IdentificationSetup<N>,  \
+                                    const DiagnoseOptions&);                                      \
+  template IdentificationSetup<N> prepare_diagnosis<N>(const Log&, const Model<double, N>&,       \
+                                                       const SampleOptions&);
 TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_DIAGNOSE)
 #undef TPF_INSTANTIATE_DIAGNOSE
 

@@ -190,4 +190,17 @@ template <int N>
 Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
                       const DiagnoseOptions& options = {});
 
+/// The same from samples already prepared by prepare_diagnosis (with `options.samples`): for a
+/// caller that first identifies on them (identify takes the same setup and gives the samples
+/// back in Identification::samples), so that the log is read and its regressors computed once.
+template <int N>
+Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, IdentificationSetup<N> setup,
+                      const DiagnoseOptions& options);
+
+/// prepare_identification with the regressors diagnose reads (a superset of identify's) and the
+/// gravity load both read.
+template <int N>
+IdentificationSetup<N> prepare_diagnosis(const Log& log, const Model<double, N>& model,
+                                         const SampleOptions& options);
+
 }  // namespace tpf::offline

@@ -6,7 +6,9 @@
 #include <type_traits>
 
 #include "offline/effects/effect_columns.hpp"
+#include "offline/identify/gram_row_block.hpp"
 #include "offline/identify/parallel_halves.hpp"
+#include "offline/identify/theta_products.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/dynamics/rnea.hpp"
@@ -95,7 +97,8 @@ void EffectDesign<N>::index_joint_groups() {
   for (int j = 0; j < N; ++j) {
     for (std::size_t g = 0; g < groups_.size(); ++g)
       if (groups_[g].joint == -1 || groups_[g].joint == j) {
-        joint_groups_[j].push_back(static_cast<int>(g));
+        joint_groups_[j].push_back(
+            {static_cast<int>(g), fills_[g], static_cast<int>(groups_[g].columns.size())});
         local_[j].insert(local_[j].end(), groups_[g].columns.begin(), groups_[g].columns.end());
       }
     max_local_ = std::max<int>(max_local_, static_cast<int>(local_[j].size()));
@@ -147,9 +150,9 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws,
       {q, dq, ddq, model_.gear_ratio}, ws.Y, direction, held, base_columns_, candidates_, s, k};
   for (int j = 0; j < N; ++j) {
     double* out = &ws.local(j, 0);  // row-major workspace: this joint's local features
-    for (int g : joint_groups_[j]) {
-      if (filled.empty() || filled[static_cast<std::size_t>(g)]) fills_[g](row, j, out);
-      out += groups_[g].columns.size();
+    for (const JointGroup& g : joint_groups_[j]) {
+      if (filled.empty() || filled[static_cast<std::size_t>(g.group)]) g.fill(row, j, out);
+      out += g.width;
     }
   }
 }
@@ -173,21 +176,16 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
   auto work = [&](Eigen::Index begin, Eigen::Index end, DesignGrams& out) {
     Workspace ws;
     ws.local.resize(N, max_local_);
-    // Local Gram and row buffer per (joint, regime, split).
-    std::vector<Eigen::MatrixXd> gram, buffer;
-    std::vector<int> fill_count(N * 6, 0);
+    // Local Gram and block of rows [features, y, 1] per (joint, regime, split).
+    std::vector<Eigen::MatrixXd> gram;
+    std::vector<GramRowBlock> buffer;
     for (int j = 0; j < N; ++j)
       for (int b = 0; b < 6; ++b) {
         const int width = static_cast<int>(local_[j].size()) + 2;
         gram.push_back(Eigen::MatrixXd::Zero(width, width));
-        buffer.push_back(Eigen::MatrixXd::Zero(kBlock, width));
+        buffer.emplace_back(width, kBlock);
       }
-    auto flush = [&](int slot) {
-      if (fill_count[slot] == 0) return;
-      const auto rows = buffer[slot].topRows(fill_count[slot]);
-      gram[slot].selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
-      fill_count[slot] = 0;
-    };
+    auto flush = [&](int slot) { buffer[slot].add_to_lower(gram[slot]); };
     for (Eigen::Index k = begin; k < end; k += stride) {
       if (!s.valid[k]) continue;
       fill(s, k, ws);
@@ -195,12 +193,9 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
         const Regime r = s.regimes[j][k];
         if (r == Regime::Invalid) continue;
         const int slot = j * 6 + regime_index(r) * 2 + (s.heldout[k] ? 1 : 0);
-        const int width = static_cast<int>(local_[j].size());
-        auto row = buffer[slot].row(fill_count[slot]);
-        row.head(width) = ws.local.row(j).head(width);
-        row[width] = s.effort(k, j);
-        row[width + 1] = 1.0;
-        if (++fill_count[slot] == kBlock) flush(slot);
+        // ws.local is row-major: joint j's features are contiguous.
+        buffer[slot].append_augmented(&ws.local(j, 0), s.effort(k, j));
+        if (buffer[slot].full()) flush(slot);
       }
     }
     out = DesignGrams(N, features_);
@@ -238,12 +233,13 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   for (int i = 0; i < m; ++i)
     predictions.emplace_back(n, N);
   // Per joint: local features × parameter sets.
-  std::vector<Eigen::MatrixXd> local_theta(N);
+  std::vector<ThetaProducts> local_theta;
   for (int j = 0; j < N; ++j) {
-    local_theta[j].resize(static_cast<Eigen::Index>(local_[j].size()), m);
+    Eigen::MatrixXd local(static_cast<Eigen::Index>(local_[j].size()), m);
     for (int i = 0; i < m; ++i)
       for (std::size_t a = 0; a < local_[j].size(); ++a)
-        local_theta[j](static_cast<Eigen::Index>(a), i) = thetas[i][local_[j][a]];
+        local(static_cast<Eigen::Index>(a), i) = thetas[i][local_[j][a]];
+    local_theta.emplace_back(local);
   }
   // A group whose coefficients are zero in every θ_i adds only zeros: its features are not
   // computed (they stay zero in the workspace), the products keep their order.
@@ -251,7 +247,7 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   parallel_halves(n, [&](Eigen::Index begin, Eigen::Index end) {
     Workspace ws;
     ws.local.setZero(N, max_local_);
-    Eigen::RowVectorXd values(m);
+    std::vector<double> values(static_cast<std::size_t>(m));
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
         for (Eigen::MatrixXd& p : predictions)
@@ -260,9 +256,9 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
       }
       fill(s, k, ws, used);
       for (int j = 0; j < N; ++j) {
-        values.noalias() = ws.local.row(j).head(local_theta[j].rows()) * local_theta[j];
+        local_theta[j].apply(&ws.local(j, 0), values.data());  // row-major: joint j's features
         for (int i = 0; i < m; ++i)
-          predictions[i](k, j) = values[i];
+          predictions[i](k, j) = values[static_cast<std::size_t>(i)];
       }
     }
   });

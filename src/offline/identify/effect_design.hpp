@@ -95,9 +95,15 @@ class EffectDesign {
   bool has_temperature_;
   int features_ = 0;
   std::vector<FeatureGroup> groups_;
-  std::vector<FillColumns> fills_;              ///< per group
-  std::vector<std::vector<int>> local_;         ///< per joint: local index → global feature
-  std::vector<std::vector<int>> joint_groups_;  ///< per joint: the groups acting on it, in order
+  std::vector<FillColumns> fills_;       ///< per group
+  std::vector<std::vector<int>> local_;  ///< per joint: local index → global feature
+  /// A group acting on a joint: its index, fill and column count (read per sample and joint).
+  struct JointGroup {
+    int group;
+    FillColumns fill;
+    int width;
+  };
+  std::vector<std::vector<JointGroup>> joint_groups_;  ///< per joint: the groups on it, in order
   int max_local_ = 0;
 };
 

@@ -12,7 +12,10 @@ template <int N>
 IdentificationSetup<N> prepare_identification(const Log& log, const Model<double, N>& model,
                                               const SampleOptions& options) {
   IdentificationSetup<N> setup{
-      extract_joint_samples(log, model.torque_constant.template cast<double>(), options), {}};
+      extract_joint_samples(log, model.torque_constant.template cast<double>(), options),
+      {},
+      {},
+      {}};
   setup.base = rigid_body_base_parameters(model);
   return setup;
 }
@@ -31,10 +34,18 @@ Eigen::MatrixXd gravity_load(const Model<double, N>& model, const JointSamples& 
   return load;
 }
 
+template <int N>
+Eigen::MatrixXd setup_gravity_load(const IdentificationSetup<N>& setup,
+                                   const Model<double, N>& model, const JointSamples& samples) {
+  return setup.abs_gravity ? *setup.abs_gravity : gravity_load(model, samples);
+}
+
 #define TPF_INSTANTIATE_SETUP(N)                                                                 \
   template IdentificationSetup<N> prepare_identification<N>(const Log&, const Model<double, N>&, \
                                                             const SampleOptions&);               \
-  template Eigen::MatrixXd gravity_load<N>(const Model<double, N>&, const JointSamples&);
+  template Eigen::MatrixXd gravity_load<N>(const Model<double, N>&, const JointSamples&);        \
+  template Eigen::MatrixXd setup_gravity_load<N>(const IdentificationSetup<N>&,                  \
+                                                 const Model<double, N>&, const JointSamples&);
 TPF_INSTANTIATE_SETUP(1)
 TPF_INSTANTIATE_SETUP(2)
 TPF_INSTANTIATE_SETUP(3)

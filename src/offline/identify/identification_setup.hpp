@@ -2,7 +2,10 @@
 // robot file, the effort scale of the log's unit, the base parameters and the gravity load.
 #pragma once
 
+#include <memory>
+
 #include "offline/identify/joint_samples.hpp"
+#include "offline/identify/sample_regressors.hpp"
 #include "offline/log/log.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
 #include "tpf/estimation/nominal_model.hpp"
@@ -13,7 +16,18 @@ template <int N>
 struct IdentificationSetup {
   JointSamples samples;  ///< effort in N·m
   BaseParameters base;   ///< rigid-body base parameters of the robot file's model
+  /// Y of `samples`, computed once for a caller that runs identify and then diagnose on one log
+  /// (prepare_diagnosis); empty: each computes the columns it reads.
+  std::shared_ptr<const SampleRegressors<N>> regressors;
+  /// gravity_load of `samples`, computed once for both in the same way (prepare_diagnosis);
+  /// empty: each computes it.
+  std::shared_ptr<const Eigen::MatrixXd> abs_gravity;
 };
+
+/// setup.abs_gravity where it is given, else gravity_load(model, setup.samples).
+template <int N>
+Eigen::MatrixXd setup_gravity_load(const IdentificationSetup<N>& setup,
+                                   const Model<double, N>& model, const JointSamples& samples);
 
 /// extract_joint_samples(log) with the model's torque constants (the log must have exactly N
 /// joints: tpf::Error naming the log otherwise), rigid_body_base_parameters(model).

@@ -393,18 +393,25 @@ const Eigen::MatrixXd& friction_reference(const Log& log, const JointSamples& s,
 template <int N>
 Identification<N> identify(const Log& log, const Model<double, N>& model,
                            const IdentifyOptions& options) {
+  return identify(log, model, prepare_identification(log, model, options.samples), options);
+}
+
+template <int N>
+Identification<N> identify(const Log& log, const Model<double, N>& model,
+                           IdentificationSetup<N> setup, const IdentifyOptions& options) {
   auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
   Identification<N> out;
-  IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
   out.samples = std::move(setup.samples);
   const JointSamples& s = out.samples;
   const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
-  const auto regressors = std::make_shared<const SampleRegressors<N>>(
-      model, EffectDesign<N>::regressor_columns(base.independent, false), s);
+  const auto regressors =
+      setup.regressors ? setup.regressors
+                       : std::make_shared<const SampleRegressors<N>>(
+                             model, EffectDesign<N>::regressor_columns(base.independent, false), s);
   const EffectDesign<N> design(model, base, s, regressors, {},
                                options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);
@@ -441,7 +448,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
       s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
                       : std::vector<Eigen::VectorXd>{fit.rigid_theta});
   const Eigen::MatrixXd& rigid = rigids.front();
-  const Eigen::MatrixXd load = gravity_load(model, s);
+  const Eigen::MatrixXd load = setup_gravity_load(setup, model, s);
   Eigen::MatrixXd sensor_reference;
   const Eigen::MatrixXd& reference =
       friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);
@@ -506,6 +513,8 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
 #define TPF_INSTANTIATE_IDENTIFY(N)                                                            \
   template Identification<N> identify<N>(const Log&, const Model<double, N>&,                  \
                                          const IdentifyOptions&);                              \
+  template Identification<N> identify<N>(const Log&, const Model<double, N>&,                  \
+                                         IdentificationSetup<N>, const IdentifyOptions&);      \
   template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);              \
   template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                 \
                                                const JointSamples&);                           \

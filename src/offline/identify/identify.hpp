@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "offline/identify/identification_setup.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime_stats.hpp"
@@ -74,6 +75,13 @@ struct FrictionCurves {
 template <int N>
 Identification<N> identify(const Log& log, const Model<double, N>& model,
                            const IdentifyOptions& options = {});
+
+/// The same from samples already prepared (prepare_identification(log, model, options.samples)
+/// or prepare_diagnosis): their regressors are used where they are given. The samples end in
+/// Identification::samples.
+template <int N>
+Identification<N> identify(const Log& log, const Model<double, N>& model,
+                           IdentificationSetup<N> setup, const IdentifyOptions& options);
 
 /// M(q) ≻ 0 at 200 seeded poses (rigid body + armature from the base parameters), friction
 /// coefficients non-negative, q̇_s > 0.

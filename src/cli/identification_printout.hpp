@@ -1,0 +1,66 @@
+// What `tpf identify` prints and writes once the model is identified: the held-out table, the
+// consistency check and the parameter file (also `tpf diagnose --identify-out`).
+#pragma once
+
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "offline/identify/identify.hpp"
+#include "offline/log/log.hpp"
+#include "tpf/model/load_robot.hpp"
+
+namespace tpf::cli {
+
+/// Prints the identification of `log` (held-out RMSE per joint and regime in the log's unit,
+/// consistency, friction notes) and writes its model to `out` (tpf-params), with the wall time
+/// since `start`.
+template <int N>
+void print_and_save_identification(const offline::Log& log, const offline::Identification<N>& id,
+                                   const offline::SampleOptions& sample_options,
+                                   const std::string& out,
+                                   std::chrono::steady_clock::time_point start) {
+  using offline::Regime;
+  const auto& s = id.samples;
+  std::printf("%s%s: %ld samples (%zu skipped for a missing value), effort in %s\n",
+              s.simulated ? "SIMULATED log " : "log ", log.source.c_str(),
+              static_cast<long>(s.size()), s.invalid_count, s.units.name());
+  std::printf("held-out residual RMSE [%s]     static  static-to-kinetic   moving      all\n",
+              s.units.name());
+  nlohmann::json fit;
+  for (int j = 0; j < N; ++j) {
+    const auto& h = id.heldout[j];
+    // Fitted in N·m; printed in the log's unit (mA for a log of currents).
+    const auto in_log_unit = [&](double tau) { return s.units.to_effort(j, tau); };
+    std::printf("  joint %d  %28.3f %18.3f %8.3f %8.3f\n", j + 1,
+                in_log_unit(h[Regime::Static].rmse), in_log_unit(h[Regime::StaticToKinetic].rmse),
+                in_log_unit(h[Regime::Moving].rmse), in_log_unit(h.valid.rmse));
+    fit["heldout_rmse"].push_back({{"static", h[Regime::Static].rmse},
+                                   {"static-to-kinetic", h[Regime::StaticToKinetic].rmse},
+                                   {"moving", h[Regime::Moving].rmse},
+                                   {"all", h.valid.rmse}});
+  }
+  const std::string held_out_note = nothing_held_out_note(s, sample_options);
+  if (!held_out_note.empty()) std::printf("note: %s\n", held_out_note.c_str());
+  std::printf("consistency: %s (min eigenvalue of M(q) %.4g kg·m²)\n",
+              id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
+  for (const auto& p : id.consistency.problems)
+    std::printf("  problem: %s\n", p.c_str());
+  for (const auto& n : id.friction_notes)
+    std::printf("  friction: %s\n", n.c_str());
+  fit["friction_notes"] = id.friction_notes;
+  if (!held_out_note.empty()) fit["heldout_note"] = held_out_note;
+  fit["consistent"] = id.consistency.consistent();
+  fit["problems"] = id.consistency.problems;
+  fit["simulated"] = s.simulated;
+  tpf::save_nominal_model<N>(out, id.nominal, log.source, fit.dump());
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("wrote %s (%.1f s)%s\n", out.c_str(), wall,
+              id.refitted ? ": the model refitted on every sample, the held-out ones included "
+                            "(the held-out figures above are of its fit without them)"
+                          : "");
+}
+
+}  // namespace tpf::cli
