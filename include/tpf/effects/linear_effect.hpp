@@ -3,6 +3,7 @@
 // columns serves the fit and the run time, so the two agree by construction.
 #pragma once
 
+#include <algorithm>
 #include <array>
 
 #include "tpf/effects/effect_input.hpp"
@@ -12,20 +13,13 @@ namespace tpf {
 /// τ_j += Σ_c φ_c(x)·θ_jc for every joint j, with φ = Effect::basis(x, j, ·) and θ_j =
 /// effect.coefficients(j, ·) (Effect::kColumns of each). A joint whose θ_j is all zero (the effect
 /// not added there) is skipped: its basis is not evaluated. Allocation-free.
-template <typename S, std::size_t M>
-bool all_zero(const std::array<S, M>& values) noexcept {
-  for (const S v : values)
-    if (v != S(0)) return false;
-  return true;
-}
-
 template <typename Effect, typename S, int N>
 void add_linear_effect_torque(const Effect& effect, const EffectInput<S, N>& x,
                               JointVector<S, N>& tau) noexcept {
   std::array<S, Effect::kColumns> phi{}, theta{};
   for (int j = 0; j < N; ++j) {
     effect.coefficients(j, theta.data());
-    if (all_zero(theta)) continue;
+    if (std::all_of(theta.begin(), theta.end(), [](S c) { return c == S(0); })) continue;
     Effect::basis(x, j, phi.data());
     S sum = S(0);
     for (int c = 0; c < Effect::kColumns; ++c)

@@ -78,7 +78,7 @@ CandidateInputs candidate_inputs(const Model<double, N>& model, const Identifica
   inputs.ripple_cycles = analysis.ripple_cycles;
   inputs.ripple_motor_cycles = analysis.ripple_motor_cycles;
   inputs.prediction_rate = analysis.prediction_rate;
-  inputs.abs_gravity = setup_gravity_load(setup, model, s);
+  inputs.abs_gravity = setup.abs_gravity ? *setup.abs_gravity : gravity_load(model, s);
   inputs.reference_temperature =
       s.temperature.cols() == N
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -325,14 +325,22 @@ Eigen::VectorXd cad_rigid_body(const Model<double, N>& model, const BaseParamete
   return cad;
 }
 
+/// Y(q, q̇, q̈) of every sample in the columns diagnose reads (a superset of identify's).
+template <int N>
+std::shared_ptr<const SampleRegressors<N>> diagnosis_regressors(const Model<double, N>& model,
+                                                                const BaseParameters& base,
+                                                                const JointSamples& s) {
+  return std::make_shared<const SampleRegressors<N>>(
+      model, EffectDesign<N>::regressor_columns(base.independent, true), s);
+}
+
 }  // namespace
 
 template <int N>
 IdentificationSetup<N> prepare_diagnosis(const Log& log, const Model<double, N>& model,
                                          const SampleOptions& options) {
   IdentificationSetup<N> setup = prepare_identification(log, model, options);
-  setup.regressors = std::make_shared<const SampleRegressors<N>>(
-      model, EffectDesign<N>::regressor_columns(setup.base.independent, true), setup.samples);
+  setup.regressors = diagnosis_regressors(model, setup.base, setup.samples);
   setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(gravity_load(model, setup.samples));
   return setup;
 }
@@ -365,10 +373,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
 
   say("diagnose: pass 1/4: declared model");
   const auto regressors =
-      setup.regressors
-          ? setup.regressors
-          : std::make_shared<const SampleRegressors<N>>(
-                model, EffectDesign<N>::regressor_columns(setup.base.independent, true), s);
+      setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
   const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
   const DeclaredFit fit = fit_declared(declared, s, selection);
   selection.joint_weights = fit.joint_weights;

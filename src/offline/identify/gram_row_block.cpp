@@ -4,14 +4,7 @@
 #include <utility>
 #include <vector>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && \
-    defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_VECTORIZE_AVX) &&   \
-    !defined(EIGEN_VECTORIZE_FMA)
-#include <immintrin.h>
-#define TPF_GRAM_AVX 1
-#else
-#define TPF_GRAM_AVX 0
-#endif
+#include "offline/identify/eigen_order_kernels.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -27,7 +20,7 @@ void eigen_rank_update(Eigen::MatrixXd& G, const double* panels, Index depth, In
   G.selfadjointView<Eigen::Lower>().rankUpdate(rows.transpose());
 }
 
-#if TPF_GRAM_AVX
+#if TPF_EIGEN_ORDER_AVX
 
 using Traits = Eigen::internal::gebp_traits<double, double>;
 // The kernel whose order is reproduced: 4 × 4 register blocks of 2-double packets.
@@ -130,12 +123,7 @@ __attribute__((target("avx"))) void add_sequential_sums(Eigen::MatrixXd& G, cons
     }
 }
 
-bool cpu_runs_gram_kernel() {
-  static const bool has = __builtin_cpu_supports("avx");
-  return has;
-}
-
-#endif  // TPF_GRAM_AVX
+#endif  // TPF_EIGEN_ORDER_AVX
 
 }  // namespace
 
@@ -169,8 +157,8 @@ void GramRowBlock::add_to_lower(Eigen::MatrixXd& G) {
   rows_ = 0;
   if (depth == 0) return;
   const double* panels = panels_.data();
-#if TPF_GRAM_AVX
-  if (kGramOrderKnown && cpu_runs_gram_kernel()) {
+#if TPF_EIGEN_ORDER_AVX
+  if (kGramOrderKnown && cpu_runs_eigen_order_kernels()) {
     const auto [kc, mc] = eigen_blocking(size_, depth);
     const std::vector<std::pair<Index, Index>> quads = split_sum_quads(size_, mc);
     std::vector<double> split(4 * quads.size());

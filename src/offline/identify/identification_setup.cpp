@@ -34,18 +34,10 @@ Eigen::MatrixXd gravity_load(const Model<double, N>& model, const JointSamples& 
   return load;
 }
 
-template <int N>
-Eigen::MatrixXd setup_gravity_load(const IdentificationSetup<N>& setup,
-                                   const Model<double, N>& model, const JointSamples& samples) {
-  return setup.abs_gravity ? *setup.abs_gravity : gravity_load(model, samples);
-}
-
 #define TPF_INSTANTIATE_SETUP(N)                                                                 \
   template IdentificationSetup<N> prepare_identification<N>(const Log&, const Model<double, N>&, \
                                                             const SampleOptions&);               \
-  template Eigen::MatrixXd gravity_load<N>(const Model<double, N>&, const JointSamples&);        \
-  template Eigen::MatrixXd setup_gravity_load<N>(const IdentificationSetup<N>&,                  \
-                                                 const Model<double, N>&, const JointSamples&);
+  template Eigen::MatrixXd gravity_load<N>(const Model<double, N>&, const JointSamples&);
 TPF_INSTANTIATE_SETUP(1)
 TPF_INSTANTIATE_SETUP(2)
 TPF_INSTANTIATE_SETUP(3)

@@ -24,11 +24,6 @@ struct IdentificationSetup {
   std::shared_ptr<const Eigen::MatrixXd> abs_gravity;
 };
 
-/// setup.abs_gravity where it is given, else gravity_load(model, setup.samples).
-template <int N>
-Eigen::MatrixXd setup_gravity_load(const IdentificationSetup<N>& setup,
-                                   const Model<double, N>& model, const JointSamples& samples);
-
 /// extract_joint_samples(log) with the model's torque constants (the log must have exactly N
 /// joints: tpf::Error naming the log otherwise), rigid_body_base_parameters(model).
 template <int N>

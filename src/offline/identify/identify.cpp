@@ -448,7 +448,9 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
       s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
                       : std::vector<Eigen::VectorXd>{fit.rigid_theta});
   const Eigen::MatrixXd& rigid = rigids.front();
-  const Eigen::MatrixXd load = setup_gravity_load(setup, model, s);
+  Eigen::MatrixXd computed_load;  // |G(q)| unless prepare_diagnosis computed it for both
+  if (!setup.abs_gravity) computed_load = gravity_load(model, s);
+  const Eigen::MatrixXd& load = setup.abs_gravity ? *setup.abs_gravity : computed_load;
   Eigen::MatrixXd sensor_reference;
   const Eigen::MatrixXd& reference =
       friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);

@@ -2,14 +2,7 @@
 
 #include <algorithm>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && \
-    defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_VECTORIZE_AVX) &&   \
-    !defined(EIGEN_VECTORIZE_FMA)
-#include <immintrin.h>
-#define TPF_THETA_AVX 1
-#else
-#define TPF_THETA_AVX 0
-#endif
+#include "offline/identify/eigen_order_kernels.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -23,16 +16,11 @@ void eigen_products(const Eigen::MatrixXd& thetas, const double* phi, double* ou
   values.noalias() = row * thetas;
 }
 
-#if TPF_THETA_AVX
+#if TPF_EIGEN_ORDER_AVX
 
 // The kernel whose order is reproduced: 2-double packets, products then sums.
 constexpr bool kProductOrderKnown = Eigen::internal::packet_traits<double>::size == 2 &&
                                     !Eigen::internal::packet_traits<double>::HasHalfPacket;
-
-bool cpu_runs_product_kernel() {
-  static const bool has = __builtin_cpu_supports("avx");
-  return has;
-}
 
 /// Four parameter sets per register: the even features' sum, the odd ones', their sum, the last
 /// feature of an odd count, then added to the zero Eigen's destination starts from.
@@ -59,7 +47,7 @@ __attribute__((target("avx"))) void avx_products(const double* by_feature, Index
   }
 }
 
-#endif  // TPF_THETA_AVX
+#endif  // TPF_EIGEN_ORDER_AVX
 
 }  // namespace
 
@@ -72,9 +60,9 @@ ThetaProducts::ThetaProducts(const Eigen::MatrixXd& thetas)
 }
 
 void ThetaProducts::apply(const double* phi, double* out) const {
-#if TPF_THETA_AVX
+#if TPF_EIGEN_ORDER_AVX
   // One θ: Eigen takes the product as a dot product, summed in another order; its own runs.
-  if (kProductOrderKnown && thetas_.cols() > 1 && cpu_runs_product_kernel()) {
+  if (kProductOrderKnown && thetas_.cols() > 1 && cpu_runs_eigen_order_kernels()) {
     avx_products(by_feature_.data(), thetas_.rows(), padded_sets_, thetas_.cols(), phi, out);
     return;
   }
