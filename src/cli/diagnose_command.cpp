@@ -29,6 +29,7 @@ struct DiagnoseArgs {
   std::string robot, report, json, params, identify_out;
   double static_velocity = 1e-4, min_improvement = 0.10;
   bool quiet = false;
+  bool no_load_friction = false, friction_from_sensor = false;  ///< of --identify-out's fit
 };
 
 /// Refuses an --identify-out that names the file of another output (the later write would
@@ -55,13 +56,13 @@ void refuse_shared_output(const DiagnoseArgs& a) {
           std::string("also given as ") + option + ": each output needs its own file");
 }
 
-/// With --identify-out: identify (its defaults) on the samples diagnose then takes over, read
-/// and regressed once; prints and writes what `tpf identify` would.
+/// With --identify-out: identify (with the friction options of `a`) on the samples diagnose then
+/// takes over, read and regressed once; prints and writes what `tpf identify` would.
 template <int N>
 tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
                                                   const tpf::Model<double, N>& model,
                                                   const tpf::offline::DiagnoseOptions& options,
-                                                  const std::string& identify_out) {
+                                                  const DiagnoseArgs& a) {
   using namespace tpf::offline;
   const auto start = std::chrono::steady_clock::now();
   IdentificationSetup<N> setup = prepare_diagnosis(log, model, options.samples);
@@ -71,8 +72,10 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   IdentifyOptions identify_options;
   identify_options.samples = options.samples;
   identify_options.progress = options.progress;
+  identify_options.fit_load_friction = !a.no_load_friction;
+  identify_options.friction_from_sensor = a.friction_from_sensor;
   Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
-  tpf::cli::print_and_save_identification<N>(log, id, options.samples, identify_out, start);
+  tpf::cli::print_and_save_identification<N>(log, id, options.samples, a.identify_out, start);
   return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
 }
 
@@ -85,9 +88,8 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const auto model = tpf::load_robot<double, N>(a.robot);
-  const auto d = a.identify_out.empty()
-                     ? diagnose<N>(log, model, options)
-                     : identify_then_diagnose<N>(log, model, options, a.identify_out);
+  const auto d = a.identify_out.empty() ? diagnose<N>(log, model, options)
+                                        : identify_then_diagnose<N>(log, model, options, a);
   if (d.samples.simulated) std::printf("SIMULATED log (digital twin)\n");
   for (const auto& f : d.findings)
     std::printf("%s\n", f.c_str());
@@ -154,11 +156,19 @@ void register_diagnose_command(CLI::App& app) {
   cmd->add_option("--report", a->report, "HTML report to write");
   cmd->add_option("--json", a->json, "The same numbers as JSON");
   cmd->add_option("--params", a->params, "Parameter file of the extended model (tpf-params)");
-  cmd->add_option(
+  CLI::Option* identify_out = cmd->add_option(
       "--identify-out", a->identify_out,
-      "Also identify the declared model first, as `tpf identify --out FILE` with its "
-      "defaults and this --static-velocity would (the same file and table, printed "
-      "before the diagnosis): the log is read and its regressors computed once for both");
+      "Also identify the declared model first, as `tpf identify --out FILE` with this "
+      "--static-velocity (and --no-load-friction, --friction-from-sensor) would: the same "
+      "file and table, printed before the diagnosis; the log is read and its regressors "
+      "computed once for both");
+  cmd->add_flag("--no-load-friction", a->no_load_friction,
+                "With --identify-out: its fit keeps α_c = α_v = 0, as tpf identify's")
+      ->needs(identify_out);
+  cmd->add_flag("--friction-from-sensor", a->friction_from_sensor,
+                "With --identify-out: its friction fitted against each joint's torque sensor, "
+                "as tpf identify's (see tpf identify --help)")
+      ->needs(identify_out);
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str();
   cmd->add_option("--min-improvement", a->min_improvement,

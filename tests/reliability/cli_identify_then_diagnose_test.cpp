@@ -59,6 +59,20 @@ TEST(CliIdentifyThenDiagnose, GivesTheFilesAndPrintoutOfBothCommands) {
       << shared.err;
   EXPECT_FALSE(std::filesystem::exists(box / "same.json"));
 
+  // identify's friction options reach the one run's fit; without --identify-out they are
+  // refused, naming both options.
+  const std::string options = " --no-load-friction --friction-from-sensor";
+  ASSERT_EQ(box.tpf("identify --quiet" + fit + options + " --out p3.json").exit_code, 0);
+  const CliResult both_options =
+      box.tpf("diagnose --quiet" + fit + options + " --identify-out p4.json");
+  ASSERT_EQ(both_options.exit_code, 0) << both_options.err;
+  EXPECT_EQ(CliSandbox::slurp(box / "p4.json"), CliSandbox::slurp(box / "p3.json"));
+  EXPECT_NE(CliSandbox::slurp(box / "p4.json"), CliSandbox::slurp(box / "p.json"));
+  const CliResult alone = box.tpf("diagnose --quiet" + fit + " --no-load-friction");
+  EXPECT_NE(alone.exit_code, 0);
+  EXPECT_NE(alone.err.find("--no-load-friction requires --identify-out"), std::string::npos)
+      << alone.err;
+
   // An identify file that cannot be written is named (identify's own error).
   const CliResult unwritable = box.tpf("diagnose --quiet" + fit + " --identify-out missing/p.json");
   EXPECT_EQ(unwritable.exit_code, 1);
