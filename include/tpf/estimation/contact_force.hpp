@@ -2,12 +2,12 @@
 // as a prior: regularised least squares, with a validity flag and condition numbers.
 #pragma once
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 
 #include "tpf/common/cholesky3.hpp"
 #include "tpf/common/gram_eigenvalues3.hpp"
+#include "tpf/common/symmetric_eigenvalues2.hpp"
 #include "tpf/common/types.hpp"
 
 namespace tpf {
@@ -64,9 +64,9 @@ struct ContactForce {
 /// Cost: the 3×3 eigenvalues in closed form where at most two joints move the pad
 /// (gram_eigenvalues3), else by cyclic Jacobi rotations (symmetric_eigenvalues3: to ≈ ε·λ_max,
 /// where Eigen's closed form loses the smallest eigenvalue to ≈ 1e-13·λ_max, which the rank test
-/// cannot afford), the 2×2 shear block's in closed form, the solve by a written-out Cholesky factor
-/// (A is positive definite through the priors); the factorisation changed from Eigen's pivoting
-/// LDLT, equal to ≈ 5e-12 relative.
+/// cannot afford), the 2×2 shear block's in closed form (Eigen's computeDirect arithmetic), the
+/// solve by a written-out Cholesky factor (A is positive definite through the priors); the
+/// factorisation changed from Eigen's pivoting LDLT, equal to ≈ 5e-12 relative.
 template <typename S, int N>
 ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact,
                                        const JointVector<S, N>& tau_ext,
@@ -83,9 +83,8 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   out.inverse_condition = sqrt(lambda[0] / lambda_max);
   out.condition =
       lambda[0] > S(0) ? sqrt(lambda_max / lambda[0]) : std::numeric_limits<S>::infinity();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<S, 2, 2>> shear;
-  shear.computeDirect(info.template topLeftCorner<2, 2>().eval(), Eigen::EigenvaluesOnly);
-  out.shear_inverse_condition = sqrt(max(shear.eigenvalues()[0], S(0)) / lambda_max);
+  const S shear_lambda_min = smaller_symmetric_eigenvalue2(info);  // of the top-left 2×2 block
+  out.shear_inverse_condition = sqrt(max(shear_lambda_min, S(0)) / lambda_max);
   out.observable_by_arm = out.inverse_condition >= settings.min_inverse_condition;
 
   const JointVector<S, N> w = tau_sigma_nm.cwiseAbs2().cwiseInverse();

@@ -293,7 +293,7 @@ class Estimator {
       const S r = at_rest ? tracker_.static_external()[j] : fused.residual[j];
       evidence[j] = -r;
       const S s = !at_rest             ? fused.sigma[j]
-                  : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
+                  : (held & (1u << j)) ? held_sigma_[j]
                                        : static_sigma_[j];
       sigma[j] = s;
     }
@@ -342,6 +342,7 @@ class Estimator {
       const S fused = parameters_.fused_sigma[j], nominal = parameters_.nominal_sigma[j];
       nominal_moving_sigma_[j] = nominal > S(0) ? nominal : floor[j];
       moving_sigma_[j] = fused > S(0) ? fused : nominal_moving_sigma_[j];
+      held_sigma_[j] = std::hypot(static_sigma_[j], moving_sigma_[j]);
     }
   }
 
@@ -389,6 +390,7 @@ class Estimator {
   Vector static_sigma_ = Vector::Zero();
   Vector moving_sigma_ = Vector::Zero();
   Vector nominal_moving_sigma_ = Vector::Zero();  ///< σ_nominal (floor when uncalibrated)
+  Vector held_sigma_ = Vector::Zero();  ///< √(static² + moving²): a baseline held at a stop
   Output output_;
   bool started_ = false;
 };
