@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "tpf/common/all_finite.hpp"
 #include "tpf/common/cholesky3.hpp"
 #include "tpf/common/gram_eigenvalues3.hpp"
 #include "tpf/common/symmetric_eigenvalues2.hpp"
@@ -103,7 +104,7 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   out.force_std_contact = cholesky.inverse_diagonal().cwiseMax(S(0)).cwiseSqrt();
   out.force_world = R_contact * out.force_contact;
   out.valid = out.shear_inverse_condition >= settings.min_inverse_condition &&
-              out.force_contact.allFinite();
+              all_finite(out.force_contact);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "tpf/common/all_finite.hpp"
 #include "tpf/estimation/acceleration_filter.hpp"
 #include "tpf/estimation/compensator.hpp"
 #include "tpf/estimation/contact_force.hpp"
@@ -160,7 +161,7 @@ class Estimator {
   Acceleration acceleration(const Sample& sample, S h) noexcept {
     const Vector& filtered = acceleration_.update(sample.dq, h);
     if (!sample.has_ddq) return {filtered};
-    if (sample.ddq.allFinite()) return {sample.ddq};
+    if (all_finite(sample.ddq)) return {sample.ddq};
     return {filtered, kStatusAccelerationEstimated};
   }
 
@@ -301,7 +302,7 @@ class Estimator {
                                         sigma, skin_.normal_force(pad), parameters_.wrench);
     out.wrench.pad = pad;
     out.wrench.point_world = point;
-    if (skin_.contact_count() == 1 && out.wrench.force_world.allFinite()) {
+    if (skin_.contact_count() == 1 && all_finite(out.wrench.force_world)) {
       out.external.torque = jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
       out.external.residual = -out.external.torque;
     }
@@ -312,7 +313,7 @@ class Estimator {
   bool finite(const Sample& s) const noexcept {
     if constexpr (P == Eigen::Dynamic)
       if (s.pressure.size() != skin_.count()) return false;
-    return std::isfinite(s.t) && s.q.allFinite() && s.dq.allFinite() && s.effort.allFinite();
+    return std::isfinite(s.t) && all_finite(s.q, s.dq, s.effort);
   }
 
   /// The pad readings for stuck detection: a reading on a rail (≤ 0 or ≥ full scale) is NaN, so
