@@ -247,14 +247,16 @@ class Estimator {
     set_estimate(TorqueEstimator::Fused, dead_band(fused.residual, fused_band), all);
     const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
     const ExternalTorque<S, N>& moving = out.estimate(TorqueEstimator::Fused);
+    // Element by element: the values were just stored that way (a vector load of them would wait).
     for (int j = 0; j < N; ++j) {
       const bool use_static = fixed.valid & (1u << j);
-      out.external.residual[j] = use_static ? fixed.residual[j] : moving.residual[j];
+      const S residual = use_static ? fixed.residual[j] : moving.residual[j];
+      out.external.residual[j] = residual;
       out.external.torque[j] = use_static ? fixed.torque[j] : moving.torque[j];
+      held_residual_[j] = residual;  // what a joint stopping next cycle holds
+      fused.outside_band = fused.outside_band || residual != S(0);
     }
     out.external.valid = all;
-    held_residual_ = out.external.residual;  // what a joint stopping next cycle holds
-    fused.outside_band = (out.external.residual.array() != S(0)).any();
     return fused;
   }
 

@@ -117,7 +117,12 @@ void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLink
   rigid = link_parameter_torque(nominal.model, links.rigid, data, dq, ddq);
   if (links.added_effects) rigid += added_effort(nominal, q, dq, ddq);
   JointVector<S, N> abs_gravity = JointVector<S, N>::Zero();
-  if (links.load_dependent) abs_gravity = gravity_at_pose(nominal.model, data).cwiseAbs();
+  if (links.load_dependent) {
+    // Element by element: data.g was just stored that way (a vector load of it would wait).
+    const JointVector<S, N>& gravity = gravity_at_pose(nominal.model, data);
+    for (int j = 0; j < N; ++j)
+      abs_gravity[j] = std::abs(gravity[j]);
+  }
   friction = links.neighbour_load ? stribeck_friction(nominal.friction, dq, abs_gravity)
                                   : own_load_stribeck_friction(nominal.friction, dq, abs_gravity);
 }
