@@ -331,7 +331,9 @@ class Estimator {
   /// A joint's reading as one row: [q, q̇, effort].
   static Eigen::Matrix<S, N, 3> joint_reading(const Sample& s) noexcept {
     Eigen::Matrix<S, N, 3> r;
-    r << s.q, s.dq, s.effort;
+    r.col(0) = s.q;
+    r.col(1) = s.dq;
+    r.col(2) = s.effort;
     return r;
   }
 
