@@ -112,15 +112,13 @@ const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
   return data.tau;
 }
 
-/// Gravity torques G(q) = RNEA(q, 0, 0), in data.g, by a gravity-only pass: with the base
-/// acceleration a_0 = −g carried into each link frame, a_k = R_kᵀ a_{k−1}, and the first moment of
-/// links k..N about link k's origin, H_k = h_k + R_{k+1} H_{k+1} + m_{k+1..N} p_{k+1},
-/// G_k = z_k · (H_k × a_k). Runs joint_transforms (data.liMi at q; data.oMi is left as it was);
-/// overwrites data.acc and data.composite_first_moment. Allocation-free.
+/// Gravity torques G(q) = RNEA(q, 0, 0) on the joint transforms already in data.liMi
+/// (joint_transforms or forward_kinematics at q first), in data.g, by a gravity-only pass: with
+/// the base acceleration a_0 = −g carried into each link frame, a_k = R_kᵀ a_{k−1}, and the first
+/// moment of links k..N about link k's origin, H_k = h_k + R_{k+1} H_{k+1} + m_{k+1..N} p_{k+1},
+/// G_k = z_k · (H_k × a_k). Overwrites data.acc and data.composite_first_moment. Allocation-free.
 template <typename S, int N>
-const JointVector<S, N>& compute_gravity(const Model<S, N>& model, Data<S, N>& data,
-                                         const NoDeduce<JointVector<S, N>>& q) noexcept {
-  joint_transforms(model, data, q);
+const JointVector<S, N>& gravity_at_pose(const Model<S, N>& model, Data<S, N>& data) noexcept {
   const ModelConstants<S, N>& c = model.constants;
   // Both recursions run on locals, each value stored once (no store-to-load round trip).
   Vector3<S> a = -model.gravity;
@@ -139,6 +137,15 @@ const JointVector<S, N>& compute_gravity(const Model<S, N>& model, Data<S, N>& d
     data.g(k - 1) = detail::dot(model.axes[k - 1], detail::cross(H, data.acc[k]));
   }
   return data.g;
+}
+
+/// Gravity torques G(q) = RNEA(q, 0, 0), in data.g: joint_transforms (data.liMi at q; data.oMi is
+/// left as it was), then gravity_at_pose. Allocation-free.
+template <typename S, int N>
+const JointVector<S, N>& compute_gravity(const Model<S, N>& model, Data<S, N>& data,
+                                         const NoDeduce<JointVector<S, N>>& q) noexcept {
+  joint_transforms(model, data, q);
+  return gravity_at_pose(model, data);
 }
 
 /// Velocity-product torques C(q,q̇)q̇ = RNEA(q, q̇, 0) − G(q), in data.tau. Runs joint_transforms.

@@ -16,6 +16,7 @@
 namespace tpf {
 
 /// Evaluated at run time, in this order. Each type has a `key`, its parameters (zero = absent),
+/// present() (some parameter is in use: without one, add_torque adds nothing),
 /// add_torque(EffectInput, τ) (allocation-free, noexcept) and read(Fields&) / write(Json&) of its
 /// fields of the parameter file's "added_effects".
 template <typename S, int N>
@@ -48,6 +49,12 @@ struct AddedEffects {
   template <typename F>
   void for_each(F&& f) const {
     std::apply([&f](const auto&... effect) { (f(effect), ...); }, effects);
+  }
+  /// Some effect is present (without one, torque() is all zeros).
+  bool any() const noexcept {
+    bool present = false;
+    for_each([&present](const auto& effect) { present = present || effect.present(); });
+    return present;
   }
   /// Σ of every effect's torque [N·m]. Allocation-free.
   JointVector<S, N> torque(const EffectInput<S, N>& x) const noexcept {

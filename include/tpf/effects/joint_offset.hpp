@@ -19,6 +19,7 @@ struct JointOffset {
   static void basis(const EffectInput<S, N>&, int, S* columns) noexcept { columns[0] = S(1); }
   void coefficients(int joint, S* out) const noexcept { out[0] = offset[joint]; }
   void set_coefficients(int joint, const S* in) noexcept { offset[joint] = in[0]; }
+  bool present() const noexcept { return (offset.array() != S(0)).any(); }
   void add_torque(const EffectInput<S, N>& x, JointVector<S, N>& tau) const noexcept {
     add_linear_effect_torque(*this, x, tau);
   }

@@ -21,6 +21,7 @@ struct JointSpring {
   }
   void coefficients(int joint, S* out) const noexcept { out[0] = stiffness[joint]; }
   void set_coefficients(int joint, const S* in) noexcept { stiffness[joint] = in[0]; }
+  bool present() const noexcept { return (stiffness.array() != S(0)).any(); }
   void add_torque(const EffectInput<S, N>& x, JointVector<S, N>& tau) const noexcept {
     add_linear_effect_torque(*this, x, tau);
   }

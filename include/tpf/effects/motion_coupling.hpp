@@ -39,6 +39,9 @@ struct MotionCoupling {
         acceleration(joint, k) = *in++;
       }
   }
+  bool present() const noexcept {
+    return (velocity.array() != S(0)).any() || (acceleration.array() != S(0)).any();
+  }
   void add_torque(const EffectInput<S, N>& x, JointVector<S, N>& tau) const noexcept {
     add_linear_effect_torque(*this, x, tau);
   }

@@ -54,6 +54,7 @@ struct PositionRipple {
       if (terms[i].joint == joint && terms[i].motor_side == motor_side)
         terms[i].sin_amplitude = terms[i].cos_amplitude = S(0);
   }
+  bool present() const noexcept { return count > 0; }
   void add_torque(const EffectInput<S, N>& x, JointVector<S, N>& tau) const noexcept {
     S phi[kColumns];
     for (int i = 0; i < count; ++i) {

@@ -2,12 +2,13 @@
 // as a prior: regularised least squares, with a validity flag and condition numbers.
 #pragma once
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 
+#include "tpf/common/all_finite.hpp"
 #include "tpf/common/cholesky3.hpp"
 #include "tpf/common/gram_eigenvalues3.hpp"
+#include "tpf/common/symmetric_eigenvalues2.hpp"
 #include "tpf/common/types.hpp"
 
 namespace tpf {
@@ -46,6 +47,39 @@ struct ContactForce {
   bool valid = false;              ///< the estimate is meaningful (see estimate_contact_force)
 };
 
+namespace detail {
+
+/// J_c = Rᵀ·J_v: the linear rows of a world Jacobian in the frame whose axes are R's columns,
+/// column by column (Rᵀx with the sums of small_products.hpp's rotate_back).
+template <typename S, int N>
+Eigen::Matrix<S, 3, N> linear_rows_in_frame(const Jacobian<S, N>& J_world,
+                                            const Matrix3<S>& R) noexcept {
+  Eigen::Matrix<S, 3, N> Jc;
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < 3; ++i)
+      Jc(i, j) = R(0, i) * J_world(0, j) + R(1, i) * J_world(1, j) + R(2, i) * J_world(2, j);
+  return Jc;
+}
+
+/// a·bᵀ for a product known to be symmetric (b = a or b = a·diag(w)): the lower triangle summed
+/// over the columns in order, mirrored to the upper; Eigen's product without its temporaries,
+/// equal to it to rounding.
+template <typename S, int N>
+Matrix3<S> symmetric_product(const Eigen::Matrix<S, 3, N>& a,
+                             const Eigen::Matrix<S, 3, N>& b) noexcept {
+  Matrix3<S> m;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c <= r; ++c) {
+      S sum = a(r, 0) * b(c, 0);
+      for (int j = 1; j < N; ++j)
+        sum += a(r, j) * b(c, j);
+      m(r, c) = m(c, r) = sum;
+    }
+  return m;
+}
+
+}  // namespace detail
+
 /// Solves for the force f (contact frame) acting at the pad point from the external torque τ [N·m]
 /// (what the environment applies to the robot, τ = J_cᵀ f with J_c = Rᵀ·J_v the linear rows of the
 /// point Jacobian in the contact frame), weighting each joint by the std σ_τ,j of its τ estimate
@@ -64,9 +98,9 @@ struct ContactForce {
 /// Cost: the 3×3 eigenvalues in closed form where at most two joints move the pad
 /// (gram_eigenvalues3), else by cyclic Jacobi rotations (symmetric_eigenvalues3: to ≈ ε·λ_max,
 /// where Eigen's closed form loses the smallest eigenvalue to ≈ 1e-13·λ_max, which the rank test
-/// cannot afford), the 2×2 shear block's in closed form, the solve by a written-out Cholesky factor
-/// (A is positive definite through the priors); the factorisation changed from Eigen's pivoting
-/// LDLT, equal to ≈ 5e-12 relative.
+/// cannot afford), the 2×2 shear block's in closed form (Eigen's computeDirect arithmetic), the
+/// solve by a written-out Cholesky factor (A is positive definite through the priors); the
+/// factorisation changed from Eigen's pivoting LDLT, equal to ≈ 5e-12 relative.
 template <typename S, int N>
 ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact,
                                        const JointVector<S, N>& tau_ext,
@@ -74,8 +108,8 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
                                        const ContactForceSettings<S>& settings = {}) noexcept {
   using std::max, std::sqrt;
   ContactForce<S> out;
-  const Eigen::Matrix<S, 3, N> Jc = R_contact.transpose() * J_world.template topRows<3>();
-  const Matrix3<S> info = Jc * Jc.transpose();  // J_c J_cᵀ, symmetric 3×3: the geometry alone
+  const Eigen::Matrix<S, 3, N> Jc = detail::linear_rows_in_frame(J_world, R_contact);
+  const Matrix3<S> info = detail::symmetric_product(Jc, Jc);  // J_c J_cᵀ: the geometry alone
 
   const Vector3<S> lambda = gram_eigenvalues3(Jc, info).cwiseMax(S(0));  // ascending
   const S lambda_max = lambda[2];
@@ -83,14 +117,13 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   out.inverse_condition = sqrt(lambda[0] / lambda_max);
   out.condition =
       lambda[0] > S(0) ? sqrt(lambda_max / lambda[0]) : std::numeric_limits<S>::infinity();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<S, 2, 2>> shear;
-  shear.computeDirect(info.template topLeftCorner<2, 2>().eval(), Eigen::EigenvaluesOnly);
-  out.shear_inverse_condition = sqrt(max(shear.eigenvalues()[0], S(0)) / lambda_max);
+  const S shear_lambda_min = smaller_symmetric_eigenvalue2(info);  // of the top-left 2×2 block
+  out.shear_inverse_condition = sqrt(max(shear_lambda_min, S(0)) / lambda_max);
   out.observable_by_arm = out.inverse_condition >= settings.min_inverse_condition;
 
   const JointVector<S, N> w = tau_sigma_nm.cwiseAbs2().cwiseInverse();
   const Eigen::Matrix<S, 3, N> JcW = Jc * w.asDiagonal();
-  Matrix3<S> A = JcW * Jc.transpose();
+  Matrix3<S> A = detail::symmetric_product(JcW, Jc);
   const S sigma_n = settings.prior_relative * pad_force + settings.prior_floor_n;
   const S sigma_t = settings.shear_relative * pad_force + settings.prior_floor_n;
   const S ridge = settings.shear_regularisation * A.trace();
@@ -104,7 +137,7 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   out.force_std_contact = cholesky.inverse_diagonal().cwiseMax(S(0)).cwiseSqrt();
   out.force_world = R_contact * out.force_contact;
   out.valid = out.shear_inverse_condition >= settings.min_inverse_condition &&
-              out.force_contact.allFinite();
+              all_finite(out.force_contact);
   return out;
 }
 

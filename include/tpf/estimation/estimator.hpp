@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "tpf/common/all_finite.hpp"
 #include "tpf/estimation/acceleration_filter.hpp"
 #include "tpf/estimation/compensator.hpp"
 #include "tpf/estimation/contact_force.hpp"
@@ -160,7 +161,7 @@ class Estimator {
   Acceleration acceleration(const Sample& sample, S h) noexcept {
     const Vector& filtered = acceleration_.update(sample.dq, h);
     if (!sample.has_ddq) return {filtered};
-    if (sample.ddq.allFinite()) return {sample.ddq};
+    if (all_finite(sample.ddq)) return {sample.ddq};
     return {filtered, kStatusAccelerationEstimated};
   }
 
@@ -246,14 +247,16 @@ class Estimator {
     set_estimate(TorqueEstimator::Fused, dead_band(fused.residual, fused_band), all);
     const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
     const ExternalTorque<S, N>& moving = out.estimate(TorqueEstimator::Fused);
+    // Element by element: the values were just stored that way (a vector load of them would wait).
     for (int j = 0; j < N; ++j) {
       const bool use_static = fixed.valid & (1u << j);
-      out.external.residual[j] = use_static ? fixed.residual[j] : moving.residual[j];
+      const S residual = use_static ? fixed.residual[j] : moving.residual[j];
+      out.external.residual[j] = residual;
       out.external.torque[j] = use_static ? fixed.torque[j] : moving.torque[j];
+      held_residual_[j] = residual;  // what a joint stopping next cycle holds
+      fused.outside_band = fused.outside_band || residual != S(0);
     }
     out.external.valid = all;
-    held_residual_ = out.external.residual;  // what a joint stopping next cycle holds
-    fused.outside_band = (out.external.residual.array() != S(0)).any();
     return fused;
   }
 
@@ -293,7 +296,7 @@ class Estimator {
       const S r = at_rest ? tracker_.static_external()[j] : fused.residual[j];
       evidence[j] = -r;
       const S s = !at_rest             ? fused.sigma[j]
-                  : (held & (1u << j)) ? std::hypot(static_sigma_[j], moving_sigma_[j])
+                  : (held & (1u << j)) ? held_sigma_[j]
                                        : static_sigma_[j];
       sigma[j] = s;
     }
@@ -301,7 +304,7 @@ class Estimator {
                                         sigma, skin_.normal_force(pad), parameters_.wrench);
     out.wrench.pad = pad;
     out.wrench.point_world = point;
-    if (skin_.contact_count() == 1 && out.wrench.force_world.allFinite()) {
+    if (skin_.contact_count() == 1 && all_finite(out.wrench.force_world)) {
       out.external.torque = jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
       out.external.residual = -out.external.torque;
     }
@@ -312,7 +315,7 @@ class Estimator {
   bool finite(const Sample& s) const noexcept {
     if constexpr (P == Eigen::Dynamic)
       if (s.pressure.size() != skin_.count()) return false;
-    return std::isfinite(s.t) && s.q.allFinite() && s.dq.allFinite() && s.effort.allFinite();
+    return std::isfinite(s.t) && all_finite(s.q, s.dq, s.effort);
   }
 
   /// The pad readings for stuck detection: a reading on a rail (≤ 0 or ≥ full scale) is NaN, so
@@ -328,7 +331,9 @@ class Estimator {
   /// A joint's reading as one row: [q, q̇, effort].
   static Eigen::Matrix<S, N, 3> joint_reading(const Sample& s) noexcept {
     Eigen::Matrix<S, N, 3> r;
-    r << s.q, s.dq, s.effort;
+    r.col(0) = s.q;
+    r.col(1) = s.dq;
+    r.col(2) = s.effort;
     return r;
   }
 
@@ -342,6 +347,7 @@ class Estimator {
       const S fused = parameters_.fused_sigma[j], nominal = parameters_.nominal_sigma[j];
       nominal_moving_sigma_[j] = nominal > S(0) ? nominal : floor[j];
       moving_sigma_[j] = fused > S(0) ? fused : nominal_moving_sigma_[j];
+      held_sigma_[j] = std::hypot(static_sigma_[j], moving_sigma_[j]);
     }
   }
 
@@ -389,6 +395,7 @@ class Estimator {
   Vector static_sigma_ = Vector::Zero();
   Vector moving_sigma_ = Vector::Zero();
   Vector nominal_moving_sigma_ = Vector::Zero();  ///< σ_nominal (floor when uncalibrated)
+  Vector held_sigma_ = Vector::Zero();  ///< √(static² + moving²): a baseline held at a stop
   Output output_;
   bool started_ = false;
 };

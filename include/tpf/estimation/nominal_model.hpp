@@ -74,13 +74,15 @@ JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
 /// The nominal model in link form for the per-cycle path (computed once at start-up):
 ///   rigid = the identified base values scattered onto their regressor columns (zero elsewhere),
 ///           a standard parameter vector π with Y·π = Y_b·π_b for every motion (Y_b is made of
-///           columns of Y), evaluated by link_parameter_torque;
-///   load  = the inertias of nominal.model, whose |G(q)| drives the load-dependent friction.
+///           columns of Y), evaluated by link_parameter_torque.
+/// The load-dependent friction's |G(q)| is that of nominal.model's own inertias (gravity_at_pose,
+/// on the model's constants).
 template <typename S, int N>
 struct NominalLinks {
   LinkParameters<S, N> rigid;
-  LinkParameters<S, N> load;
-  bool load_dependent = false;  ///< some α or neighbour-load β, γ ≠ 0: G(q) of `load` is needed
+  bool load_dependent = false;  ///< some α or neighbour-load β, γ ≠ 0: G(q) of the model is needed
+  bool neighbour_load = false;  ///< some β, γ ≠ 0 (without one, those terms add zeros)
+  bool added_effects = false;   ///< some added effect is present (without one, they add zeros)
 };
 
 /// NominalLinks of `nominal` (see there). Allocation-free; columns outside 0..13N−1 are ignored.
@@ -93,30 +95,36 @@ NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
   }
   NominalLinks<S, N> links;
   links.rigid = link_parameters<S, N>(pi);
-  links.load = link_parameters<S, N>(dynamic_parameters(
-      nominal.model, JointVector<S, N>::Zero().eval(), JointVector<S, N>::Zero().eval()));
+  links.neighbour_load = has_neighbour_load(nominal.friction);
   links.load_dependent = (nominal.friction.load_coulomb.array() != S(0)).any() ||
                          (nominal.friction.load_viscous.array() != S(0)).any() ||
-                         has_neighbour_load(nominal.friction);
+                         links.neighbour_load;
+  links.added_effects = nominal.added.any();
   return links;
 }
 
 /// predict_effort on the link transforms already in data.liMi (joint_transforms or
 /// forward_kinematics of nominal.model at q first; the world poses are not read): models of one
-/// robot evaluated at one sample share one kinematics. The same operations, so the same result.
-/// Allocation-free, no exceptions.
+/// robot evaluated at one sample share one kinematics. The same operations, so the same result;
+/// terms whose parameters are all zero (added effects, neighbour load; see NominalLinks) are not
+/// evaluated. Allocation-free, no exceptions.
 template <typename S, int N>
 void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
                             Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
                             const NoDeduce<JointVector<S, N>>& dq,
                             const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
                             JointVector<S, N>& friction) noexcept {
-  rigid = link_parameter_torque(nominal.model, links.rigid, data, dq, ddq) +
-          added_effort(nominal, q, dq, ddq);
+  rigid = link_parameter_torque(nominal.model, links.rigid, data, dq, ddq);
+  if (links.added_effects) rigid += added_effort(nominal, q, dq, ddq);
   JointVector<S, N> abs_gravity = JointVector<S, N>::Zero();
-  if (links.load_dependent)
-    abs_gravity = link_parameter_gravity(nominal.model, links.load, data).cwiseAbs();
-  friction = stribeck_friction(nominal.friction, dq, abs_gravity);
+  if (links.load_dependent) {
+    // Element by element: data.g was just stored that way (a vector load of it would wait).
+    const JointVector<S, N>& gravity = gravity_at_pose(nominal.model, data);
+    for (int j = 0; j < N; ++j)
+      abs_gravity[j] = std::abs(gravity[j]);
+  }
+  friction = links.neighbour_load ? stribeck_friction(nominal.friction, dq, abs_gravity)
+                                  : own_load_stribeck_friction(nominal.friction, dq, abs_gravity);
 }
 
 /// Predicted effort (joint torque the drive must produce) [N·m], split in two:
@@ -128,7 +136,8 @@ void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLink
 ///              predicted (it is whatever the drive settled at; the estimator's FSM handles it).
 /// The per-cycle form: one forward kinematics (left in data.liMi / data.oMi at q), Y_b·π_b by
 /// Newton–Euler on the link form `links` = nominal_links(nominal) (equal to the regressor form to
-/// rounding), and G(q) by a gravity-only pass when the friction is load dependent.
+/// rounding), and G(q) by a gravity-only pass (gravity_at_pose) when the friction is load
+/// dependent.
 /// Allocation-free, no exceptions.
 template <typename S, int N>
 void predict_effort(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,

@@ -106,6 +106,18 @@ JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p, const Joi
   return tau;
 }
 
+/// Load-dependent friction of every joint without the neighbour-load terms (equal to the whole-arm
+/// form above when every β, γ is zero, where those terms add zeros).
+template <typename S, int N>
+JointVector<S, N> own_load_stribeck_friction(const StribeckParameters<S, N>& p,
+                                             const JointVector<S, N>& dq,
+                                             const JointVector<S, N>& abs_gravity) {
+  JointVector<S, N> tau;
+  for (int j = 0; j < N; ++j)
+    tau[j] = stribeck_friction(p, j, dq[j], abs_gravity[j]);
+  return tau;
+}
+
 /// Smooth form for gradient-based fitting: sgn(q̇) is replaced by tanh(q̇/ε), which makes τ_f
 /// continuous and differentiable at q̇ = 0 (τ_f(0) = 0) and equal to the sharp form within a
 /// factor tanh(|q̇|/ε) ≥ 0.995 once |q̇| ≥ 3ε. The symmetric curve only: the direction
