@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "offline/log/log.hpp"
@@ -119,12 +121,22 @@ std::unique_ptr<PlainEstimator> make_plain_estimator() {
       nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model), parameters());
 }
 
+/// The median of `ns` (sorted in place).
+double median(std::vector<double>& ns) {
+  std::sort(ns.begin(), ns.end());
+  return ns[ns.size() / 2];
+}
+
 /// Replays the teaching log through `est` (time keeps advancing), one timed update per iteration;
-/// median, p99, p99.9 and max of the per-step wall time as counters.
+/// median, p99, p99.9 and max of the per-step wall time as counters, and the median and share of
+/// the steps by where the wrench was estimated (`median_ns_no_wrench`, `median_ns_link<k>`: a pad
+/// of link k, whose Jacobian has k columns that can be nonzero).
 template <typename Est, typename Row = Sample>
 void time_steps(benchmark::State& state, Est& est, const std::vector<Row>& rows = samples()) {
   std::vector<double> ns;
   ns.reserve(1 << 22);
+  std::vector<int> wrench_link;  // per timed step: the wrench pad's link, 0 without a wrench
+  wrench_link.reserve(ns.capacity());
   std::size_t r = 0;
   double t_offset = 0;
   int wrenches = 0;
@@ -136,12 +148,23 @@ void time_steps(benchmark::State& state, Est& est, const std::vector<Row>& rows 
     const auto stop = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(out.wrench.force_world);
     wrenches += out.wrench.pad >= 0;
-    if (ns.size() < ns.capacity())
+    if (ns.size() < ns.capacity()) {
       ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count());
+      wrench_link.push_back(out.wrench.pad >= 0 ? est.skin().geometry(out.wrench.pad).link : 0);
+    }
     if (++r == rows.size()) {
       r = 0;
       t_offset += rows.back().t - rows.front().t + 0.0025;
     }
+  }
+  std::map<int, std::vector<double>> by_link;
+  for (std::size_t k = 0; k < ns.size(); ++k)
+    by_link[wrench_link[k]].push_back(ns[k]);
+  for (auto& [link, times] : by_link) {
+    const std::string name = link == 0 ? "no_wrench" : "link" + std::to_string(link);
+    state.counters["share_" + name] =
+        static_cast<double>(times.size()) / static_cast<double>(ns.size());
+    state.counters["median_ns_" + name] = median(times);
   }
   std::sort(ns.begin(), ns.end());
   auto quantile = [&](double q) { return ns[static_cast<std::size_t>(q * (ns.size() - 1))]; };

@@ -24,9 +24,9 @@ tpf::TcnWeightFile random_file(int inputs, int hidden, int outputs, std::uint64_
   return tpf::offline::to_weight_file(p);
 }
 
-template <typename S, typename Compensator>
+template <typename S, int Joints = kJoints, typename Compensator>
 void run(benchmark::State& state, Compensator& c) {
-  tpf::CompensatorInput<S, kJoints> x = tpf::CompensatorInput<S, kJoints>::LinSpaced(-0.5, 0.5);
+  tpf::CompensatorInput<S, Joints> x = tpf::CompensatorInput<S, Joints>::LinSpaced(-0.5, 0.5);
   c.reset(x);
   S t = 0;
   for (auto _ : state) {
@@ -57,6 +57,16 @@ void PerJoint(benchmark::State& state) {
   run<S>(state, *c);
 }
 
+/// The shipped shape (float, 16 channels, ≈ 14 kB of weights each) with 1–4 networks: the step
+/// grows by one network's time while their weights fit the L1 cache, by more once they do not.
+template <int Networks>
+void PerJointNetworks(benchmark::State& state) {
+  auto c = std::make_unique<tpf::PerJointTcnCompensator<float, Networks, 16, 4>>();
+  for (int j = 0; j < Networks; ++j)
+    tpf::tcn_weights_from_file(random_file(kInputs, 16, 1, j + 1), c->network(j).weights());
+  run<float, Networks>(state, *c);
+}
+
 /// The same per-joint networks stepped one after another (what PerJointTcnCompensator::step did
 /// before it interleaved them, Tcn::step_together): the same results, bit for bit.
 template <typename S, int Hidden>
@@ -84,6 +94,9 @@ BENCHMARK(PerJoint<float, 16, int(tpf::TcnKernel::Portable)>)
 BENCHMARK(PerJoint<double, 16>)->Name("Compensator/per_joint_16ch/double");
 BENCHMARK(PerJoint<float, 32>)->Name("Compensator/per_joint_32ch/float");
 BENCHMARK(PerJoint<double, 32>)->Name("Compensator/per_joint_32ch/double");
+BENCHMARK(PerJointNetworks<1>)->Name("Compensator/per_joint_16ch/float/networks:1");
+BENCHMARK(PerJointNetworks<2>)->Name("Compensator/per_joint_16ch/float/networks:2");
+BENCHMARK(PerJointNetworks<3>)->Name("Compensator/per_joint_16ch/float/networks:3");
 BENCHMARK(PerJointOneAfterAnother<float, 16>)
     ->Name("Compensator/per_joint_16ch/float/one_after_another");
 BENCHMARK(PerJointOneAfterAnother<double, 32>)
