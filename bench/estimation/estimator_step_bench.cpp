@@ -83,21 +83,22 @@ tpf::EstimatorParameters<double, N> parameters() {
 /// The estimator with a seeded random TCN (weights ~ U(−0.05, 0.05)): the arithmetic of a trained
 /// one, without a weight file.
 std::unique_ptr<BenchEstimator> make_estimator() {
-  Tcn32 tcn;
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(-0.05, 0.05);
   auto fill = [&](auto& m) {
     for (Eigen::Index i = 0; i < m.size(); ++i)
       m.data()[i] = u(rng);
   };
-  for (auto& w : tcn.weights().input_taps)
+  auto weights = std::make_unique<Tcn32::Weights>();
+  for (auto& w : weights->input_taps)
     fill(w);
-  fill(tcn.weights().input_projection);
-  for (auto& block : tcn.weights().taps)
+  fill(weights->input_projection);
+  for (auto& block : weights->taps)
     for (auto& w : block)
       fill(w);
-  fill(tcn.weights().low_weight);
-  fill(tcn.weights().high_weight);
+  fill(weights->low_weight);
+  fill(weights->high_weight);
+  Tcn32 tcn(*weights);
   const auto nominal = twin_nominal();
   return std::make_unique<BenchEstimator>(
       nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model), parameters(), tcn);

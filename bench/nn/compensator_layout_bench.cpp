@@ -39,7 +39,7 @@ void run(benchmark::State& state, Compensator& c) {
 template <typename S>
 void AllJoints(benchmark::State& state) {
   auto c = std::make_unique<tpf::Tcn<S, kInputs * kJoints, 32, 4, 4, kJoints>>();
-  tpf::tcn_weights_from_file(random_file(kInputs * kJoints, 32, kJoints, 1), c->weights());
+  tpf::tcn_weights_from_file(random_file(kInputs * kJoints, 32, kJoints, 1), *c);
   run<S>(state, *c);
 }
 
@@ -48,7 +48,7 @@ template <typename S, int Hidden, int kernel = -1>
 void PerJoint(benchmark::State& state) {
   auto c = std::make_unique<tpf::PerJointTcnCompensator<S, kJoints, Hidden, 4>>();
   for (int j = 0; j < kJoints; ++j) {
-    tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j).weights());
+    tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j));
     if (kernel >= 0 && !c->network(j).use_kernel(tpf::TcnKernel(kernel))) {
       state.SkipWithError("kernel not supported here");
       return;
@@ -63,7 +63,7 @@ template <int Networks>
 void PerJointNetworks(benchmark::State& state) {
   auto c = std::make_unique<tpf::PerJointTcnCompensator<float, Networks, 16, 4>>();
   for (int j = 0; j < Networks; ++j)
-    tpf::tcn_weights_from_file(random_file(kInputs, 16, 1, j + 1), c->network(j).weights());
+    tpf::tcn_weights_from_file(random_file(kInputs, 16, 1, j + 1), c->network(j));
   run<float, Networks>(state, *c);
 }
 
@@ -74,7 +74,7 @@ void PerJointOneAfterAnother(benchmark::State& state) {
   using Bank = tpf::PerJointTcnCompensator<S, kJoints, Hidden, 4>;
   auto c = std::make_unique<Bank>();
   for (int j = 0; j < kJoints; ++j)
-    tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j).weights());
+    tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j));
   tpf::CompensatorInput<S, kJoints> x = tpf::CompensatorInput<S, kJoints>::LinSpaced(-0.5, 0.5);
   c->reset(x);
   S t = 0;

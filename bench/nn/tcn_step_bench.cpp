@@ -23,7 +23,7 @@ void BM_TcnStep(benchmark::State& state) {
   for (auto& b : p.blocks)
     b.bias.setConstant(0.05);  // keep most units active
   tpf::TcnWeightFile file = tpf::offline::to_weight_file(p);
-  tpf::tcn_weights_from_file(file, tcn->weights());
+  tpf::tcn_weights_from_file(file, *tcn);
   typename Engine::Input x = Engine::Input::LinSpaced(S(-0.5), S(0.5));
   tcn->reset(x);
   S t = 0;

@@ -231,7 +231,9 @@ TEST(EstimatorTwin, TransitionSigmaCalibrationAndACompensatorOfKnownWeights) {
   using SmallTcn = Tcn<double, kCompensatorInputsPerJoint * kJoints, 8, 2, 4, kJoints>;
   SmallTcn tcn;
   const Vec b(0.15, -0.1, 0.05, 0.025);  // N·m
-  tcn.weights().low_bias = b;
+  SmallTcn::Weights weights;
+  weights.low_bias = b;
+  tcn.set_weights(weights);
   auto params = twin_parameters();
   params.nominal_sigma = sigma.nominal;
   params.fused_sigma = sigma.nominal;

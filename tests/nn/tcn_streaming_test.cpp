@@ -161,6 +161,34 @@ TEST(TcnStreaming, ResetEqualsFeedingTheSteadyInputForOneReceptiveField) {
   EXPECT_LT((fo - po).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+/// A network given new weights mid-stream starts over as one built with them, in every kernel the
+/// CPU runs (16 floats fill the x86 kernels' registers): the old network's activations, in its
+/// rings and the kernels' pending sums, do not reach the new one's outputs.
+TEST(TcnStreaming, NewWeightsStartOverAsANewNetwork) {
+  const TcnArchitecture a{3, 16, 3, 4, 1};
+  using Engine = Tcn<float, 3, 16, 3>;
+  auto first = std::make_unique<Engine>(), second = std::make_unique<Engine>();
+  test::load_parameters(test::random_tcn_parameters(a, 51), *first);
+  test::load_parameters(test::random_tcn_parameters(a, 52), *second);
+  const Eigen::MatrixXd before = test::random_inputs(3, 45, 53),
+                        after = test::random_inputs(3, 60, 54);
+  for (TcnKernel kernel : {TcnKernel::Portable, TcnKernel::Avx2, TcnKernel::Avx512}) {
+    auto changed = std::make_unique<Engine>(first->weights());
+    auto fresh = std::make_unique<Engine>(second->weights());
+    if (!changed->use_kernel(kernel) || !fresh->use_kernel(kernel)) continue;
+    stream(*changed, before, 0);
+    changed->set_weights(second->weights());
+    EXPECT_EQ(stream(*changed, after, 0), stream(*fresh, after, 0)) << int(kernel);
+    changed->set_weights(first->weights());  // and prewarmed after the change
+    const Eigen::Vector3f steady(0.2f, -0.1f, 0.4f);
+    changed->reset(steady);
+    auto prewarmed = std::make_unique<Engine>(first->weights());
+    prewarmed->use_kernel(kernel);
+    prewarmed->reset(steady);
+    EXPECT_EQ(stream(*changed, after, 0), stream(*prewarmed, after, 0)) << int(kernel);
+  }
+}
+
 TEST(TcnStreaming, NonFiniteSampleIsFlaggedAndHeldOver) {
   const offline::TcnParameters p = test::random_tcn_parameters({4, 8, 3, 4, 2}, 61);
   Tcn<double, 4, 8, 3, 4, 2> clean, dirty;

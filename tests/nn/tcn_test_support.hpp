@@ -82,7 +82,7 @@ template <typename Engine>
 void load_parameters(const offline::TcnParameters& p, Engine& tcn) {
   TcnWeightFile file = offline::to_weight_file(p);
   file.path = "<memory>";
-  tcn_weights_from_file(file, tcn.weights());
+  tcn_weights_from_file(file, tcn);
 }
 
 }  // namespace tpf::test

@@ -141,8 +141,8 @@ TEST(TrainingFeatures, ScaledHeadsScaleTheStreamingOutputExactly) {
   scale_tcn_outputs(scaled, scale);
   auto plain = std::make_unique<AllJointsTcn>(), big = std::make_unique<AllJointsTcn>();
   const TcnWeightFile fp = to_weight_file(p), fs = to_weight_file(scaled);
-  tcn_weights_from_file(fp, plain->weights());
-  tcn_weights_from_file(fs, big->weights());
+  tcn_weights_from_file(fp, *plain);
+  tcn_weights_from_file(fs, *big);
   plain->reset(AllJointsTcn::Input::Zero());
   big->reset(AllJointsTcn::Input::Zero());
   for (int k = 0; k < 60; ++k) {
@@ -166,9 +166,9 @@ TEST(TrainingFeatures, MaskedInputIsIgnoredAndExactWhereItWasHeldAtZero) {
   mask_tcn_inputs(masked, {0});
   auto plain = std::make_unique<JointTcn>(), without = std::make_unique<JointTcn>(),
        shifted = std::make_unique<JointTcn>();
-  tcn_weights_from_file(to_weight_file(p), plain->weights());
-  tcn_weights_from_file(to_weight_file(masked), without->weights());
-  tcn_weights_from_file(to_weight_file(masked), shifted->weights());
+  tcn_weights_from_file(to_weight_file(p), *plain);
+  tcn_weights_from_file(to_weight_file(masked), *without);
+  tcn_weights_from_file(to_weight_file(masked), *shifted);
   plain->reset(JointTcn::Input::Zero());
   without->reset(JointTcn::Input::Zero());
   JointTcn::Input steady = JointTcn::Input::Zero();
@@ -189,7 +189,7 @@ TEST(TrainingFeatures, MaskedInputIsIgnoredAndExactWhereItWasHeldAtZero) {
   EXPECT_GT(moved, 0.0);
   // The unmasked network does move with q, so the checks above can fail.
   auto seeing = std::make_unique<JointTcn>();
-  tcn_weights_from_file(to_weight_file(p), seeing->weights());
+  tcn_weights_from_file(to_weight_file(p), *seeing);
   JointTcn::Input x = JointTcn::Input::Constant(0.5);
   seeing->reset(x);
   const double at_zero = seeing->step(x)[0];

@@ -75,8 +75,13 @@ class Tcn {
   }
 
   const Weights& weights() const noexcept { return weights_; }
-  /// Mutable weights, for loaders; call reset() after changing them.
-  Weights& weights() noexcept { return weights_; }
+  /// Replaces the weights and clears the history, as a Tcn constructed with them: the rings (and
+  /// the kernels' pending sums) hold the old network's activations, which the new one must not
+  /// read. Call reset(x̄) to prewarm. Start-up code (copies the weights).
+  void set_weights(const Weights& weights) noexcept {
+    weights_ = weights;
+    clear_history();
+  }
 
   /// Prewarms every block's history with the activations a constant input x̄ produces, i.e. the
   /// state reached after feeding x̄ for R steps: h_l = ReLU(b_l + (Σ_j W_{l,j} + P_l)·h_{l−1}).
