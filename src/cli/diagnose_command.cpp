@@ -28,7 +28,7 @@ struct DiagnoseArgs {
   std::vector<std::string> logs;
   std::string robot, report, json, params, identify_out;
   double static_velocity = 1e-4, min_improvement = 0.10;
-  bool quiet = false;
+  bool quiet = false, inertia_prior = false;
   bool no_load_friction = false, friction_from_sensor = false;  ///< of --identify-out's fit
 };
 
@@ -74,6 +74,7 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   identify_options.progress = options.progress;
   identify_options.fit_load_friction = !a.no_load_friction;
   identify_options.friction_from_sensor = a.friction_from_sensor;
+  identify_options.inertia_prior = a.inertia_prior;
   Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification<N>(log, id, options.samples, a.identify_out, start);
   return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
@@ -85,6 +86,7 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   DiagnoseOptions options;
   options.samples.regimes.static_velocity = a.static_velocity;
   options.min_improvement = a.min_improvement;
+  options.inertia_prior = a.inertia_prior;
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const auto model = tpf::load_robot<double, N>(a.robot);
@@ -95,6 +97,11 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
     std::printf("%s\n", f.c_str());
   for (const auto& n : d.notes)
     std::printf("note: %s\n", n.c_str());
+  if (d.inertia_prior_strength > 0)
+    std::printf(
+        "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (declared model); "
+        "every fit pulled toward the robot file's inertias with strength %.3g\n",
+        d.min_mass_eigenvalue_without_prior, d.inertia_prior_strength);
   const char* names[4] = {"static", "static-to-kinetic", "moving", "all"};
   std::printf(
       "held-out RMSE [%s] before -> after: the selection's linear fit (friction held at "
@@ -169,6 +176,10 @@ void register_diagnose_command(CLI::App& app) {
                 "With --identify-out: its friction fitted against each joint's torque sensor, "
                 "as tpf identify's (see tpf identify --help)")
       ->needs(identify_out);
+  cmd->add_flag("--inertia-prior", a->inertia_prior,
+                "Where the declared model's M(q) is not positive definite, every fit pulled "
+                "toward the robot file's inertias as tpf identify --inertia-prior does (the "
+                "strength found for the declared model); with --identify-out, its fit too");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str();
   cmd->add_option("--min-improvement", a->min_improvement,

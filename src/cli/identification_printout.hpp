@@ -47,6 +47,19 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
               id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
   for (const auto& p : id.consistency.problems)
     std::printf("  problem: %s\n", p.c_str());
+  const auto& prior = id.inertia_prior;
+  if (prior.judged_strength > 0 || prior.written_strength > 0) {
+    std::printf(
+        "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (judged fit), %.4g "
+        "(written fit); the rigid body pulled toward the robot file's inertias with strength "
+        "%.3g and %.3g, the smallest that lifts it to a tenth of the robot file's own\n",
+        prior.judged_min_eigenvalue, prior.written_min_eigenvalue, prior.judged_strength,
+        prior.written_strength);
+    fit["inertia_prior"] = {{"judged_strength", prior.judged_strength},
+                            {"written_strength", prior.written_strength},
+                            {"judged_min_mass_eigenvalue_without", prior.judged_min_eigenvalue},
+                            {"written_min_mass_eigenvalue_without", prior.written_min_eigenvalue}};
+  }
   for (const auto& n : id.friction_notes)
     std::printf("  friction: %s\n", n.c_str());
   fit["friction_notes"] = id.friction_notes;

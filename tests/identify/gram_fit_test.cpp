@@ -85,5 +85,37 @@ TEST(GramFit, RefitColumnsFitsTheRestOnTheResidualAndKeepsTheOthers) {
   EXPECT_NEAR(refit[3], 3.0, 0.1);  // the true held term
 }
 
+/// The prior's term μ·s_c·(θ_c − θ̄_c)² (s_c the column's own Σφ_c²): on columns 0–2 fitted
+/// together, θ = (ΦᵀΦ + μS)⁻¹(Φᵀy + μSθ̄) with S = diag(ΦᵀΦ) on the prior's columns (1 and 2);
+/// strength 0 is the plain fit, a very strong prior returns its mean.
+TEST(GramFit, ColumnPriorAddsItsRelativeRidgeTowardItsMean) {
+  const Rows r = make_rows();
+  const DesignGrams g = grams_of(r);
+  FitSelection moving;
+  moving.regimes = {false, false, true};
+  const Eigen::VectorXd plain = offline::fit_columns(g, {0, 1, 2}, moving);
+  moving.prior.mean = Eigen::Vector4d(9.0, -1.0, 4.0, 7.0);
+  moving.prior.columns = {1, 2, 3};
+  EXPECT_EQ(offline::fit_columns(g, {0, 1, 2}, moving), plain);  // strength 0: no prior
+  moving.prior.strength = 0.7;
+  const Eigen::MatrixXd phi = r.phi_moving.leftCols(3);
+  Eigen::MatrixXd A = phi.transpose() * phi;
+  Eigen::VectorXd b = phi.transpose() * r.y_moving;
+  for (int c : {1, 2}) {
+    const double weight = 0.7 * A(c, c);
+    A(c, c) += weight;
+    b[c] += weight * moving.prior.mean[c];
+  }
+  const Eigen::VectorXd direct = A.colPivHouseholderQr().solve(b);
+  const Eigen::VectorXd theta = offline::fit_columns(g, {0, 1, 2}, moving);
+  EXPECT_NEAR((theta.head(3) - direct).norm(), 0.0, 1e-10);
+  EXPECT_GT((theta - plain).norm(), 0.1);  // the prior moved it
+  EXPECT_EQ(theta[3], 0.0);                // not fitted, whatever the prior says
+  moving.prior.strength = 1e9;
+  const Eigen::VectorXd held = offline::fit_columns(g, {0, 1, 2}, moving);
+  EXPECT_NEAR(held[1], -1.0, 1e-6);
+  EXPECT_NEAR(held[2], 4.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace tpf::test

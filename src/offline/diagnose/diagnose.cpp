@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <utility>
 
@@ -12,6 +13,7 @@
 #include "offline/diagnose/residual_analysis.hpp"
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/identification_setup.hpp"
+#include "offline/identify/inertia_prior.hpp"
 #include "offline/identify/parallel_jobs.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/validate/measured_facts.hpp"
@@ -34,8 +36,12 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
 
 /// Pass 1: the declared model fitted on motion (every 4th sample is plenty for the candidates'
 /// inputs; selection and the before/after table use every sample), its residual, its rigid-body
-/// prediction, and the joint weights 1/σ_j² of the fit.
+/// prediction, and the joint weights 1/σ_j² of the fit; with an inertia prior, the larger
+/// strength fit_with_inertia_prior finds for the weighted fit on the training rows and on every
+/// row (what the written model is refitted on), which the fit then has.
 struct DeclaredFit {
+  double prior_strength = 0;
+  double min_mass_eigenvalue_without_prior = 0;
   Eigen::VectorXd joint_weights;
   Eigen::VectorXd viscous;           ///< per joint: the fitted viscous coefficient b_j
   Eigen::MatrixXd residual;          ///< effort − declared prediction
@@ -43,8 +49,9 @@ struct DeclaredFit {
 };
 
 template <int N>
-DeclaredFit fit_declared(const EffectDesign<N>& declared, const JointSamples& s,
-                         FitSelection selection) {
+DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& base,
+                         const EffectDesign<N>& declared, const JointSamples& s,
+                         FitSelection selection, const ColumnPrior* prior) {
   const DesignGrams grams = declared.accumulate(s, 4);
   Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
   DeclaredFit fit;
@@ -56,6 +63,20 @@ DeclaredFit fit_declared(const EffectDesign<N>& declared, const JointSamples& s,
     fit.joint_weights[j] = 1.0 / std::max(sums.std() * sums.std(), 1e-18);
   }
   selection.joint_weights = fit.joint_weights;
+  if (prior) {  // the strength the fit on the training rows needs, or on every row if more
+    FitSelection every = selection;
+    every.heldout_rows = true;
+    fit.min_mass_eigenvalue_without_prior = std::numeric_limits<double>::infinity();
+    for (const FitSelection& rows : {selection, every}) {
+      const PriorFit<N> with = fit_with_inertia_prior(model, declared, base, grams,
+                                                      declared.declared_columns(), rows, prior);
+      fit.prior_strength = std::max(fit.prior_strength, with.strength);
+      fit.min_mass_eigenvalue_without_prior =
+          std::min(fit.min_mass_eigenvalue_without_prior, with.min_eigenvalue_without);
+    }
+    selection.prior = *prior;
+    selection.prior.strength = fit.prior_strength;
+  }
   theta = fit_columns(grams, declared.declared_columns(), selection);
   std::vector<Eigen::MatrixXd> predictions =
       declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
@@ -375,8 +396,12 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   const auto regressors =
       setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
   const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
-  const DeclaredFit fit = fit_declared(declared, s, selection);
+  const ColumnPrior declared_prior = robot_file_prior(model, declared, setup.base);
+  const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
+                                       options.inertia_prior ? &declared_prior : nullptr);
   selection.joint_weights = fit.joint_weights;
+  out.inertia_prior_strength = fit.prior_strength;
+  out.min_mass_eigenvalue_without_prior = fit.min_mass_eigenvalue_without_prior;
 
   say("diagnose: pass 2/4: residual analysis");
   const ResidualAnalysis analysis =
@@ -392,6 +417,10 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
                                candidate_inputs(model, setup, s, analysis, fit), threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
+  if (fit.prior_strength > 0) {  // the declared fit's strength for every fit from here on
+    selection.prior = robot_file_prior(model, design, setup.base);
+    selection.prior.strength = fit.prior_strength;
+  }
   out.groups = design.groups();
   std::vector<TransferFold> transfer;
   std::vector<OutsideFold> outside;

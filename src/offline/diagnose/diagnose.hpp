@@ -38,6 +38,10 @@ struct DiagnoseOptions {
   /// Several files: two files repeat one motion when the RMS of Δq over their common length is
   /// below this on every joint [rad] (repeated_motions); such files are held out together.
   double repeat_tolerance = 0.01;
+  /// IdentifyOptions::inertia_prior for diagnose's fits: the strength found for the declared
+  /// model's fit (on the training rows or on every row, the larger) holds for every fit of the
+  /// selection and the written model.
+  bool inertia_prior = false;
   ProgressLine progress;
 };
 
@@ -182,6 +186,10 @@ struct Diagnosis : EffectDiagnosis {
   /// The declared model as identify fits it (rigid body and friction curves, nothing added):
   /// what `written_before` scores; beside `nominal` it shows what a folded payload does.
   NominalModel<double, N> declared;
+  /// DiagnoseOptions::inertia_prior: the prior strength of every fit (0: none was needed) and
+  /// the smallest eigenvalue of M(q) of the declared model's fit without it [kg·m²].
+  double inertia_prior_strength = 0;
+  double min_mass_eigenvalue_without_prior = 0;
 };
 
 /// Runs the diagnosis of `log` for the arm of `model` (robot file). Never hands ground truth

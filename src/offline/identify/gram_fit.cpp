@@ -37,6 +37,21 @@ Eigen::VectorXd solve_normal_equations(const Eigen::MatrixXd& A, const Eigen::Ve
   return d.asDiagonal() * cod.solve(Eigen::VectorXd(d.asDiagonal() * b));
 }
 
+// The prior's term strength·s_c·(θ_c − mean_c)², s_c = A(c, c) of the data, on each fitted
+// column c it holds: A(c, c) += strength·s_c, b_c += strength·s_c·mean_c.
+void add_prior(const ColumnPrior& prior, const std::vector<int>& columns, Eigen::MatrixXd& A,
+               Eigen::VectorXd& b) {
+  if (!(prior.strength > 0)) return;
+  for (std::size_t a = 0; a < columns.size(); ++a) {
+    if (std::find(prior.columns.begin(), prior.columns.end(), columns[a]) == prior.columns.end())
+      continue;
+    const Eigen::Index i = static_cast<Eigen::Index>(a);
+    const double weight = prior.strength * A(i, i);
+    A(i, i) += weight;
+    b[i] += weight * prior.mean[columns[a]];
+  }
+}
+
 // Σ_j w_j Σ_r G over the selected training rows (and held-out ones, FitSelection::heldout_rows): A
 // = Σφ_cφ_cᵀ, b = Σφ_c(y − φᵀθ_fixed).
 void normal_equations(const DesignGrams& grams, const std::vector<int>& columns,
@@ -61,6 +76,7 @@ void normal_equations(const DesignGrams& grams, const std::vector<int>& columns,
       }
     }
   }
+  add_prior(selection.prior, columns, A, b);
 }
 
 }  // namespace

@@ -31,6 +31,16 @@ struct DesignGrams {
   DesignGrams& operator+=(const DesignGrams& other);
 };
 
+/// A Gaussian prior on some columns: the fit minimises the weighted sum of squares plus
+/// strength · Σ_c s_c·(θ_c − mean_c)² over the prior's columns that it fits, s_c the column's own
+/// diagonal Σ_j w_j Σ φ_c² of the selected rows. The strength is relative: 0.01 weighs the prior
+/// as 1 % of the data's information on each column; 0 (the default) is no prior.
+struct ColumnPrior {
+  Eigen::VectorXd mean;      ///< P-vector (only the prior's columns are read)
+  std::vector<int> columns;  ///< the columns it holds
+  double strength = 0;
+};
+
 /// Which rows a fit uses and how joints are weighted.
 struct FitSelection {
   std::array<bool, DesignGrams::kRegimes> regimes{true, true, true};
@@ -38,6 +48,7 @@ struct FitSelection {
   /// The held-out rows too: the final fit of a model chosen on held-out data, which the file
   /// gets once nothing is left to judge.
   bool heldout_rows = false;
+  ColumnPrior prior;  ///< on the fitted columns that it holds; none by default
 };
 
 /// θ over `columns` (others zero) minimising Σ_j w_j Σ_(training rows of j) r² with column

@@ -11,6 +11,7 @@
 #include "offline/identify/effect_design.hpp"
 #include "offline/identify/gram_fit.hpp"
 #include "offline/identify/identification_setup.hpp"
+#include "offline/identify/inertia_prior.hpp"
 #include "offline/identify/linear_friction_fit.hpp"
 #include "offline/identify/parallel_halves.hpp"
 #include "offline/identify/parallel_jobs.hpp"
@@ -73,8 +74,7 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const J
 }
 
 template <int N>
-ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
-  ConsistencyCheck check;
+double min_mass_eigenvalue(const NominalModel<double, N>& nominal) {
   std::mt19937_64 rng(7);
   auto uniform = [&rng](double lo, double hi) {
     return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
@@ -101,6 +101,13 @@ ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
                              .eigenvalues()
                              .minCoeff());
   }
+  return min_eigen;
+}
+
+template <int N>
+ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
+  ConsistencyCheck check;
+  const double min_eigen = min_mass_eigenvalue(nominal);
   check.min_mass_eigenvalue = min_eigen;
   check.checks.push_back("mass matrix M(q) (rigid body + armature) positive definite at 200 poses");
   if (!(min_eigen > 0))
@@ -440,10 +447,17 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.refitted = holds_rows_out(s);
   FitSelection every = selection;
   every.heldout_rows = true;
-  LinearNominal<N> fit =
-      linear_nominal(model, design, base, fit_columns(grams, columns, selection));
-  LinearNominal<N> final_fit =
-      out.refitted ? linear_nominal(model, design, base, fit_columns(grams, columns, every)) : fit;
+  const ColumnPrior prior = robot_file_prior(model, design, base);
+  const ColumnPrior* inertia_prior = options.inertia_prior ? &prior : nullptr;
+  PriorFit<N> judged =
+      fit_with_inertia_prior(model, design, base, grams, columns, selection, inertia_prior);
+  PriorFit<N> written = out.refitted ? fit_with_inertia_prior(model, design, base, grams, columns,
+                                                              every, inertia_prior)
+                                     : judged;
+  out.inertia_prior = {judged.strength, written.strength, judged.min_eigenvalue_without,
+                       written.min_eigenvalue_without};
+  LinearNominal<N> fit = std::move(judged.fit);
+  LinearNominal<N> final_fit = std::move(written.fit);
   std::vector<Eigen::MatrixXd> rigids = design.predict_each(
       s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
                       : std::vector<Eigen::VectorXd>{fit.rigid_theta});
@@ -518,6 +532,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   template Identification<N> identify<N>(const Log&, const Model<double, N>&,                  \
                                          IdentificationSetup<N>, const IdentifyOptions&);      \
   template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);              \
+  template double min_mass_eigenvalue<N>(const NominalModel<double, N>&);                      \
   template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                 \
                                                const JointSamples&);                           \
   template std::vector<Eigen::MatrixXd> nominal_residuals<N>(                                  \

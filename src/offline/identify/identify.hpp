@@ -26,6 +26,11 @@ struct IdentifyOptions {
   /// the gear, instead of effort − rigid-body prediction (joints without a usable sensor keep the
   /// latter). The rigid body is fitted from the effort as before.
   bool friction_from_sensor = false;
+  /// Where the fitted M(q) is not positive definite (a log that does not excite every inertia),
+  /// pull the rigid body toward the robot file's own inertias: the smallest relative prior
+  /// strength (ColumnPrior) that makes M(q) positive definite at check_consistency's poses, found
+  /// for the judged fit and for the written one apart. Off: the plain fit, whatever M(q).
+  bool inertia_prior = false;
   ProgressLine progress;
 };
 
@@ -52,6 +57,13 @@ struct Identification {
   std::vector<RegimeStats> training;  ///< per joint, on the training blocks
   Eigen::VectorXd joint_weights;      ///< 1/σ_j² of the weighted least squares
   ConsistencyCheck consistency;
+  /// IdentifyOptions::inertia_prior: the prior strength of the judged and of the written fit (0:
+  /// M(q) was positive definite without it) and the smallest eigenvalue of M(q) [kg·m²] each had
+  /// without it.
+  struct InertiaPrior {
+    double judged_strength = 0, written_strength = 0;
+    double judged_min_eigenvalue = 0, written_min_eigenvalue = 0;
+  } inertia_prior;
   std::vector<std::string> friction_notes;  ///< bounds that bind, curve vs linear (FrictionCurves)
 };
 
@@ -71,7 +83,9 @@ struct FrictionCurves {
 /// 2. per joint, Stribeck + load-dependent friction by Ceres on the friction target
 ///    effort − rigid prediction (moving training samples, subsampled);
 /// 3. held-out residual per regime (interleaved blocks not used in 1–2) and a consistency check.
-/// With options.friction_from_sensor, step 2 (and its linear start) uses the torque sensor.
+/// With options.friction_from_sensor, step 2 (and its linear start) uses the torque sensor; with
+/// options.inertia_prior, step 1 is fit_with_inertia_prior (inertia_prior.hpp), for the judged
+/// and the written fit apart.
 template <int N>
 Identification<N> identify(const Log& log, const Model<double, N>& model,
                            const IdentifyOptions& options = {});
@@ -87,6 +101,11 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
 /// coefficients non-negative, q̇_s > 0.
 template <int N>
 ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal);
+
+/// The smallest eigenvalue of M(q) [kg·m²] (rigid body + armature from the base parameters) over
+/// check_consistency's 200 seeded poses.
+template <int N>
+double min_mass_eigenvalue(const NominalModel<double, N>& nominal);
 
 /// effort − (rigid + friction) of `nominal` on every sample (NaN where invalid).
 template <int N>

@@ -1,0 +1,52 @@
+// `tpf identify --inertia-prior` and `tpf diagnose --inertia-prior` on the measured Kinova Gen3
+// fitting files (whose plain fit has an M(q) that is not positive definite): the prior's strength
+// is printed and kept in the file's fit, the model is consistent, and diagnose's --identify-out
+// fit is identify's, byte for byte.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_runner.hpp"
+
+namespace tpf::test {
+namespace {
+
+const std::string kGen3 = std::string(TPF_TEST_DATA_DIR) + "/real/kinova-gen3/";
+
+TEST(CliInertiaPrior, IdentifyAndDiagnoseSayWhatThePriorDidAndAgree) {
+  CliSandbox box("inertia_prior");
+  const std::string logs = kGen3 + "logs/";
+  const std::string fit = " --log " + logs + "RunTrajectory1.csv.gz " + logs +
+                          "Trajectory1.csv.gz " + logs + "RecordTrajectory_quadratic.csv.gz" +
+                          " --robot " + kGen3 + "gen3.robot.json";
+
+  const CliResult plain = box.tpf("identify --quiet" + fit + " --out plain.json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("consistency: PROBLEMS"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("inertia prior:"), std::string::npos) << plain.out;
+
+  const CliResult with = box.tpf("identify --quiet --inertia-prior" + fit + " --out p.json");
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_NE(with.out.find("consistency: ok"), std::string::npos) << with.out;
+  EXPECT_NE(with.out.find("inertia prior: M(q)'s smallest eigenvalue without it -2.233 kg·m² "
+                          "(judged fit), -2.069 (written fit)"),
+            std::string::npos)
+      << with.out;
+  const nlohmann::json prior =
+      nlohmann::json::parse(CliSandbox::slurp(box / "p.json"))["fit"]["inertia_prior"];
+  EXPECT_GT(prior["written_strength"].get<double>(), 0.0);
+  EXPECT_LT(prior["written_strength"].get<double>(), 1.0);
+  EXPECT_NEAR(prior["written_min_mass_eigenvalue_without"].get<double>(), -2.069, 1e-3);
+
+  const CliResult both = box.tpf("diagnose --quiet --inertia-prior" + fit +
+                                 " --params d.json --identify-out p2.json");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_EQ(CliSandbox::slurp(box / "p2.json"), CliSandbox::slurp(box / "p.json"));
+  EXPECT_NE(both.out.find("inertia prior: M(q)'s smallest eigenvalue without it"),
+            std::string::npos)
+      << both.out;
+}
+
+}  // namespace
+}  // namespace tpf::test
