@@ -243,7 +243,7 @@ std::string compensator_floor_sentence(const MeasuredFloor& f) {
   return text;
 }
 
-std::string low_pass_sentence(const MeasuredResult& r) {
+std::string columns_sentence(const MeasuredResult& r) {
   std::string taus;
   for (Eigen::Index j = 0; j < r.low_pass_time_constants.size(); ++j)
     taus += (j ? " / " : " ") + format_number(1000 * r.low_pass_time_constants[j], 3);
@@ -256,7 +256,11 @@ std::string low_pass_sentence(const MeasuredResult& r) {
          taus +
          "; 0 = none): the published sensor is far smoother than the current, so filtering "
          "the current brings it closer, at the cost of that much lag, which a contact "
-         "detector pays. The run-time estimator does not filter the current.";
+         "detector pays. The run-time estimator does not filter the current. '" +
+         std::string(kInertiaPriorColumn) +
+         "': identify --inertia-prior: the fitting files do not excite every inertia (the plain "
+         "fit's mass matrix M(q) is not positive definite), so the rigid body is pulled toward "
+         "the robot file's inertias, as far as M(q) needs; the other columns are without it.";
 }
 
 bool meets_target(double maker, double rmse, double target) {
@@ -386,7 +390,7 @@ std::string measured_headline(const MeasuredResult& r, double target) {
   text += measured_target_sentence(r.forward, target) + "\n";
   for (const std::string& verdict : measured_bound_verdicts(r.bound, r.reverse_bound))
     text += "  " + verdict + "\n";
-  text += low_pass_sentence(r) + "\n";
+  text += columns_sentence(r) + "\n";
   if (!r.floor.best_rmse.empty()) text += compensator_floor_sentence(r.floor) + "\n";
   if (!r.diagnosis_heldout.empty()) text += diagnosis_transfer_sentence(r) + "\n";
   std::vector<std::string> claimed;
@@ -503,7 +507,7 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
   page.heading("Held out by file");
   page.table(measured_table(r.forward, o.target_reduction));
   page.paragraph(measured_target_sentence(r.forward, o.target_reduction));
-  page.paragraph(low_pass_sentence(r));
+  page.paragraph(columns_sentence(r));
   if (!r.reverse.columns.empty()) add_reverse_section(page, r, o);
   if (!r.training.results.empty()) add_compensator_section(page, r, o);
   if (!r.floor.best_rmse.empty()) {
