@@ -128,14 +128,28 @@ double median(std::vector<double>& ns) {
   return ns[ns.size() / 2];
 }
 
+/// The median of an empty interval between two steady_clock reads [ns], what each step's time
+/// below includes besides the step (≈ 20 ns here; the clock advances in steps of ≈ 10 ns).
+double clock_read_ns() {
+  std::vector<double> ns(100000);
+  for (double& d : ns) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto stop = std::chrono::steady_clock::now();
+    d = std::chrono::duration<double, std::nano>(stop - start).count();
+  }
+  return median(ns);
+}
+
 /// Replays the teaching log through `est` (time keeps advancing), one timed update per iteration;
 /// median, p99, p99.9 and max of the per-step wall time as counters, and the median and share of
 /// the steps by where the wrench was estimated (`median_ns_no_wrench`, `median_ns_link<k>`: a pad
-/// of link k, whose Jacobian has k columns that can be nonzero).
+/// of link k, whose Jacobian has k columns that can be nonzero); `clock_ns`, what the clock
+/// reads add to each step's time.
 template <typename Est, typename Row = Sample>
 void time_steps(benchmark::State& state, Est& est, const std::vector<Row>& rows = samples()) {
   std::vector<double> ns;
   ns.reserve(1 << 22);
+  state.counters["clock_ns"] = clock_read_ns();
   std::vector<int> wrench_link;  // per timed step: the wrench pad's link, 0 without a wrench
   wrench_link.reserve(ns.capacity());
   std::size_t r = 0;

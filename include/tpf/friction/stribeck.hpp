@@ -84,16 +84,6 @@ S neighbour_load_friction(const StribeckParameters<S, N>& p, int j, S dq,
          p.neighbour_load_viscous.row(j).dot(abs_gravity) * dq;
 }
 
-/// Friction of every joint, no load: τ_f,j = g_j(q̇_j)·sgn(q̇_j) + b_j·q̇_j.
-template <typename S, int N>
-JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p,
-                                    const JointVector<S, N>& dq) {
-  JointVector<S, N> tau;
-  for (int j = 0; j < N; ++j)
-    tau[j] = stribeck_friction(p, j, dq[j]);
-  return tau;
-}
-
 /// Load-dependent friction of every joint, |G_j(q)| passed in `abs_gravity`: the per-joint
 /// form above plus the neighbour-load terms (see StribeckParameters).
 template <typename S, int N>
@@ -116,6 +106,14 @@ JointVector<S, N> own_load_stribeck_friction(const StribeckParameters<S, N>& p,
   for (int j = 0; j < N; ++j)
     tau[j] = stribeck_friction(p, j, dq[j], abs_gravity[j]);
   return tau;
+}
+
+/// Friction of every joint, no load: τ_f,j = g_j(q̇_j)·sgn(q̇_j) + b_j·q̇_j (+ the direction
+/// asymmetry), i.e. |G| = 0.
+template <typename S, int N>
+JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p,
+                                    const JointVector<S, N>& dq) {
+  return own_load_stribeck_friction(p, dq, JointVector<S, N>::Zero().eval());
 }
 
 /// Smooth form for gradient-based fitting: sgn(q̇) is replaced by tanh(q̇/ε), which makes τ_f
