@@ -48,6 +48,10 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
   for (const auto& p : id.consistency.problems)
     std::printf("  problem: %s\n", p.c_str());
   const auto& prior = id.inertia_prior;
+  if (prior.asked && prior.judged_strength == 0 && prior.written_strength == 0)
+    std::printf(
+        "inertia prior: not needed (M(q)'s smallest eigenvalue is at least a tenth of "
+        "the robot file's own without it)\n");
   if (prior.judged_strength > 0 || prior.written_strength > 0) {
     std::printf(
         "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (judged fit), %.4g "

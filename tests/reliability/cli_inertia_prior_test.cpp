@@ -39,13 +39,29 @@ TEST(CliInertiaPrior, IdentifyAndDiagnoseSayWhatThePriorDidAndAgree) {
   EXPECT_LT(prior["written_strength"].get<double>(), 1.0);
   EXPECT_NEAR(prior["written_min_mass_eigenvalue_without"].get<double>(), -2.069, 1e-3);
 
-  const CliResult both = box.tpf("diagnose --quiet --inertia-prior" + fit +
-                                 " --params d.json --identify-out p2.json");
+  const CliResult both =
+      box.tpf("diagnose --quiet --inertia-prior" + fit + " --params d.json --identify-out p2.json");
   ASSERT_EQ(both.exit_code, 0) << both.err;
   EXPECT_EQ(CliSandbox::slurp(box / "p2.json"), CliSandbox::slurp(box / "p.json"));
   EXPECT_NE(both.out.find("inertia prior: M(q)'s smallest eigenvalue without it"),
             std::string::npos)
       << both.out;
+  const CliResult json = box.tpf("diagnose --quiet --inertia-prior" + fit + " --json d.json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json diagnosis = nlohmann::json::parse(CliSandbox::slurp(box / "d.json"));
+  EXPECT_GT(diagnosis["inertia_prior"]["strength"].get<double>(), 0.0);
+  EXPECT_LT(diagnosis["inertia_prior"]["min_mass_eigenvalue_without"].get<double>(), 0.0);
+
+  // Asked for on a log that excites every inertia, it says it was not needed.
+  ASSERT_EQ(box.tpf("simulate --scenario " + std::string(TPF_TEST_DATA_DIR) +
+                    "/scenarios/bench1-excitation.json --seed 3 --duration 20 --out bench.csv")
+                .exit_code,
+            0);
+  const CliResult bench =
+      box.tpf("identify --quiet --inertia-prior --log bench.csv --robot " +
+              std::string(TPF_TEST_DATA_DIR) + "/bench1.robot.json --out b.json");
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  EXPECT_NE(bench.out.find("inertia prior: not needed"), std::string::npos) << bench.out;
 }
 
 }  // namespace

@@ -169,6 +169,10 @@ struct EffectDiagnosis {
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
   std::vector<std::string> notes;     ///< skipped candidates and why
   CadPayloadCheck cad_payload;
+  /// DiagnoseOptions::inertia_prior: the prior strength of every fit (0: none was needed) and
+  /// the smallest eigenvalue of M(q) of the declared model's fit without it [kg·m²].
+  double inertia_prior_strength = 0;
+  double min_mass_eigenvalue_without_prior = 0;
 
   int joints() const { return static_cast<int>(noise_floor.size()); }
 };
@@ -186,10 +190,6 @@ struct Diagnosis : EffectDiagnosis {
   /// The declared model as identify fits it (rigid body and friction curves, nothing added):
   /// what `written_before` scores; beside `nominal` it shows what a folded payload does.
   NominalModel<double, N> declared;
-  /// DiagnoseOptions::inertia_prior: the prior strength of every fit (0: none was needed) and
-  /// the smallest eigenvalue of M(q) of the declared model's fit without it [kg·m²].
-  double inertia_prior_strength = 0;
-  double min_mass_eigenvalue_without_prior = 0;
 };
 
 /// Runs the diagnosis of `log` for the arm of `model` (robot file). Never hands ground truth

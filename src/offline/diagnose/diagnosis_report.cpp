@@ -37,6 +37,9 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   j["source"] = d.samples.source;
   j["simulated"] = d.samples.simulated;
   j["effort_unit"] = u.name();
+  if (d.inertia_prior_strength > 0)
+    j["inertia_prior"] = {{"strength", d.inertia_prior_strength},
+                          {"min_mass_eigenvalue_without", d.min_mass_eigenvalue_without_prior}};
   nlohmann::json joints = nlohmann::json::array();
   for (int i = 0; i < N; ++i) {
     nlohmann::json joint;

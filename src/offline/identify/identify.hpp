@@ -61,6 +61,7 @@ struct Identification {
   /// M(q) was positive definite without it) and the smallest eigenvalue of M(q) [kg·m²] each had
   /// without it.
   struct InertiaPrior {
+    bool asked = false;  ///< IdentifyOptions::inertia_prior
     double judged_strength = 0, written_strength = 0;
     double judged_min_eigenvalue = 0, written_min_eigenvalue = 0;
   } inertia_prior;

@@ -335,8 +335,10 @@ void inertia_prior_stage(const MeasuredOptions& o, const MeasuredData& d,
                          std::vector<EffortEstimate>& estimates, const Say& say) {
   say("measured: identify again, the rigid body pulled toward the robot file's inertias as far "
       "as M(q) needs (--inertia-prior)");
-  const Identification<kMeasuredJoints> id = identify_on_every_sample(
-      d.fit, d.model, o.friction_samples_per_joint, false, say, true, true);
+  const bool from_sensor = false, fit_load_friction = true, inertia_prior = true;
+  const Identification<kMeasuredJoints> id =
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, from_sensor, say,
+                               fit_load_friction, inertia_prior);
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.inertia-prior.params.json", id.nominal,
                                       d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
