@@ -69,7 +69,7 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
 /// On a log that excites every inertia, M(q) is positive definite well above the floor the
 /// inertia prior guards, so asking for the prior changes nothing: the same model, bit for bit.
 TEST(Identify, TheInertiaPriorLeavesAWellExcitedFitAlone) {
-  const offline::Log log = twin_log(60.0, 12);
+  const offline::Log log = twin_log(30.0, 12);
   offline::IdentifyOptions options;
   const auto plain = offline::identify<kJoints>(log, arm(), options);
   options.inertia_prior = true;

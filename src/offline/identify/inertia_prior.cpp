@@ -44,7 +44,7 @@ PriorFit<N> fit_with_inertia_prior(const Model<double, N>& model, const EffectDe
   double weak = -8, strong = 2;  // log10 of the strength: below floor at `weak`
   out.fit = fit(std::pow(10.0, strong));
   if (min_mass_eigenvalue(out.fit.nominal) >= floor)
-    for (int k = 0; k < 30; ++k) {
+    for (int k = 0; k < 20; ++k) {
       const double middle = 0.5 * (weak + strong);
       LinearNominal<N> trial = fit(std::pow(10.0, middle));
       if (min_mass_eigenvalue(trial.nominal) >= floor) {

@@ -28,7 +28,8 @@ struct PriorFit {
 /// Least squares of `columns` on `selection`'s rows (fit_columns). With a `prior`, where M(q) of
 /// that fit has its smallest eigenvalue (min_mass_eigenvalue, 200 poses) below a tenth of the
 /// prior's own, the fit with the smallest strength of `prior` that lifts it there: bisection on
-/// log10 of the strength in [−8, 2] (30 halvings); the strength 100 if even that does not.
+/// log10 of the strength in [−8, 2] (20 halvings: to 1e-5 of a decade); the strength 100 if even
+/// that does not.
 template <int N>
 PriorFit<N> fit_with_inertia_prior(const Model<double, N>& model, const EffectDesign<N>& design,
                                    const BaseParameters& base, const DesignGrams& grams,
