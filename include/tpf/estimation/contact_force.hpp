@@ -8,6 +8,7 @@
 #include "tpf/common/all_finite.hpp"
 #include "tpf/common/cholesky3.hpp"
 #include "tpf/common/gram_eigenvalues3.hpp"
+#include "tpf/common/small_products.hpp"
 #include "tpf/common/symmetric_eigenvalues2.hpp"
 #include "tpf/common/types.hpp"
 
@@ -50,14 +51,13 @@ struct ContactForce {
 namespace detail {
 
 /// J_c = Rᵀ·J_v: the linear rows of a world Jacobian in the frame whose axes are R's columns,
-/// column by column (Rᵀx with the sums of small_products.hpp's rotate_back).
+/// column by column (rotate_back).
 template <typename S, int N>
 Eigen::Matrix<S, 3, N> linear_rows_in_frame(const Jacobian<S, N>& J_world,
                                             const Matrix3<S>& R) noexcept {
   Eigen::Matrix<S, 3, N> Jc;
   for (int j = 0; j < N; ++j)
-    for (int i = 0; i < 3; ++i)
-      Jc(i, j) = R(0, i) * J_world(0, j) + R(1, i) * J_world(1, j) + R(2, i) * J_world(2, j);
+    Jc.col(j) = rotate_back(R, Vector3<S>(J_world(0, j), J_world(1, j), J_world(2, j)));
   return Jc;
 }
 

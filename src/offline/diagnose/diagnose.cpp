@@ -66,8 +66,10 @@ DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& ba
   if (prior) {  // the strength the fit on the training rows needs, or on every row if more
     FitSelection every = selection;
     every.heldout_rows = true;
+    std::vector<FitSelection> fits{selection};
+    if (holds_rows_out(s)) fits.push_back(every);  // else every row is a training row
     fit.min_mass_eigenvalue_without_prior = std::numeric_limits<double>::infinity();
-    for (const FitSelection& rows : {selection, every}) {
+    for (const FitSelection& rows : fits) {
       const PriorFit<N> with = fit_with_inertia_prior(model, declared, base, grams,
                                                       declared.declared_columns(), rows, prior);
       fit.prior_strength = std::max(fit.prior_strength, with.strength);
@@ -396,7 +398,8 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   const auto regressors =
       setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
   const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
-  const ColumnPrior declared_prior = robot_file_prior(model, declared, setup.base);
+  const ColumnPrior declared_prior =
+      options.inertia_prior ? robot_file_prior(model, declared, setup.base) : ColumnPrior{};
   const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
                                        options.inertia_prior ? &declared_prior : nullptr);
   selection.joint_weights = fit.joint_weights;

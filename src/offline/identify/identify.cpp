@@ -447,7 +447,8 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.refitted = holds_rows_out(s);
   FitSelection every = selection;
   every.heldout_rows = true;
-  const ColumnPrior prior = robot_file_prior(model, design, base);
+  const ColumnPrior prior =
+      options.inertia_prior ? robot_file_prior(model, design, base) : ColumnPrior{};
   const ColumnPrior* inertia_prior = options.inertia_prior ? &prior : nullptr;
   PriorFit<N> judged =
       fit_with_inertia_prior(model, design, base, grams, columns, selection, inertia_prior);
