@@ -6,12 +6,16 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/temp_dir.hpp"
 #include "tpf/common/error.hpp"
 
 namespace {
 
+/// This test program's files, removed at its end.
+const tpf::test::TempDir kFiles("friction_test");
+
 std::string write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
+  const auto path = kFiles / name;
   std::ofstream(path) << text;
   return path.string();
 }

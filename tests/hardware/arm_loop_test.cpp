@@ -92,7 +92,8 @@ std::vector<std::string> read_lines(const std::string& path) {
 
 TEST(ArmLoop, HealthyRunLogsEveryCycleInTheTpfFormat) {
   ArmRig rig("healthy");
-  const std::string log_path = test::temp_path("arm", "healthy.csv");
+  const test::TempFile log_file("arm", "healthy.csv");
+  const std::string& log_path = log_file.path();
   offline::LogMetadata meta;
   meta.set("robot", "arm4");
   meta.set("rate_hz", "400");

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -18,5 +19,18 @@ inline std::string temp_path(const std::string& tag, const std::string& name) {
   return std::string(dir ? dir : "/tmp") + "/tpf_" + tag + "_" + name + "_" +
          std::to_string(::getpid());
 }
+
+/// A file at temp_path(tag, name), removed when this object goes.
+class TempFile {
+ public:
+  TempFile(const std::string& tag, const std::string& name) : path_(temp_path(tag, name)) {}
+  ~TempFile() { std::remove(path_.c_str()); }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
 
 }  // namespace tpf::test

@@ -110,7 +110,8 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   ArmLoopOptions options;
   options.cycles = kCycles;
   // Recorded as tpf_arm_loop records: the motors, the pads and the estimator's answer.
-  const std::string log_path = test::temp_path("twin", "twin-loop.csv");
+  const test::TempFile log_file("twin", "twin-loop.csv");
+  const std::string& log_path = log_file.path();
   offline::LogMetadata meta;
   meta.set("robot", "arm4");
   meta.set("rate_hz", "400");

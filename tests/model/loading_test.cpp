@@ -4,18 +4,20 @@
 #include <fstream>
 
 #include "support/arm_fixture.hpp"
+#include "support/temp_dir.hpp"
 
 namespace tpf::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// Writes `text` to a fresh file in a test folder and returns its path.
+/// This test program's files, removed at its end.
+const TempDir kFiles("model_tests");
+
+/// Writes `text` to a fresh file in the test folder and returns its path.
 fs::path write(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "tpf_model_tests";
-  fs::create_directories(dir);
-  std::ofstream(dir / name) << text;
-  return dir / name;
+  std::ofstream(kFiles / name) << text;
+  return kFiles / name;
 }
 
 std::string message_of(const std::function<void()>& f) {
