@@ -5,8 +5,10 @@
 // cli_inertia_prior_test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "kinova_logs.hpp"
 #include "offline/identify/identify.hpp"
@@ -38,6 +40,13 @@ TEST(InertiaPriorKinova, MakesTheMassMatrixPhysicalAndPredictsTheHeldOutFilesBet
   options.inertia_prior = true;
   const auto with = offline::identify<7>(fit, kinova_model(), options);
   EXPECT_LT(plain.consistency.min_mass_eigenvalue, -1.0);  // measured −2.07 kg·m²
+  // The plain fit's check points at the prior; with it the model passes the check.
+  const auto points_at_prior = [](const std::string& problem) {
+    return problem.find("--inertia-prior") != std::string::npos;
+  };
+  EXPECT_TRUE(std::any_of(plain.consistency.problems.begin(), plain.consistency.problems.end(),
+                          points_at_prior));
+  EXPECT_TRUE(with.consistency.consistent());
   EXPECT_EQ(with.inertia_prior.written_min_eigenvalue, plain.consistency.min_mass_eigenvalue);
   EXPECT_GT(with.inertia_prior.written_strength, 0.0);
   EXPECT_LT(with.inertia_prior.written_strength, 1.0);  // measured 0.19: the data still lead
