@@ -28,7 +28,7 @@ struct DiagnoseArgs {
   std::vector<std::string> logs;
   std::string robot, report, json, params, identify_out;
   double static_velocity = 1e-4, min_improvement = 0.10;
-  bool quiet = false, inertia_prior = false;
+  bool quiet = false, inertia_prior = true;
   bool no_load_friction = false, friction_from_sensor = false;  ///< of --identify-out's fit
 };
 
@@ -176,10 +176,11 @@ void register_diagnose_command(CLI::App& app) {
                 "With --identify-out: its friction fitted against each joint's torque sensor, "
                 "as tpf identify's (see tpf identify --help)")
       ->needs(identify_out);
-  cmd->add_flag("--inertia-prior", a->inertia_prior,
-                "Where the declared model's M(q) is not positive definite, every fit pulled "
-                "toward the robot file's inertias as tpf identify --inertia-prior does (the "
-                "strength found for the declared model); with --identify-out, its fit too");
+  cmd->add_flag("--inertia-prior,!--no-inertia-prior", a->inertia_prior,
+                "On by default: where the declared model's M(q) is not positive definite, every "
+                "fit is pulled toward the robot file's inertias as tpf identify's are (the "
+                "strength found for the declared model); with --identify-out, its fit too. "
+                "--no-inertia-prior: every fit plain");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str();
   cmd->add_option("--min-improvement", a->min_improvement,

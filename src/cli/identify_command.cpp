@@ -24,7 +24,7 @@ struct IdentifyArgs {
   std::vector<std::string> logs;
   std::string robot, out;
   double static_velocity = 1e-4;
-  bool no_load_friction = false, quiet = false, friction_from_sensor = false, inertia_prior = false;
+  bool no_load_friction = false, quiet = false, friction_from_sensor = false, inertia_prior = true;
 };
 
 template <int N>
@@ -72,11 +72,12 @@ void register_identify_command(CLI::App& app) {
                 "Fit each joint's friction against its joint torque sensor (tau_sensor<j>, "
                 "where it varies): effort - K*(tau_sensor + Ia*q''), the drive loss behind the "
                 "gear, instead of effort - rigid-body prediction");
-  cmd->add_flag("--inertia-prior", a->inertia_prior,
-                "Where the fitted mass matrix M(q) is not positive definite (a log that does not "
-                "excite every inertia), pull the rigid body toward the robot file's inertias: the "
-                "smallest relative prior strength that lifts M(q)'s smallest eigenvalue, at 200 "
-                "poses, to a tenth of the robot file's own (printed, and in the file's fit)");
+  cmd->add_flag("--inertia-prior,!--no-inertia-prior", a->inertia_prior,
+                "On by default: where the fitted mass matrix M(q) is not positive definite (a log "
+                "that does not excite every inertia), the rigid body is pulled toward the robot "
+                "file's inertias: the smallest relative prior strength that lifts M(q)'s smallest "
+                "eigenvalue, at 200 poses, to a tenth of the robot file's own (printed, and in the "
+                "file's fit). --no-inertia-prior: the plain least-squares fit, whatever M(q)");
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
     reuse_freed_memory();

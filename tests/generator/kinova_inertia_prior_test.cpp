@@ -36,13 +36,14 @@ Eigen::VectorXd scoring_rms(const NominalModel<double, 7>& nominal) {
 TEST(InertiaPriorKinova, MakesTheMassMatrixPhysicalAndPredictsTheHeldOutFilesBetter) {
   const offline::Log fit = offline::read_logs(kinova_fitting_files());
   offline::IdentifyOptions options;
-  const auto plain = offline::identify<7>(fit, kinova_model(), options);
-  options.inertia_prior = true;
+  EXPECT_TRUE(options.inertia_prior);  // the default
   const auto with = offline::identify<7>(fit, kinova_model(), options);
+  options.inertia_prior = false;
+  const auto plain = offline::identify<7>(fit, kinova_model(), options);
   EXPECT_LT(plain.consistency.min_mass_eigenvalue, -1.0);  // measured −2.07 kg·m²
   // The plain fit's check points at the prior; with it the model passes the check.
   const auto points_at_prior = [](const std::string& problem) {
-    return problem.find("--inertia-prior") != std::string::npos;
+    return problem.find("without --no-inertia-prior") != std::string::npos;
   };
   EXPECT_TRUE(std::any_of(plain.consistency.problems.begin(), plain.consistency.problems.end(),
                           points_at_prior));

@@ -67,13 +67,13 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
 }
 
 /// On a log that excites every inertia, M(q) is positive definite well above the floor the
-/// inertia prior guards, so asking for the prior changes nothing: the same model, bit for bit.
+/// inertia prior guards, so the prior (on by default) changes nothing: the same model, bit for bit.
 TEST(Identify, TheInertiaPriorLeavesAWellExcitedFitAlone) {
   const offline::Log log = twin_log(30.0, 12);
   offline::IdentifyOptions options;
-  const auto plain = offline::identify<kJoints>(log, arm(), options);
-  options.inertia_prior = true;
   const auto with = offline::identify<kJoints>(log, arm(), options);
+  options.inertia_prior = false;
+  const auto plain = offline::identify<kJoints>(log, arm(), options);
   EXPECT_EQ(with.inertia_prior.judged_strength, 0.0);
   EXPECT_EQ(with.inertia_prior.written_strength, 0.0);
   EXPECT_GT(with.inertia_prior.written_min_eigenvalue, 0.0);

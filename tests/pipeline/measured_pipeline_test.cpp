@@ -127,9 +127,10 @@ void expect_noise_floor(const std::filesystem::path& out, const MeasuredFloor& f
 // What bounds the held-out error: the bound's own scoring agrees with validate's columns, and on
 // joint 2 it says why 60 % is missed held out: the fitting files never move it backwards, the
 // same model class fitted on the scored files stays above the target unfiltered and reaches it
-// only with the current low-passed; the held-out model does not reach it with any low-pass, as
-// its error below 2 Hz alone exceeds the target. In the reverse split the current carries an
-// oscillation between 2 and 20 Hz that the sensor does not show.
+// only with the current low-passed; held out, the error between 2 and 20 Hz is the largest part,
+// and the time constant the fitting files choose makes it worse on the scored files. In the
+// reverse split the current carries an oscillation between 2 and 20 Hz that the sensor does not
+// show.
 void expect_bound(const std::filesystem::path& out, const MeasuredResult& r) {
   const MeasuredBound& b = r.bound;
   ASSERT_EQ(b.maker.size(), 7u);
@@ -148,18 +149,21 @@ void expect_bound(const std::filesystem::path& out, const MeasuredResult& r) {
                     b.band_high[k] * b.band_high[k],
                 b.heldout[k] * b.heldout[k], 1e-9);
   }
-  // Joint 2 (demo: held out 4.494, target 3.163, in-sample 3.327 and low-passed 2.863, held out
-  // with the best low-pass 4.118, below 2 Hz 3.453).
+  // Joint 2 (demo: held out 3.699, target 3.163, in-sample 3.327 and low-passed 2.863; held out
+  // below 2 Hz 2.151, 2–20 Hz 2.523, above 20 Hz 1.640; the fitting files' 100 ms 3.827, the
+  // scored files' best, 50 ms, 3.140).
   EXPECT_GT(b.fit_velocity_min[1], -0.1) << "the fitting files move joint 2 one way";
   EXPECT_GT(b.velocity_samples[1], 0.6);
   EXPECT_GT(b.velocity_error[1], 0.4);
   EXPECT_GT(b.heldout[1], b.target[1]);
   EXPECT_GT(b.in_sample[1], 0.98 * b.target[1]);
   EXPECT_LT(b.in_sample[1], b.heldout[1]);
-  EXPECT_GT(b.oracle_low_pass[1], b.target[1]) << "no low-pass rescues the held-out model";
   EXPECT_LT(b.in_sample_low_pass[1], b.target[1]);
-  EXPECT_GT(b.band_low[1], b.target[1]) << "the slow error alone exceeds the target";
-  EXPECT_GT(b.heldout_low_pass[1], 1.3 * b.target[1]) << "the fitting files choose 200 ms";
+  EXPECT_GT(b.band_mid[1], b.band_low[1]) << "2–20 Hz holds more of the error than below 2 Hz";
+  EXPECT_GT(b.band_mid[1], b.band_high[1]);
+  EXPECT_GT(b.heldout_low_pass[1], b.heldout[1]) << "the fitting files' time constant (100 ms) "
+                                                    "does not transfer";
+  EXPECT_LT(b.oracle_low_pass[1], b.heldout_low_pass[1]);
   // The load terms of the friction are scored beside it (their own fit, so a different RMSE).
   ASSERT_EQ(b.heldout_without_load.size(), 7u);
   EXPECT_NE(b.heldout_without_load[1], b.heldout[1]);

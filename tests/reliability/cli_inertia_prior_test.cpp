@@ -1,8 +1,9 @@
-// `tpf identify --inertia-prior` and `tpf diagnose --inertia-prior` on the measured Kinova Gen3
-// fitting files (whose plain fit has an M(q) that is not positive definite): the prior's strength
-// is printed and kept in the file's fit and in diagnose's JSON, the model is consistent, and
-// diagnose's --identify-out fit is identify's, byte for byte, and its written model is physical;
-// where the prior is not needed, identify says so.
+// The inertia prior of `tpf identify` and `tpf diagnose` (on by default) on the measured Kinova
+// Gen3 fitting files, whose plain fit (--no-inertia-prior) has an M(q) that is not positive
+// definite: the prior's strength is printed and kept in the file's fit and in diagnose's JSON,
+// the model is consistent, diagnose's --identify-out fit is identify's, byte for byte, and its
+// written model is physical; the plain fit says what is wrong and how to avoid it; where the
+// prior is not needed, identify says so.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -24,7 +25,7 @@ TEST(CliInertiaPrior, IdentifyAndDiagnoseSayWhatThePriorDidAndAgree) {
                           "Trajectory1.csv.gz " + logs + "RecordTrajectory_quadratic.csv.gz" +
                           " --robot " + kGen3 + "gen3.robot.json";
 
-  const CliResult with = box.tpf("identify --quiet --inertia-prior" + fit + " --out p.json");
+  const CliResult with = box.tpf("identify --quiet" + fit + " --out p.json");
   ASSERT_EQ(with.exit_code, 0) << with.err;
   EXPECT_NE(with.out.find("consistency: ok"), std::string::npos) << with.out;
   EXPECT_NE(with.out.find("inertia prior: M(q)'s smallest eigenvalue without it -2.233 kg·m² "
@@ -37,8 +38,8 @@ TEST(CliInertiaPrior, IdentifyAndDiagnoseSayWhatThePriorDidAndAgree) {
   EXPECT_LT(prior["written_strength"].get<double>(), 1.0);
   EXPECT_NEAR(prior["written_min_mass_eigenvalue_without"].get<double>(), -2.069, 1e-3);
 
-  const CliResult both = box.tpf("diagnose --quiet --inertia-prior" + fit +
-                                 " --json d.json --params pd.json --identify-out p2.json");
+  const CliResult both =
+      box.tpf("diagnose --quiet" + fit + " --json d.json --params pd.json --identify-out p2.json");
   ASSERT_EQ(both.exit_code, 0) << both.err;
   EXPECT_EQ(CliSandbox::slurp(box / "p2.json"), CliSandbox::slurp(box / "p.json"));
   EXPECT_NE(both.out.find("inertia prior: M(q)'s smallest eigenvalue without it"),
@@ -52,14 +53,25 @@ TEST(CliInertiaPrior, IdentifyAndDiagnoseSayWhatThePriorDidAndAgree) {
       load_nominal_model<7>(box / "pd.json", kGen3 + "gen3.robot.json");
   EXPECT_GT(offline::min_mass_eigenvalue<7>(diagnosed), 0.0);
 
-  // Asked for on a log that excites every inertia, it says it was not needed.
+  // Switched off: the plain fit, its M(q) not positive definite, and the way back.
+  const CliResult plain = box.tpf("identify --quiet --no-inertia-prior" + fit + " --out q.json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("consistency: PROBLEMS (min eigenvalue of M(q) -2.069 kg·m²)"),
+            std::string::npos)
+      << plain.out;
+  EXPECT_NE(plain.out.find("identify again without --no-inertia-prior"), std::string::npos)
+      << plain.out;
+  EXPECT_FALSE(
+      nlohmann::json::parse(CliSandbox::slurp(box / "q.json"))["fit"].contains("inertia_prior"));
+
+  // On a log that excites every inertia, it says it was not needed.
   ASSERT_EQ(box.tpf("simulate --scenario " + std::string(TPF_TEST_DATA_DIR) +
                     "/scenarios/bench1-excitation.json --seed 3 --duration 20 --out bench.csv")
                 .exit_code,
             0);
   const CliResult bench =
-      box.tpf("identify --quiet --inertia-prior --log bench.csv --robot " +
-              std::string(TPF_TEST_DATA_DIR) + "/bench1.robot.json --out b.json");
+      box.tpf("identify --quiet --log bench.csv --robot " + std::string(TPF_TEST_DATA_DIR) +
+              "/bench1.robot.json --out b.json");
   ASSERT_EQ(bench.exit_code, 0) << bench.err;
   EXPECT_NE(bench.out.find("inertia prior: not needed"), std::string::npos) << bench.out;
 }

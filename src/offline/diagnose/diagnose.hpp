@@ -40,8 +40,8 @@ struct DiagnoseOptions {
   double repeat_tolerance = 0.01;
   /// IdentifyOptions::inertia_prior for diagnose's fits: the strength found for the declared
   /// model's fit (on the training rows or on every row, the larger) holds for every fit of the
-  /// selection and the written model.
-  bool inertia_prior = false;
+  /// selection and the written model. Off: every fit plain, whatever M(q).
+  bool inertia_prior = true;
   ProgressLine progress;
 };
 

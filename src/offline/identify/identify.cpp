@@ -509,7 +509,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.consistency = check_consistency(out.nominal);
   if (!(out.consistency.min_mass_eigenvalue > 0) && !options.inertia_prior)
     out.consistency.problems.front() +=  // check_consistency's M(q) problem
-        "; or, for a physical M(q) from this log, identify again with --inertia-prior "
+        "; or, for a physical M(q) from this log, identify again without --no-inertia-prior "
         "(IdentifyOptions::inertia_prior: the rigid body pulled toward the robot file's "
         "inertias just as far as M(q) needs, docs/identification.md)";
   if (!(out.consistency.min_mass_eigenvalue > 0) && s.ddq.cwiseAbs().maxCoeff() == 0.0)

@@ -30,7 +30,7 @@ struct IdentifyOptions {
   /// pull the rigid body toward the robot file's own inertias: the smallest relative prior
   /// strength (ColumnPrior) that makes M(q) positive definite at check_consistency's poses, found
   /// for the judged fit and for the written one apart. Off: the plain fit, whatever M(q).
-  bool inertia_prior = false;
+  bool inertia_prior = true;
   ProgressLine progress;
 };
 

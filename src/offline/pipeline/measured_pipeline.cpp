@@ -49,7 +49,8 @@ JointSamples samples_without_holdout(const Log& log, const Model<double, kMeasur
 Identification<kMeasuredJoints> identify_on_every_sample(
     const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
     bool friction_from_sensor, const std::function<void(const std::string&)>& say,
-    bool fit_load_friction = IdentifyOptions{}.fit_load_friction, bool inertia_prior = false) {
+    bool fit_load_friction = IdentifyOptions{}.fit_load_friction,
+    bool inertia_prior = IdentifyOptions{}.inertia_prior) {
   IdentifyOptions options;
   options.inertia_prior = inertia_prior;
   options.friction_samples_per_joint = friction_samples;
@@ -328,22 +329,21 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
   estimates.back().name = "friction against the sensor + compensator trained against it";
 }
 
-/// Stage 4: identify with the inertia prior (IdentifyOptions::inertia_prior: the fitting files'
-/// plain fit has an M(q) that is not positive definite), scored on the scoring files as the
-/// last column; the memoryless floor below compares the plain fits only.
-void inertia_prior_stage(const MeasuredOptions& o, const MeasuredData& d,
-                         std::vector<EffortEstimate>& estimates, const Say& say) {
-  say("measured: identify again, the rigid body pulled toward the robot file's inertias as far "
-      "as M(q) needs (--inertia-prior)");
-  const bool from_sensor = false, fit_load_friction = true, inertia_prior = true;
+/// Stage 4: identify without the inertia prior (IdentifyOptions::inertia_prior off: the plain
+/// fit, whose M(q) on the fitting files is not positive definite), scored on the scoring files as
+/// the last column: what the prior changes. The memoryless floor below leaves it out.
+void plain_fit_stage(const MeasuredOptions& o, const MeasuredData& d,
+                     std::vector<EffortEstimate>& estimates, const Say& say) {
+  say("measured: identify again without the inertia prior (--no-inertia-prior), the plain fit");
+  const bool from_sensor = false, fit_load_friction = true, inertia_prior = false;
   const Identification<kMeasuredJoints> id =
       identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, from_sensor, say,
                                fit_load_friction, inertia_prior);
-  save_nominal_model<kMeasuredJoints>(o.out / "gen3.inertia-prior.params.json", id.nominal,
+  save_nominal_model<kMeasuredJoints>(o.out / "gen3.no-inertia-prior.params.json", id.nominal,
                                       d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
   estimates.push_back(nominal_estimate<kMeasuredJoints>(id.nominal, d.score_samples, ignored));
-  estimates.back().name = kInertiaPriorColumn;
+  estimates.back().name = kWithoutInertiaPriorColumn;
 }
 
 /// A bound, not a result: the compensator trained against the sensor as compensator_stage does,
@@ -525,7 +525,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
       identify_stage(o, d, result, identified, sensor_model, say);
   if (o.run_diagnose) diagnose_stage(o, d, result, estimates, say);
   if (o.run_training) compensator_stage(o, d, result, identified, sensor_model, estimates, say);
-  inertia_prior_stage(o, d, estimates, say);
+  plain_fit_stage(o, d, estimates, say);
   say("measured: score on " + joined_file_names(o.scoring) + " against the torque sensor");
   result.forward.fitted_on = joined_file_names(o.fitting);
   result.forward.scored_on = joined_file_names(o.scoring);

@@ -23,8 +23,10 @@ inline constexpr const char* kMeasuredLabel =
     "MEASURED — Kinova Gen3 logs, W. Chiha, MIT licence (source: "
     "data/real/kinova-gen3/SOURCE.md)";
 
-/// The forward column of identify's fit with the inertia prior (IdentifyOptions::inertia_prior).
-inline constexpr const char* kInertiaPriorColumn = "after identification with the inertia prior";
+/// The forward column of identify's plain fit, without the inertia prior
+/// (IdentifyOptions::inertia_prior off): what the prior changes.
+inline constexpr const char* kWithoutInertiaPriorColumn =
+    "after identification without the inertia prior";
 
 struct MeasuredOptions {
   std::filesystem::path out = "tpf-demo";  ///< gen3.*.params.json, gen3.tcn*.json written here

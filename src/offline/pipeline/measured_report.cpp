@@ -257,10 +257,11 @@ std::string columns_sentence(const MeasuredResult& r) {
          "; 0 = none): the published sensor is far smoother than the current, so filtering "
          "the current brings it closer, at the cost of that much lag, which a contact "
          "detector pays. The run-time estimator does not filter the current. '" +
-         std::string(kInertiaPriorColumn) +
-         "': identify --inertia-prior: the fitting files do not excite every inertia (the plain "
-         "fit's mass matrix M(q) is not positive definite), so the rigid body is pulled toward "
-         "the robot file's inertias, as far as M(q) needs; the other columns are without it.";
+         std::string(kWithoutInertiaPriorColumn) +
+         "': identify --no-inertia-prior, the plain least-squares fit. The fitting files do not "
+         "excite every inertia: that fit's mass matrix M(q) is not positive definite, so every "
+         "other column's rigid body is pulled toward the robot file's inertias (identify's "
+         "default), as far as M(q) needs.";
 }
 
 bool meets_target(double maker, double rmse, double target) {
