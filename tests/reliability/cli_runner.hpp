@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.hpp"
+
 namespace tpf::test {
 
 /// What one run of a command printed and returned.
@@ -25,26 +27,15 @@ struct CliResult {
 /// A fresh folder under $TMPDIR, removed at the end; runs `tpf` inside it.
 class CliSandbox {
  public:
-  explicit CliSandbox(const std::string& name)
-      : dir_(std::filesystem::temp_directory_path() /
-             ("tpf_reliability_" + name + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  ~CliSandbox() {
-    std::error_code ignored;
-    std::filesystem::remove_all(dir_, ignored);
-  }
-  CliSandbox(const CliSandbox&) = delete;
-  CliSandbox& operator=(const CliSandbox&) = delete;
+  explicit CliSandbox(const std::string& name) : folder_("reliability_" + name) {}
 
-  std::filesystem::path operator/(const std::string& file) const { return dir_ / file; }
-  const std::filesystem::path& dir() const { return dir_; }
+  std::filesystem::path operator/(const std::string& file) const { return folder_ / file; }
+  const std::filesystem::path& dir() const { return folder_.path(); }
 
   /// Writes `text` to `<dir>/<file>` and returns the path.
   std::filesystem::path write(const std::string& file, const std::string& text) const {
-    std::ofstream(dir_ / file, std::ios::binary) << text;
-    return dir_ / file;
+    std::ofstream(folder_ / file, std::ios::binary) << text;
+    return folder_ / file;
   }
 
   /// Runs `<shell_prefix> tpf <args>` in the folder, killed after `limit_s` seconds.
@@ -59,24 +50,24 @@ class CliSandbox {
   /// (tests/fuzz/urdfdom.lsan.supp), so that the messages of a sanitized tpf are compared.
   CliResult sh(const std::string& script) const {
     const std::string command =
-        "cd '" + dir_.string() +
+        "cd '" + dir().string() +
         "' && TPF='" TPF_CLI "' && export LSAN_OPTIONS=suppressions='" TPF_URDFDOM_LSAN_SUPPRESSIONS
         ":print_suppressions=0' && { " +
         script + "; } >.stdout 2>.stderr";
     const int status = std::system(command.c_str());
     CliResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    r.out = slurp(dir_ / ".stdout");
-    r.err = slurp(dir_ / ".stderr");
-    std::filesystem::remove(dir_ / ".stdout");
-    std::filesystem::remove(dir_ / ".stderr");
+    r.out = slurp(folder_ / ".stdout");
+    r.err = slurp(folder_ / ".stderr");
+    std::filesystem::remove(folder_ / ".stdout");
+    std::filesystem::remove(folder_ / ".stderr");
     return r;
   }
 
   /// Names of the files in the folder (hidden temporaries included), sorted.
   std::vector<std::string> files() const {
     std::vector<std::string> names;
-    for (const auto& e : std::filesystem::directory_iterator(dir_))
+    for (const auto& e : std::filesystem::directory_iterator(dir()))
       names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
@@ -89,7 +80,7 @@ class CliSandbox {
   }
 
  private:
-  std::filesystem::path dir_;
+  TempDir folder_;
 };
 
 /// Number of lines of `text` (a final line without '\n' counts).

@@ -74,21 +74,25 @@ Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const J
 }
 
 template <int N>
-double min_mass_eigenvalue(const NominalModel<double, N>& nominal) {
+std::vector<JointVector<double, N>> mass_check_poses(const Model<double, N>& model) {
   std::mt19937_64 rng(7);
   auto uniform = [&rng](double lo, double hi) {
     return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
   };
+  std::vector<JointVector<double, N>> poses(200);
+  for (JointVector<double, N>& q : poses)
+    for (int j = 0; j < N; ++j)
+      q[j] =
+          model.has_position_limits(j) ? uniform(model.lower[j], model.upper[j]) : uniform(-3, 3);
+  return poses;
+}
+
+template <int N>
+double min_mass_eigenvalue(const NominalModel<double, N>& nominal) {
   Data<double, N> data;
   Regressor<double, N> Y;
   double min_eigen = std::numeric_limits<double>::infinity();
-  for (int s = 0; s < 200; ++s) {
-    JointVector<double, N> q;
-    for (int j = 0; j < N; ++j) {
-      q[j] = nominal.model.has_position_limits(j)
-                 ? uniform(nominal.model.lower[j], nominal.model.upper[j])
-                 : uniform(-3, 3);
-    }
+  for (const JointVector<double, N>& q : mass_check_poses(nominal.model)) {
     const JointVector<double, N> zero = JointVector<double, N>::Zero();
     const JointVector<double, N> g = rigid_body_torque(nominal, data, Y, q, zero, zero);
     JointMatrix<double, N> M;
@@ -538,6 +542,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   template Identification<N> identify<N>(const Log&, const Model<double, N>&,                  \
                                          IdentificationSetup<N>, const IdentifyOptions&);      \
   template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);              \
+  template std::vector<JointVector<double, N>> mass_check_poses<N>(const Model<double, N>&);   \
   template double min_mass_eigenvalue<N>(const NominalModel<double, N>&);                      \
   template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                 \
                                                const JointSamples&);                           \

@@ -103,6 +103,11 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
 template <int N>
 ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal);
 
+/// check_consistency's 200 seeded poses of `model`'s joints (uniform within their limits, else
+/// in ±3 rad).
+template <int N>
+std::vector<JointVector<double, N>> mass_check_poses(const Model<double, N>& model);
+
 /// The smallest eigenvalue of M(q) [kg·m²] (rigid body + armature from the base parameters) over
 /// check_consistency's 200 seeded poses.
 template <int N>

@@ -1,5 +1,6 @@
 #include "offline/identify/inertia_prior.hpp"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 
 #include "offline/effects/effect_columns.hpp"
@@ -7,6 +8,51 @@
 #include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
+
+namespace {
+
+/// M(q) at check_consistency's poses as a linear map of the base values: per pose, column i of
+/// M is (Y(q, 0, e_i) − Y(q, 0, 0)).cols(base_columns)·base_values, the regressors computed
+/// once, so that each of the bisection's trials costs products instead of (N + 1)·200
+/// regressor passes.
+template <int N>
+class MassMatrixProbe {
+ public:
+  explicit MassMatrixProbe(const NominalModel<double, N>& like) {
+    Data<double, N> data;
+    Regressor<double, N> Y0, Yi;
+    const JointVector<double, N> zero = JointVector<double, N>::Zero();
+    for (const JointVector<double, N>& q : mass_check_poses(like.model)) {
+      compute_regressor(like.model, data, q, zero, zero, Y0);
+      Eigen::MatrixXd& map = maps_.emplace_back(N * N, like.base_count);
+      for (int i = 0; i < N; ++i) {
+        compute_regressor(like.model, data, q, zero, JointVector<double, N>::Unit(i), Yi);
+        for (int c = 0; c < like.base_count; ++c)
+          map.col(c).segment(N * i, N) =
+              Yi.col(like.base_columns[c]) - Y0.col(like.base_columns[c]);
+      }
+    }
+  }
+
+  /// Whether every eigenvalue of M(q) (symmetrised) of `nominal` (the same base columns)
+  /// exceeds `floor` at every pose: a Cholesky factor of M − floor·1 exists (the first pose
+  /// without one ends the test).
+  bool above(const NominalModel<double, N>& nominal, double floor) const {
+    for (const Eigen::MatrixXd& map : maps_) {
+      const Eigen::Matrix<double, N * N, 1> m = map * nominal.base_values.head(nominal.base_count);
+      const Eigen::Map<const JointMatrix<double, N>> M(m.data());
+      const JointMatrix<double, N> shifted =
+          0.5 * (M + M.transpose()) - floor * JointMatrix<double, N>::Identity();
+      if (Eigen::LLT<JointMatrix<double, N>>(shifted).info() != Eigen::Success) return false;
+    }
+    return true;
+  }
+
+ private:
+  std::vector<Eigen::MatrixXd> maps_;  ///< per pose: (N·N) × base_count, column-major M
+};
+
+}  // namespace
 
 template <int N>
 ColumnPrior robot_file_prior(const Model<double, N>& model, const EffectDesign<N>& design,
@@ -41,13 +87,14 @@ PriorFit<N> fit_with_inertia_prior(const Model<double, N>& model, const EffectDe
   const double floor =
       0.1 * min_mass_eigenvalue(linear_nominal(model, design, base, prior->mean).nominal);
   if (out.min_eigenvalue_without >= floor) return out;
+  const MassMatrixProbe<N> probe(out.fit.nominal);
   double weak = -8, strong = 2;  // log10 of the strength: below floor at `weak`
   out.fit = fit(std::pow(10.0, strong));
-  if (min_mass_eigenvalue(out.fit.nominal) >= floor)
+  if (probe.above(out.fit.nominal, floor))
     for (int k = 0; k < 20; ++k) {
       const double middle = 0.5 * (weak + strong);
       LinearNominal<N> trial = fit(std::pow(10.0, middle));
-      if (min_mass_eigenvalue(trial.nominal) >= floor) {
+      if (probe.above(trial.nominal, floor)) {
         strong = middle;
         out.fit = std::move(trial);
       } else {
