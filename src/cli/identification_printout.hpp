@@ -48,10 +48,19 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
   for (const auto& p : id.consistency.problems)
     std::printf("  problem: %s\n", p.c_str());
   const auto& prior = id.inertia_prior;
-  if (prior.asked && prior.judged_strength == 0 && prior.written_strength == 0)
+  if (prior.asked && !(prior.floor > 0)) {
+    std::printf(
+        "inertia prior: not applied: the robot file's own M(q) is not positive definite "
+        "(smallest eigenvalue %.4g kg·m² at the check's poses: a joint with no link inertia of "
+        "its own or beyond it and no rotor_inertia?), so it sets no floor to lift the fit's to\n",
+        10 * prior.floor);
+    fit["inertia_prior"] = {{"applied", false},
+                            {"robot_file_min_mass_eigenvalue", 10 * prior.floor}};
+  } else if (prior.asked && prior.judged_strength == 0 && prior.written_strength == 0) {
     std::printf(
         "inertia prior: not needed (M(q)'s smallest eigenvalue is at least a tenth of "
         "the robot file's own without it)\n");
+  }
   if (prior.judged_strength > 0 || prior.written_strength > 0) {
     std::printf(
         "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (judged fit), %.4g "

@@ -3,7 +3,7 @@
 // definite: the prior's strength is printed and kept in the file's fit and in diagnose's JSON,
 // the model is consistent, diagnose's --identify-out fit is identify's, byte for byte, and its
 // written model is physical; the plain fit says what is wrong and how to avoid it; where the
-// prior is not needed, identify says so.
+// prior is not needed, or a robot file's own M(q) sets no floor, identify says so.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -74,6 +74,29 @@ TEST(CliInertiaPrior, IdentifyAndDiagnoseSayWhatThePriorDidAndAgree) {
               "/bench1.robot.json --out b.json");
   ASSERT_EQ(bench.exit_code, 0) << bench.err;
   EXPECT_NE(bench.out.find("inertia prior: not needed"), std::string::npos) << bench.out;
+
+  // A robot file whose own M(q) is singular (a massless pendulum, no rotor inertia) sets no floor:
+  // the prior is not applied, and identify says why.
+  box.write("massless.urdf",
+            R"(<robot name="massless"><link name="stand"/><joint name="joint1" type="revolute">)"
+            R"(<parent link="stand"/><child link="pendulum"/><origin xyz="0 0 0.5"/>)"
+            R"(<axis xyz="0 1 0"/><limit lower="-2.9" upper="2.9" effort="20" velocity="3"/>)"
+            R"(</joint><link name="pendulum"/></robot>)");
+  box.write("massless.robot.json",
+            R"({"format": "tpf-robot", "version": 1, "name": "massless", "urdf": "massless.urdf",)"
+            R"( "gravity": [0, 0, -9.81], "joints": [{"name": "joint1", "gear_ratio": 100,)"
+            R"( "rotor_inertia": 0, "torque_constant": 5, "current_limit": 4000}]})");
+  const CliResult massless =
+      box.tpf("identify --quiet --log bench.csv --robot massless.robot.json --out m.json");
+  ASSERT_EQ(massless.exit_code, 0) << massless.err;
+  EXPECT_NE(massless.out.find("inertia prior: not applied: the robot file's own M(q) is not "
+                              "positive definite (smallest eigenvalue 0 kg·m²"),
+            std::string::npos)
+      << massless.out;
+  EXPECT_EQ(massless.out.find("inertia prior: not needed"), std::string::npos);
+  const nlohmann::json not_applied =
+      nlohmann::json::parse(CliSandbox::slurp(box / "m.json"))["fit"]["inertia_prior"];
+  EXPECT_FALSE(not_applied["applied"].get<bool>());
 }
 
 }  // namespace

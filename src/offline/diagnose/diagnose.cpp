@@ -42,6 +42,7 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
 struct DeclaredFit {
   double prior_strength = 0;
   double min_mass_eigenvalue_without_prior = 0;
+  double prior_floor = 0;  ///< PriorFit::floor (≤ 0: no floor, the prior not applied)
   Eigen::VectorXd joint_weights;
   Eigen::VectorXd viscous;           ///< per joint: the fitted viscous coefficient b_j
   Eigen::MatrixXd residual;          ///< effort − declared prediction
@@ -73,6 +74,7 @@ DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& ba
       const PriorFit<N> with = fit_with_inertia_prior(model, declared, base, grams,
                                                       declared.declared_columns(), rows, prior);
       fit.prior_strength = std::max(fit.prior_strength, with.strength);
+      fit.prior_floor = with.floor;
       fit.min_mass_eigenvalue_without_prior =
           std::min(fit.min_mass_eigenvalue_without_prior, with.min_eigenvalue_without);
     }
@@ -405,6 +407,12 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   selection.joint_weights = fit.joint_weights;
   out.inertia_prior_strength = fit.prior_strength;
   out.min_mass_eigenvalue_without_prior = fit.min_mass_eigenvalue_without_prior;
+  if (options.inertia_prior && !(fit.prior_floor > 0))
+    out.notes.push_back(
+        "inertia prior not applied: the robot file's own M(q) is not positive "
+        "definite (smallest eigenvalue " +
+        format_number(10 * fit.prior_floor, 4) +
+        " kg·m²), so it sets no floor to lift the fit's to");
 
   say("diagnose: pass 2/4: residual analysis");
   const ResidualAnalysis analysis =

@@ -459,8 +459,12 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   PriorFit<N> written = out.refitted ? fit_with_inertia_prior(model, design, base, grams, columns,
                                                               every, inertia_prior)
                                      : judged;
-  out.inertia_prior = {options.inertia_prior, judged.strength, written.strength,
-                       judged.min_eigenvalue_without, written.min_eigenvalue_without};
+  out.inertia_prior = {options.inertia_prior,
+                       judged.strength,
+                       written.strength,
+                       judged.min_eigenvalue_without,
+                       written.min_eigenvalue_without,
+                       judged.floor};
   LinearNominal<N> fit = std::move(judged.fit);
   LinearNominal<N> final_fit = std::move(written.fit);
   std::vector<Eigen::MatrixXd> rigids = design.predict_each(

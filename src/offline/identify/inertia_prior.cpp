@@ -84,9 +84,9 @@ PriorFit<N> fit_with_inertia_prior(const Model<double, N>& model, const EffectDe
   PriorFit<N> out{fit(0)};
   if (!prior) return out;
   out.min_eigenvalue_without = min_mass_eigenvalue(out.fit.nominal);
-  const double floor =
-      0.1 * min_mass_eigenvalue(linear_nominal(model, design, base, prior->mean).nominal);
-  if (out.min_eigenvalue_without >= floor) return out;
+  out.floor = 0.1 * min_mass_eigenvalue(linear_nominal(model, design, base, prior->mean).nominal);
+  const double floor = out.floor;
+  if (!(floor > 0) || out.min_eigenvalue_without >= floor) return out;
   const MassMatrixProbe<N> probe(out.fit.nominal);
   double weak = -8, strong = 2;  // log10 of the strength: below floor at `weak`
   out.fit = fit(std::pow(10.0, strong));
