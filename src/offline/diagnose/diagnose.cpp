@@ -42,7 +42,6 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
 struct DeclaredFit {
   double prior_strength = 0;
   double min_mass_eigenvalue_without_prior = 0;
-  double prior_floor = 0;  ///< PriorFit::floor (≤ 0: no floor, the prior not applied)
   Eigen::VectorXd joint_weights;
   Eigen::VectorXd viscous;           ///< per joint: the fitted viscous coefficient b_j
   Eigen::MatrixXd residual;          ///< effort − declared prediction
@@ -52,7 +51,7 @@ struct DeclaredFit {
 template <int N>
 DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& base,
                          const EffectDesign<N>& declared, const JointSamples& s,
-                         FitSelection selection, const ColumnPrior* prior) {
+                         FitSelection selection, const RobotFileInertiaPrior<N>* prior) {
   const DesignGrams grams = declared.accumulate(s, 4);
   Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
   DeclaredFit fit;
@@ -74,11 +73,10 @@ DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& ba
       const PriorFit<N> with = fit_with_inertia_prior(model, declared, base, grams,
                                                       declared.declared_columns(), rows, prior);
       fit.prior_strength = std::max(fit.prior_strength, with.strength);
-      fit.prior_floor = with.floor;
       fit.min_mass_eigenvalue_without_prior =
           std::min(fit.min_mass_eigenvalue_without_prior, with.min_eigenvalue_without);
     }
-    selection.prior = *prior;
+    selection.prior = prior->prior;
     selection.prior.strength = fit.prior_strength;
   }
   theta = fit_columns(grams, declared.declared_columns(), selection);
@@ -400,18 +398,19 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   const auto regressors =
       setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
   const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
-  const ColumnPrior declared_prior =
-      options.inertia_prior ? robot_file_prior(model, declared, setup.base) : ColumnPrior{};
+  const RobotFileInertiaPrior<N> declared_prior =
+      options.inertia_prior ? robot_file_inertia_prior(model, declared, setup.base)
+                            : RobotFileInertiaPrior<N>{};
   const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
                                        options.inertia_prior ? &declared_prior : nullptr);
   selection.joint_weights = fit.joint_weights;
   out.inertia_prior_strength = fit.prior_strength;
   out.min_mass_eigenvalue_without_prior = fit.min_mass_eigenvalue_without_prior;
-  if (options.inertia_prior && !(fit.prior_floor > 0))
+  if (options.inertia_prior && !(declared_prior.floor > 0))
     out.notes.push_back(
         "inertia prior not applied: the robot file's own M(q) is not positive "
         "definite (smallest eigenvalue " +
-        format_number(10 * fit.prior_floor, 4) +
+        format_number(10 * declared_prior.floor, 4) +
         " kg·m²), so it sets no floor to lift the fit's to");
 
   say("diagnose: pass 2/4: residual analysis");

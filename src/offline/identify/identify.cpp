@@ -451,9 +451,10 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.refitted = holds_rows_out(s);
   FitSelection every = selection;
   every.heldout_rows = true;
-  const ColumnPrior prior =
-      options.inertia_prior ? robot_file_prior(model, design, base) : ColumnPrior{};
-  const ColumnPrior* inertia_prior = options.inertia_prior ? &prior : nullptr;
+  const RobotFileInertiaPrior<N> prior = options.inertia_prior
+                                             ? robot_file_inertia_prior(model, design, base)
+                                             : RobotFileInertiaPrior<N>{};
+  const RobotFileInertiaPrior<N>* inertia_prior = options.inertia_prior ? &prior : nullptr;
   PriorFit<N> judged =
       fit_with_inertia_prior(model, design, base, grams, columns, selection, inertia_prior);
   PriorFit<N> written = out.refitted ? fit_with_inertia_prior(model, design, base, grams, columns,
@@ -464,7 +465,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                        written.strength,
                        judged.min_eigenvalue_without,
                        written.min_eigenvalue_without,
-                       judged.floor};
+                       prior.floor};
   LinearNominal<N> fit = std::move(judged.fit);
   LinearNominal<N> final_fit = std::move(written.fit);
   std::vector<Eigen::MatrixXd> rigids = design.predict_each(

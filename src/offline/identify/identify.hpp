@@ -64,8 +64,8 @@ struct Identification {
     bool asked = false;  ///< IdentifyOptions::inertia_prior
     double judged_strength = 0, written_strength = 0;
     double judged_min_eigenvalue = 0, written_min_eigenvalue = 0;
-    double floor = 0;  ///< PriorFit::floor (≤ 0: the robot file's own M(q) is not positive
-                       ///< definite, the prior was not applied)
+    double floor = 0;  ///< RobotFileInertiaPrior::floor (≤ 0: the robot file's own M(q) is not
+                       ///< positive definite, the prior was not applied)
   } inertia_prior;
   std::vector<std::string> friction_notes;  ///< bounds that bind, curve vs linear (FrictionCurves)
 };

@@ -9,50 +9,33 @@
 
 namespace tpf::offline {
 
-namespace {
-
-/// M(q) at check_consistency's poses as a linear map of the base values: per pose, column i of
-/// M is (Y(q, 0, e_i) − Y(q, 0, 0)).cols(base_columns)·base_values, the regressors computed
-/// once, so that each of the bisection's trials costs products instead of (N + 1)·200
-/// regressor passes.
 template <int N>
-class MassMatrixProbe {
- public:
-  explicit MassMatrixProbe(const NominalModel<double, N>& like) {
-    Data<double, N> data;
-    Regressor<double, N> Y0, Yi;
-    const JointVector<double, N> zero = JointVector<double, N>::Zero();
-    for (const JointVector<double, N>& q : mass_check_poses(like.model)) {
-      compute_regressor(like.model, data, q, zero, zero, Y0);
-      Eigen::MatrixXd& map = maps_.emplace_back(N * N, like.base_count);
-      for (int i = 0; i < N; ++i) {
-        compute_regressor(like.model, data, q, zero, JointVector<double, N>::Unit(i), Yi);
-        for (int c = 0; c < like.base_count; ++c)
-          map.col(c).segment(N * i, N) =
-              Yi.col(like.base_columns[c]) - Y0.col(like.base_columns[c]);
-      }
+MassMatrixProbe<N>::MassMatrixProbe(const NominalModel<double, N>& like) {
+  Data<double, N> data;
+  Regressor<double, N> Y0, Yi;
+  const JointVector<double, N> zero = JointVector<double, N>::Zero();
+  for (const JointVector<double, N>& q : mass_check_poses(like.model)) {
+    compute_regressor(like.model, data, q, zero, zero, Y0);
+    Eigen::MatrixXd& map = maps_.emplace_back(N * N, like.base_count);
+    for (int i = 0; i < N; ++i) {
+      compute_regressor(like.model, data, q, zero, JointVector<double, N>::Unit(i), Yi);
+      for (int c = 0; c < like.base_count; ++c)
+        map.col(c).segment(N * i, N) = Yi.col(like.base_columns[c]) - Y0.col(like.base_columns[c]);
     }
   }
+}
 
-  /// Whether every eigenvalue of M(q) (symmetrised) of `nominal` (the same base columns)
-  /// exceeds `floor` at every pose: a Cholesky factor of M − floor·1 exists (the first pose
-  /// without one ends the test).
-  bool above(const NominalModel<double, N>& nominal, double floor) const {
-    for (const Eigen::MatrixXd& map : maps_) {
-      const Eigen::Matrix<double, N * N, 1> m = map * nominal.base_values.head(nominal.base_count);
-      const Eigen::Map<const JointMatrix<double, N>> M(m.data());
-      const JointMatrix<double, N> shifted =
-          0.5 * (M + M.transpose()) - floor * JointMatrix<double, N>::Identity();
-      if (Eigen::LLT<JointMatrix<double, N>>(shifted).info() != Eigen::Success) return false;
-    }
-    return true;
+template <int N>
+bool MassMatrixProbe<N>::above(const NominalModel<double, N>& nominal, double floor) const {
+  for (const Eigen::MatrixXd& map : maps_) {
+    const Eigen::Matrix<double, N * N, 1> m = map * nominal.base_values.head(nominal.base_count);
+    const Eigen::Map<const JointMatrix<double, N>> M(m.data());
+    const JointMatrix<double, N> shifted =
+        0.5 * (M + M.transpose()) - floor * JointMatrix<double, N>::Identity();
+    if (Eigen::LLT<JointMatrix<double, N>>(shifted).info() != Eigen::Success) return false;
   }
-
- private:
-  std::vector<Eigen::MatrixXd> maps_;  ///< per pose: (N·N) × base_count, column-major M
-};
-
-}  // namespace
+  return true;
+}
 
 template <int N>
 ColumnPrior robot_file_prior(const Model<double, N>& model, const EffectDesign<N>& design,
@@ -72,22 +55,33 @@ ColumnPrior robot_file_prior(const Model<double, N>& model, const EffectDesign<N
 }
 
 template <int N>
+RobotFileInertiaPrior<N> robot_file_inertia_prior(const Model<double, N>& model,
+                                                  const EffectDesign<N>& design,
+                                                  const BaseParameters& base) {
+  RobotFileInertiaPrior<N> out;
+  out.prior = robot_file_prior(model, design, base);
+  const NominalModel<double, N> own = linear_nominal(model, design, base, out.prior.mean).nominal;
+  out.floor = 0.1 * min_mass_eigenvalue(own);
+  if (out.floor > 0) out.probe = MassMatrixProbe<N>(own);
+  return out;
+}
+
+template <int N>
 PriorFit<N> fit_with_inertia_prior(const Model<double, N>& model, const EffectDesign<N>& design,
                                    const BaseParameters& base, const DesignGrams& grams,
                                    const std::vector<int>& columns, FitSelection selection,
-                                   const ColumnPrior* prior) {
+                                   const RobotFileInertiaPrior<N>* prior) {
   auto fit = [&](double strength) {
-    if (prior) selection.prior = *prior;
+    if (prior) selection.prior = prior->prior;
     selection.prior.strength = strength;
     return linear_nominal(model, design, base, fit_columns(grams, columns, selection));
   };
   PriorFit<N> out{fit(0)};
   if (!prior) return out;
   out.min_eigenvalue_without = min_mass_eigenvalue(out.fit.nominal);
-  out.floor = 0.1 * min_mass_eigenvalue(linear_nominal(model, design, base, prior->mean).nominal);
-  const double floor = out.floor;
+  const double floor = prior->floor;
   if (!(floor > 0) || out.min_eigenvalue_without >= floor) return out;
-  const MassMatrixProbe<N> probe(out.fit.nominal);
+  const MassMatrixProbe<N>& probe = prior->probe;
   double weak = -8, strong = 2;  // log10 of the strength: below floor at `weak`
   out.fit = fit(std::pow(10.0, strong));
   if (probe.above(out.fit.nominal, floor))
@@ -108,9 +102,12 @@ PriorFit<N> fit_with_inertia_prior(const Model<double, N>& model, const EffectDe
 #define TPF_INSTANTIATE_INERTIA_PRIOR(N)                                                          \
   template ColumnPrior robot_file_prior<N>(const Model<double, N>&, const EffectDesign<N>&,       \
                                            const BaseParameters&);                                \
+  template class MassMatrixProbe<N>;                                                              \
+  template RobotFileInertiaPrior<N> robot_file_inertia_prior<N>(                                  \
+      const Model<double, N>&, const EffectDesign<N>&, const BaseParameters&);                    \
   template PriorFit<N> fit_with_inertia_prior<N>(                                                 \
       const Model<double, N>&, const EffectDesign<N>&, const BaseParameters&, const DesignGrams&, \
-      const std::vector<int>&, FitSelection, const ColumnPrior*);
+      const std::vector<int>&, FitSelection, const RobotFileInertiaPrior<N>*);
 TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_INERTIA_PRIOR)
 #undef TPF_INSTANTIATE_INERTIA_PRIOR
 
