@@ -55,13 +55,7 @@ DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& ba
   const DesignGrams grams = declared.accumulate(s, 4);
   Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
   DeclaredFit fit;
-  fit.joint_weights.resize(N);
-  for (int j = 0; j < N; ++j) {
-    ResidualSums sums;
-    for (int r = 1; r < DesignGrams::kRegimes; ++r)
-      sums += residual_sums(grams, theta, j, r, 0);
-    fit.joint_weights[j] = 1.0 / std::max(sums.std() * sums.std(), 1e-18);
-  }
+  fit.joint_weights = moving_residual_weights(grams, theta);
   selection.joint_weights = fit.joint_weights;
   if (prior) {  // the strength the fit on the training rows needs, or on every row if more
     FitSelection every = selection;

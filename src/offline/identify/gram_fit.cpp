@@ -131,4 +131,20 @@ double ResidualSums::std() const {
   return std::sqrt(std::max(0.0, sum_squares / count - m * m));
 }
 
+Eigen::VectorXd moving_residual_weights(const DesignGrams& grams, const Eigen::VectorXd& theta) {
+  Eigen::VectorXd weights(grams.joints);
+  for (int j = 0; j < grams.joints; ++j) {
+    ResidualSums moving, every;
+    for (int r = 0; r < DesignGrams::kRegimes; ++r) {
+      const ResidualSums sums = residual_sums(grams, theta, j, r, 0);
+      every += sums;
+      if (r > 0) moving += sums;
+    }
+    const double std = moving.count > 0 ? moving.std() : every.std();
+    const double sigma = std::isfinite(std) ? std::max(std, 1e-9) : 1.0;
+    weights[j] = 1.0 / (sigma * sigma);
+  }
+  return weights;
+}
+
 }  // namespace tpf::offline

@@ -80,4 +80,11 @@ struct ResidualSums {
 ResidualSums residual_sums(const DesignGrams& grams, const Eigen::VectorXd& theta, int joint,
                            int regime, int split);
 
+/// Per joint, 1/σ² of θ's residual on the training rows (split 0) while moving, the weights of
+/// the weighted fits. A joint that never moves in the log (braked, or left out of the excitation)
+/// has no moving rows: its σ is then that of its residual at rest, so that its weight stays
+/// finite (one NaN weight turns every fit to NaN). σ is at least 1e-9, and 1 for a joint without
+/// rows.
+Eigen::VectorXd moving_residual_weights(const DesignGrams& grams, const Eigen::VectorXd& theta);
+
 }  // namespace tpf::offline

@@ -435,15 +435,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     else if (g.key == JointFrictionColumns::key)  // the sliding levels, not the friction at rest
       columns.insert(columns.end(), g.columns.begin(), g.columns.begin() + 2);
   Eigen::VectorXd theta = fit_columns(grams, columns, selection);
-  out.joint_weights.resize(N);
-  Eigen::VectorXd sigma(N);
-  for (int j = 0; j < N; ++j) {
-    ResidualSums sums;
-    for (int r = 1; r < DesignGrams::kRegimes; ++r)
-      sums += residual_sums(grams, theta, j, r, 0);
-    sigma[j] = std::max(sums.std(), 1e-9);
-    out.joint_weights[j] = 1.0 / (sigma[j] * sigma[j]);
-  }
+  out.joint_weights = moving_residual_weights(grams, theta);
   selection.joint_weights = out.joint_weights;
 
   say("identify: pass 2/3: rigid-body prediction, friction curves (Ceres)");
