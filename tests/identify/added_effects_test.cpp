@@ -136,7 +136,13 @@ void expect_round_trip(int columns) {
   std::mt19937_64 rng(11);
   Nominal nominal = bare_model();
   write_random<Family>(nominal, rng, ripple_inputs(), columns);
-  nominal.model = arm();  // the file's robot: gear ratios as the robot file has them
+  // The file's robot (gear ratios as the robot file has them) and its rigid body: a file
+  // without one is refused.
+  const Nominal robot_file = nominal_from_model<kJoints>(arm(), nominal.friction);
+  nominal.model = robot_file.model;
+  nominal.base_count = robot_file.base_count;
+  nominal.base_columns = robot_file.base_columns;
+  nominal.base_values = robot_file.base_values;
   const auto path = std::filesystem::temp_directory_path() /
                     ("tpf_effects_" + std::to_string(::getpid()) + ".json");
   save_nominal_model<kJoints>(path, nominal);

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "support/allocation_counter.hpp"
@@ -170,6 +171,15 @@ TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
               j["rigid_body"][0]["name"] = "Qxx9";
             }).find("rigid_body[0].name: unknown rigid-body parameter 'Qxx9'"),
             std::string::npos);
+  // A missing base parameter would be 0: a link without weight.
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["rigid_body"].erase(j["rigid_body"].size() - 1);
+            }).find("rigid_body: 23 parameters, but the robot file has 24 base parameters"),
+            std::string::npos);
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["rigid_body"] = nlohmann::json::array();
+            }).find("rigid_body: 0 parameters"),
+            std::string::npos);
   EXPECT_NE(with([](nlohmann::json& j) { j["format"] = "tpf-robot"; }).find("format"),
             std::string::npos);
   EXPECT_NE(with([](nlohmann::json& j) { j["colour"] = 1; }).find("colour: unknown key"),
@@ -205,6 +215,21 @@ TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
             std::string::npos);
   EXPECT_NE(load_error("{\"format\": \"tpf-params\",\n oops").find("bad.json:2"),
             std::string::npos);
+}
+
+TEST(NominalModel, AModelWithANonFiniteValueIsNotWritten) {
+  // What a log sample of 1e300 A makes of a fit: JSON would hold null, which no reader takes.
+  Nominal nominal = twin_nominal();
+  nominal.friction.viscous[1] = std::numeric_limits<double>::quiet_NaN();
+  const auto path = temp_path("nan.json");
+  try {
+    save_nominal_model<kJoints>(path, nominal);
+    FAIL() << "a NaN viscous coefficient was written";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("friction.viscous[1]: not finite"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 }  // namespace

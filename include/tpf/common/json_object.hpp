@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tpf/common/error.hpp"
+
 namespace tpf::json {
 
 class Object {
@@ -119,5 +121,38 @@ class Object {
   std::string path_;
   std::set<std::string> used_;
 };
+
+/// The key path of the first number in `value` that is NaN or ±∞ ("friction.viscous[2]"), or ""
+/// when every number is finite. JSON has no such numbers: nlohmann writes them as null, which the
+/// readers then refuse, so the writers check first (require_finite).
+template <class Json>
+std::string first_non_finite(const Json& value, const std::string& path = "") {
+  if (value.is_number_float()) return std::isfinite(value.template get<double>()) ? "" : path;
+  if (value.is_array()) {
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      std::string found = first_non_finite(value[i], path + "[" + std::to_string(i) + "]");
+      if (!found.empty()) return found;
+    }
+  } else if (value.is_object()) {
+    for (auto it = value.begin(); it != value.end(); ++it) {
+      std::string found =
+          first_non_finite(it.value(), path.empty() ? it.key() : path + "." + it.key());
+      if (!found.empty()) return found;
+    }
+  }
+  return "";
+}
+
+/// Throws tpf::Error "<file>: <key path>: not finite …" when `value` holds a NaN or ±∞, before
+/// anything is written: a model fitted on a log with a sample far out of range (1e300 A), or a
+/// non-finite option, must not leave a file that looks complete.
+template <class Json>
+void require_finite(const Json& value, const std::filesystem::path& file) {
+  const std::string key = first_non_finite(value);
+  if (!key.empty())
+    throw Error::at(file.string(), 0, key,
+                    "not finite (NaN or ±∞), so nothing was written: an input far out of range "
+                    "(a log sample, a file's value or an option) can cause this");
+}
 
 }  // namespace tpf::json

@@ -33,7 +33,8 @@ OrderedJson ordered_array(const auto& v) {
 OrderedJson limits_array(const auto& v) {
   OrderedJson a = OrderedJson::array();
   for (Eigen::Index i = 0; i < v.size(); ++i)
-    a.push_back(std::isfinite(v[i]) ? OrderedJson(v[i]) : OrderedJson(nullptr));
+    a.push_back(v[i] == std::numeric_limits<double>::infinity() ? OrderedJson(nullptr)
+                                                                : OrderedJson(v[i]));
   return a;
 }
 
@@ -177,6 +178,7 @@ void save_estimator_parameters(const std::filesystem::path& file,
   j["static_dead_band"] = ordered_array(p.static_dead_band);
   j["compensator_speed_limit"] = limits_array(p.compensator_speed_limit);
   j["compensator_acceleration_limit"] = limits_array(p.compensator_acceleration_limit);
+  json::require_finite(j, file);
   write_file_atomically(file, j.dump(2) + "\n");
 }
 

@@ -43,6 +43,18 @@ int column_by_name(const std::string& name) {
   return -1;
 }
 
+/// Fails when the file's rigid_body gives fewer values than the robot file has base parameters:
+/// the missing ones would silently be 0 (a link without weight or inertia). Which columns stand
+/// for the base is the identification's choice, so only the count is checked.
+template <int N>
+void require_every_base_parameter(const json::Object& top, const NominalModel<double, N>& nominal) {
+  const int expected = rigid_body_base_parameters(nominal.model).size();
+  if (nominal.base_count < expected)
+    top.fail("rigid_body", std::to_string(nominal.base_count) +
+                               " parameters, but the robot file has " + std::to_string(expected) +
+                               " base parameters and each needs a value (identify again)");
+}
+
 }  // namespace
 
 std::string regressor_column_name(int joints, int column) {
@@ -133,6 +145,7 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
     r.finish();
   }
   nominal.base_count = static_cast<int>(rigid.size());
+  require_every_base_parameter(top, nominal);
 
   if (!top.has("friction")) top.fail("friction", "missing");
   json::Object f = top.child("friction");
@@ -222,6 +235,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
     }
   }
 
+  json::require_finite(j, params_file);
   write_file_atomically(params_file, j.dump(2) + "\n");
 }
 

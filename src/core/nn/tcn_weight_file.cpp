@@ -12,6 +12,7 @@
 
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/common/json_object.hpp"
 #include "tpf/common/json_parse.hpp"
 
 namespace tpf {
@@ -225,7 +226,7 @@ void write_tcn_weight_file(const std::string& path, const TcnWeightFile& file) {
     tensors[name] = {{"shape", tensor.shape}, {"values", tensor.values}};
   }
   json["tensors"] = std::move(tensors);
-
+  json::require_finite(json, path);
   write_file_atomically(path, json.dump(1) + "\n");
 }
 
