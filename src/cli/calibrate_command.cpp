@@ -10,6 +10,8 @@
 #include "model_file_options.hpp"
 #include "offline/calibrate/estimator_calibration.hpp"
 #include "offline/log/read_log.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/model/effort_unit.hpp"
 
@@ -100,18 +102,23 @@ void register_calibrate_command(CLI::App& app) {
   cmd->add_option("--log", o->log,
                   "Contact-free calibration log (tpf CSV, effort i<j> in mA or tau<j> in N*m)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   add_model_file_options(cmd, o->model, "Nominal model (tpf-params file)");
   cmd->add_option("--weights", o->weights,
                   "Compensator weights the loop will run (all joints, or <stem>.joint<j>.json per "
-                  "joint); without: the fused dead band is calibrated with no compensator");
+                  "joint); without: the fused dead band is calibrated with no compensator")
+      ->check(weights_path());
   cmd->add_option("--pad-gain", o->pad_gain_kpa_per_n,
                   "Pad pressure per normal force on the 25 cm^2 reference pad [kPa/N]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--out", o->out, "Estimator parameter file to write, e.g. arm4.estimator.json")
       ->required();
   cmd->callback([o] {
+    refuse_overwriting_inputs("calibrate",
+                              joined(joined({{"--log", o->log}}, model_inputs(o->model)),
+                                     weight_files("--weights", o->weights)),
+                              {{"--out", o->out}});
     with_joint_count(robot_joint_count(o->model.robot), o->model.robot,
                      [&]<int N>() { run_calibrate<N>(*o); });
   });

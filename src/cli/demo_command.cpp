@@ -8,6 +8,7 @@
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
 #include "offline/pipeline/measured_report.hpp"
+#include "option_validators.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::cli {
@@ -23,28 +24,35 @@ void register_demo_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--train-epochs", o->training_epochs,
                   "training budget: epochs per network (reproducible on any machine)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(at_least(1));
   cmd->add_option("--train-safety-seconds", o->training_safety_s,
                   "wall-clock safety net for the training [s] (0: none; the report says if it "
                   "triggered)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--train-duration", o->training_s, "simulated training log [s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive(kMaxSimulatedSeconds));
   cmd->add_option("--test-duration", o->test_s, "simulated held-out excitation log [s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive(kMaxSimulatedSeconds));
   cmd->add_option("--split-cutoff", o->split_cutoff_hz,
                   "cut-off of the zero-phase low/high split of the TCN target [Hz]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(split_cutoff_hz());
   cmd->add_option("--joint-hidden", o->joint_hidden,
                   "hidden channels of a per-joint network (16 or 32)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(one_of({offline::kPerJointHiddenSmall, offline::kPerJointHiddenLarge}));
   cmd->add_flag("!--all-joints", o->per_joint,
                 "one network for all joints instead of one per joint (the default)");
   cmd->add_flag("!--no-twin", o->run_twin, "skip the digital twin (stages 1-5)");
   cmd->add_flag("!--no-measured", o->run_measured, "skip the Kinova Gen3 logs (stage 6, MEASURED)");
   cmd->add_option("--measured-epochs", o->measured.training_epochs,
                   "training budget of the measured compensator: epochs per network")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(at_least(1));
   cmd->add_flag_callback(
       "--measured-every-input", [o] { o->measured.compensator_masked_inputs.clear(); },
       "the measured compensator sees every input (q and τ̂_fric,s too; by default it does not: "
@@ -64,7 +72,7 @@ void register_demo_command(CLI::App& app) {
     });
     if (o->run_twin)
       std::printf("\nSIMULATED (digital twin)\n%s",
-                  offline::evaluation_headline(result.evaluation).c_str());
+                  offline::evaluation_headline(result.evaluation, true).c_str());
     if (result.measured)
       std::printf(
           "\n%s",

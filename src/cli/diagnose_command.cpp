@@ -3,8 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <utility>
@@ -17,6 +15,8 @@
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 #include "read_command_logs.hpp"
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
@@ -31,30 +31,6 @@ struct DiagnoseArgs {
   bool quiet = false, inertia_prior = true;
   bool no_load_friction = false, friction_from_sensor = false;  ///< of --identify-out's fit
 };
-
-/// Refuses an --identify-out that names the file of another output (the later write would
-/// replace it), before the log is read.
-void refuse_shared_output(const DiagnoseArgs& a) {
-  if (a.identify_out.empty()) return;
-  const auto canonical = [](const std::string& path) {  // of files that need not exist yet
-    std::error_code error;
-    const std::filesystem::path absolute = std::filesystem::absolute(path, error);
-    const std::filesystem::path full =
-        error ? absolute : std::filesystem::weakly_canonical(absolute, error);
-    return error ? std::filesystem::path(path) : full;
-  };
-  const auto same_file = [&](const std::string& other) {
-    return !other.empty() && canonical(other) == canonical(a.identify_out);
-  };
-  for (const auto& [option, path] :
-       {std::pair<const char*, const std::string&>{"--report", a.report},
-        {"--json", a.json},
-        {"--params", a.params}})
-    if (same_file(path))
-      throw tpf::Error::at(
-          a.identify_out, 0, "--identify-out",
-          std::string("also given as ") + option + ": each output needs its own file");
-}
 
 /// With --identify-out: identify (with the friction options of `a`) on the samples diagnose then
 /// takes over, read and regressed once; prints and writes what `tpf identify` would.
@@ -158,8 +134,8 @@ void register_diagnose_command(CLI::App& app) {
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz); several are read as one, each file its own segment")
       ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--robot", a->robot, "Robot file")->required()->check(CLI::ExistingFile);
+      ->check(input_file());
+  cmd->add_option("--robot", a->robot, "Robot file")->required()->check(input_file());
   cmd->add_option("--report", a->report, "HTML report to write");
   cmd->add_option("--json", a->json, "The same numbers as JSON");
   cmd->add_option("--params", a->params, "Parameter file of the extended model (tpf-params)");
@@ -182,13 +158,20 @@ void register_diagnose_command(CLI::App& app) {
                 "strength found for the declared model); with --identify-out, its fit too. "
                 "--no-inertia-prior: every fit plain");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive());
   cmd->add_option("--min-improvement", a->min_improvement,
                   "Share of the held-out residual sum of squares an effect must remove")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(in_half_open(0.0, 1.0));
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
-    refuse_shared_output(*a);
+    refuse_overwriting_inputs("diagnose",
+                              joined(each_of("--log", a->logs), {{"--robot", a->robot}}),
+                              {{"--report", a->report},
+                               {"--json", a->json},
+                               {"--params", a->params},
+                               {"--identify-out", a->identify_out}});
     reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });

@@ -14,6 +14,8 @@
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/sim/scenario.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 #include "tpf/common/atomic_file.hpp"
 
 namespace {
@@ -31,6 +33,20 @@ struct EvaluateCommandOptions {
 bool is_simulated(const tpf::offline::Log& log) {
   const auto source = log.meta.get("source");
   return source && source->find("simulated") != std::string::npos;
+}
+
+/// Refuses a report or JSON file in --out that is one of the input files.
+void refuse_colliding_outputs(const EvaluateCommandOptions& o) {
+  using namespace tpf::cli;
+  const PathOptions logs =
+      joined(joined({{"--calibration", o.calibration}}, each_of("--excitation", o.excitation)),
+             {{"--contacts", o.contacts},
+              {"--teaching", o.teaching},
+              {"--teaching-scenario", o.teaching_scenario}});
+  const std::filesystem::path out(o.out);
+  refuse_overwriting_inputs(
+      "evaluate", joined(joined(model_inputs(o.model), weight_files("--weights", o.weights)), logs),
+      {{"--out", (out / "evaluate.html").string()}, {"--out", (out / "evaluation.json").string()}});
 }
 
 template <int N>
@@ -82,7 +98,7 @@ void run_evaluate(const EvaluateCommandOptions& o) {
   tpf::AtomicFile json(std::filesystem::path(o.out) / "evaluation.json");
   json.write(evaluation_json(ev));
   json.commit();
-  std::printf("%s", evaluation_headline(ev).c_str());
+  std::printf("%s", evaluation_headline(ev, simulated).c_str());
   std::printf("evaluate: report %s\n", html.string().c_str());
 }
 
@@ -98,27 +114,31 @@ void register_evaluate_command(CLI::App& app) {
       "per regime, nominal vs TCN), dead bands, detection latency, force error, teaching");
   add_model_file_options(cmd, o->model, "Nominal model (tpf-params file)");
   cmd->add_option("--weights", o->weights,
-                  "Compensator weights (all joints, or <stem>.joint<j>.json per joint)");
+                  "Compensator weights (all joints, or <stem>.joint<j>.json per joint)")
+      ->check(weights_path());
   cmd->add_option("--calibration", o->calibration,
                   "Contact-free log for the dead-band σ (not a test log, not the training log)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--excitation", o->excitation, "Held-out contact-free excitation log(s)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--contacts", o->contacts, "Static-contacts log (detection, force error)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--teaching", o->teaching, "Teaching log")->check(CLI::ExistingFile);
+      ->check(input_file());
+  cmd->add_option("--teaching", o->teaching, "Teaching log")->check(input_file());
   cmd->add_option("--teaching-scenario", o->teaching_scenario,
                   "Teaching scenario to simulate in closed loop through the estimators")
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--teaching-seed", o->teaching_seed, "Seed of the closed-loop runs")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--teaching-duration", o->teaching_duration, "Closed-loop run length [s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive(kMaxSimulatedSeconds));
   cmd->add_option("--out", o->out, "Output folder (evaluate.html, evaluation.json)")->required();
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   cmd->callback([o] {
+    refuse_colliding_outputs(*o);
     with_joint_count(robot_joint_count(o->model.robot), o->model.robot,
                      [&]<int N>() { run_evaluate<N>(*o); });
   });

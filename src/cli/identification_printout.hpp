@@ -23,9 +23,9 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
                                    std::chrono::steady_clock::time_point start) {
   using offline::Regime;
   const auto& s = id.samples;
-  std::printf("%s%s: %ld samples (%zu skipped for a missing value), effort in %s\n",
-              s.simulated ? "SIMULATED log " : "log ", log.source.c_str(),
-              static_cast<long>(s.size()), s.invalid_count, s.units.name());
+  std::printf("%s%s: %ld samples (%s), effort in %s\n", s.simulated ? "SIMULATED log " : "log ",
+              log.source.c_str(), static_cast<long>(s.size()),
+              offline::skipped_samples_text(s).c_str(), s.units.name());
   std::printf("held-out residual RMSE [%s]     static  static-to-kinetic   moving      all\n",
               s.units.name());
   nlohmann::json fit;

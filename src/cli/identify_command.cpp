@@ -14,6 +14,8 @@
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 #include "read_command_logs.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -60,13 +62,14 @@ void register_identify_command(CLI::App& app) {
                   "Log(s) (tpf CSV or .csv.gz; i<j> in mA or tau<j> in N·m); several are read as "
                   "one, each file its own segment")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--robot", a->robot, "Robot file, e.g. data/arm4.robot.json")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--out", a->out, "Parameter file to write (tpf-params JSON)")->required();
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive());
   cmd->add_flag("--no-load-friction", a->no_load_friction, "Keep α_c = α_v = 0");
   cmd->add_flag("--friction-from-sensor", a->friction_from_sensor,
                 "Fit each joint's friction against its joint torque sensor (tau_sensor<j>, "
@@ -80,6 +83,9 @@ void register_identify_command(CLI::App& app) {
                 "file's fit). --no-inertia-prior: the plain least-squares fit, whatever M(q)");
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
   cmd->callback([a] {
+    refuse_overwriting_inputs("identify",
+                              joined(each_of("--log", a->logs), {{"--robot", a->robot}}),
+                              {{"--out", a->out}});
     reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
     with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });

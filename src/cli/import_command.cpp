@@ -10,6 +10,8 @@
 #include "offline/log/import_log.hpp"
 #include "offline/log/log_writer.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 #include "tpf/common/error.hpp"
 
 namespace {
@@ -44,18 +46,33 @@ void import_one(const tpf::offline::ImportMap& map, const std::string& input,
     std::printf("  %s\n", line.c_str());
 }
 
-void run_import(const ImportArgs& a) {
-  const tpf::offline::ImportMap map = tpf::offline::load_import_map(a.map);
+void check_output_options(const ImportArgs& a) {
   if (a.out.empty() == a.out_dir.empty())
     throw tpf::Error("import: give either --out (one input) or --out-dir");
   if (!a.out.empty() && a.inputs.size() != 1)
     throw tpf::Error("import: --out takes one input; use --out-dir for " +
                      std::to_string(a.inputs.size()));
-  if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
+}
+
+/// The log each input is written to, in input order.
+tpf::cli::PathOptions output_files(const ImportArgs& a) {
+  if (!a.out.empty()) return {{"--out", a.out}};
+  tpf::cli::PathOptions outputs;
   for (const std::string& input : a.inputs)
-    import_one(
-        map, input,
-        a.out.empty() ? output_in(a.out_dir, input, a.compress) : std::filesystem::path(a.out));
+    outputs.push_back({"the --out-dir file", output_in(a.out_dir, input, a.compress).string()});
+  return outputs;
+}
+
+void run_import(const ImportArgs& a) {
+  using namespace tpf::cli;
+  check_output_options(a);
+  const PathOptions outputs = output_files(a);
+  refuse_overwriting_inputs("import", joined({{"--map", a.map}}, each_of("the input", a.inputs)),
+                            outputs);
+  const tpf::offline::ImportMap map = tpf::offline::load_import_map(a.map);
+  if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
+  for (std::size_t k = 0; k < a.inputs.size(); ++k)
+    import_one(map, a.inputs[k], outputs[k].path);
 }
 
 }  // namespace
@@ -72,10 +89,10 @@ void register_import_command(CLI::App& app) {
       "them, and where the torque sensor is missing or flat");
   cmd->add_option("--map", a->map, "Column map, e.g. data/real/kinova-gen3/kinova.import.json")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("csv", a->inputs, "Foreign CSV file(s), plain or .gz")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--out", a->out, "The tpf log to write (one input; .gz: compressed)");
   cmd->add_option("--out-dir", a->out_dir,
                   "Folder for the logs, one per input, named after it (<name>.csv.gz)");

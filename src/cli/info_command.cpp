@@ -8,6 +8,7 @@
 #include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
 #include "offline/common/data_files.hpp"
+#include "option_validators.hpp"
 #include "tpf/core.hpp"
 
 namespace tpf::cli {
@@ -89,7 +90,7 @@ void register_info_command(CLI::App& app) {
   auto robot = std::make_shared<std::string>(offline::data_file("arm4.robot.json").string());
   cmd->add_option("--robot", *robot, "robot file (JSON naming the URDF and pad layout)")
       ->capture_default_str()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->callback([robot] { print_robot_summary(*robot); });
 }
 

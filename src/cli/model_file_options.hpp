@@ -7,6 +7,8 @@
 #include <string>
 
 #include "offline/common/data_files.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 #include "tpf/estimation/load_estimator.hpp"
 #include "tpf/model/robot_description.hpp"
 
@@ -23,13 +25,21 @@ struct ModelFiles {
 inline void add_model_file_options(CLI::App* cmd, ModelFiles& files, const std::string& params_help,
                                    bool with_pads = true) {
   files.robot = offline::data_file("arm4.robot.json").string();
-  cmd->add_option("--params", files.params, params_help)->required()->check(CLI::ExistingFile);
+  cmd->add_option("--params", files.params, params_help)->required()->check(input_file());
   cmd->add_option("--robot", files.robot, "Robot file (tpf-robot: URDF, drives, pad layout)")
       ->capture_default_str()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   if (with_pads)
     cmd->add_option("--pads", files.pads,
-                    "Pad layout file (default: the one the robot file names; \"none\": no skin)");
+                    "Pad layout file (default: the one the robot file names; \"none\": no skin)")
+        ->check(input_file_or("none"));
+}
+
+/// The model files as inputs of refuse_overwriting_inputs (--pads none: not a file).
+inline PathOptions model_inputs(const ModelFiles& files) {
+  return {{"--params", files.params},
+          {"--robot", files.robot},
+          {"--pads", files.pads == "none" ? std::string() : files.pads}};
 }
 
 /// The pad layout to use: --pads, else the robot file's (empty: no skin).

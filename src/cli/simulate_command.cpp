@@ -11,6 +11,8 @@
 #include "commands.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 
 namespace {
 
@@ -70,20 +72,26 @@ void register_simulate_command(CLI::App& app) {
                   "Scenario file, e.g. data/scenarios/excitation.json; it names its robot "
                   "(\"robot\", default data/arm4.robot.json)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--robot", options->robot,
                   "Robot file to simulate instead of the scenario's, e.g. data/bench1.robot.json "
                   "(its pads and friction file come with it; the scenario's per-joint vectors "
                   "must then fit its joint count or be left out)")
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--seed", options->seed, "Random seed; the same seed gives the same log")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--duration", options->duration,
                   "Simulated time in seconds (default: the scenario's duration_s)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(positive(kMaxSimulatedSeconds));
   cmd->add_option("--out", options->out, "Output log (CSV, tpf log format)")->required();
   cmd->add_flag("--quiet", options->quiet, "No progress line");
-  cmd->callback([options] { run_simulate(*options); });
+  cmd->callback([options] {
+    refuse_overwriting_inputs("simulate",
+                              {{"--scenario", options->scenario}, {"--robot", options->robot}},
+                              {{"--out", options->out}});
+    run_simulate(*options);
+  });
 }
 
 }  // namespace tpf::cli

@@ -17,6 +17,8 @@
 #include "offline/log/torque_sensor.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 
 namespace {
 
@@ -54,6 +56,17 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& 
     traces.push_back(replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0)));
   }
   return traces;
+}
+
+/// Refuses weight files (--out, --checkpoint; per joint, each joint's) that would overwrite an
+/// input or each other.
+void refuse_colliding_outputs(const TrainCommandOptions& o) {
+  const int joints = o.per_joint ? tpf::cli::robot_joint_count(o.model.robot) : 1;
+  using namespace tpf::cli;
+  refuse_overwriting_inputs(
+      "train", joined(each_of("--log", o.logs), model_inputs(o.model)),
+      joined(written_weight_files("--out", o.out, o.per_joint, joints),
+             written_weight_files("--checkpoint", o.checkpoint, o.per_joint, joints)));
 }
 
 void run_train(TrainCommandOptions o) {
@@ -102,7 +115,7 @@ void register_train_command(CLI::App& app) {
       "the nominal model's prediction, inputs = what the run-time estimator feeds it");
   cmd->add_option("--log", o->logs, "Contact-free excitation log(s)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   add_model_file_options(cmd, o->model, "Nominal model (tpf-params file from identify/diagnose)",
                          false);
   cmd->add_option("--out", o->out,
@@ -111,40 +124,51 @@ void register_train_command(CLI::App& app) {
   cmd->add_flag("--per-joint", o->per_joint, "One network per joint instead of one for all");
   cmd->add_option("--joint-hidden", o->joint_hidden,
                   "Hidden channels of a per-joint network (16 or 32; all joints: 32)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(one_of({offline::kPerJointHiddenSmall, offline::kPerJointHiddenLarge}));
   cmd->add_option("--seed", o->tcn.seed, "Seed (initialisation, held-out choice, batches)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--max-epochs", o->tcn.max_epochs,
                   "Epoch budget per network (the reproducible budget; early stopping may end "
                   "sooner)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(at_least(1));
   cmd->add_option("--max-seconds", o->tcn.max_seconds,
                   "Wall-clock safety net for the whole run (0: none); results then depend on the "
                   "machine's speed")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--epoch-windows", o->tcn.epoch_windows,
                   "At most this many training windows per epoch (0: all); a pass over the "
                   "shuffled windows is split into equal epochs")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--min-learning-rate", o->tcn.min_learning_rate,
                   "Early stopping: stop when the decay would halve the learning rate below this "
                   "(0: never)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--patience", o->tcn.patience, "Early stopping: epochs without improvement")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--split-cutoff", o->tcn.split_cutoff_hz,
                   "Cut-off of the zero-phase low/high split of the target [Hz]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(split_cutoff_hz());
   cmd->add_option("--threads", o->tcn.threads, "Worker threads (results do not depend on it)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(at_least(1));
   cmd->add_option("--checkpoint", o->checkpoint,
                   "Write the best model so far here at each improvement (outputs in N*m)");
   cmd->add_option("--break-away-weight", o->static_to_kinetic_weight,
                   "Loss weight of static-to-kinetic samples (moving samples weigh 1)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--rest-weight", o->static_weight,
                   "Loss weight of static samples (moving samples weigh 1)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative());
   cmd->add_option("--without-input", o->without,
                   "A joint input the networks must not see (repeatable): q, dq, ddq, "
                   "static-friction, nominal-friction. Held at 0 in training and removed from the "
@@ -153,7 +177,10 @@ void register_train_command(CLI::App& app) {
                   "joint's range")
       ->check(CLI::IsMember({"q", "dq", "ddq", "static-friction", "nominal-friction"}));
   cmd->add_flag("--quiet", o->quiet, "No progress bar");
-  cmd->callback([o] { run_train(*o); });
+  cmd->callback([o] {
+    refuse_colliding_outputs(*o);
+    run_train(*o);
+  });
 }
 
 }  // namespace tpf::cli

@@ -7,6 +7,8 @@
 
 #include "commands.hpp"
 #include "offline/upgrade/upgrade_files.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 
 namespace tpf::cli {
 
@@ -21,13 +23,20 @@ void register_upgrade_command(CLI::App& app) {
       "effort_per_newton_metre). Converts every file or none");
   cmd->add_option("--params", *params, "tpf-params file, version 1 (holds the unit factor)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--estimator", *estimator,
-                  "tpf-estimator file, version 2, calibrated with that model");
+                  "tpf-estimator file, version 2, calibrated with that model")
+      ->check(input_file());
   cmd->add_option("--weights", *weights,
                   "compensator weights trained with that model: one file, or the path whose "
-                  "<stem>.joint<j>.json files exist (as `tpf train --per-joint --out` names them)");
+                  "<stem>.joint<j>.json files exist (as `tpf train --per-joint --out` names them)")
+      ->check(weights_path());
   cmd->callback([=] {
+    // Each file is converted in place, on purpose; two options naming one file would write it
+    // twice.
+    refuse_overwriting_inputs("upgrade", {},
+                              joined({{"--params", *params}, {"--estimator", *estimator}},
+                                     weight_files("--weights", *weights)));
     const tpf::offline::UpgradeFiles files{*params, *estimator, *weights};
     for (const std::string& line : tpf::offline::upgrade_files(files))
       std::printf("upgrade: wrote %s\n", line.c_str());

@@ -11,6 +11,8 @@
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/validate/validation.hpp"
+#include "option_validators.hpp"
+#include "output_collisions.hpp"
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
@@ -44,8 +46,8 @@ void run(const tpf::offline::Log& log, const ValidateArgs& a) {
   v.notes = notes;
   std::printf("validate: %s on %s (%s)\n", a.params.c_str(), log.source.c_str(),
               samples.simulated ? "SIMULATED" : "held out by log");
-  std::printf("  %s; %zu samples skipped for a missing value\n",
-              log.quality.summary(log.columns).c_str(), samples.invalid_count);
+  std::printf("  %s; samples: %s\n", log.quality.summary(log.columns).c_str(),
+              tpf::offline::skipped_samples_text(samples).c_str());
   bool sensor = false;
   for (const SensorScore& score : v.sensor)
     sensor = sensor || score.samples > 0;
@@ -72,26 +74,33 @@ void register_validate_command(CLI::App& app) {
       "Kt*i - friction - armature*q'' against it (Kt only and the maker's tau_maker<j> beside)");
   cmd->add_option("--params", a->params, "Parameter file (tpf-params) from identify/diagnose")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--robot", a->robot, "Robot file the parameters were identified for")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--log", a->logs,
                   "Held-out log(s) (.csv or .csv.gz); several are scored "
                   "together, each its own segment")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--weights", a->weights,
                   "Friction compensator (tpf train: one file, or <stem>.joint<j>.json per joint): "
-                  "adds the column 'with the compensator'");
+                  "adds the column 'with the compensator'")
+      ->check(weights_path());
   cmd->add_option("--estimator", a->estimator,
                   "Estimator parameter file (tpf calibrate) the compensator runs with (default: "
                   "the defaults; only the static-friction tracker and the q'' filter matter here)")
-      ->check(CLI::ExistingFile);
+      ->check(input_file());
   cmd->add_option("--json", a->json, "The same numbers as JSON");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive());
   cmd->callback([a] {
+    refuse_overwriting_inputs(
+        "validate",
+        joined(joined({{"--params", a->params}, {"--robot", a->robot}}, each_of("--log", a->logs)),
+               joined(weight_files("--weights", a->weights), {{"--estimator", a->estimator}})),
+        {{"--json", a->json}});
     std::vector<std::string> notes;
     const offline::Log log = offline::read_logs(a->logs, &notes);
     for (const std::string& n : notes)

@@ -84,6 +84,20 @@ TEST(JointSamples, ParallelExtractionMatchesTheDefinitionsBitForBit) {
   EXPECT_EQ(s.invalid_count, 11u);
 }
 
+TEST(JointSamples, AValueNoArmProducesIsSkippedAndCountedApart) {
+  // One field of 1e300 (a corrupt current) made every fit NaN: it is skipped like a missing
+  // value, and said apart.
+  Log log = three_joint_log();
+  log.values(700, log.column("i2")) = 1e300;
+  const JointSamples s =
+      extract_joint_samples(log, Eigen::VectorXd::Ones(kSampleJoints), SampleOptions{});
+  EXPECT_EQ(s.invalid_count, 12u);
+  EXPECT_EQ(s.out_of_range_count, 1u);
+  EXPECT_FALSE(s.valid[700]);
+  EXPECT_NE(skipped_samples_text(s).find("11 skipped for a missing value"), std::string::npos);
+  EXPECT_NE(skipped_samples_text(s).find("1 for a value beyond ±1e9"), std::string::npos);
+}
+
 TEST(JointSamples, ALogShorterThanItsFirstHeldOutBlockSaysNothingIsHeldOut) {
   // Issue 16, "messages that mislead": a one-file log shorter than 15 s holds out nothing, and
   // identify's and diagnose's held-out figures are all NaN; the note says why and what to do.

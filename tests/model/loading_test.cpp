@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "support/arm_fixture.hpp"
 #include "support/temp_dir.hpp"
@@ -85,6 +86,42 @@ TEST(Loading, MalformedXmlIsRefusedNamingTheFile) {
   const std::string msg = message_of([&] { load_urdf_chain(p); });
   EXPECT_NE(msg.find("broken.urdf"), std::string::npos) << msg;
   EXPECT_NE(msg.find("not a valid URDF"), std::string::npos) << msg;
+}
+
+TEST(Loading, AMassThatIsNotANumberIsRefusedNotDropped) {
+  // urdfdom logs the bad value and goes on without the link's <inertial>: a massless link.
+  for (const std::string value : {"heavy", "nan"}) {
+    std::string b = link("b");
+    b.replace(b.find("value=\"1\""), 9, "value=\"" + value + "\"");
+    const fs::path p = write("mass.urdf", "<robot name=\"r\">" + link("a") + b +
+                                              joint("j1", "revolute", "a", "b") + "</robot>");
+    const std::string msg = message_of([&] { load_urdf_chain(p); });
+    EXPECT_NE(msg.find("mass.urdf"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("mass [" + value + "] is not a float"), std::string::npos) << msg;
+  }
+}
+
+TEST(Loading, JointLimitsReversedAreRefusedAndAContinuousJointHasNoVelocityLimit) {
+  const auto with_limit = [](const std::string& type, const std::string& limit) {
+    std::string j = joint("j1", type, "a", "b");
+    const std::size_t at = j.find("<limit");
+    return j.replace(at, j.find("/>", at) + 2 - at, limit);
+  };
+  const fs::path p =
+      write("limits.urdf",
+            "<robot name=\"r\">" + link("a") + link("b") +
+                with_limit("revolute",
+                           "<limit lower=\"2.5\" upper=\"-2.5\" velocity=\"1\" effort=\"10\"/>") +
+                "</robot>");
+  const std::string msg = message_of([&] { load_urdf_chain(p); });
+  EXPECT_NE(msg.find("joint 'j1': <limit> lower 2.5"), std::string::npos) << msg;
+  // Without <limit> the twin's drive clamped the speed to 0: the joint never moved.
+  const fs::path c = write("continuous.urdf", "<robot name=\"r\">" + link("a") + link("b") +
+                                                  with_limit("continuous", "") + "</robot>");
+  const ChainDescription chain = load_urdf_chain(c);
+  ASSERT_EQ(chain.joints.size(), 1u);
+  EXPECT_EQ(chain.joints[0].velocity_limit, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(chain.joints[0].effort_limit, std::numeric_limits<double>::infinity());
 }
 
 TEST(Loading, FixedLinksAreFoldedIntoTheirMovingParent) {

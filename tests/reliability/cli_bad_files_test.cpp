@@ -155,7 +155,7 @@ TEST(CliBadFiles, IdentifyAndDiagnoseNameTheLogAndTheLine) {
                    "log.csv", place);
     expect_refused(box,
                    box.tpf("diagnose --quiet --log log.csv --robot " + robot +
-                           " --json out.csv --params out.csv"),
+                           " --json out.csv --params out.params.json"),
                    "log.csv", place);
   }
 }

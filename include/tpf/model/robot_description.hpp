@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,10 @@ struct ChainJoint {
   std::string child_link;
   Transform<double> placement;  ///< joint frame in the previous moving link's frame.
   Vector3<double> axis;         ///< unit, joint frame.
-  double lower = 0, upper = 0, velocity_limit = 0, effort_limit = 0;
+  double lower = 0, upper = 0;
+  /// [rad/s], [N·m]; +∞ for a joint without <limit> (a continuous joint needs none).
+  double velocity_limit = std::numeric_limits<double>::infinity();
+  double effort_limit = std::numeric_limits<double>::infinity();
 };
 
 /// A serial chain of revolute joints read from a URDF. Fixed joints are merged: a fixed child's

@@ -143,8 +143,11 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
         file, 0, "",
         "not a valid URDF" + (handler.messages.empty() ? "" : " (" + handler.messages + ")"));
   }
-
   const CutChildLinksOnExit cut{*urdf};
+  // urdfdom logs some errors and goes on without the element (a mass of "heavy" or "nan" drops
+  // the link's <inertial>: a massless link); any error refuses the file.
+  if (!handler.messages.empty())
+    throw Error::at(file, 0, "", "not a valid URDF (" + handler.messages + ")");
   require_tree(*urdf, file);
 
   ChainDescription chain;
@@ -211,6 +214,10 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
     } else {
       cj.lower = j.limits->lower;
       cj.upper = j.limits->upper;
+      if (!(cj.lower < cj.upper))
+        throw Error::at(file, 0, "joint '" + j.name + "'",
+                        "<limit> lower " + std::to_string(cj.lower) + " is not below upper " +
+                            std::to_string(cj.upper));
     }
     if (j.limits) {
       cj.velocity_limit = j.limits->velocity;

@@ -279,9 +279,10 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
   return page;
 }
 
-std::string evaluation_headline(const Evaluation& ev) {
+std::string evaluation_headline(const Evaluation& ev, bool simulated) {
   std::string out =
-      "  state               RMSE nominal   RMSE TCN   change   (all joints, mA, SIMULATED)\n";
+      std::string("  state               RMSE nominal   RMSE TCN   change   (all joints, ") +
+      ev.units.name() + (simulated ? ", SIMULATED)\n" : ", MEASURED)\n");
   for (const Regime g : {Regime::Static, Regime::StaticToKinetic, Regime::Moving}) {
     const ResidualRow* r = find_row(ev, -1, g);
     if (!r) continue;

@@ -14,7 +14,8 @@ namespace tpf::offline {
 HtmlReport evaluation_report(const Evaluation& evaluation, bool simulated,
                              const std::vector<std::string>& notes);
 
-/// The headline: Table I pooled over joints and the targets, as fixed-width text.
-std::string evaluation_headline(const Evaluation& evaluation);
+/// The headline: Table I pooled over joints and the targets, as fixed-width text, labelled
+/// SIMULATED or MEASURED and with the logs' effort unit.
+std::string evaluation_headline(const Evaluation& evaluation, bool simulated);
 
 }  // namespace tpf::offline

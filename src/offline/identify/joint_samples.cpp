@@ -136,8 +136,15 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
     bool ok = std::isfinite(s.t[k]) && s.q.row(k).allFinite() && s.dq.row(k).allFinite() &&
               s.ddq.row(k).allFinite() && s.effort.row(k).allFinite();
     if (has_temperature) ok = ok && s.temperature.row(k).allFinite();
-    s.valid[k] = ok;
-    s.invalid_count += !ok;
+    const auto plausible = [](const auto& row) {
+      return (row.array().abs() <= kImplausibleValue).all();
+    };
+    const bool in_range = plausible(s.q.row(k)) && plausible(s.dq.row(k)) &&
+                          plausible(s.ddq.row(k)) && plausible(s.effort.row(k)) &&
+                          (!has_temperature || plausible(s.temperature.row(k)));
+    s.out_of_range_count += ok && !in_range;
+    s.valid[k] = ok && in_range;
+    s.invalid_count += !s.valid[k];
   }
   if (n - static_cast<Eigen::Index>(s.invalid_count) < 100)
     throw Error::at(log.source, 0, "",
@@ -158,6 +165,17 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
     s.heldout = interleaved_heldout_blocks(s.t, options);
   }
   return s;
+}
+
+std::string skipped_samples_text(const JointSamples& samples) {
+  const std::size_t missing = samples.invalid_count - samples.out_of_range_count;
+  std::string text = std::to_string(missing) +
+                     " skipped for a missing value (in the log, or q̈ not derivable at a gap or an "
+                     "end)";
+  if (samples.out_of_range_count > 0)
+    text += ", " + std::to_string(samples.out_of_range_count) +
+            " for a value beyond ±1e9 (no arm's q, q̇, q̈ or effort: a corrupt field?)";
+  return text;
 }
 
 }  // namespace tpf::offline

@@ -41,11 +41,20 @@ struct JointSamples {
   /// Sign of the last motion of each joint (|q̇| ≥ threshold): +1, −1, 0 before any motion or
   /// after a gap. Held through rests: a stopped geared joint keeps the friction it stopped with.
   Eigen::MatrixXd held_sign;
-  std::size_t invalid_count = 0;  ///< samples skipped for a NaN
+  std::size_t invalid_count = 0;       ///< samples skipped for a NaN (valid is false)
+  std::size_t out_of_range_count = 0;  ///< of them, those with a value beyond ±kImplausibleValue
 
   int joints() const { return static_cast<int>(q.cols()); }
   Eigen::Index size() const { return t.size(); }
 };
+
+/// A value of a log no arm produces in SI units or mA (1e300 A, a corrupt field): such a sample
+/// is skipped, as one with a missing value, and counted apart.
+inline constexpr double kImplausibleValue = 1e9;
+
+/// "32 skipped for a missing value (…)" and the out-of-range count when there are any: what the
+/// tools print after a log's sample count.
+std::string skipped_samples_text(const JointSamples& samples);
 
 /// The columns identification and diagnosis read from a log, by name: t, q<j>, dq<j>, ddq<j>,
 /// the effort i<j> or tau<j>, temp<j> (extract_joint_samples) and tau_sensor<j> (the torque-sensor

@@ -95,7 +95,7 @@ void add_twin_section(HtmlReport& page, const DemoOptions& o, const DemoResult& 
   page.heading("Diagnosis", 3);
   page.list(r.findings);
   page.heading("Headline", 3);
-  page.preformatted(evaluation_headline(r.evaluation));
+  page.preformatted(evaluation_headline(r.evaluation, true));
   page.heading("Stages", 3);
   std::vector<std::string> stages;
   for (const SimulationJob& j : jobs)

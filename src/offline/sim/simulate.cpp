@@ -331,6 +331,12 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
                            (temperature - TwinVector::Constant(joints, fx.thermal.initial_c)))
                           .cwiseMax(0.1);
     plant.step(tau_motor + tau_ext, viscous_scale);
+    if (!plant.q().allFinite() || !plant.dq().allFinite())
+      throw Error::at(scenario.robot_file, 0, "",
+                      "the twin's state is no longer finite at t = " + std::to_string(n * h) +
+                          " s: its mass matrix is singular (a link without mass and a "
+                          "rotor_inertia of 0: `tpf info` prints M_jj) or a value is far out of "
+                          "range; nothing was written");
     const TwinVector& i_now = drive.current();
     temperature += h * (fx.thermal.heating_k_per_a2s * i_now.cwiseProduct(i_now) -
                         (temperature - TwinVector::Constant(joints, fx.thermal.ambient_c)) /
