@@ -88,7 +88,8 @@ void register_identify_command(CLI::App& app) {
                               {{"--out", a->out}});
     reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
-    with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
+    with_log_joint_count(log.joint_count(), log.source, a->robot,
+                         [&]<int N>() { run<N>(log, *a); });
   });
 }
 

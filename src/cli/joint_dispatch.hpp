@@ -7,6 +7,7 @@
 
 #include "tpf/common/error.hpp"
 #include "tpf/common/joint_counts.hpp"
+#include "tpf/model/robot_description.hpp"
 
 namespace tpf::cli {
 
@@ -28,6 +29,21 @@ void with_joint_count(int joints, const std::string& source, Work&& work) {
     return (run_if.template operator()<K + 1>() || ...);
   };
   first_match(std::make_integer_sequence<int, kMaxJoints>{});
+}
+
+/// with_joint_count on a log's joint count, once the robot file is checked to have as many
+/// joints: otherwise a tpf::Error names both ("ex.csv has 2 joints, arm.robot.json has 1").
+template <typename Work>
+void with_log_joint_count(int log_joints, const std::string& log_source,
+                          const std::string& robot_file, Work&& work) {
+  const int robot_joints = static_cast<int>(load_robot_description(robot_file).chain.joints.size());
+  if (robot_joints != log_joints)
+    throw Error::at(log_source, 0, "",
+                    "the log has " + std::to_string(log_joints) + " joints (q1 … q" +
+                        std::to_string(log_joints) + "), the robot file " + robot_file + " has " +
+                        std::to_string(robot_joints) +
+                        ": give the robot file of the arm that made the log (--robot)");
+  with_joint_count(log_joints, log_source, std::forward<Work>(work));
 }
 
 }  // namespace tpf::cli

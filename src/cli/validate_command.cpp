@@ -105,7 +105,8 @@ void register_validate_command(CLI::App& app) {
     const offline::Log log = offline::read_logs(a->logs, &notes);
     for (const std::string& n : notes)
       std::printf("note: %s\n", n.c_str());
-    with_joint_count(log.joint_count(), log.source, [&]<int N>() { run<N>(log, *a); });
+    with_log_joint_count(log.joint_count(), log.source, a->robot,
+                         [&]<int N>() { run<N>(log, *a); });
   });
 }
 

@@ -235,7 +235,7 @@ TEST_F(EstimatorParameterFile, RefusesUnknownAndBadFieldsNamingThem) {
   EXPECT_NE(load_error(j).find("sample_period_s: must be > 0"), std::string::npos) << load_error(j);
   j = full;
   j["joints"] = 6;
-  EXPECT_NE(load_error(j).find("joints: the file is for 6 joints, this program is built for 4"),
+  EXPECT_NE(load_error(j).find("joints: the file is for 6 joints, the arm here has 4"),
             std::string::npos)
       << load_error(j);
   j = full;

@@ -171,6 +171,11 @@ TEST(NominalModel, BadParameterFilesNameTheFileAndField) {
               j["rigid_body"][0]["name"] = "Qxx9";
             }).find("rigid_body[0].name: unknown rigid-body parameter 'Qxx9'"),
             std::string::npos);
+  // Another arm's parameters, e.g. with the tools' default robot file where the user's was meant.
+  EXPECT_NE(with([](nlohmann::json& j) {
+              j["robot"] = "arm2";
+            }).find("robot: 'arm2', but the robot file "),
+            std::string::npos);
   // A missing base parameter would be 0: a link without weight.
   EXPECT_NE(with([](nlohmann::json& j) {
               j["rigid_body"].erase(j["rigid_body"].size() - 1);

@@ -160,6 +160,20 @@ TEST(CliBadFiles, IdentifyAndDiagnoseNameTheLogAndTheLine) {
   }
 }
 
+TEST(CliBadFiles, ALogOfAnotherArmNamesBothJointCounts) {
+  // Was "arm4.urdf: the chain has 4 revolute joints, this program is built for 3": the robot
+  // file blamed for the log's joint count.
+  CliSandbox box("other_arm");
+  box.write("log.csv", "# tpf-log: 1\nt,q1,q2,q3,dq1,dq2,dq3,i1,i2,i3\n0,0,0,0,0,0,0,1,2,3\n");
+  const std::string robot = kData + "/arm4.robot.json";
+  for (const std::string& command : std::vector<std::string>{
+           "identify --quiet --log log.csv --out out.csv --robot ",
+           "diagnose --quiet --log log.csv --json out.csv --params out.params.json --robot ",
+           "validate --log log.csv --params " + kData + "/arm4.params.json --robot "})
+    expect_refused(box, box.tpf(command + robot), "log.csv",
+                   "the log has 3 joints (q1 … q3), the robot file " + robot + " has 4");
+}
+
 TEST(CliBadFiles, UnknownCommandAndMissingFileExitNonZero) {
   CliSandbox box("usage");
   EXPECT_NE(box.tpf("no-such-command").exit_code, 0);

@@ -119,8 +119,10 @@ int Object::integer(const std::string& key, int lo, int hi) {
 void Object::require_joints(int expected) {
   const int joints = integer("joints", 1, 64);
   if (joints != expected)
-    fail("joints", "the file is for " + std::to_string(joints) +
-                       " joints, this program is built for " + std::to_string(expected));
+    fail("joints",
+         "the file is for " + std::to_string(joints) + " joints, the arm here has " +
+             std::to_string(expected) +
+             " (as its robot file or the log's joint columns say): a file of another arm?");
 }
 
 std::string Object::text(const std::string& key) {

@@ -43,6 +43,20 @@ int column_by_name(const std::string& name) {
   return -1;
 }
 
+/// Fails when the file names a robot ("robot", the URDF's robot name when it was identified)
+/// other than `robot_file`'s: the parameters of another arm, or the tools' default robot file
+/// where the user's was meant. Checked before the joint counts, so that this is what is said.
+void require_robot(json::Object& top, const std::filesystem::path& robot_file) {
+  const std::string robot = top.text("robot", "");
+  if (robot.empty()) return;
+  const std::string name = load_robot_description(robot_file).chain.robot_name;
+  if (robot != name)
+    top.fail("robot", "'" + robot + "', but the robot file " + robot_file.string() + " is '" +
+                          name +
+                          "': these parameters were identified for another arm (give its robot "
+                          "file, --robot)");
+}
+
 /// Fails when the file's rigid_body gives fewer values than the robot file has base parameters:
 /// the missing ones would silently be 0 (a link without weight or inertia). Which columns stand
 /// for the base is the identification's choice, so only the count is checked.
@@ -120,8 +134,8 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
              "is 1: friction and added effects in the log's effort unit (mA for a log of "
              "currents); this tpf reads version 2, every torque in N*m. Convert the file with "
              "`tpf upgrade --params FILE` (or identify again)");
+  require_robot(top, robot_file);
   top.require_joints(N);
-  top.text("robot", "");
   top.text("source", "");
   top.choice("torque_unit", "N*m", {"N*m"});
 
