@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -174,35 +175,59 @@ Json upgrade_weights(const std::filesystem::path& path, const std::vector<double
   return j;
 }
 
+/// `convert(path)`, with a JSON type error (a string where a number belongs, a null) named by
+/// the file instead of nlohmann's bare "[json.exception.type_error.302] …".
+template <class Convert>
+Json naming_the_file(const std::filesystem::path& path, Convert&& convert) {
+  try {
+    return convert(path);
+  } catch (const Json::exception& e) {
+    throw Error::at(
+        path.string(), 0, "",
+        std::string("a field has the wrong type, nothing was converted (") + e.what() + ")");
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> upgrade_files(const UpgradeFiles& files) {
   std::vector<double> k;
   std::vector<std::pair<std::filesystem::path, Json>> out;
-  Json params = upgrade_params(files.params, k);
+  Json params = naming_the_file(files.params, [&](const auto& p) { return upgrade_params(p, k); });
   if (!files.estimator.empty())
-    out.emplace_back(files.estimator, upgrade_estimator(files.estimator, k));
+    out.emplace_back(files.estimator, naming_the_file(files.estimator, [&](const auto& p) {
+                       return upgrade_estimator(p, k);
+                     }));
   if (!files.weights.empty()) {
     const int n = static_cast<int>(k.size());
     if (std::filesystem::exists(files.weights)) {
-      out.emplace_back(files.weights, upgrade_weights(files.weights, k, -1));
+      out.emplace_back(files.weights, naming_the_file(files.weights, [&](const auto& p) {
+                         return upgrade_weights(p, k, -1);
+                       }));
     } else {
       for (int j = 0; j < n; ++j) {
         const auto p = joint_weight_path(files.weights, j);
         if (!std::filesystem::exists(p))
           throw Error::at(files.weights.string(), 0, "",
                           "neither the file nor " + p.string() + " exists");
-        out.emplace_back(p, upgrade_weights(p, k, j));
+        out.emplace_back(
+            p, naming_the_file(p, [&](const auto& q) { return upgrade_weights(q, k, j); }));
       }
     }
   }
   out.emplace_back(files.params, std::move(params));  // last: it holds the factor
+  // Every file is written to its temporary before any is renamed into place: a write that fails
+  // (a full disk) leaves every file as it was, so the set is converted whole or not at all.
+  std::vector<std::unique_ptr<AtomicFile>> staged;
   std::vector<std::string> lines;
   for (const auto& [path, json] : out) {
-    write_file_atomically(path, json.dump(json.contains("tensors") ? 1 : 2) + "\n");
+    staged.push_back(std::make_unique<AtomicFile>(path));
+    staged.back()->write(json.dump(json.contains("tensors") ? 1 : 2) + "\n");
     lines.push_back(path.string() + ": version " + std::to_string(json["version"].get<int>()) +
                     ", torques in N*m");
   }
+  for (const auto& file : staged)
+    file->commit();
   return lines;
 }
 
