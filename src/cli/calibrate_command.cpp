@@ -12,6 +12,7 @@
 #include "offline/log/read_log.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
+#include "read_command_logs.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/model/effort_unit.hpp"
 
@@ -38,7 +39,7 @@ template <int N>
 void run_calibrate(const CalibrateCommandOptions& o) {
   using namespace tpf::offline;
   const tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, o.weights);
-  const Log log = read_log(o.log);
+  const Log log = tpf::cli::read_replayed_log(o.log, false);
   const tpf::EstimatorParameters<double, N> p =
       calibrate_estimator<N>(setup, log, o.pad_gain_kpa_per_n);
 

@@ -16,6 +16,7 @@
 #include "offline/sim/scenario.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
+#include "read_command_logs.hpp"
 #include "tpf/common/atomic_file.hpp"
 
 namespace {
@@ -58,12 +59,14 @@ void run_evaluate(const EvaluateCommandOptions& o) {
   tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, o.weights);
 
   say("evaluate: reading logs");
-  const Log calibration = read_log(o.calibration);
+  const Log calibration = tpf::cli::read_replayed_log(o.calibration, o.quiet);
   std::vector<Log> excitation;
   for (const std::string& p : o.excitation)
-    excitation.push_back(read_log(p));
-  const Log contacts = o.contacts.empty() ? Log{} : read_log(o.contacts);
-  const Log teaching = o.teaching.empty() ? Log{} : read_log(o.teaching);
+    excitation.push_back(tpf::cli::read_replayed_log(p, o.quiet));
+  const Log contacts =
+      o.contacts.empty() ? Log{} : tpf::cli::read_replayed_log(o.contacts, o.quiet);
+  const Log teaching =
+      o.teaching.empty() ? Log{} : tpf::cli::read_replayed_log(o.teaching, o.quiet);
   setup.parameters = estimator_parameters_from_noise<N>(
       estimate_sensor_noise(calibration, setup.nominal.model.torque_constant));
 

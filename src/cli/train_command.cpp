@@ -19,6 +19,7 @@
 #include "offline/replay/replay_estimator.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
+#include "read_command_logs.hpp"
 
 namespace {
 
@@ -45,8 +46,7 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& 
   tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, "", false);
   std::vector<EstimatorTrace> traces;
   for (const std::string& path : o.logs) {
-    if (!o.quiet) std::fprintf(stderr, "train: reading %s\n", path.c_str());
-    const Log log = read_log(path);
+    const Log log = tpf::cli::read_replayed_log(path, o.quiet);
     // Where the torque sensor is flat or missing, as identify and diagnose say it: the sensor is
     // never an input of the networks.
     for (const std::string& line : torque_sensor_problems(log, N))
