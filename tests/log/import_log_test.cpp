@@ -105,6 +105,12 @@ TEST(ImportLog, ErrorsNameFileLineAndColumn) {
              "Index,Pos1,Pos2,Vel1,Vel2,Cur1,Cur2,Trq1,Trq2\n,1,1,1,1,1,1,1,1\n");
   message = error_of(dir / "notime.csv", map);
   EXPECT_NE(message.find("notime.csv:2: Index: the time is missing"), std::string::npos) << message;
+  // A header without data rows wrote an empty log ("nominal step nan s").
+  write_text(dir / "header_only.csv", "Index,Pos1,Pos2,Vel1,Vel2,Cur1,Cur2,Trq1,Trq2\n");
+  message = error_of(dir / "header_only.csv", map);
+  EXPECT_NE(message.find("header_only.csv:1: 0 data rows, 0 with an increasing time"),
+            std::string::npos)
+      << message;
   // A bad map names the map and the key.
   write_text(dir / "bad_unit.json", R"({"format": "tpf-import", "version": 1, "joints": 1,
     "time": {"column": "t"}, "columns": {"q": {"source": "q{j}", "unit": "grad"},

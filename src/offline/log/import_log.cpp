@@ -109,6 +109,11 @@ Log import_log(const std::filesystem::path& csv, const ImportMap& map, ImportRep
   const Eigen::VectorXd t = time_in_seconds(table, map);
   const std::vector<Eigen::Index> rows = increasing_rows(t, table.first_data_line, report);
   report.rows_written = rows.size();
+  if (rows.size() < 2)
+    throw Error::at(table.log.source, table.header_line, "",
+                    std::to_string(report.rows_read) + " data rows, " +
+                        std::to_string(rows.size()) +
+                        " with an increasing time: a log needs at least two; nothing written");
   Eigen::VectorXd kept_t(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t k = 0; k < rows.size(); ++k)
     kept_t[static_cast<Eigen::Index>(k)] = t[rows[k]];
