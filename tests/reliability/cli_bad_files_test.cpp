@@ -9,8 +9,6 @@
 namespace tpf::test {
 namespace {
 
-const std::string kData = TPF_TEST_DATA_DIR;
-
 /// A scenario of `seconds` on the shipped arm with the given extra JSON members.
 std::string scenario_json(double seconds, const std::string& extra = "") {
   return "{\"kind\": \"excitation\", \"duration_s\": " + std::to_string(seconds) + extra + "}";
@@ -63,16 +61,16 @@ TEST(CliBadFiles, ScenarioWithWrongKindUnknownKeyOrHugeValueNamesTheKey) {
 
 /// A robot file beside copies of the arm's pads, pointing at `urdf` (written beside it).
 void write_robot(const CliSandbox& box, const std::string& urdf) {
-  std::string robot = CliSandbox::slurp(kData + "/arm4.robot.json");
+  std::string robot = CliSandbox::slurp(kShippedData + "/arm4.robot.json");
   robot.replace(robot.find("\"arm4.urdf\""), 11, "\"bad.urdf\"");
   box.write("robot.json", robot);
   box.write("bad.urdf", urdf);
-  std::filesystem::copy_file(kData + "/arm4.pads.json", box / "arm4.pads.json");
+  std::filesystem::copy_file(kShippedData + "/arm4.pads.json", box / "arm4.pads.json");
 }
 
 /// The arm's URDF with `from` replaced by `to`.
 std::string arm_urdf_with(const std::string& from, const std::string& to) {
-  std::string urdf = CliSandbox::slurp(kData + "/arm4.urdf");
+  std::string urdf = CliSandbox::slurp(kShippedData + "/arm4.urdf");
   const auto at = urdf.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   return urdf.replace(at, from.size(), to);
@@ -139,7 +137,7 @@ TEST(CliBadFiles, IdentifyAndDiagnoseNameTheLogAndTheLine) {
   CliSandbox box("bad_logs");
   const std::string head = "# tpf-log: 1\nt,q1,q2,q3,q4,dq1,dq2,dq3,dq4,i1,i2,i3,i4\n";
   const std::string row = "0,0,0,0,0,0,0,0,0,1,2,3,4\n";
-  const std::string robot = kData + "/arm4.robot.json";
+  const std::string robot = kShippedData + "/arm4.robot.json";
   const std::vector<std::pair<std::string, std::string>> logs = {
       {"", "the file is empty"},
       {head + row + "0.0025,0,0,0,0,0,0,0", "log.csv:4: the file ends mid-line"},
@@ -165,11 +163,11 @@ TEST(CliBadFiles, ALogOfAnotherArmNamesBothJointCounts) {
   // file blamed for the log's joint count.
   CliSandbox box("other_arm");
   box.write("log.csv", "# tpf-log: 1\nt,q1,q2,q3,dq1,dq2,dq3,i1,i2,i3\n0,0,0,0,0,0,0,1,2,3\n");
-  const std::string robot = kData + "/arm4.robot.json";
+  const std::string robot = kShippedData + "/arm4.robot.json";
   for (const std::string& command : std::vector<std::string>{
            "identify --quiet --log log.csv --out out.csv --robot ",
            "diagnose --quiet --log log.csv --json out.csv --params out.params.json --robot ",
-           "validate --log log.csv --params " + kData + "/arm4.params.json --robot "})
+           "validate --log log.csv --params " + kShippedData + "/arm4.params.json --robot "})
     expect_refused(box, box.tpf(command + robot), "log.csv",
                    "the log has 3 joints (q1 … q3), the robot file " + robot + " has 4");
 }

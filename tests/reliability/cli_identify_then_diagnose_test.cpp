@@ -11,8 +11,6 @@
 namespace tpf::test {
 namespace {
 
-const std::string kShippedData = TPF_TEST_DATA_DIR;
-
 // The "(… s)" wall time identify prints after the file name.
 std::string without_wall_time(const std::string& text) {
   return std::regex_replace(text, std::regex(R"( \([0-9.]+ s\))"), "");

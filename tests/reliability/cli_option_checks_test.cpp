@@ -15,15 +15,14 @@
 namespace tpf::test {
 namespace {
 
-const std::string kData = TPF_TEST_DATA_DIR;
-const std::string kRobot = " --robot " + kData + "/arm4.robot.json";
+const std::string kRobot = " --robot " + kShippedData + "/arm4.robot.json";
 
 /// Writes into `box` a 3 s twin log (log.csv), the shipped parameter file (p.json), a scenario
 /// (s.json) and a foreign CSV for `tpf import` (k.csv, 7 joints, 5 rows).
 void write_inputs(const CliSandbox& box) {
   box.write("s.json", "{\"kind\": \"excitation\", \"duration_s\": 3}");
   EXPECT_EQ(box.tpf("simulate --quiet --scenario s.json --out log.csv").exit_code, 0);
-  std::filesystem::copy_file(kData + "/arm4.params.json", box / "p.json");
+  std::filesystem::copy_file(kShippedData + "/arm4.params.json", box / "p.json");
   std::string header = "Time";
   for (const char* column : {"Position", "Velocity", "Cur", "Torque", "TorqueCur", "Temp"})
     for (int j = 1; j <= 7; ++j)
@@ -84,7 +83,7 @@ TEST(CliOptionChecks, IdentifyRefusesAnOutputThatIsItsLog) {
 TEST(CliOptionChecks, EveryWritingCommandRefusesAnOutputThatIsAnInputOrAnotherOutput) {
   CliSandbox box("same_file");
   write_inputs(box);
-  const std::string map = " --map " + kData + "/real/kinova-gen3/kinova.import.json";
+  const std::string map = " --map " + kShippedData + "/real/kinova-gen3/kinova.import.json";
   std::filesystem::create_directory(box / "ev");
   std::filesystem::copy_file(box / "log.csv", box / "ev/evaluation.json");
   const std::vector<std::vector<std::string>> cases = {

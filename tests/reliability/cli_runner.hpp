@@ -17,6 +17,9 @@
 
 namespace tpf::test {
 
+/// The shipped data folder (data/): robot, parameter and scenario files the CLI tests start from.
+inline const std::string kShippedData = TPF_TEST_DATA_DIR;
+
 /// What one run of a command printed and returned.
 struct CliResult {
   int exit_code = -1;  ///< the process's exit status; 128 + n when signal n ended it
