@@ -63,6 +63,12 @@ void refuse_overwriting_inputs(const std::string& command, const PathOptions& in
                                const PathOptions& outputs) {
   const std::vector<Resolved> in = resolve(inputs);
   const std::vector<Resolved> out = resolve(outputs);
+  for (const Resolved& o : out) {  // found only at the write, after all the work
+    std::error_code error;
+    if (std::filesystem::is_directory(o.canonical, error))
+      throw Error("tpf " + command + ": " + o.given->option + " " + o.given->path +
+                  " is a directory: give the path of a file to write");
+  }
   for (std::size_t o = 0; o < out.size(); ++o) {
     for (const Resolved& i : in)
       if (same_file(out[o], i))

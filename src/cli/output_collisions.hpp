@@ -1,6 +1,6 @@
 // The check every file-writing subcommand makes before any work: no output is the same file as
 // one of its inputs (the write would destroy it) or as another output (the second write would
-// replace the first).
+// replace the first), and none is a directory.
 #pragma once
 
 #include <string>
@@ -25,7 +25,8 @@ PathOptions joined(PathOptions first, const PathOptions& second);
 /// Throws tpf::Error "tpf <command>: --out p.json is the same file as --log p.json: it would
 /// overwrite the input; choose another output path" when an output and an input are the same
 /// file (std::filesystem::equivalent, or equal weakly canonical paths for a file that does not
-/// exist yet), and the like when two outputs are.
+/// exist yet), and the like when two outputs are, or when an output is an existing directory
+/// (the write would fail only after the work).
 void refuse_overwriting_inputs(const std::string& command, const PathOptions& inputs,
                                const PathOptions& outputs);
 

@@ -208,6 +208,10 @@ TEST(CliOptionChecks, DirectoryWhereAFileIsExpectedIsNamed) {
     EXPECT_NE(r.exit_code, 0);
     EXPECT_EQ(r.err.rfind(option + ": dir is a directory, not a file", 0), 0u) << r.err;
   }
+  // An output that is a directory was found only at the write, after the work.
+  const CliResult out = box.tpf("identify --quiet --log log.csv" + kRobot + " --out dir");
+  EXPECT_NE(out.exit_code, 0);
+  EXPECT_NE(out.err.find("tpf identify: --out dir is a directory"), std::string::npos) << out.err;
   // "none" is still a --pads value.
   EXPECT_EQ(box.tpf(calibrate + " --pads none").exit_code, 0);
 }
