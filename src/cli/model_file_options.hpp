@@ -54,11 +54,6 @@ inline std::string describe_pads(std::size_t pads, const std::string& file) {
   return pads == 0 ? std::string("no skin") : std::to_string(pads) + " pads (" + file + ")";
 }
 
-/// The joint count of the robot file's chain (what the commands dispatch on).
-inline int robot_joint_count(const std::string& robot_file) {
-  return static_cast<int>(load_robot_description(robot_file).chain.joints.size());
-}
-
 /// An N-joint estimator set-up from the model files, without estimator parameters (the tools
 /// derive or calibrate them): nominal model, pad layout (pad_layout_file; `with_pads` false: no
 /// skin), compensator weights (`weights` empty: none).

@@ -44,12 +44,14 @@ int column_by_name(const std::string& name) {
 }
 
 /// Fails when the file names a robot ("robot", the URDF's robot name when it was identified)
-/// other than `robot_file`'s: the parameters of another arm, or the tools' default robot file
-/// where the user's was meant. Checked before the joint counts, so that this is what is said.
-void require_robot(json::Object& top, const std::filesystem::path& robot_file) {
+/// other than `robot_file`'s (read into `description`): the parameters of another arm, or the
+/// tools' default robot file where the user's was meant. Checked before the joint counts, so that
+/// this is what is said.
+void require_robot(json::Object& top, const RobotDescription& description,
+                   const std::filesystem::path& robot_file) {
   const std::string robot = top.text("robot", "");
   if (robot.empty()) return;
-  const std::string name = load_robot_description(robot_file).chain.robot_name;
+  const std::string& name = description.chain.robot_name;
   if (robot != name)
     top.fail("robot", "'" + robot + "', but the robot file " + robot_file.string() + " is '" +
                           name +
@@ -134,13 +136,14 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
              "is 1: friction and added effects in the log's effort unit (mA for a log of "
              "currents); this tpf reads version 2, every torque in N*m. Convert the file with "
              "`tpf upgrade --params FILE` (or identify again)");
-  require_robot(top, robot_file);
+  const RobotDescription description = load_robot_description(robot_file);  // read once
+  require_robot(top, description, robot_file);
   top.require_joints(N);
   top.text("source", "");
   top.choice("torque_unit", "N*m", {"N*m"});
 
   NominalModel<double, N> nominal;
-  nominal.model = load_robot<double, N>(robot_file);
+  nominal.model = make_model<double, N>(description);
 
   std::vector<json::Object> rigid = top.children("rigid_body");
   if (!top.has("rigid_body")) top.fail("rigid_body", "missing");
