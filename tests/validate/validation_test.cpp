@@ -145,5 +145,24 @@ TEST(Validate, ScoresAHeldOutLogExactly) {
   EXPECT_NE(validation_text(v).find("0.350"), std::string::npos) << validation_text(v);
 }
 
+// A regime without held-out samples prints "-" and says why, never "nan": here every sample is
+// moving (static and static-to-kinetic are empty), the effort residual 0.2 everywhere.
+TEST(ValidationText, RegimeWithoutSamplesIsMarkedNotNaN) {
+  const Eigen::VectorXd residual = Eigen::VectorXd::Constant(6, 0.2);
+  const std::vector<Regime> labels(6, Regime::Moving);
+  Validation v;
+  v.effort_unit = "mA";
+  v.estimate_names = {"nominal model"};
+  v.effort = {{regime_stats(residual, labels)}};
+  v.sensor.resize(1);
+  const std::string text = validation_text(v);
+  EXPECT_EQ(text.find("nan"), std::string::npos) << text;
+  EXPECT_NE(text.find("  joint 1" + std::string(35, ' ') + "-" + std::string(18, ' ') + "-" +
+                      "    0.200    0.200\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("-: no held-out sample in this regime"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace tpf::offline

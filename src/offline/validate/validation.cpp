@@ -40,6 +40,21 @@ double regime_rmse(const RegimeStats& s, int column) {
   return column == 3 ? s.valid.rmse : s.by_regime[static_cast<std::size_t>(column)].rmse;
 }
 
+/// " <x>" right-aligned in `width` characters with 3 decimals, or "-" where the regime has no
+/// sample (RMSE NaN); `empty` records that a "-" was printed.
+std::string rmse_cell(double x, int width, bool& empty) {
+  char cell[64];
+  if (std::isnan(x)) {
+    empty = true;
+    std::snprintf(cell, sizeof cell, " %*s", width, "-");
+  } else {
+    std::snprintf(cell, sizeof cell, " %*.3f", width, x);
+  }
+  return cell;
+}
+
+const char* const kNoSampleNote = "  -: no held-out sample in this regime\n";
+
 }  // namespace
 
 template <int N>
@@ -162,6 +177,7 @@ Validation score_estimates(const Log& log, const JointSamples& samples,
 std::string validation_text(const Validation& v) {
   std::string text;
   char line[256];
+  bool empty = false;  // a regime without samples was printed as "-"
   const int joints = v.sensor.empty() ? 0 : static_cast<int>(v.sensor.size());
   for (std::size_t e = 0; e < v.estimate_names.size(); ++e) {
     std::snprintf(line, sizeof line,
@@ -172,11 +188,17 @@ std::string validation_text(const Validation& v) {
     text += line;
     for (int j = 0; j < joints; ++j) {
       const RegimeStats& s = v.effort[e][static_cast<std::size_t>(j)];
-      std::snprintf(line, sizeof line, "  joint %d %35.3f %18.3f %8.3f %8.3f\n", j + 1,
-                    regime_rmse(s, 0), regime_rmse(s, 1), regime_rmse(s, 2), regime_rmse(s, 3));
-      text += line;
+      std::snprintf(line, sizeof line, "  joint %d", j + 1);
+      text.append(line)
+          .append(rmse_cell(regime_rmse(s, 0), 35, empty))
+          .append(rmse_cell(regime_rmse(s, 1), 18, empty))
+          .append(rmse_cell(regime_rmse(s, 2), 8, empty))
+          .append(rmse_cell(regime_rmse(s, 3), 8, empty))
+          .append("\n");
     }
   }
+  if (empty) text += kNoSampleNote;
+  empty = false;
   for (const std::string& n : v.sensor_notes)
     text += n + "\n";
   bool any_sensor = false;
@@ -210,14 +232,18 @@ std::string validation_text(const Validation& v) {
     const SensorScore& s = v.sensor[static_cast<std::size_t>(j)];
     if (s.samples == 0) continue;
     const auto row = [&](const std::string& name, const RegimeStats& r) {
-      std::snprintf(line, sizeof line, "  joint %d %-18s %9.3f %18.3f %8.3f\n", j + 1, name.c_str(),
-                    regime_rmse(r, 0), regime_rmse(r, 1), regime_rmse(r, 2));
-      text += line;
+      std::snprintf(line, sizeof line, "  joint %d %-18s", j + 1, name.c_str());
+      text.append(line)
+          .append(rmse_cell(regime_rmse(r, 0), 9, empty))
+          .append(rmse_cell(regime_rmse(r, 1), 18, empty))
+          .append(rmse_cell(regime_rmse(r, 2), 8, empty))
+          .append("\n");
     };
     row("Kt only", s.kt_only);
     for (std::size_t e = 0; e < s.estimates.size(); ++e)
       row("Kt - " + v.estimate_names[e], s.estimates[e]);
   }
+  if (empty) text += kNoSampleNote;
   if (v.files.size() < 2) return text;
   text += "the same per file, all regimes [N*m]: Kt only";
   for (const std::string& name : v.estimate_names)
