@@ -119,5 +119,32 @@ TEST(JointSamples, ALogShorterThanItsFirstHeldOutBlockSaysNothingIsHeldOut) {
             "");
 }
 
+// A log too short for a time step, or whose time stands still, is refused naming the log and the
+// time column (it used to fail inside the acceleration filter: "cutoff … (nan Hz)").
+TEST(JointSamples, ALogWithoutATimeStepIsRefusedNamingTheTimeColumn) {
+  Log one_row = three_joint_log();
+  one_row.source = "one.csv";
+  one_row.values.conservativeResize(1, Eigen::NoChange);
+  const Eigen::VectorXd kt = Eigen::VectorXd::Ones(kSampleJoints);
+  try {
+    extract_joint_samples(one_row, kt);
+    ADD_FAILURE() << "a one-row log was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("one.csv: t: the log has 1 row(s)"), std::string::npos)
+        << e.what();
+  }
+  Log frozen = three_joint_log();
+  frozen.source = "frozen.csv";
+  frozen.values.col(0).setConstant(3.0);
+  try {
+    extract_joint_samples(frozen, kt);
+    ADD_FAILURE() << "a log whose time stands still was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("frozen.csv: t: the time column does not advance"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace tpf::offline

@@ -114,6 +114,22 @@ TEST(GzipLog, CorruptOrTruncatedDataNamesTheFile) {
   EXPECT_NE(message.find("tail.csv.gz: gzip: 4 bytes of garbage"), std::string::npos) << message;
 }
 
+TEST(GzipLog, ACutLastRowInsideAGzFileIsSkippedAndSaid) {
+  // Complete gzip data around a text cut inside its last row (a cut CSV compressed afterwards):
+  // the row is skipped as in a plain file (a gzip stream cut short is an error, above).
+  TempDir dir("gz_cut_row");
+  write_text(dir / "cut.csv.gz", gzip("t,q1,dq1\n0,1,2\n0.1,1,3"));
+  const Log log = read_log(dir / "cut.csv.gz");
+  ASSERT_EQ(log.rows(), 1);
+  EXPECT_EQ(log.col("dq1")[0], 2.0);
+  EXPECT_EQ(log.quality.skipped_rows, 1u);
+  EXPECT_EQ(log.quality.notes,
+            std::vector<std::string>{(dir / "cut.csv.gz").string() +
+                                     ":3: the file ends without a newline, inside this row: a "
+                                     "cut file? The row is skipped, its last field may be cut "
+                                     "short"});
+}
+
 TEST(GzipLog, ParseErrorsInsideAGzFileNameLineAndColumn) {
   TempDir dir("gz_line");
   write_text(dir / "bad.csv.gz", gzip("t,q1,dq1\n0,1,2\n0.1,x,3\n"));

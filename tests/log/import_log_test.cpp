@@ -91,6 +91,64 @@ TEST(ImportLog, RegularRuleRewritesJitteredTime) {
   EXPECT_NEAR(log.col("t")[2], 0.2, 1e-12);
 }
 
+/// A 1-joint map (or of `joints` joints) whose column names hold no {j}.
+std::string plain_names_map(int joints) {
+  return R"({"format": "tpf-import", "version": 1, "joints": )" + std::to_string(joints) +
+         R"(, "time": {"column": "time", "unit": "s"},
+    "columns": {"q": {"source": "pos", "unit": "deg"}, "dq": {"source": "vel", "unit": "rad/s"},
+                "tau": {"source": "torque{j}", "unit": "Nm"}}})";
+}
+
+TEST(ImportLog, AOneJointMapNamesItsColumnsWithoutJ) {
+  // Was refused: "columns.q.source: 'pos' needs {j} where the joint number goes".
+  TempDir dir("import_one_joint");
+  write_text(dir / "map.json", plain_names_map(1));
+  write_text(dir / "in.csv", "time,pos,vel,torque1\n0,90,0.5,1\n0.01,180,0.25,2\n");
+  ImportReport report;
+  const Log log = import_log(dir / "in.csv", load_import_map(dir / "map.json"), report);
+  EXPECT_EQ(log.columns, (std::vector<std::string>{"t", "q1", "dq1", "tau1"}));
+  ASSERT_EQ(log.rows(), 2);
+  EXPECT_DOUBLE_EQ(log.col("q1")[1], std::numbers::pi);
+  EXPECT_EQ(log.col("dq1")[0], 0.5);
+  EXPECT_EQ(log.col("tau1")[1], 2.0);
+}
+
+TEST(ImportLog, AMapOfSeveralJointsNeedsJInEveryColumnName) {
+  TempDir dir("import_two_joints");
+  write_text(dir / "map2.json", plain_names_map(2));
+  try {
+    load_import_map(dir / "map2.json");
+    FAIL() << "a 2-joint map with 'pos' for q was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (dir / "map2.json").string() +
+                  ": columns.q.source: 'pos' needs {j} where the joint number goes (the map has 2 "
+                  "joints; only a 1-joint map may name its column without {j})");
+  }
+}
+
+TEST(ImportLog, ACutLastRowIsSkippedAndReported) {
+  // "0.015,0.4,0,1.25" without its newline may be the start of "1.257": it was imported as 1.25.
+  TempDir dir("import_cut_row");
+  write_text(dir / "map.json", R"({"format": "tpf-import", "version": 1, "joints": 1,
+    "time": {"column": "time", "unit": "s"},
+    "columns": {"q": {"source": "q{j}", "unit": "rad"}, "dq": {"source": "dq{j}", "unit": "rad/s"},
+                "tau": {"source": "tau{j}", "unit": "Nm"}}})");
+  write_text(dir / "cut.csv",
+             "time,q1,dq1,tau1\n0,0.1,0,1\n0.005,0.2,0,1\n0.010,0.3,0,1\n0.015,0.4,0,1.25");
+  ImportReport report;
+  const Log log = import_log(dir / "cut.csv", load_import_map(dir / "map.json"), report);
+  ASSERT_EQ(log.rows(), 3);
+  EXPECT_EQ(log.col("tau1")[2], 1.0);
+  EXPECT_EQ(report.rows_read, 3u);
+  const std::string note = (dir / "cut.csv").string() +
+                           ":5: the file ends without a newline, inside this row: a cut file? "
+                           "The row is skipped, its last field may be cut short";
+  EXPECT_EQ(report.reader_notes, std::vector<std::string>{note});
+  ASSERT_FALSE(report.lines().empty());
+  EXPECT_EQ(report.lines().front(), note);
+}
+
 TEST(ImportLog, ErrorsNameFileLineAndColumn) {
   TempDir dir("import_errors");
   write_text(dir / "map.json", kMap);

@@ -151,18 +151,68 @@ TEST(ReadLog, MalformedLinesNameFileLineAndColumn) {
       << message;
 }
 
-TEST(ReadLog, TruncatedLastLine) {
-  TempDir dir("truncated");
-  std::string message = read_error(dir, "t,q1,dq1\n0,1,2\n0.1,1");
-  EXPECT_NE(
-      message.find("bad.csv:3: the file ends mid-line (truncated?): expected 3 fields, found 2"),
-      std::string::npos)
-      << message;
-  message = read_error(dir, "t,q1,dq1\n0,1,2\n0.1,1,");
-  EXPECT_NE(message.find("bad.csv:3: the file ends mid-line"), std::string::npos) << message;
-  // A complete last line without '\n' is fine.
-  write_text(dir / "ok.csv", "t,q1,dq1\n0,1,2\n0.1,1,3");
-  EXPECT_EQ(read_log(dir / "ok.csv").col("dq1")[1], 3.0);
+TEST(ReadLog, ALastRowWithoutItsNewlineIsSkippedAndSaid) {
+  // A recorder stopped mid-write: "0.1,1,3" may be the start of "0.1,1,3.25". It was read as 3.
+  TempDir dir("cut_row");
+  const std::string note =
+      ":3: the file ends without a newline, inside this row: a cut file? The row is skipped, its "
+      "last field may be cut short";
+  for (const std::string cut : {"0.1,1,3", "0.1,1", "0.1,1,", "0.1,1,3\r", "0.1,1,3 "}) {
+    write_text(dir / "cut.csv", "t,q1,dq1\n0,1,2\n" + cut);
+    const Log log = read_log(dir / "cut.csv");
+    ASSERT_EQ(log.rows(), 1) << cut;
+    EXPECT_EQ(log.col("dq1")[0], 2.0);
+    EXPECT_EQ(log.quality.rows, 1u);
+    EXPECT_EQ(log.quality.skipped_rows, 1u);
+    EXPECT_EQ(log.quality.notes, std::vector<std::string>{(dir / "cut.csv").string() + note});
+    EXPECT_EQ(log.quality.summary(log.columns),
+              "1 rows (1 more skipped), 0.0 s at 0 Hz; 0 gaps; no missing values\n  " +
+                  (dir / "cut.csv").string() + note);
+  }
+  // The only data row cut: a log without rows, said.
+  write_text(dir / "one.csv", "# tpf-log: 1\nt,q1\n\n0,1.2");
+  const Log one = read_log(dir / "one.csv");
+  EXPECT_EQ(one.rows(), 0);
+  EXPECT_EQ(one.quality.notes,
+            std::vector<std::string>{(dir / "one.csv").string() +
+                                     ":4: the file ends without a newline, inside this row: a "
+                                     "cut file? The row is skipped, its last field may be cut "
+                                     "short"});
+  // More fields than the header is no cut: the line's error as before.
+  const std::string message = read_error(dir, "t,q1,dq1\n0,1,2\n0.1,1,2,3");
+  EXPECT_NE(message.find("bad.csv:3: expected 3 fields, found 4"), std::string::npos) << message;
+  // A file that ends with its newline (or blank lines after it) keeps every row.
+  write_text(dir / "ok.csv", "t,q1,dq1\n0,1,2\n0.1,1,3\n \n");
+  const Log ok = read_log(dir / "ok.csv");
+  EXPECT_EQ(ok.col("dq1")[1], 3.0);
+  EXPECT_EQ(ok.quality.skipped_rows, 0u);
+  EXPECT_TRUE(ok.quality.notes.empty());
+}
+
+TEST(ReadLog, ARateHzTheTimeColumnContradictsIsFlaggedAndTheTimeColumnUsed) {
+  TempDir dir("rate");
+  // rate_hz says 400 Hz; the time column steps 5 ms (200 Hz): every step was a gap at 400 Hz.
+  std::string rows = "t,q1\n";
+  for (int k = 0; k <= 10; ++k)
+    rows += std::to_string(0.005 * k) + ",0\n";
+  write_text(dir / "a.csv", "# tpf-log: 1\n# rate_hz: 400\n" + rows);
+  const Log log = read_log(dir / "a.csv");
+  EXPECT_NEAR(log.quality.rate_hz, 200.0, 1e-9);
+  EXPECT_EQ(log.quality.gaps, 0u);
+  EXPECT_EQ(log.quality.notes,
+            std::vector<std::string>{(dir / "a.csv").string() +
+                                     ":2: rate_hz: the metadata says 400 Hz, but the time "
+                                     "column's median step is 0.005 s (200 Hz); the time column "
+                                     "is used: gaps are found at 200 Hz"});
+  EXPECT_EQ(log.meta.get("rate_hz"), "400");  // the metadata itself is kept as written
+  // Within 1 % the metadata's rate stands: steps of 2.52 ms (0.8 % off 400 Hz).
+  rows = "t,q1\n";
+  for (int k = 0; k <= 10; ++k)
+    rows += std::to_string(0.00252 * k) + ",0\n";
+  write_text(dir / "b.csv", "# rate_hz: 400\n" + rows);
+  const Log close = read_log(dir / "b.csv");
+  EXPECT_EQ(close.quality.rate_hz, 400.0);
+  EXPECT_TRUE(close.quality.notes.empty());
 }
 
 TEST(ReadLog, TimeMustBePresentAndIncrease) {
@@ -317,14 +367,19 @@ TEST(ReadLog, SkippedLastColumnsGiveTheSameFieldCountErrors) {
     return std::string("no error");
   };
   const ColumnFilter fitted = [](std::string_view name) { return name == "t" || name == "q1"; };
-  for (const std::string tail :
-       {"0.0025,2,3\n0.005,1,2,3\n", "0.0025,2,3,4,5\n", "0.0025,2,3,4\n0.005,2,3",
-        "0.0025,2,3,4\n0.005,2,3,", "0.0025,2\n", "0.0025,2,3,4\n0.005,1,2,3,\n"}) {
+  for (const std::string tail : {"0.0025,2,3\n0.005,1,2,3\n", "0.0025,2,3,4,5\n", "0.0025,2\n",
+                                 "0.0025,2,3,4\n0.005,1,2,3,\n", "0.0025,2,3,4\n0.005,2,3,4,5"}) {
     const std::string all = message(head + tail, {});
     EXPECT_NE(all, "no error") << tail;
     EXPECT_EQ(message(head + tail, fitted), all) << tail;
   }
   EXPECT_EQ(message(head + "0.0025,2,x,y\n", fitted), "no error");
+  // A last row the file ends inside is skipped whichever columns are kept.
+  for (const std::string tail : {"0.0025,2,3,4\n0.005,2,3", "0.0025,2,3,4\n0.005,2,3,"}) {
+    EXPECT_EQ(message(head + tail, {}), "no error") << tail;
+    EXPECT_EQ(message(head + tail, fitted), "no error") << tail;
+    EXPECT_EQ(read_log(dir / "a.csv", fitted).quality.skipped_rows, 1u) << tail;
+  }
 }
 
 TEST(ReadLog, OneLineLongerThanHalfTheDataIsParsedWhole) {

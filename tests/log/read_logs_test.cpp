@@ -23,6 +23,35 @@ std::string log_text(double t0, int rows, const std::string& extra_column, doubl
   return text;
 }
 
+TEST(ReadLogs, TheReadersNotesAreSaidOnce) {
+  TempDir dir("reader_notes");
+  std::string cut = log_text(0.0, 30, "", 0.1);
+  cut.pop_back();  // no final newline: the last row is skipped
+  write_text(dir / "a.csv", cut);
+  write_text(dir / "b.csv", log_text(0.0, 20, "", 0.1));
+  const std::string note = (dir / "a.csv").string() +
+                           ":32: the file ends without a newline, inside this row: a cut file? "
+                           "The row is skipped, its last field may be cut short";
+  const std::vector<std::filesystem::path> both{dir / "a.csv", dir / "b.csv"};
+  // Handed to the caller's notes (which identify, diagnose and validate print) ...
+  std::vector<std::string> notes;
+  Log log = read_logs(both, &notes);
+  EXPECT_EQ(notes, std::vector<std::string>{note});
+  EXPECT_TRUE(log.quality.notes.empty());
+  EXPECT_EQ(log.rows(), 29 + 20);
+  EXPECT_EQ(log.quality.skipped_rows, 1u);
+  EXPECT_NE(log.quality.summary().find("2 files, 49 rows (1 more skipped), "), std::string::npos)
+      << log.quality.summary();
+  notes.clear();
+  log = read_logs(std::vector<std::filesystem::path>{dir / "a.csv"}, &notes);
+  EXPECT_EQ(notes, std::vector<std::string>{note});
+  EXPECT_TRUE(log.quality.notes.empty());
+  // ... else kept in the quality, whose summary says them.
+  log = read_logs(both);
+  EXPECT_EQ(log.quality.notes, std::vector<std::string>{note});
+  EXPECT_NE(log.quality.summary().find("\n  " + note), std::string::npos) << log.quality.summary();
+}
+
 TEST(ReadLogs, ConcatenatesFilesAsSeparateSegments) {
   TempDir dir("several");
   write_text(dir / "a.csv", log_text(5.0, 30, "", 0.1));

@@ -140,7 +140,7 @@ TEST(CliBadFiles, IdentifyAndDiagnoseNameTheLogAndTheLine) {
   const std::string robot = kShippedData + "/arm4.robot.json";
   const std::vector<std::pair<std::string, std::string>> logs = {
       {"", "the file is empty"},
-      {head + row + "0.0025,0,0,0,0,0,0,0", "log.csv:4: the file ends mid-line"},
+      {head + row + "0.0025,0,0,0,0,0,0,0,0,1,2,3,4,5", "log.csv:4: expected 13 fields, found 14"},
       {"# tpf-log: 2\n" + head.substr(13) + row, "log.csv:1: tpf-log: version 2"},
       {"t,q1\n0,1\n", "q"},  // wrong header: no joint columns
       {head + "0,0,0,0,0,0,0,0,0,1e400,2,3,4\n", "log.csv:3: i1: '1e400' is out of range"},

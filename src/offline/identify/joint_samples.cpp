@@ -123,6 +123,11 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
   s.regimes.resize(n_joints);
   s.held_sign.resize(n, n_joints);
   const double step = median_step(s.t);  // once for every joint's filters and segments
+  if (!(step > 0))
+    throw Error::at(log.source, 0, "t",
+                    n < 2 ? "the log has " + std::to_string(n) +
+                                " row(s): a time step needs at least two, and a fit far more"
+                          : "the time column does not advance (its median step is not positive)");
   const std::vector<Segment> segments =
       contiguous_segments(s.t, {}, options.regimes.gap_factor, step);  // of t alone
   // Joints are independent columns: half of them on a helper thread (same result as serial).
@@ -172,9 +177,15 @@ std::string skipped_samples_text(const JointSamples& samples) {
   std::string text = std::to_string(missing) +
                      " skipped for a missing value (in the log, or q̈ not derivable at a gap or an "
                      "end)";
-  if (samples.out_of_range_count > 0)
-    text += ", " + std::to_string(samples.out_of_range_count) +
-            " for a value beyond ±1e9 (no arm's q, q̇, q̈ or effort: a corrupt field?)";
+  if (samples.out_of_range_count > 0) {
+    char printed[32];
+    std::snprintf(printed, sizeof printed, "%g", kImplausibleValue);
+    std::string limit = printed;  // "1e+09" → "1e9"
+    if (const std::size_t e = limit.find("e+"); e != std::string::npos)
+      limit.erase(e + 1, limit.find_first_not_of("+0", e + 1) - (e + 1));
+    text += ", " + std::to_string(samples.out_of_range_count) + " for a value beyond ±" + limit +
+            " (no arm's q, q̇, q̈ or effort: a corrupt field?)";
+  }
   return text;
 }
 

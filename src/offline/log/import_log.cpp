@@ -70,7 +70,7 @@ std::string format(const char* pattern, double value) {
 }  // namespace
 
 std::vector<std::string> ImportReport::lines() const {
-  std::vector<std::string> out;
+  std::vector<std::string> out = reader_notes;
   out.push_back("time: " + std::to_string(rows_read) + " rows read, " +
                 std::to_string(rows_written) + " written; nominal step " +
                 format("%.6g", nominal_step_s) + " s");
@@ -105,15 +105,18 @@ Log import_log(const std::filesystem::path& csv, const ImportMap& map, ImportRep
                       "the column named by " + map.file + " is missing from the header");
 
   report = ImportReport{};
+  report.reader_notes = table.log.quality.notes;
   report.rows_read = static_cast<std::size_t>(table.log.rows());
   const Eigen::VectorXd t = time_in_seconds(table, map);
   const std::vector<Eigen::Index> rows = increasing_rows(t, table.first_data_line, report);
   report.rows_written = rows.size();
   if (rows.size() < 2)
-    throw Error::at(table.log.source, table.header_line, "",
-                    std::to_string(report.rows_read) + " data rows, " +
-                        std::to_string(rows.size()) +
-                        " with an increasing time: a log needs at least two; nothing written");
+    throw Error::at(
+        table.log.source, table.header_line, "",
+        std::to_string(report.rows_read) + " data rows" +
+            (table.log.quality.skipped_rows > 0 ? " (and a cut last row, skipped)" : "") + ", " +
+            std::to_string(rows.size()) +
+            " with an increasing time: a log needs at least two; nothing written");
   Eigen::VectorXd kept_t(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t k = 0; k < rows.size(); ++k)
     kept_t[static_cast<Eigen::Index>(k)] = t[rows[k]];

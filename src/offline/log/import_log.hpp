@@ -25,8 +25,12 @@ struct ImportReport {
   long largest_step_line = 0;        ///< line of the row after the largest step
   bool made_regular = false;         ///< rule "regular": t rewritten as k / rate_hz
   double regular_max_shift_s = 0.0;  ///< largest |t_recorded − t_regular| (rule "regular")
+  /// The CSV reader's, "file:line: what was found, and what was done": a row the file ends
+  /// inside, skipped (not among rows_read).
+  std::vector<std::string> reader_notes;
 
-  /// Lines for the terminal, e.g. "time: 1942 rows, step 0.001 s: 0 irregular steps".
+  /// Lines for the terminal, e.g. "time: 1942 rows, step 0.001 s: 0 irregular steps", the
+  /// reader's notes first.
   std::vector<std::string> lines() const;
 };
 

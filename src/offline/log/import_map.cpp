@@ -34,6 +34,7 @@ constexpr const char* kPrefixes[] = {"q",   "dq",         "ddq",       "i",
 std::string ImportMap::source_name(const ImportColumn& column, int k) const {
   std::string name = column.source;
   const std::size_t at = name.find("{j}");
+  if (at == std::string::npos) return name;  // a 1-joint map's column of its one joint
   return name.replace(at, 3, std::to_string(joint_order[static_cast<std::size_t>(k - 1)]));
 }
 
@@ -80,8 +81,11 @@ ImportMap load_import_map(const std::filesystem::path& path) {
     ImportColumn column;
     column.prefix = prefix;
     column.source = c.text("source");
-    if (column.source.find("{j}") == std::string::npos)
-      c.fail("source", "'" + column.source + "' needs {j} where the joint number goes");
+    if (map.joints > 1 && column.source.find("{j}") == std::string::npos)
+      c.fail("source", "'" + column.source +
+                           "' needs {j} where the joint number goes (the map has " +
+                           std::to_string(map.joints) +
+                           " joints; only a 1-joint map may name its column without {j})");
     column.unit = c.text("unit");
     const auto choices = units_of(prefix);
     const auto it = std::find_if(choices.begin(), choices.end(),

@@ -24,6 +24,7 @@ enum class TimestampRule {
 struct ImportColumn {
   std::string prefix;  ///< tpf prefix: q, dq, ddq, i, tau, tau_sensor, tau_maker, temp
   std::string source;  ///< source column pattern, "{j}" replaced by the source joint number
+                       ///< (a 1-joint map's may be a plain name, without "{j}")
   std::string unit;    ///< as written in the map
   double scale = 1.0;  ///< tpf value = scale · source value
 };
@@ -39,13 +40,15 @@ struct ImportMap {
   std::vector<ImportColumn> columns;
   std::vector<std::pair<std::string, std::string>> metadata;  ///< written into the log
 
-  /// Source column name of `column` for tpf joint k (1-based).
+  /// Source column name of `column` for tpf joint k (1-based); a pattern without "{j}" (1-joint
+  /// map) is the name itself.
   std::string source_name(const ImportColumn& column, int k) const;
 };
 
 /// Reads and checks a column map ("format": "tpf-import", "version": 1). Throws tpf::Error
 /// "file: key: reason" on a missing or unknown key, an unknown unit, a joint order that is not
-/// a permutation, a pattern without "{j}", no q/dq or no effort (i or tau).
+/// a permutation, a pattern without "{j}" in a map of several joints, no q/dq or no effort (i or
+/// tau).
 ImportMap load_import_map(const std::filesystem::path& path);
 
 }  // namespace tpf::offline

@@ -68,17 +68,15 @@ std::size_t count_fields(const char* begin, const char* end) {
   return 1 + static_cast<std::size_t>(std::count(begin, end, ','));
 }
 
-/// A line with the wrong number of fields; `cut_off`: it is the file's last, without a line end,
-/// and has too few.
-std::string field_count_message(bool cut_off, std::size_t expected, std::size_t found) {
-  return concat({cut_off ? "the file ends mid-line (truncated?): " : "", "expected ",
-                 std::to_string(expected), " fields, found ", std::to_string(found)});
+/// A line with the wrong number of fields.
+std::string field_count_message(std::size_t expected, std::size_t found) {
+  return concat({"expected ", std::to_string(expected), " fields, found ", std::to_string(found)});
 }
 
 /// Parses lines in [begin, end) (each ending in '\n', except possibly the last) into rows
 /// first_row.. of `values`: field c goes to column target[c] of `values`, or is skipped unparsed
 /// when target[c] < 0 (its count still checked). Stops at the first malformed line. Never throws.
-void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool ends_mid_line,
+void parse_chunk(const char* begin, const char* end, std::size_t first_row,
                  const std::vector<int>& target, Eigen::MatrixXd& values, ChunkResult& result) {
   try {
     const std::size_t columns = target.size();
@@ -106,8 +104,7 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
           const std::size_t found =
               c + 1 + static_cast<std::size_t>(std::count(field, content_end, ','));
           if (found != columns) {
-            fail(-1, field_count_message(found < columns && ends_mid_line && line_end == end,
-                                         columns, found));
+            fail(-1, field_count_message(columns, found));
             return;
           }
           break;
@@ -145,20 +142,11 @@ void parse_chunk(const char* begin, const char* end, std::size_t first_row, bool
           data[static_cast<std::size_t>(target[c]) * rows + row] = value;
         }
         const bool last = c + 1 == columns;
-        if (!last && after >= content_end) {
-          fail(-1, field_count_message(ends_mid_line && line_end == end, columns,
-                                       count_fields(p, content_end)));
-          return;
-        }
-        if (last && after < content_end) {
-          fail(-1, field_count_message(false, columns, count_fields(p, content_end)));
+        if ((!last && after >= content_end) || (last && after < content_end)) {
+          fail(-1, field_count_message(columns, count_fields(p, content_end)));
           return;
         }
         field = after + 1;
-      }
-      if (ends_mid_line && line_end == end && columns > 1 && content_end[-1] == ',') {
-        fail(-1, "the file ends mid-line (truncated?) after an empty last field");
-        return;
       }
       ++row;
       p = line_end + 1;
@@ -187,6 +175,35 @@ std::pair<std::size_t, std::size_t> count_line_ends(const char* begin, const cha
   const auto first = static_cast<std::size_t>(std::count(begin, split, '\n'));
   if (helper.joinable()) helper.join();
   return {first, second};
+}
+
+/// The end of [begin, end) without its trailing blank lines and spaces.
+const char* without_trailing_blanks(const char* begin, const char* end) {
+  while (end > begin && (end[-1] == '\n' || end[-1] == '\r' || end[-1] == ' ' || end[-1] == '\t'))
+    --end;
+  return end;
+}
+
+/// A file that ends without a newline was cut, most likely inside its last row (a recorder that
+/// stopped mid-write): that row's last field may be a cut number. The row is left out of the data
+/// [data_begin, data_end) and said in the table's quality; a last line with more fields than the
+/// header (`fields`) is no cut and stays, for the parser's error. Returns the data's new end.
+const char* drop_unterminated_row(const std::string& file, const char* data_begin,
+                                  const char* data_end, const char* text_end, std::size_t fields,
+                                  CsvTable& table) {
+  if (data_end == data_begin || std::find(data_end, text_end, '\n') != text_end) return data_end;
+  const char* row = data_end;
+  while (row > data_begin && row[-1] != '\n')
+    --row;
+  if (count_fields(row, data_end) > fields) return data_end;
+  const long line = table.first_data_line + std::count(data_begin, row, '\n');
+  ++table.log.quality.skipped_rows;
+  table.log.quality.notes.emplace_back(
+      Error::at(file, line, "",
+                "the file ends without a newline, inside this row: a cut file? The row is "
+                "skipped, its last field may be cut short")
+          .what());
+  return without_trailing_blanks(data_begin, row);
 }
 
 /// The table in `text`, the contents of `file`.
@@ -253,14 +270,13 @@ CsvTable parse_csv_table(const std::string& file, std::string_view text,
     log.columns.push_back(names[c]);
   }
 
-  // Data region: drop trailing blank lines; a last line without '\n' may be cut off.
+  // Data region: drop trailing blank lines, and a last row the file ends inside.
   const char* const data_begin = text.data() + std::min(pos, text.size());
-  const char* data_end = text.data() + text.size();
-  const bool ends_mid_line = data_end > data_begin && data_end[-1] != '\n';
-  while (data_end > data_begin && (data_end[-1] == '\n' || data_end[-1] == '\r' ||
-                                   data_end[-1] == ' ' || data_end[-1] == '\t'))
-    --data_end;
+  const char* const text_end = text.data() + text.size();
   table.first_data_line = table.header_line + 1;
+  const char* const data_end =
+      drop_unterminated_row(file, data_begin, without_trailing_blanks(data_begin, text_end),
+                            text_end, names.size(), table);
   const std::size_t columns = log.columns.size();
 
   // Split at a line boundary near the middle; count the lines of both halves, then parse both
@@ -273,13 +289,12 @@ CsvTable parse_csv_table(const std::string& file, std::string_view text,
   log.values.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(columns));
   ChunkResult first, second;
   if (split < data_end) {
-    std::thread helper([&] {
-      parse_chunk(split, data_end, second_first_row, ends_mid_line, target, log.values, second);
-    });
-    parse_chunk(data_begin, split, 0, false, target, log.values, first);
+    std::thread helper(
+        [&] { parse_chunk(split, data_end, second_first_row, target, log.values, second); });
+    parse_chunk(data_begin, split, 0, target, log.values, first);
     helper.join();
   } else {
-    parse_chunk(data_begin, data_end, 0, ends_mid_line, target, log.values, first);
+    parse_chunk(data_begin, data_end, 0, target, log.values, first);
     second.missing.assign(columns, 0);
   }
   for (const ChunkResult* chunk : {&first, &second})
@@ -294,6 +309,30 @@ CsvTable parse_csv_table(const std::string& file, std::string_view text,
   for (std::size_t c = 0; c < columns; ++c)
     log.quality.missing_per_column[c] = first.missing[c] + second.missing[c];
   return table;
+}
+
+/// The metadata rate_hz is checked against the time column from this many steps on (fewer say
+/// little about the rate) ...
+constexpr Eigen::Index kRateCheckSteps = 10;
+/// ... and the two agree when the median step is within this fraction of 1 / rate_hz.
+constexpr double kRateTolerance = 0.01;
+
+/// The rate gaps are found at: the metadata's rate_hz (`rate`, at `line` of `file`) when the time
+/// column `t` agrees with it, else the time column's own (1 / its median step), with a note in
+/// `quality` naming both. NaN `rate` (no metadata): the time column's; 0 for fewer than 2 rows.
+double rate_for_gaps(const std::string& file, long line, double rate, const Eigen::VectorXd& t,
+                     LogQuality& quality) {
+  if (t.size() < 2) return std::isnan(rate) ? 0.0 : rate;
+  const double step = median_step(t);
+  if (std::isnan(rate)) return 1.0 / step;
+  if (t.size() <= kRateCheckSteps || std::abs(step * rate - 1.0) <= kRateTolerance) return rate;
+  char message[320];
+  std::snprintf(message, sizeof message,
+                "the metadata says %.6g Hz, but the time column's median step is %.6g s (%.6g "
+                "Hz); the time column is used: gaps are found at %.6g Hz",
+                rate, step, 1.0 / step, 1.0 / step);
+  quality.notes.emplace_back(Error::at(file, line, "rate_hz", message).what());
+  return 1.0 / step;
 }
 
 }  // namespace
@@ -362,15 +401,12 @@ Log read_log(const std::filesystem::path& path, const ColumnFilter& keep_column)
 
   // Quality: gaps (dt > 1.5 / rate).
   LogQuality& quality = log.quality;
-  const double rate = log.meta.rate_hz();
-  quality.rate_hz = std::isnan(rate) ? 1.0 / median_step(t) : rate;
+  quality.rate_hz = rate_for_gaps(file, line_of("rate_hz"), log.meta.rate_hz(), t, quality);
   if (t.size() > 1) {
     quality.duration_s = t[t.size() - 1] - t[0];
     const double gap_step = 1.5 / quality.rate_hz;
     for (Eigen::Index r = 1; r < t.size(); ++r)
       if (t[r] - t[r - 1] > gap_step) quality.gap_rows.push_back(static_cast<std::size_t>(r));
-  } else {
-    quality.rate_hz = std::isnan(rate) ? 0.0 : rate;
   }
   quality.gaps = quality.gap_rows.size();
   return std::move(table.log);

@@ -19,10 +19,14 @@ using ColumnFilter = std::function<bool(std::string_view name)>;
 /// - a file that starts with the gzip magic (.csv.gz) is decompressed first;
 /// - column order is free; unknown columns are kept; a 't' column is required;
 /// - an empty field or 'nan' is a missing value: NaN in `values`, counted in `quality`;
-/// - gaps (dt > 1.5 / rate, rate from 'rate_hz' or else the median dt) are counted in `quality`;
+/// - gaps (dt > 1.5 / rate) are counted in `quality`: rate from 'rate_hz' when the time column
+///   agrees with it (median dt within 1 %, checked from 10 steps on), else the median dt's, with
+///   a note in quality.notes naming the file, the metadata's rate and the measured one;
+/// - a file that ends without a newline was cut inside its last row: that row is skipped
+///   (quality.skipped_rows) and said in quality.notes with its line, never read as a number;
 /// - errors name file, line and column: a 'tpf-log' major version > 1, a wrong field count, text
-///   where a number belongs, an infinite value, a line cut off at the end of the file, a missing
-///   or non-increasing t, corrupt or truncated gzip data.
+///   where a number belongs, an infinite value, a missing or non-increasing t, corrupt or
+///   truncated gzip data.
 /// The file is mapped (read in place, not copied) and parsed on two threads.
 /// `keep_column` (all columns when empty): the columns to parse and keep, by name ('t' among
 /// them); the others are skipped unparsed, as read_csv_table's.
@@ -39,7 +43,8 @@ struct CsvTable {
 /// The table layer of read_log, with no requirement on column names or time: '#' lines before
 /// the header, the header, then numbers (gzip as read_log). Only the columns named in
 /// `keep_columns` are parsed and kept (all when null); the others are skipped unparsed, so they
-/// may hold text, but every line still needs the header's field count. Errors as read_log's.
+/// may hold text, but every line still needs the header's field count. Errors, and a cut last
+/// row skipped and noted, as read_log's.
 CsvTable read_csv_table(const std::filesystem::path& path,
                         const std::vector<std::string>* keep_columns = nullptr);
 /// read_csv_table keeping the columns `keep_column` accepts (all when empty).

@@ -32,6 +32,14 @@ void note_dropped_columns(const std::vector<Log>& logs, const std::vector<std::s
   }
 }
 
+/// Hands the reader's notes of `log` to `notes` (then said once, by the caller, and no longer in
+/// the quality summary); kept in `log` when `notes` is null.
+void hand_over_reader_notes(Log& log, std::vector<std::string>* notes) {
+  if (notes == nullptr) return;
+  notes->insert(notes->end(), log.quality.notes.begin(), log.quality.notes.end());
+  log.quality.notes.clear();
+}
+
 }  // namespace
 
 double file_seam_seconds(double median_step_s) {
@@ -43,8 +51,10 @@ Log read_logs(const std::vector<std::filesystem::path>& paths, std::vector<std::
   if (paths.empty()) throw Error("no log file given");
   std::vector<Log> logs;
   logs.reserve(paths.size());
-  for (const auto& path : paths)
+  for (const auto& path : paths) {
     logs.push_back(read_log(path, keep_column));
+    hand_over_reader_notes(logs.back(), notes);
+  }
   if (logs.size() == 1) return std::move(logs.front());
 
   const std::vector<std::string> columns = common_columns(logs);
@@ -90,6 +100,9 @@ Log read_logs(const std::vector<std::filesystem::path>& paths, std::vector<std::
       ++out.quality.seams;
     }
     out.quality.duration_s += log.quality.duration_s;
+    out.quality.skipped_rows += log.quality.skipped_rows;
+    out.quality.notes.insert(out.quality.notes.end(), log.quality.notes.begin(),
+                             log.quality.notes.end());
     row += log.rows();
   }
   std::sort(out.quality.gap_rows.begin(), out.quality.gap_rows.end());

@@ -24,6 +24,8 @@ double file_seam_seconds(double median_step_s);
 ///   `quality` (quality.seams of them);
 /// - metadata: the first file's, 'rate_hz' kept only when every file gives the same one, and
 ///   'files' listing the paths; source = the paths joined by " + ".
+/// - the reader's notes on each file (a cut last row skipped, a contradicted rate_hz): moved to
+///   `notes` when given, so that the caller says them once; else kept in quality.notes;
 /// Throws read_log's errors (naming the file) and tpf::Error when no path is given or no column
 /// is common to all files.
 /// `keep_column`: read_log's, for every file (all columns when empty).

@@ -78,8 +78,8 @@ SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_
   if (torque_constant.size() != log.joint_count())
     throw Error::at(log.source, 0, "", "torque constants for another joint count");
   const DriveUnits units{effort_unit_of_column(effort), torque_constant};
-  const double rate = log.meta.rate_hz();
-  const double period = std::isfinite(rate) ? 1.0 / rate : 0.0025;
+  const double rate = log.quality.rate_hz;  // the time column's where the metadata contradicts it
+  const double period = std::isfinite(rate) && rate > 0 ? 1.0 / rate : 0.0025;
   const int joints = log.joint_count();
   noise.effort.resize(joints);
   noise.effort_step.resize(joints);
