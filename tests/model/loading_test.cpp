@@ -137,6 +137,115 @@ TEST(Loading, FixedLinksAreFoldedIntoTheirMovingParent) {
   EXPECT_NEAR(chain.inertias[1].rotational(0, 0), 0.04, 1e-15);
 }
 
+/// A link named `name` with the given <inertia> attributes (mass 1 kg at the frame's origin).
+std::string link_with_inertia(const std::string& name, const std::string& inertia) {
+  return "<link name=\"" + name + "\"><inertial><mass value=\"1\"/><inertia " + inertia +
+         "/></inertial></link>";
+}
+
+/// What loading `urdf` prints to stderr (the chain itself is not looked at).
+std::string stderr_of_loading(const fs::path& urdf) {
+  testing::internal::CaptureStderr();
+  load_urdf_chain(urdf);
+  return testing::internal::GetCapturedStderr();
+}
+
+TEST(Loading, AMovingLinkWithoutInertialIsRefusedNamingFileLineAndLink) {
+  // Was: loaded as a massless link. Line 2 holds <link name="b"/>.
+  const fs::path p =
+      write("no_inertial.urdf", "<robot name=\"r\">\n<link name=\"b\"/>\n" + link("a") +
+                                    joint("j1", "revolute", "a", "b") + "</robot>");
+  EXPECT_EQ(message_of([&] { load_urdf_chain(p); }),
+            p.string() +
+                ":2: link 'b' has no <inertial>: it moves with joint 'j1' and no link fixed to it "
+                "has one, so it would move without mass; give it an <inertial> (with <mass "
+                "value=\"0\"/> if it has none)");
+  // The same behind a fixed joint between moving links: b and its fixed child c are one body.
+  const fs::path q =
+      write("no_inertial_chain.urdf",
+            "<robot name=\"r\">" + link("a") + "<link name=\"b\"/><link name=\"c\"/>" + link("d") +
+                joint("j1", "revolute", "a", "b") + joint("flange", "fixed", "b", "c") +
+                joint("j2", "revolute", "c", "d") + "</robot>");
+  EXPECT_NE(message_of([&] {
+              load_urdf_chain(q);
+            }).find(": link 'b' has no <inertial>: it moves with joint 'j1' and"),
+            std::string::npos);
+}
+
+TEST(Loading, MasslessBaseFramesAndAnExplicitZeroMassLoad) {
+  // A massless root, a massless tool frame fixed to a body with mass, a massless link that takes
+  // its mass from the flange fixed to it between two moving links, an explicit zero mass.
+  const std::string zero =
+      R"(<link name="e"><inertial><mass value="0"/><inertia ixx="0" iyy="0" izz="0" ixy="0")"
+      R"( ixz="0" iyz="0"/></inertial></link>)";
+  const fs::path p = write(
+      "massless_frames.urdf",
+      "<robot name=\"r\"><link name=\"world\"/>" + link("a") + "<link name=\"b\"/>" +
+          link("flange") + link("c") + "<link name=\"tool\"/>" + zero +
+          joint("base", "fixed", "world", "a") + joint("j1", "revolute", "a", "b") +
+          joint("flange", "fixed", "b", "flange") + joint("j2", "revolute", "flange", "c") +
+          joint("tool", "fixed", "c", "tool") + joint("j3", "revolute", "c", "e") + "</robot>");
+  const ChainDescription chain = load_urdf_chain(p);
+  ASSERT_EQ(chain.joints.size(), 3u);
+  EXPECT_DOUBLE_EQ(chain.inertias[0].mass, 1.0);  // world + a
+  EXPECT_DOUBLE_EQ(chain.inertias[1].mass, 1.0);  // b + flange
+  EXPECT_DOUBLE_EQ(chain.inertias[2].mass, 1.0);  // c + tool
+  EXPECT_DOUBLE_EQ(chain.inertias[3].mass, 0.0);  // e, declared massless
+}
+
+TEST(Loading, InertiaBreakingTheTriangleInequalityIsReportedNamingTheInequality) {
+  // Was: accepted silently. Not physical (no body has ixx + iyy < izz), but M(q) stays positive
+  // definite: a warning, as the Kinova Gen3's published tensors break it too.
+  const fs::path diagonal = write(
+      "triangle_diagonal.urdf",
+      "<robot name=\"r\">\n" +
+          link_with_inertia("b", R"(ixx="0.01" iyy="0.01" izz="0.03" ixy="0" ixz="0" iyz="0")") +
+          "\n" + link("a") + joint("j1", "revolute", "a", "b") + "</robot>");
+  EXPECT_EQ(stderr_of_loading(diagonal),
+            "tpf: warning: " + diagonal.string() +
+                ":2: link 'b': inertia breaks the triangle inequality (ixx + iyy = 0.02 < izz = "
+                "0.03 kg·m²): no rigid body has this inertia; check the <inertia> values and their "
+                "frame\n");
+  // Principal moments 0.01, 0.01, 0.03 turned 45° about x: every diagonal inequality holds.
+  const fs::path turned = write(
+      "triangle_turned.urdf",
+      "<robot name=\"r\">" + link("a") +
+          link_with_inertia("b", R"(ixx="0.01" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0.01")") +
+          joint("j1", "revolute", "a", "b") + "</robot>");
+  EXPECT_NE(stderr_of_loading(turned).find(
+                "link 'b': inertia breaks the triangle inequality (principal moments I1 + I2 = "
+                "0.02 < I3 = 0.03 kg·m²)"),
+            std::string::npos);
+  // A thin rod (0 + I = I) and CAD rounding within 1e-9 pass; 1e-8 beyond does not.
+  const auto rod = [](const std::string& name, const std::string& izz) {
+    return write(name, "<robot name=\"r\">" + link("a") +
+                           link_with_inertia("b", "ixx=\"0.005\" iyy=\"0.005\" izz=\"" + izz +
+                                                      "\" ixy=\"0\" ixz=\"0\" iyz=\"0\"") +
+                           joint("j1", "revolute", "a", "b") + "</robot>");
+  };
+  EXPECT_EQ(stderr_of_loading(rod("rod_exact.urdf", "0.01")), "");
+  EXPECT_EQ(stderr_of_loading(rod("rod_rounded.urdf", "0.0100000000098")), "");
+  EXPECT_NE(stderr_of_loading(rod("rod_beyond.urdf", "0.0100000002"))
+                .find("ixx + iyy = 0.01 < izz = 0.0100000002 kg·m²"),
+            std::string::npos);
+  // The shipped robots: the arm and the bench are physical; the Gen3 (the maker's tensors) loads
+  // with its warnings.
+  EXPECT_EQ(stderr_of_loading(data_path("arm4.urdf")), "");
+  EXPECT_EQ(stderr_of_loading(data_path("bench1.urdf")), "");
+  EXPECT_NE(stderr_of_loading(data_path("real/kinova-gen3/gen3.urdf")).find("'shoulder_link'"),
+            std::string::npos);
+}
+
+TEST(Loading, InertiaThatIsNotPositiveSemiDefiniteIsRefused) {
+  const fs::path p = write(
+      "indefinite.urdf",
+      "<robot name=\"r\">\n" +
+          link_with_inertia("b", R"(ixx="0.01" iyy="0.01" izz="-0.001" ixy="0" ixz="0" iyz="0")") +
+          "\n" + link("a") + joint("j1", "revolute", "a", "b") + "</robot>");
+  EXPECT_EQ(message_of([&] { load_urdf_chain(p); }),
+            p.string() + ":2: link 'b': inertia is not positive semi-definite");
+}
+
 TEST(Loading, RobotFileWithUnknownKeyIsRefusedNamingIt) {
   const fs::path urdf = write("one.urdf", "<robot name=\"r\">" + link("a") + link("b") +
                                               joint("j1", "revolute", "a", "b") + "</robot>");

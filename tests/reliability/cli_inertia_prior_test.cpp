@@ -77,11 +77,13 @@ TEST(CliInertiaPrior, IdentifyAndDiagnoseSayWhatThePriorDidAndAgree) {
 
   // A robot file whose own M(q) is singular (a massless pendulum, no rotor inertia) sets no floor:
   // the prior is not applied, and identify says why.
-  box.write("massless.urdf",
-            R"(<robot name="massless"><link name="stand"/><joint name="joint1" type="revolute">)"
-            R"(<parent link="stand"/><child link="pendulum"/><origin xyz="0 0 0.5"/>)"
-            R"(<axis xyz="0 1 0"/><limit lower="-2.9" upper="2.9" effort="20" velocity="3"/>)"
-            R"(</joint><link name="pendulum"/></robot>)");
+  box.write(
+      "massless.urdf",
+      R"(<robot name="massless"><link name="stand"/><joint name="joint1" type="revolute">)"
+      R"(<parent link="stand"/><child link="pendulum"/><origin xyz="0 0 0.5"/>)"
+      R"(<axis xyz="0 1 0"/><limit lower="-2.9" upper="2.9" effort="20" velocity="3"/>)"
+      R"(</joint><link name="pendulum"><inertial><mass value="0"/>)"
+      R"(<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link></robot>)");
   box.write("massless.robot.json",
             R"({"format": "tpf-robot", "version": 1, "name": "massless", "urdf": "massless.urdf",)"
             R"( "gravity": [0, 0, -9.81], "joints": [{"name": "joint1", "gear_ratio": 100,)"

@@ -87,4 +87,56 @@ TEST(Scenario, ImpossibleValuesAreRefusedByKey) {
   check("tpf_s10.json", R"({"kind":"excitation",)", "tpf_s10.json:1: not valid JSON");
 }
 
+/// A 1-joint robot whose joint is continuous (no <limit>) and that names no friction file.
+std::string write_spinner_robot() {
+  write_temp("spinner.urdf", R"(<robot name="spinner"><link name="base"/>
+  <link name="rotor"><inertial><origin xyz="0.1 0 0"/><mass value="1"/>
+    <inertia ixx="1e-3" iyy="1e-3" izz="1e-3" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="spin" type="continuous"><parent link="base"/><child link="rotor"/>
+    <axis xyz="0 0 1"/></joint></robot>)");
+  return write_temp("spinner.robot.json", R"({"format": "tpf-robot", "version": 1,
+    "urdf": "spinner.urdf", "joints": [{"name": "spin", "gear_ratio": 100,
+    "rotor_inertia": 1e-6, "torque_constant": 2, "current_limit": 1000}]})");
+}
+
+TEST(Scenario, InitialPoseOutsideTheJointLimitsIsRefusedNamingJointAndLimit) {
+  // Was: accepted; the twin started beyond the end stop. arm4's joint2 turns in [-2, 2] rad.
+  const std::string path =
+      write_temp("tpf_s_beyond.json", R"({"kind":"excitation","initial_q":[0, 2.5, 0, 0]})");
+  EXPECT_EQ(error_of(path), path +
+                                ": initial_q[1]: 2.5 rad is outside the limits of joint 'joint2', "
+                                "[-2, 2] rad (<limit> in " TPF_DATA_DIR "/arm4.urdf)");
+  const std::string below =
+      write_temp("tpf_s_below.json", R"({"kind":"excitation","initial_q":[0, 0, -3.2, 0]})");
+  EXPECT_NE(
+      error_of(below).find(
+          "initial_q[2]: -3.2 rad is outside the limits of joint 'joint3', [-3.14159, 1.5708]"),
+      std::string::npos);
+  // On the limit is inside.
+  const Scenario at = load_scenario(
+      write_temp("tpf_s_at.json", R"({"kind":"excitation","initial_q":[0, 2, 0, 0]})"));
+  EXPECT_DOUBLE_EQ(at.initial_q[1], 2.0);
+}
+
+TEST(Scenario, FrictionNoneNeedsNoFrictionFileAndAContinuousJointTakesAnyAngle) {
+  // Was: "friction: no friction file" even with effects.friction "none".
+  const std::string robot = write_spinner_robot();
+  const Scenario s = load_scenario(write_temp("tpf_s_spin.json", R"({"kind":"excitation",
+    "robot":"spinner.robot.json","initial_q":[40],"effects":{"friction":"none"}})"));
+  EXPECT_EQ(s.effects.friction, tpf::offline::EffectsConfig::Friction::kNone);
+  EXPECT_EQ(s.friction_file, "");
+  EXPECT_DOUBLE_EQ(s.initial_q[0], 40.0);
+  // With friction on, the file is still required.
+  const std::string on =
+      write_temp("tpf_s_spin_on.json", R"({"kind":"excitation","robot":"spinner.robot.json"})");
+  EXPECT_EQ(error_of(on), on +
+                              ": friction: no friction file: name one here or as \"friction\" "
+                              "in " +
+                              robot + ", or set effects.friction to \"none\"");
+  // The robot file's friction file goes unused when friction is off.
+  const Scenario arm = load_scenario(
+      write_temp("tpf_s_arm_none.json", R"({"kind":"excitation","effects":{"friction":"none"}})"));
+  EXPECT_EQ(arm.friction_file, "");
+}
+
 }  // namespace

@@ -15,9 +15,10 @@
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/sensor_quantisation.hpp"
 #include "offline/sim/twin_arm.hpp"
+#include "support/constants.hpp"
+#include "support/temp_dir.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/robot_description.hpp"
-#include "support/constants.hpp"
 
 namespace {
 
@@ -261,6 +262,36 @@ TEST(Simulate, TeachingNeedsPads) {
         << e.what();
   }
   std::filesystem::remove(path);
+}
+
+TEST(Simulate, InitialPoseOutsideTheJointLimitsIsRefused) {
+  // A scenario edited in code (load_scenario refuses the file): was simulated from beyond the end
+  // stop. arm4's joint 2 turns in [-2, 2] rad.
+  Scenario s = default_scenario(TPF_TEST_DATA_DIR "/arm4.robot.json");
+  s.initial_q[1] = 2.5;
+  try {
+    simulate_to_log(s, 1, 0.01);
+    FAIL() << "expected an error";
+  } catch (const tpf::Error& e) {
+    EXPECT_EQ(std::string(e.what()), TPF_TEST_DATA_DIR
+              "/arm4.robot.json: initial_q[1]: 2.5 rad is outside the limits of "
+              "joint 2, [-2, 2] rad, of the robot " TPF_TEST_DATA_DIR "/arm4.robot.json");
+  }
+}
+
+TEST(Simulate, FrictionNoneRunsWithoutAFrictionFile) {
+  // Was: "friction: no friction file" although the scenario turns friction off.
+  const tpf::test::TempDir dir("simulate_friction_none");
+  std::ofstream(dir / "bench.robot.json") << R"({"format": "tpf-robot", "version": 1,
+    "urdf": ")" TPF_TEST_DATA_DIR R"(/bench1.urdf", "joints": [{"name": "joint1",
+    "gear_ratio": 100, "rotor_inertia": 5e-6, "torque_constant": 5, "current_limit": 4000}]})";
+  std::ofstream(dir / "s.json") << R"({"kind": "excitation", "robot": "bench.robot.json",
+    "effects": {"friction": "none"}})";
+  const Scenario s = load_scenario((dir / "s.json").string());
+  const Log log = simulate_to_log(s, 1, 0.05);
+  ASSERT_GT(log.rows(), 10);
+  EXPECT_EQ(log.col("gt_fric1").cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(log.meta.get("friction_file").value_or(""), "none (effects.friction)");
 }
 
 }  // namespace

@@ -58,7 +58,9 @@ struct RobotDescription {
 /// Reads a URDF and extracts the serial chain of revolute (or continuous) joints from its root.
 /// Refuses, naming the file and the joint or link: malformed XML, a branching tree, prismatic,
 /// floating or planar joints, a zero axis, a negative mass or an inertia that is not positive
-/// semi-definite. A link without <inertial> is massless.
+/// semi-definite, a body moved by a joint in which no link has an <inertial> (an <inertial> with
+/// mass 0 is allowed; a link without one fixed to a link with one is massless). An inertia that
+/// breaks the triangle inequality is loaded with a warning (makers' files do: the Gen3's).
 ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file);
 
 /// Reads a robot file (JSON, format "tpf-robot" version 1) and the URDF it names (relative paths

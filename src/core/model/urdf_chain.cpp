@@ -4,8 +4,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <fstream>
+#include <iostream>
 #include <limits>
+#include <mutex>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -35,18 +38,88 @@ Transform<double> to_transform(const urdf::Pose& pose) {
   return t;
 }
 
-Inertia<double> link_inertia(const urdf::Link& link, const std::string& file) {
+/// The 1-based line of the `<link>` element named `name` in `text`, 0 when not found.
+long link_line(const std::string& text, const std::string& name) {
+  for (std::size_t at = text.find("<link"); at != std::string::npos;
+       at = text.find("<link", at + 1)) {
+    const std::string tag = text.substr(at, text.find('>', at) - at);
+    if (tag.find("name=\"" + name + "\"") != std::string::npos ||
+        tag.find("name='" + name + "'") != std::string::npos)
+      return 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+  }
+  return 0;
+}
+
+/// Where a link sits, for messages: the file, its text (for line numbers) and the link.
+struct LinkSite {
+  const std::string& file;
+  const std::string& text;
+  const urdf::Link& link;
+  Error error(const std::string& message) const {
+    return Error::at(file, link_line(text, link.name), "link '" + link.name + "'", message);
+  }
+};
+
+std::string format_moment(double value) {
+  std::ostringstream s;
+  s.precision(9);
+  s << value;
+  return s.str();
+}
+
+/// The triangle inequality every rigid body's inertia meets (each moment at most the sum of the
+/// other two), checked with a relative tolerance for the rounding of CAD exports. Returns the
+/// broken inequality ("ixx + iyy = 0.002 < izz = 0.003"), naming the file's diagonal entries
+/// when one of their inequalities fails (each frame's diagonal must meet it too), else the
+/// principal moments; empty when the tensor is physical.
+std::string broken_triangle_inequality(const Matrix3<double>& I) {
+  constexpr double kRelativeTolerance = 1e-9;
+  const Vector3<double> m = Eigen::SelfAdjointEigenSolver<Matrix3<double>>(I).eigenvalues();
+  const double tolerance = kRelativeTolerance * std::abs(I.trace());
+  if (m[0] + m[1] - m[2] >= -tolerance) return {};  // ascending: the one binding inequality
+  static constexpr std::array<const char*, 3> kName = {"ixx", "iyy", "izz"};
+  static constexpr std::array<std::array<int, 3>, 3> kTriples = {{{0, 1, 2}, {0, 2, 1}, {1, 2, 0}}};
+  for (const auto& [a, b, c] : kTriples) {  // I_aa + I_bb >= I_cc
+    const double sum = I(a, a) + I(b, b);
+    if (sum - I(c, c) < -tolerance)
+      return std::string(kName[a]) + " + " + kName[b] + " = " + format_moment(sum) + " < " +
+             kName[c] + " = " + format_moment(I(c, c));
+  }
+  return "principal moments I1 + I2 = " + format_moment(m[0] + m[1]) +
+         " < I3 = " + format_moment(m[2]);
+}
+
+/// Prints `message` to stderr as a warning, once per process; after kMaxWarnings different
+/// ones (a fuzzer, a batch over many files), no more.
+void warn_once(const std::string& message) {
+  constexpr std::size_t kMaxWarnings = 100;
+  static std::mutex mutex;
+  static std::set<std::string> warned;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (warned.size() > kMaxWarnings || !warned.insert(message).second) return;
+  std::cerr << "tpf: warning: "
+            << (warned.size() > kMaxWarnings ? "more URDF warnings, not shown" : message) << "\n";
+}
+
+Inertia<double> link_inertia(const LinkSite& site) {
   Inertia<double> in;
+  const urdf::Link& link = site.link;
   if (!link.inertial) return in;
   const urdf::Inertial& u = *link.inertial;
-  if (!(u.mass >= 0.0)) throw Error::at(file, 0, "link '" + link.name + "'", "mass must be >= 0");
+  if (!(u.mass >= 0.0)) throw site.error("mass must be >= 0");
   const Transform<double> origin = to_transform(u.origin);
   Matrix3<double> I;
   I << u.ixx, u.ixy, u.ixz, u.ixy, u.iyy, u.iyz, u.ixz, u.iyz, u.izz;
   const double smallest =
       Eigen::SelfAdjointEigenSolver<Matrix3<double>>(I).eigenvalues().minCoeff();
-  if (!(smallest >= -1e-12))
-    throw Error::at(file, 0, "link '" + link.name + "'", "inertia is not positive semi-definite");
+  if (!(smallest >= -1e-12)) throw site.error("inertia is not positive semi-definite");
+  // Not physical, yet M(q) stays positive definite and every algorithm computes: a warning, as
+  // makers publish such tensors (Kinova's Gen3 description, data/real/kinova-gen3).
+  if (const std::string broken = broken_triangle_inequality(I); !broken.empty())
+    warn_once(site.error("inertia breaks the triangle inequality (" + broken +
+                         " kg·m²): no rigid body has this inertia; check the "
+                         "<inertia> values and their frame")
+                  .what());
   in.mass = u.mass;
   in.com = origin.p;
   in.rotational = origin.R * I * origin.R.transpose();
@@ -83,15 +156,40 @@ bool subtree_moves(const urdf::Link& link) {
 }
 
 /// Folds a subtree made only of fixed joints into `body` (expressed in the frame `pose` of `body`).
-void fold_fixed_subtree(const urdf::Link& link, const Transform<double>& pose,
-                        Inertia<double>& body, const std::string& file) {
-  body = combine(body, link_inertia(link, file), pose);
+/// Returns whether any of its links declares an <inertial>.
+bool fold_fixed_subtree(const LinkSite& site, const Transform<double>& pose,
+                        Inertia<double>& body) {
+  const urdf::Link& link = site.link;
+  body = combine(body, link_inertia(site), pose);
+  bool declared = link.inertial != nullptr;
   for (const auto& j : link.child_joints) {
     const auto child = std::find_if(link.child_links.begin(), link.child_links.end(),
                                     [&](const auto& l) { return l->name == j->child_link_name; });
-    fold_fixed_subtree(**child, pose * to_transform(j->parent_to_joint_origin_transform), body,
-                       file);
+    declared |= fold_fixed_subtree({site.file, site.text, **child},
+                                   pose * to_transform(j->parent_to_joint_origin_transform), body);
   }
+  return declared;
+}
+
+/// The rigid body a joint moves, as the walk down the chain builds it: the joint's child link
+/// and whether any link folded into the body declares an <inertial>.
+struct MovingBody {
+  const urdf::Link* link = nullptr;  ///< nullptr: the base, which may be massless
+  std::string joint;
+  bool declared = false;
+};
+
+/// Refuses a moving body none of whose links has an <inertial>: a link the file forgot, which
+/// would move massless (an explicit <mass value="0"/> is a choice and passes). A massless frame
+/// fixed to a link that has one (a tool or flange frame) is part of a body with mass and passes.
+void require_declared_mass(const MovingBody& body, const std::string& file,
+                           const std::string& text) {
+  if (body.link == nullptr || body.declared) return;
+  throw Error::at(file, link_line(text, body.link->name), "",
+                  "link '" + body.link->name + "' has no <inertial>: it moves with joint '" +
+                      body.joint +
+                      "' and no link fixed to it has one, so it would move without mass; "
+                      "give it an <inertial> (with <mass value=\"0\"/> if it has none)");
 }
 
 /// urdfdom links own their children (shared_ptr) and does not detect loops (ros/urdfdom#154): a
@@ -125,6 +223,37 @@ void require_tree(const urdf::ModelInterface& model, const std::string& file) {
                           "' (the URDF has a loop); tpf needs a tree");
 }
 
+/// A revolute or continuous URDF joint as a chain joint, placed at `placement`.
+ChainJoint chain_joint(const urdf::Joint& j, const urdf::Link& child,
+                       const Transform<double>& placement, const std::string& file) {
+  ChainJoint cj;
+  cj.name = j.name;
+  cj.child_link = child.name;
+  cj.placement = placement;
+  cj.axis = {j.axis.x, j.axis.y, j.axis.z};
+  if (cj.axis.norm() < 1e-9) throw Error::at(file, 0, "joint '" + j.name + "'", "axis is zero");
+  cj.axis.normalize();
+  // A revolute joint whose <limit> gives neither lower nor upper (urdfdom reads both as 0, as in
+  // Kinova's description) turns without end stops, like a continuous one.
+  if (j.type == urdf::Joint::CONTINUOUS || !j.limits ||
+      (j.limits->lower == 0.0 && j.limits->upper == 0.0)) {
+    cj.lower = -std::numeric_limits<double>::infinity();
+    cj.upper = std::numeric_limits<double>::infinity();
+  } else {
+    cj.lower = j.limits->lower;
+    cj.upper = j.limits->upper;
+    if (!(cj.lower < cj.upper))
+      throw Error::at(file, 0, "joint '" + j.name + "'",
+                      "<limit> lower " + std::to_string(cj.lower) + " is not below upper " +
+                          std::to_string(cj.upper));
+  }
+  if (j.limits) {
+    cj.velocity_limit = j.limits->velocity;
+    cj.effort_limit = j.limits->effort;
+  }
+  return cj;
+}
+
 }  // namespace
 
 ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
@@ -133,10 +262,11 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
   if (!in) throw Error::at(file, 0, "", "cannot open the URDF file");
   std::stringstream text;
   text << in.rdbuf();
+  const std::string content = text.str();
 
   CapturingHandler handler;
   console_bridge::useOutputHandler(&handler);
-  const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(text.str());
+  const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(content);
   console_bridge::restorePreviousOutputHandler();
   if (!urdf) {
     throw Error::at(
@@ -155,9 +285,9 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
   chain.robot_name = urdf->getName();
   const urdf::Link* link = urdf->getRoot().get();
   chain.base_link = link->name;
-  chain.inertias.push_back(Inertia<double>{});
+  chain.inertias.push_back(link_inertia({file, content, *link}));
   Inertia<double>* body = &chain.inertias.back();
-  *body = link_inertia(*link, file);
+  MovingBody moving;         // the base first: no inertial required
   Transform<double> offset;  // fixed joints since the last moving link
 
   while (link != nullptr) {
@@ -167,10 +297,10 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
       const auto child = std::find_if(link->child_links.begin(), link->child_links.end(),
                                       [&](const auto& l) { return l->name == j->child_link_name; });
       const urdf::Link& c = **child;
-      const bool moving = j->type != urdf::Joint::FIXED || subtree_moves(c);
-      if (!moving) {
-        fold_fixed_subtree(c, offset * to_transform(j->parent_to_joint_origin_transform), *body,
-                           file);
+      const bool moves = j->type != urdf::Joint::FIXED || subtree_moves(c);
+      if (!moves) {
+        moving.declared |= fold_fixed_subtree(
+            {file, content, c}, offset * to_transform(j->parent_to_joint_origin_transform), *body);
         continue;
       }
       if (next != nullptr) {
@@ -187,7 +317,8 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
     const Transform<double> placement = offset * to_transform(j.parent_to_joint_origin_transform);
     if (j.type == urdf::Joint::FIXED) {
       offset = placement;  // a fixed joint between moving links: its child's mass joins `body`
-      *body = combine(*body, link_inertia(*next, file), offset);
+      *body = combine(*body, link_inertia({file, content, *next}), offset);
+      moving.declared |= next->inertial != nullptr;
       link = next;
       continue;
     }
@@ -198,37 +329,15 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
                       std::string("is ") + names[j.type] +
                           "; tpf supports revolute and continuous joints only");
     }
-    ChainJoint cj;
-    cj.name = j.name;
-    cj.child_link = next->name;
-    cj.placement = placement;
-    cj.axis = {j.axis.x, j.axis.y, j.axis.z};
-    if (cj.axis.norm() < 1e-9) throw Error::at(file, 0, "joint '" + j.name + "'", "axis is zero");
-    cj.axis.normalize();
-    // A revolute joint whose <limit> gives neither lower nor upper (urdfdom reads both as 0, as in
-    // Kinova's description) turns without end stops, like a continuous one.
-    if (j.type == urdf::Joint::CONTINUOUS || !j.limits ||
-        (j.limits->lower == 0.0 && j.limits->upper == 0.0)) {
-      cj.lower = -std::numeric_limits<double>::infinity();
-      cj.upper = std::numeric_limits<double>::infinity();
-    } else {
-      cj.lower = j.limits->lower;
-      cj.upper = j.limits->upper;
-      if (!(cj.lower < cj.upper))
-        throw Error::at(file, 0, "joint '" + j.name + "'",
-                        "<limit> lower " + std::to_string(cj.lower) + " is not below upper " +
-                            std::to_string(cj.upper));
-    }
-    if (j.limits) {
-      cj.velocity_limit = j.limits->velocity;
-      cj.effort_limit = j.limits->effort;
-    }
-    chain.joints.push_back(cj);
-    chain.inertias.push_back(link_inertia(*next, file));
+    require_declared_mass(moving, file, content);
+    chain.joints.push_back(chain_joint(j, *next, placement, file));
+    chain.inertias.push_back(link_inertia({file, content, *next}));
     body = &chain.inertias.back();
+    moving = {next, j.name, next->inertial != nullptr};
     offset = Transform<double>{};
     link = next;
   }
+  require_declared_mass(moving, file, content);
   if (chain.joints.empty()) throw Error::at(file, 0, "", "the URDF has no revolute joint");
   return chain;
 }

@@ -1,6 +1,7 @@
 #include "tpf/skin/pad_layout.hpp"
 
 #include <limits>
+#include <map>
 
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_object.hpp"
@@ -15,9 +16,13 @@ std::vector<Pad> load_pads(const std::filesystem::path& pads_file,
   if (pads.empty()) top.fail("pads", "must be a non-empty list");
 
   std::vector<Pad> out;
+  std::map<std::string, std::size_t> index_of_name;  // the skin's channels are told apart by name
   for (json::Object& p : pads) {
     Pad pad;
     pad.name = p.text("name");
+    if (const auto [at, fresh] = index_of_name.emplace(pad.name, out.size()); !fresh)
+      p.fail("name", "'" + pad.name + "' is also the name of pads[" + std::to_string(at->second) +
+                         "]; each pad needs its own name");
     const std::string link = p.text("link");
     for (std::size_t k = 1; k < link_names.size(); ++k)
       if (link_names[k] == link) pad.link = static_cast<int>(k);

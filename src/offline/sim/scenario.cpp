@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <sstream>
 
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_object.hpp"
@@ -175,22 +176,8 @@ void read_teaching(json::Object o, TeachingConfig& t) {
   o.finish();
 }
 
-}  // namespace
-
-std::string to_string(Scenario::Kind kind) {
-  switch (kind) {
-    case Scenario::Kind::kExcitation:
-      return "excitation";
-    case Scenario::Kind::kStaticContacts:
-      return "static-contacts";
-    case Scenario::Kind::kTeaching:
-      return "teaching";
-  }
-  return "excitation";
-}
-
-Scenario default_scenario(const std::string& robot_file) {
-  const RobotDescription robot = load_robot_description(robot_file);
+// The scenario the keys of a file start from, for the robot `robot` read from `robot_file`.
+Scenario scenario_for(const std::string& robot_file, const RobotDescription& robot) {
   const int n = static_cast<int>(robot.chain.joints.size());
   if (n < 1 || n > kTwinMaxJoints)
     throw Error::at(robot_file, 0, "joints",
@@ -214,6 +201,48 @@ Scenario default_scenario(const std::string& robot_file) {
   return s;
 }
 
+// Refuses an initial pose outside a joint's <limit> (a joint without limits takes any finite
+// angle; the reader refuses non-finite numbers).
+void require_within_limits(const json::Object& o, const TwinVector& q,
+                           const ChainDescription& chain) {
+  for (int j = 0; j < q.size(); ++j) {
+    const ChainJoint& joint = chain.joints[static_cast<std::size_t>(j)];
+    if (q[j] >= joint.lower && q[j] <= joint.upper) continue;
+    std::ostringstream m;
+    m << q[j] << " rad is outside the limits of joint '" << joint.name << "', [" << joint.lower
+      << ", " << joint.upper << "] rad (<limit> in " << chain.source << ")";
+    o.fail("initial_q[" + std::to_string(j) + "]", m.str());
+  }
+}
+
+// The friction file the twin reads: the scenario's or the robot file's; none when the scenario
+// turns friction off (the robot file's is then not needed, and one the scenario names is unused).
+std::string friction_file(json::Object& o, const Scenario& s) {
+  if (s.effects.friction == EffectsConfig::Friction::kNone) return "";
+  if (s.friction_file.empty())
+    o.fail("friction", "no friction file: name one here or as \"friction\" in " + s.robot_file +
+                           ", or set effects.friction to \"none\"");
+  return s.friction_file;
+}
+
+}  // namespace
+
+std::string to_string(Scenario::Kind kind) {
+  switch (kind) {
+    case Scenario::Kind::kExcitation:
+      return "excitation";
+    case Scenario::Kind::kStaticContacts:
+      return "static-contacts";
+    case Scenario::Kind::kTeaching:
+      return "teaching";
+  }
+  return "excitation";
+}
+
+Scenario default_scenario(const std::string& robot_file) {
+  return scenario_for(robot_file, load_robot_description(robot_file));
+}
+
 Scenario load_scenario(const std::string& path, const std::string& robot_file) {
   json::Object o = json::Object::read_file(path);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
@@ -223,7 +252,8 @@ Scenario load_scenario(const std::string& path, const std::string& robot_file) {
                     (std::filesystem::path(TPF_DATA_DIR) / "arm4.robot.json").string())
           : robot_file;
   if (!robot_file.empty()) o.text("robot", "");  // replaced: read so that finish() accepts it
-  Scenario s = default_scenario(robot);
+  const RobotDescription description = load_robot_description(robot);
+  Scenario s = scenario_for(robot, description);
   s.file = path;
   const std::string kind = o.choice("kind", "", {"excitation", "static-contacts", "teaching"});
   s.kind = kind == "excitation"        ? Scenario::Kind::kExcitation
@@ -238,16 +268,16 @@ Scenario load_scenario(const std::string& path, const std::string& robot_file) {
     o.fail("log_rate_hz", "inner_rate_hz must be an integer multiple (≥ 2) of log_rate_hz");
   s.pads_file = resolve(o, "pads", dir, s.pads_file);
   s.friction_file = resolve(o, "friction", dir, s.friction_file);
-  if (s.friction_file.empty())
-    o.fail("friction", "no friction file: name one here or as \"friction\" in " + s.robot_file);
   if (s.kind == Scenario::Kind::kTeaching && s.pads_file.empty())
     o.fail("kind", "teaching needs a robot with skin pads (the hand holds a pad); " + s.robot_file +
                        " names none");
   s.initial_q = vector_of(o, "initial_q", s.initial_q, -kInf, kInf);
+  require_within_limits(o, s.initial_q, description.chain);
   read_drive(o.child("drive"), s.drive);
   read_sensors(o.child("sensors"), s.sensors);
   read_pads(o.child("pad_sensors"), s.pads);
   read_effects(o.child("effects"), s.effects);
+  s.friction_file = friction_file(o, s);
   read_excitation(o.child("excitation"), s.excitation);
   read_contacts(o.child("contacts"), s.contacts);
   read_teaching(o.child("teaching"), s.teaching);

@@ -148,7 +148,7 @@ struct Scenario {
   std::string robot_file;     ///< default data/arm4.robot.json
   int joints = 0;             ///< of the robot file, 1..kTwinMaxJoints
   std::string pads_file;      ///< default: the robot file's "pads"; "" = no skin, no pad sensors
-  std::string friction_file;  ///< default: the robot file's "friction"
+  std::string friction_file;  ///< default: the robot file's "friction"; "" = effects.friction none
   TwinVector initial_q;       ///< rad, default 0
   DriveConfig drive;
   SensorConfig sensors;
@@ -161,13 +161,15 @@ struct Scenario {
 
 /// The scenario the keys of a file start from, for `robot_file`: every per-joint vector sized
 /// for its joint count at its default, pads and friction from the robot file. Throws tpf::Error
-/// naming the robot file when it has not 1..kTwinMaxJoints joints or names no friction file.
+/// naming the robot file when it has not 1..kTwinMaxJoints joints.
 Scenario default_scenario(const std::string& robot_file);
 
 /// Reads a scenario file. Relative robot/pads/friction paths resolve against the scenario's
 /// folder. `robot_file`, when not empty, replaces the file's "robot" (tpf simulate --robot).
-/// Throws tpf::Error "file: key.path: reason" on an unknown key, an impossible value or a
-/// per-joint vector whose length is not the robot's joint count.
+/// Throws tpf::Error "file: key.path: reason" on an unknown key, an impossible value, a
+/// per-joint vector whose length is not the robot's joint count, an initial_q outside a joint's
+/// <limit>, or no friction file (scenario or robot file) unless effects.friction is "none": then
+/// no friction file is read and friction_file is "" (one the scenario names goes unused).
 Scenario load_scenario(const std::string& path, const std::string& robot_file = "");
 
 /// The scenario kind as written in files: "excitation", "static-contacts", "teaching".

@@ -93,6 +93,30 @@ void check_sizes(const Scenario& s, int n) {
                     "must be " + std::to_string(n) + "×" + std::to_string(n));
 }
 
+// A scenario edited in code may start outside the joint limits (load_scenario refuses that).
+void check_initial_pose(const Scenario& s, const TwinArm& arm) {
+  for (int j = 0; j < arm.joints(); ++j) {
+    const double q = s.initial_q[j];
+    if (q >= arm.lower()[j] && q <= arm.upper()[j]) continue;
+    std::ostringstream m;
+    m << q << " rad is outside the limits of joint " << j + 1 << ", [" << arm.lower()[j] << ", "
+      << arm.upper()[j] << "] rad, of the robot " << s.robot_file;
+    throw Error::at(s.file.empty() ? s.robot_file : s.file, 0,
+                    "initial_q[" + std::to_string(j) + "]", m.str());
+  }
+}
+
+// The twin's true friction: the scenario's friction file, none (all zero) when its effects turn
+// friction off.
+TwinFriction true_friction(const Scenario& s, int joints) {
+  if (s.effects.friction == EffectsConfig::Friction::kNone)
+    return TwinFriction{std::vector<JointFriction>(static_cast<std::size_t>(joints))};
+  if (s.friction_file.empty())
+    throw Error::at(s.file.empty() ? s.robot_file : s.file, 0, "friction",
+                    "no friction file, and effects.friction is not \"none\"");
+  return load_twin_friction(s.friction_file, joints);
+}
+
 }  // namespace
 
 std::vector<std::string> simulation_columns(int joints, int pad_count) {
@@ -130,7 +154,9 @@ LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double du
   d << duration_s;
   m.set("duration_s", d.str());
   m.set("torque_constant_nm_per_a", join(arm.torque_constant()));
-  m.set("friction_file", s.friction_file);
+  m.set("friction_file", s.effects.friction == EffectsConfig::Friction::kNone
+                             ? std::string("none (effects.friction)")
+                             : s.friction_file);
   m.set("note",
         "ground truth in gt_* columns; gt_fric in mA, gt_tau_ext in N*m (torque the "
         "environment applies to the robot), gt_f* in N, world frame");
@@ -156,7 +182,8 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
   const TwinArm nominal(nominal_scenario);
   const int joints = arm.joints();
   check_sizes(scenario, joints);
-  const TwinFriction friction = load_twin_friction(scenario.friction_file, joints);
+  check_initial_pose(scenario, arm);
+  const TwinFriction friction = true_friction(scenario, joints);
   const int pads = arm.pad_count();
   if (scenario.kind == Scenario::Kind::kTeaching && pads == 0)
     throw Error::at(scenario.file, 0, "kind",
