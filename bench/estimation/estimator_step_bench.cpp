@@ -196,8 +196,9 @@ void BM_EstimatorStep(benchmark::State& state) {
 }
 BENCHMARK(BM_EstimatorStep)->Iterations(400000)->Unit(benchmark::kNanosecond);
 
-/// The shipped compensator (float networks), and the same networks in double; each network
-/// steps with the kernel a new Tcn takes (tcn_x86_kernels.hpp), or with `kernel`.
+/// The shipped compensator (float networks whose hidden taps are bfloat16, the tools' and
+/// examples' PerJointTcn<BFloat16Weights, 16>), the same networks with float taps and in double;
+/// each network steps with the kernel a new Tcn takes (tcn_x86_kernels.hpp), or with `kernel`.
 template <typename NetScalar, int kernel = -1>
 void BM_EstimatorStepShippedCompensator(benchmark::State& state) {
   auto est = make_shipped_estimator<NetScalar>();
@@ -208,6 +209,10 @@ void BM_EstimatorStepShippedCompensator(benchmark::State& state) {
     }
   time_steps(state, *est);
 }
+BENCHMARK(BM_EstimatorStepShippedCompensator<tpf::BFloat16Weights>)
+    ->Name("BM_EstimatorStepShippedCompensator<bfloat16>")
+    ->Iterations(400000)
+    ->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_EstimatorStepShippedCompensator<float>)
     ->Iterations(400000)
     ->Unit(benchmark::kNanosecond);

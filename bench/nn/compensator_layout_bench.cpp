@@ -43,10 +43,11 @@ void AllJoints(benchmark::State& state) {
   run<S>(state, *c);
 }
 
-/// One network per joint, each stepping with the kernel a new Tcn takes, or with `kernel`.
-template <typename S, int Hidden, int kernel = -1>
+/// One network per joint, each stepping with the kernel a new Tcn takes, or with `kernel`; the
+/// networks in S or (NetScalar = BFloat16Weights) float with bfloat16 hidden taps.
+template <typename S, int Hidden, int kernel = -1, typename NetScalar = S>
 void PerJoint(benchmark::State& state) {
-  auto c = std::make_unique<tpf::PerJointTcnCompensator<S, kJoints, Hidden, 4>>();
+  auto c = std::make_unique<tpf::PerJointTcnCompensator<S, kJoints, Hidden, 4, NetScalar>>();
   for (int j = 0; j < kJoints; ++j) {
     tpf::tcn_weights_from_file(random_file(kInputs, Hidden, 1, j + 1), c->network(j));
     if (kernel >= 0 && !c->network(j).use_kernel(tpf::TcnKernel(kernel))) {
@@ -89,6 +90,8 @@ void PerJointOneAfterAnother(benchmark::State& state) {
 BENCHMARK(AllJoints<float>)->Name("Compensator/all_joints_32ch/float");
 BENCHMARK(AllJoints<double>)->Name("Compensator/all_joints_32ch/double");
 BENCHMARK(PerJoint<float, 16>)->Name("Compensator/per_joint_16ch/float");
+BENCHMARK(PerJoint<float, 16, -1, tpf::BFloat16Weights>)
+    ->Name("Compensator/per_joint_16ch/bfloat16");
 BENCHMARK(PerJoint<float, 16, int(tpf::TcnKernel::Portable)>)
     ->Name("Compensator/per_joint_16ch/float/portable");
 BENCHMARK(PerJoint<double, 16>)->Name("Compensator/per_joint_16ch/double");

@@ -9,10 +9,12 @@
 
 namespace {
 
-/// One network stepped with the kernel a new Tcn takes (tcn_x86_kernels.hpp), or with `kernel`.
-template <typename S, int In, int Hidden, int Out, int Levels = 4, int kernel = -1>
+/// One network stepped with the kernel a new Tcn takes (tcn_x86_kernels.hpp), or with `kernel`;
+/// its hidden taps in S or bfloat16 (HiddenWeights).
+template <typename S, int In, int Hidden, int Out, int Levels = 4, int kernel = -1,
+          typename HiddenWeights = S>
 void BM_TcnStep(benchmark::State& state) {
-  using Engine = tpf::Tcn<S, In, Hidden, Levels, 4, Out>;
+  using Engine = tpf::Tcn<S, In, Hidden, Levels, 4, Out, HiddenWeights>;
   auto tcn = std::make_unique<Engine>();
   if (kernel >= 0 && !tcn->use_kernel(tpf::TcnKernel(kernel))) {
     state.SkipWithError("kernel not supported here");
@@ -40,6 +42,8 @@ constexpr int kPortable = int(tpf::TcnKernel::Portable), kAvx2 = int(tpf::TcnKer
 
 // Default shape: kernel 4, 4 levels, R = 46 samples (115 ms at 400 Hz).
 BENCHMARK(BM_TcnStep<float, 4, 16, 1>)->Name("TcnStep/per_joint/float/16ch");
+BENCHMARK(BM_TcnStep<float, 4, 16, 1, 4, -1, tpf::BFloat16Weights>)
+    ->Name("TcnStep/per_joint/bfloat16/16ch");
 // The same with each step kernel forced: the portable path (Eigen at the build's flags), AVX2,
 // AVX-512.
 BENCHMARK(BM_TcnStep<float, 4, 16, 1, 4, kPortable>)->Name("TcnStep/per_joint/float/16ch/portable");

@@ -9,7 +9,7 @@ namespace tpf::arm {
 inline constexpr int kArmJoints = 4;
 inline constexpr int kArmPads = 11;
 /// One 16-channel network per joint, evaluated in float (what `tpf train --per-joint` writes).
-using ArmEstimator = EstimatorOf<kArmJoints, kArmPads, PerJointTcn<float, 16>>;
+using ArmEstimator = EstimatorOf<kArmJoints, kArmPads, PerJointTcn<BFloat16Weights, 16>>;
 /// The same arm before a compensator is trained (--weights none).
 using UncompensatedArmEstimator = EstimatorOf<kArmJoints, kArmPads, NoCompensator>;
 

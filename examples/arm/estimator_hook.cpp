@@ -29,7 +29,7 @@ EstimatorHook::EstimatorHook(const EstimatorFiles& files) {
   if (setup.weights.layout == CompensatorLayout::None)
     estimator_ = make_estimator<kArmJoints, kArmPads, NoCompensator>(setup);
   else
-    estimator_ = make_estimator<kArmJoints, kArmPads, PerJointTcn<float, 16>>(setup);
+    estimator_ = make_estimator<kArmJoints, kArmPads, PerJointTcn<BFloat16Weights, 16>>(setup);
   output_ = &empty_;
   trace_.reserve(files.trace_capacity);
 }

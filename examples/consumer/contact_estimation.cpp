@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   const std::string dir = std::string(argv[1]) + "/";
   // The arm, named as types: 4 joints, 11 pads, one 16-channel float network per joint.
   constexpr int kJoints = 4, kPads = 11, kPushedPad = 4;
-  using Compensator = tpf::PerJointTcn<float, 16>;
+  using Compensator = tpf::PerJointTcn<tpf::BFloat16Weights, 16>;
   try {
     // Start-up: may allocate and throw tpf::Error naming the file and field.
     const auto estimator = tpf::load_estimator<kJoints, kPads, Compensator>(

@@ -114,7 +114,7 @@ TEST(AnyArmEstimator, FourJointArmWithAndWithoutItsPads) {
   expect_exact_external_torque<4, 11, NoCompensator>(files);
   // The shipped per-joint networks load into their named type; a wrong kind is refused.
   files.weights = test::data_path("weights/arm4.tcn.json");
-  EXPECT_NO_THROW((load_estimator<4, 11, PerJointTcn<float, 16>>(files)));
+  EXPECT_NO_THROW((load_estimator<4, 11, PerJointTcn<BFloat16Weights, 16>>(files)));
   try {
     load_estimator<4, 11, PerJointTcn<float, 32>>(files);
     ADD_FAILURE() << "16-channel weights loaded into a 32-channel compensator";

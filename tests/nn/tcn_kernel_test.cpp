@@ -131,6 +131,65 @@ TEST(TcnKernel, FloatAllJointsMatchesPortableAndDouble) {
   expect_kernels_match<float, 20, 32, 4, 4>(1e-5);
 }
 
+/// `p` with the hidden blocks' taps as a BFloat16Weights network holds them: columns paired
+/// (bfloat16_pair, tests/nn/bfloat16_test.cpp), each within half a bfloat16 step.
+offline::TcnParameters hidden_taps_in_bfloat16(offline::TcnParameters p) {
+  for (std::size_t l = 1; l < p.blocks.size(); ++l)
+    for (auto& tap : p.blocks[l].taps)
+      for (Eigen::Index c = 0; c < tap.cols(); c += 2)
+        for (Eigen::Index r = 0; r < tap.rows(); ++r) {
+          const BFloat16Pair pair = bfloat16_pair(float(tap(r, c)), float(tap(r, c + 1)));
+          tap(r, c) = pair_even(pair);
+          tap(r, c + 1) = pair_odd(pair);
+        }
+  return p;
+}
+
+// A network with bfloat16 hidden taps is, with every kernel (the paired loads unpacked in
+// registers, the portable path on the rounded taps), the float network of the rounded taps bit
+// for bit; and it differs from the unrounded network by the rounding's size (≤ 2^-8 of each tap:
+// neither nothing nor more than a few per mille of the output). Allocation-free.
+TEST(TcnKernel, BFloat16WeightsAreTheFloatNetworkOfRoundedTaps) {
+  using Paired = Tcn<float, kCompensatorInputsPerJoint, 16, 4, 4, 1, BFloat16Weights>;
+  using Float = Tcn<float, kCompensatorInputsPerJoint, 16, 4, 4, 1>;
+  const offline::TcnParameters p =
+      test::random_tcn_parameters({kCompensatorInputsPerJoint, 16, 4, 4, 1}, 41);
+  for (TcnKernel kernel : {TcnKernel::Portable, TcnKernel::Avx2, TcnKernel::Avx512}) {
+    if (!tcn_kernel_supported(kernel)) continue;
+    SCOPED_TRACE(name(kernel));
+    auto paired = std::make_unique<Paired>();
+    auto rounded = std::make_unique<Float>(), exact = std::make_unique<Float>();
+    test::load_parameters(p, *paired);
+    test::load_parameters(hidden_taps_in_bfloat16(p), *rounded);
+    test::load_parameters(p, *exact);
+    for (std::size_t l = 0; l < paired->weights().taps.size(); ++l)
+      for (std::size_t j = 0; j < 4; ++j)
+        ASSERT_EQ(paired->weights().taps[l][j], rounded->weights().taps[l][j]);
+    ASSERT_TRUE(paired->use_kernel(kernel) && rounded->use_kernel(kernel) &&
+                exact->use_kernel(kernel));
+    const Eigen::MatrixXd raw = test::random_inputs(kCompensatorInputsPerJoint, 200, 42);
+    paired->reset(raw.col(0).cast<float>());
+    rounded->reset(raw.col(0).cast<float>());
+    exact->reset(raw.col(0).cast<float>());
+    double off = 0, largest = 0;
+    for (Eigen::Index t = 1; t < raw.cols(); ++t) {
+      const Float::Input x = raw.col(t).cast<float>();
+      test::AllocationCounter allocations;
+      paired->step(x);
+      EXPECT_EQ(allocations.count(), 0u);
+      rounded->step(x);
+      exact->step(x);
+      EXPECT_EQ(paired->low(), rounded->low()) << "t = " << t;
+      EXPECT_EQ(paired->high(), rounded->high()) << "t = " << t;
+      off = std::max(off, double(std::abs(paired->output()[0] - exact->output()[0])));
+      largest = std::max(largest, double(std::abs(exact->output()[0])));
+    }
+    EXPECT_GT(largest, 0.5);
+    EXPECT_GT(off, 1e-5 * largest);
+    EXPECT_LT(off, 1e-2 * largest);
+  }
+}
+
 // A new network takes the widest kernel that fits and this CPU runs.
 TEST(TcnKernel, NewNetworkUsesTheWidestSupportedKernel) {
   const TcnKernel k = Tcn<float, 5, 16, 4>().kernel();
@@ -148,15 +207,16 @@ TEST(TcnKernel, NewNetworkUsesTheWidestSupportedKernel) {
 
 // The per-joint compensator with each kernel forced: each network steps with its kernel, equal
 // bit for bit to the same network stepped alone with that kernel, allocation-free.
-TEST(TcnKernel, CompensatorStepsEachNetworkWithItsKernel) {
+template <typename NetScalar>
+void expect_each_network_steps_with_its_kernel() {
   constexpr int kJoints = 4;
-  using Bank = PerJointTcnCompensator<double, kJoints, 16, 4, float>;
+  using Bank = PerJointTcnCompensator<double, kJoints, 16, 4, NetScalar>;
   const offline::TcnArchitecture a{kCompensatorInputsPerJoint, 16, 4, 4, 1};
   for (TcnKernel kernel : {TcnKernel::Portable, TcnKernel::Avx2, TcnKernel::Avx512}) {
     if (!tcn_kernel_supported(kernel)) continue;
     SCOPED_TRACE(name(kernel));
     auto bank = std::make_unique<Bank>();
-    auto alone = std::make_unique<std::array<Bank::Network, kJoints>>();
+    auto alone = std::make_unique<std::array<typename Bank::Network, kJoints>>();
     for (int j = 0; j < kJoints; ++j) {
       const offline::TcnParameters p = test::random_tcn_parameters(a, 300 + j);
       test::load_parameters(p, bank->network(j));
@@ -169,14 +229,20 @@ TEST(TcnKernel, CompensatorStepsEachNetworkWithItsKernel) {
     for (int j = 0; j < kJoints; ++j)
       (*alone)[j].reset(Bank::joint_input(raw.col(0), j));
     for (Eigen::Index t = 1; t < raw.cols(); ++t) {
-      const Bank::Input x = raw.col(t);
+      const typename Bank::Input x = raw.col(t);
       test::AllocationCounter allocations;
-      const Bank::Output& y = bank->step(x);
+      const typename Bank::Output& y = bank->step(x);
       EXPECT_EQ(allocations.count(), 0u);
       for (int j = 0; j < kJoints; ++j)
         EXPECT_EQ(y[j], double((*alone)[j].step(Bank::joint_input(x, j))[0])) << "t = " << t;
     }
   }
+}
+TEST(TcnKernel, CompensatorStepsEachNetworkWithItsKernel) {
+  expect_each_network_steps_with_its_kernel<float>();
+}
+TEST(TcnKernel, BFloat16CompensatorStepsEachNetworkWithItsKernel) {
+  expect_each_network_steps_with_its_kernel<BFloat16Weights>();
 }
 
 }  // namespace

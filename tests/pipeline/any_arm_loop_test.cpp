@@ -102,7 +102,7 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
   // What calibrate wrote loads into the run-time estimator of this arm (no skin).
   save_nominal_model<N>(dir / "model.params.json", setup.nominal, "loop test");
   save_estimator_parameters<N>(dir / "model.estimator.json", setup.parameters, "loop test");
-  EXPECT_NO_THROW((load_estimator<N, 0, PerJointTcn<float, 16>>(
+  EXPECT_NO_THROW((load_estimator<N, 0, PerJointTcn<BFloat16Weights, 16>>(
       {(dir / "model.params.json").string(), data(robot), "",
        (dir / "model.estimator.json").string(), (dir / "tcn.json").string()})));
   std::filesystem::remove_all(dir);

@@ -58,7 +58,7 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   // The written files load into the run-time estimator of the arm (4 joints, 11 pads, one
   // 16-channel network per joint), as a controller loads them.
   const std::string data = TPF_TEST_DATA_DIR;
-  const auto estimator = load_estimator<4, 11, PerJointTcn<float, 16>>(
+  const auto estimator = load_estimator<4, 11, PerJointTcn<BFloat16Weights, 16>>(
       {(o.out / "nominal.params.json").string(), data + "/arm4.robot.json",
        data + "/arm4.pads.json", (o.out / "arm4.estimator.json").string(),
        (o.out / "tcn.json").string()});

@@ -40,8 +40,10 @@ struct NoCompensator {
   }
 };
 
-/// One network of Hidden channels per joint, evaluated in NetScalar (float: twice the SIMD width,
-/// docs/tcn.md "Precision"); the weight files `<stem>.joint<j>.json`.
+/// One network of Hidden channels per joint, evaluated in NetScalar (float: twice the SIMD width;
+/// BFloat16Weights: float with the hidden blocks' taps in bfloat16, half their bytes, the tools'
+/// and the examples' kind; docs/tcn.md "Float or double"); the weight files
+/// `<stem>.joint<j>.json`.
 template <typename NetScalar, int Hidden, int Levels = kCompensatorLevels>
 struct PerJointTcn {
   template <typename S, int N>

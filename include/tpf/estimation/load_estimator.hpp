@@ -1,6 +1,6 @@
 // The estimator of any arm, built at start-up from the files the offline tools write: a
 // controller names the arm's joint count, pad count and compensator as types and loads the rest,
-//   auto est = tpf::load_estimator<7, 0, tpf::PerJointTcn<float, 16>>(files);
+//   auto est = tpf::load_estimator<7, 0, tpf::PerJointTcn<tpf::BFloat16Weights, 16>>(files);
 //   const auto& out = est->update(sample);   // per cycle
 #pragma once
 

@@ -94,9 +94,9 @@ void tcn_weights_from_file(const TcnWeightFile& file,
 
 /// The same into the network `tcn` (Tcn::set_weights: its history is cleared), through a heap
 /// copy of the weights (a 64-channel double network's are ≈ 650 kB). Start-up only.
-template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
+template <typename S, int In, int Hidden, int Levels, int Kernel, int Out, typename H>
 void tcn_weights_from_file(const TcnWeightFile& file,
-                           Tcn<S, In, Hidden, Levels, Kernel, Out>& tcn) {
+                           Tcn<S, In, Hidden, Levels, Kernel, Out, H>& tcn) {
   auto weights = std::make_unique<TcnWeights<S, In, Hidden, Levels, Kernel, Out>>();
   tcn_weights_from_file(file, *weights);
   tcn.set_weights(*weights);
@@ -105,8 +105,8 @@ void tcn_weights_from_file(const TcnWeightFile& file,
 /// Loads the weight file at `path` into `tcn` (start-up only: allocates, may throw tpf::Error)
 /// and prewarms it with the normalisation mean as steady input; call tcn.reset(x̄) with the real
 /// first sample before streaming.
-template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
-void load_tcn_weights(const std::string& path, Tcn<S, In, Hidden, Levels, Kernel, Out>& tcn) {
+template <typename S, int In, int Hidden, int Levels, int Kernel, int Out, typename H>
+void load_tcn_weights(const std::string& path, Tcn<S, In, Hidden, Levels, Kernel, Out, H>& tcn) {
   const TcnWeightFile file = read_tcn_weight_file(path);
   tcn_weights_from_file(file, tcn);
   tcn.reset(Eigen::Map<const Eigen::VectorXd>(file.input_mean.data(), In).template cast<S>());

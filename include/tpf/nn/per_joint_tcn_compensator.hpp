@@ -3,25 +3,31 @@
 #pragma once
 
 #include <array>
+#include <type_traits>
 
 #include "tpf/estimation/compensator.hpp"
 #include "tpf/nn/tcn.hpp"
 
 namespace tpf {
 
-/// N independent networks Tcn<NetScalar, 5, Hidden, Levels, 4, 1>; network j sees only joint j's
+/// N independent networks Tcn<NetScalar, 5, Hidden, Levels, 4, 1> (float with bfloat16 hidden
+/// taps for NetScalar = BFloat16Weights); network j sees only joint j's
 /// inputs [q_j, q̇_j, q̈_j, τ̂_fric,s,j, τ_fric,nom,j] (picked from x = compensator_input(...) at j,
 /// N + j, …, 4N + j) and predicts τ_TCN,j. Satisfies FrictionCompensator. Allocation-free step.
 /// Large: keep on the heap (inside the estimator).
 ///
 /// The estimator's scalar S and the networks' NetScalar may differ: with NetScalar = float the
 /// inputs are rounded to float on the way in and the outputs widened on the way out, which halves
-/// the network step (twice the SIMD width) at a relative error of ≈ 1e-6 of the output
-/// (docs/tcn.md, "Precision").
+/// the network step (twice the SIMD width) at a relative error of ≈ 1e-6 of the output;
+/// NetScalar = BFloat16Weights is float with the hidden blocks' taps rounded to bfloat16, which
+/// halves their bytes again (docs/tcn.md, "Precision").
 template <typename S, int N, int Hidden, int Levels, typename NetScalar = S>
 class PerJointTcnCompensator {
+  static constexpr bool kBFloat16 = std::is_same_v<NetScalar, BFloat16Weights>;
+  using Arithmetic = std::conditional_t<kBFloat16, float, NetScalar>;
+
  public:
-  using Network = Tcn<NetScalar, kCompensatorInputsPerJoint, Hidden, Levels, 4, 1>;
+  using Network = Tcn<Arithmetic, kCompensatorInputsPerJoint, Hidden, Levels, 4, 1, NetScalar>;
   using Input = CompensatorInput<S, N>;
   using Output = Eigen::Matrix<S, N, 1>;
   static constexpr int kReceptiveField = Network::kReceptiveField;
@@ -55,7 +61,7 @@ class PerJointTcnCompensator {
   static typename Network::Input joint_input(const Input& x, int j) noexcept {
     using JointInput = Eigen::Matrix<S, kCompensatorInputsPerJoint, 1>;
     return Eigen::Map<const JointInput, Eigen::Unaligned, Eigen::InnerStride<N>>(x.data() + j)
-        .template cast<NetScalar>();
+        .template cast<Arithmetic>();
   }
 
  private:

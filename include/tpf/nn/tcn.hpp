@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "tpf/nn/bfloat16.hpp"
 #include "tpf/nn/tcn_architecture.hpp"
 #include "tpf/nn/tcn_weights.hpp"
 #include "tpf/nn/tcn_x86_kernels.hpp"
@@ -20,6 +21,10 @@ namespace tpf {
 ///   Levels  residual blocks; block l has dilation d_l = 2^l
 ///   Kernel  taps per causal convolution (4 by default)
 ///   Out     outputs per head, e.g. 1 (one joint) or N (all joints) [N·m]
+///   HiddenWeights  S, or BFloat16Weights (S = float): blocks 1 … Levels−1's taps rounded to
+///           bfloat16 when set, which halves their bytes in the x86 kernels (two columns a
+///           word, BFloat16Pair); every path computes with the rounded taps, in float
+///           (docs/tcn.md, "Precision")
 ///
 /// With h_{−1}(t) = x(t) the raw input and d_l = 2^l, each block is
 ///   h_l(t) = ReLU( b_l + Σ_{j=0}^{K−1} W_{l,j}·h_{l−1}(t − j·d_l) + P_l·h_{l−1}(t) ),
@@ -40,8 +45,16 @@ namespace tpf {
 /// keep each block's pending sums (the lagged taps' part of a future z, rebuild_pending), so
 /// that each broadcast input serves all K taps. Elsewhere, the compile-time path below (Eigen,
 /// add_taps), which reads only the rings.
-template <typename S, int In, int Hidden, int Levels, int Kernel = 4, int Out = 1>
+template <typename S, int In, int Hidden, int Levels, int Kernel = 4, int Out = 1,
+          typename HiddenWeights = S>
 class Tcn {
+  static constexpr bool kBFloat16 = std::is_same_v<HiddenWeights, BFloat16Weights>;
+  static_assert(std::is_same_v<HiddenWeights, S> ||
+                    (kBFloat16 && std::is_same_v<S, float> && Hidden % 2 == 0),
+                "hidden weights in S, or in bfloat16 for a float network of even width");
+  /// What the x86 kernels read of a hidden block's tap: S, or two columns a word.
+  using HiddenTap = std::conditional_t<kBFloat16, BFloat16Pair, S>;
+
  public:
   using Scalar = S;
   using Shape = TcnShape<Levels, Kernel>;
@@ -60,7 +73,10 @@ class Tcn {
 
   /// All-zero weights and history (output 0) until weights are loaded, see load_tcn_weights.
   Tcn() { clear_history(); }
-  explicit Tcn(const Weights& weights) : weights_(weights) { clear_history(); }
+  explicit Tcn(const Weights& weights) : weights_(weights) {
+    store_hidden_taps();
+    clear_history();
+  }
 
   /// How step() computes: preferred_tcn_kernel<S, Hidden>() unless use_kernel changed it.
   TcnKernel kernel() const noexcept { return kernel_; }
@@ -74,12 +90,14 @@ class Tcn {
     return true;
   }
 
+  /// The weights as evaluated (with BFloat16Weights, the hidden blocks' taps rounded).
   const Weights& weights() const noexcept { return weights_; }
   /// Replaces the weights and clears the history, as a Tcn constructed with them: the rings (and
   /// the kernels' pending sums) hold the old network's activations, which the new one must not
   /// read. Call reset(x̄) to prewarm. Start-up code (copies the weights).
   void set_weights(const Weights& weights) noexcept {
     weights_ = weights;
+    store_hidden_taps();
     clear_history();
   }
 
@@ -231,11 +249,11 @@ class Tcn {
       bool done = false;
       if constexpr (tcn_kernel_fits<S, Hidden>(TcnKernel::Avx512)) {
         if (kernel_ == TcnKernel::Avx512) {
-          tcn_x86::step_avx512(weights_, buffers);
+          tcn_x86::step_avx512(weights_, buffers, paired_taps_.data());
           done = true;
         }
       }
-      if (!done) tcn_x86::step_avx2(weights_, buffers);
+      if (!done) tcn_x86::step_avx2(weights_, buffers, paired_taps_.data());
       heads_[0] = next(heads_[0], Kernel);
       for (int l = 1; l < Levels; ++l)
         heads_[l] = next(heads_[l], Shape::history_length(l));
@@ -249,6 +267,23 @@ class Tcn {
     }
   }
 #endif
+
+  /// With BFloat16Weights: rounds the hidden blocks' taps in weights_ to bfloat16 and packs them,
+  /// two columns a word, into paired_taps_ (what the x86 kernels read); nothing otherwise.
+  void store_hidden_taps() noexcept {
+    if constexpr (kBFloat16) {
+      BFloat16Pair* out = paired_taps_.data();
+      for (auto& block : weights_.taps)
+        for (auto& tap : block) {
+          for (int c = 0; c < Hidden; c += 2)
+            for (int r = 0; r < Hidden; ++r) {
+              *out = bfloat16_pair(tap(r, c), tap(r, c + 1));
+              tap(r, c) = pair_even(*out);
+              tap(r, c + 1) = pair_odd(*out++);
+            }
+        }
+    }
+  }
 
   /// i in [−n, n) ↦ i mod n.
   static int wrap(int i, int n) noexcept {
@@ -484,6 +519,10 @@ class Tcn {
   static constexpr std::array<int, Levels + 1> kPendingOffsets = Shape::pending_offsets();
 
   Weights weights_;
+  /// With BFloat16Weights: tap j of block l ≥ 1 at ((l − 1)·Kernel + j)·Hidden²/2, column pair p
+  /// (columns 2p, 2p + 1) of its rows r at p·Hidden + r (store_hidden_taps); empty otherwise.
+  alignas(64) std::array<HiddenTap, kBFloat16 ? (Levels - 1) * Kernel * Hidden * Hidden / 2
+                                              : 0> paired_taps_{};
   Eigen::Matrix<S, In, Kernel> input_history_;  ///< ring of the raw inputs (block 0, d = 1)
   /// Rings of blocks 1 … Levels−1, Hidden × ((K − 1)·d_l + 1) each, column-major, back to back.
   alignas(64) std::array<S, Hidden * Shape::hidden_history_columns> hidden_history_{};

@@ -4,6 +4,7 @@
 #include <array>
 #include <type_traits>
 
+#include "tpf/nn/bfloat16.hpp"
 #include "tpf/nn/tcn_architecture.hpp"
 #include "tpf/nn/tcn_weights.hpp"
 
@@ -110,11 +111,18 @@ constexpr int row_registers(int V, int K, int registers) noexcept {
   return 1;
 }
 
-/// One block's operands in a step: its taps W_0 … W_{K−1} (Hidden × columns each), its input
-/// x(t) and its pending sums for t, t + d, …, t + (K − 1)·d (TcnStepBuffers::pending).
-template <typename S, int K>
+/// Columns of a tap that one load of its weights holds: 1 in S, 2 in bfloat16 pairs.
+template <typename Tap>
+constexpr int columns_per_load() noexcept {
+  return std::is_same_v<Tap, BFloat16Pair> ? 2 : 1;
+}
+
+/// One block's operands in a step: its taps W_0 … W_{K−1} (Hidden × columns each, column-major:
+/// Tap = S, or two columns a word: Tap = BFloat16Pair), its input x(t) and its pending sums for
+/// t, t + d, …, t + (K − 1)·d (TcnStepBuffers::pending).
+template <typename Tap, typename S, int K>
 struct BlockStep {
-  const S* taps[K];
+  const Tap* taps[K];
   const S* x;
   S* pending[K];
 };
@@ -187,6 +195,27 @@ TPF_TCN_AVX2 __m256 relu(__m256 a) {
 TPF_TCN_AVX2 __m256d relu(__m256d a) {
   return _mm256_max_pd(a, _mm256_setzero_pd());
 }
+/// Rows [offset, offset + width) of the columns from c on that one load holds
+/// (columns_per_load) of a Hidden-row tap: one column in S, or two unpacked from bfloat16 pairs
+/// (c even; the even column masks off the low halves, the odd one shifts them up). The pairs'
+/// load is made opaque, so that the compiler loads them once for both columns rather than
+/// folding the load into each.
+template <int Hidden>
+TPF_TCN_AVX2 void weights256(const float* tap, int c, int offset, __m256 (&w)[1]) {
+  w[0] = load256(tap + c * Hidden + offset);
+}
+template <int Hidden>
+TPF_TCN_AVX2 void weights256(const double* tap, int c, int offset, __m256d (&w)[1]) {
+  w[0] = load256(tap + c * Hidden + offset);
+}
+template <int Hidden>
+TPF_TCN_AVX2 void weights256(const BFloat16Pair* tap, int c, int offset, __m256 (&w)[2]) {
+  __m256i pair =
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tap + (c / 2) * Hidden + offset));
+  asm("" : "+x"(pair));
+  w[0] = _mm256_castsi256_ps(pair);
+  w[1] = _mm256_castsi256_ps(_mm256_slli_epi32(pair, 16));
+}
 TPF_TCN_AVX2 float lane_sum(__m256 a) {
   __m128 s = _mm_add_ps(_mm256_castps256_ps128(a), _mm256_extractf128_ps(a, 1));
   s = _mm_add_ps(s, _mm_movehl_ps(s, s));
@@ -240,6 +269,21 @@ TPF_TCN_AVX512 __m512 relu(__m512 a) {
 TPF_TCN_AVX512 __m512d relu(__m512d a) {
   return _mm512_maskz_max_pd(__mmask8(0xFF), a, _mm512_setzero_pd());
 }
+template <int Hidden>
+TPF_TCN_AVX512 void weights512(const float* tap, int c, int offset, __m512 (&w)[1]) {
+  w[0] = load512(tap + c * Hidden + offset);
+}
+template <int Hidden>
+TPF_TCN_AVX512 void weights512(const double* tap, int c, int offset, __m512d (&w)[1]) {
+  w[0] = load512(tap + c * Hidden + offset);
+}
+template <int Hidden>
+TPF_TCN_AVX512 void weights512(const BFloat16Pair* tap, int c, int offset, __m512 (&w)[2]) {
+  __m512i pair = _mm512_loadu_si512(tap + (c / 2) * Hidden + offset);
+  asm("" : "+v"(pair));
+  w[0] = _mm512_castsi512_ps(pair);
+  w[1] = _mm512_castsi512_ps(_mm512_maskz_slli_epi32(__mmask16(0xFFFF), pair, 16));
+}
 // (GCC 12's unmasked extracts and 512 → 256 casts leave a lane undefined and warn.)
 template <int Half>
 TPF_TCN_AVX512 __m256d half(__m512d a) {
@@ -278,6 +322,7 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #define TPF_TCN_TARGET "avx2,fma"
 #define TPF_TCN_BYTES 32
 #define TPF_TCN_LOAD load256
+#define TPF_TCN_WEIGHTS weights256
 #define TPF_TCN_SPLAT splat256
 #define TPF_TCN_REGISTERS 16
 #define TPF_TCN_SUM sum256
@@ -291,6 +336,7 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #define TPF_TCN_TARGET "avx512f"
 #define TPF_TCN_BYTES 64
 #define TPF_TCN_LOAD load512
+#define TPF_TCN_WEIGHTS weights512
 #define TPF_TCN_SPLAT splat512
 #define TPF_TCN_REGISTERS 32
 #define TPF_TCN_SUM sum512

@@ -5,6 +5,7 @@
 //   TPF_TCN_TARGET     the step's target string             TPF_TCN_BYTES  register width, bytes
 //   TPF_TCN_REGISTERS  vector registers of the width (16 or 32)
 //   TPF_TCN_LOAD, TPF_TCN_SPLAT                             the width's load and broadcast
+//   TPF_TCN_WEIGHTS    the width's load of a tap's columns (weights256, weights512)
 //   TPF_TCN_SUM, TPF_TCN_NOW, TPF_TCN_LATER, TPF_TCN_LATER_ALL, TPF_TCN_STEP
 //                      the names this body defines
 // (A target attribute cannot depend on a template argument, and GCC 12 and clang 14 refuse a
@@ -22,10 +23,11 @@ TPF_TCN_INLINE Register TPF_TCN_SUM(Register (&acc)[A][R], int r) noexcept {
 }
 
 /// z += W_0·x (+ P·x, block 0's projection) for the R registers of the hidden vector from
-/// element `row` on, x a block's input at t (Columns values; W_0, P: Hidden × Columns,
-/// column-major), the axpys dealt by column c to A sums (c mod A) with z in the first.
-template <int A, int R, int Hidden, int Columns, bool Projection, typename S, typename Register>
-TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const S* tap, const S* projection, const S* x,
+/// element `row` on, x a block's input at t (Columns values; W_0, P: Hidden × Columns), the
+/// axpys dealt by column c to A sums (c mod A) with z in the first.
+template <int A, int R, int Hidden, int Columns, bool Projection, typename S, typename Tap,
+          typename Register>
+TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const Tap* tap, const S* projection, const S* x,
                                 int row) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S));
   Register acc[A][R];
@@ -36,17 +38,25 @@ TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const S* tap, const S* project
     for (int a = 1; a < A; ++a)
       acc[a][r] = Register{};
   }
-  for (int first = 0; first < Columns; first += A) {
-    TPF_TCN_UNROLL(4)
-    for (int a = 0; a < A; ++a) {
-      const int c = first + a;
+  // Columns `first` … first + step − 1 per pass: whole sums' rounds and whole loads.
+  constexpr int G = tcn_x86::columns_per_load<Tap>(), step = A % G == 0 ? A : A * G;
+  for (int first = 0; first < Columns; first += step) {
+    Register w[R][G];
+    TPF_TCN_UNROLL(8)
+    for (int k = 0; k < step; ++k) {
+      const int c = first + k, a = k % A;
       if (c >= Columns) break;
+      if (k % G == 0) {
+        TPF_TCN_UNROLL(8)
+        for (int r = 0; r < R; ++r)
+          TPF_TCN_WEIGHTS<Hidden>(tap, c, row + r * lanes, w[r]);
+      }
       const Register s = TPF_TCN_SPLAT(x + c);
       TPF_TCN_UNROLL(8)
       for (int r = 0; r < R; ++r) {
-        const int at = c * Hidden + row + r * lanes;
-        acc[a][r] = fmadd(TPF_TCN_LOAD(tap + at), s, acc[a][r]);
-        if constexpr (Projection) acc[a][r] = fmadd(TPF_TCN_LOAD(projection + at), s, acc[a][r]);
+        acc[a][r] = fmadd(w[r][k % G], s, acc[a][r]);
+        if constexpr (Projection)
+          acc[a][r] = fmadd(TPF_TCN_LOAD(projection + c * Hidden + row + r * lanes), s, acc[a][r]);
       }
     }
   }
@@ -60,8 +70,8 @@ TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const S* tap, const S* project
 /// each broadcast x_c serves the K − 1 taps. x is broadcast from `x_registers` (V registers) if
 /// InRegisters, else loaded from `x` (block 0's raw input).
 template <int B, int R, int K, int Hidden, int Columns, bool InRegisters, int V, typename S,
-          typename Register>
-TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x,
+          typename Tap, typename Register>
+TPF_TCN_INLINE void TPF_TCN_LATER(const Tap* const (&taps)[K], const S* x,
                                   const Register (&x_registers)[V], S* const (&pending)[K],
                                   int row) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S));
@@ -75,13 +85,23 @@ TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x,
     for (int a = 1; a < B; ++a)
       acc[j][a][r] = Register{};
   }
-  for (int first = 0; first < Columns; first += B) {
-    TPF_TCN_UNROLL(4)
-    for (int a = 0; a < B; ++a) {
-      const int c = first + a;
+  // Columns `first` … first + step − 1 per pass: whole sums' rounds and whole loads.
+  constexpr int G = tcn_x86::columns_per_load<Tap>(), step = B % G == 0 ? B : B * G;
+  for (int first = 0; first < Columns; first += step) {
+    Register w[K][R][G];
+    TPF_TCN_UNROLL(8)
+    for (int k = 0; k < step; ++k) {
+      const int c = first + k, a = k % B;
       if (c >= Columns) break;
+      if (k % G == 0) {
+        TPF_TCN_UNROLL(8)
+        for (int r = 0; r < R; ++r)
+          TPF_TCN_UNROLL(16)
+        for (int j = 1; j < K; ++j)
+          TPF_TCN_WEIGHTS<Hidden>(taps[j], c, row + r * lanes, w[j][r]);
+      }
       Register s;
-      if constexpr (InRegisters)
+      if constexpr (InRegisters && G == 1)
         s = splat_lane(x_registers[c / lanes], c % lanes);
       else
         s = TPF_TCN_SPLAT(x + c);
@@ -89,7 +109,7 @@ TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x,
       for (int r = 0; r < R; ++r)
         TPF_TCN_UNROLL(16)
       for (int j = 1; j < K; ++j)
-        acc[j][a][r] = fmadd(TPF_TCN_LOAD(taps[j] + c * Hidden + row + r * lanes), s, acc[j][a][r]);
+        acc[j][a][r] = fmadd(w[j][r][k % G], s, acc[j][a][r]);
     }
   }
   TPF_TCN_UNROLL(8)
@@ -100,21 +120,24 @@ TPF_TCN_INLINE void TPF_TCN_LATER(const S* const (&taps)[K], const S* x,
 }
 
 /// pending[j] += W_j·x for the whole hidden vector (TPF_TCN_LATER by R registers at a time).
-template <int R, int K, int Hidden, int Columns, bool InRegisters, int V, typename S,
+template <int R, int K, int Hidden, int Columns, bool InRegisters, int V, typename Tap, typename S,
           typename Register>
-TPF_TCN_INLINE void TPF_TCN_LATER_ALL(const tcn_x86::BlockStep<S, K>& block,
+TPF_TCN_INLINE void TPF_TCN_LATER_ALL(const tcn_x86::BlockStep<Tap, S, K>& block,
                                       const Register (&x_registers)[V]) noexcept {
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S)), B = tcn_x86::lagged_sums(R, K);
   TPF_TCN_UNROLL(8)
   for (int row = 0; row < Hidden; row += R * lanes)
-    TPF_TCN_LATER<B, R, K, Hidden, Columns, InRegisters, V, S, Register>(
+    TPF_TCN_LATER<B, R, K, Hidden, Columns, InRegisters, V, S, Tap, Register>(
         block.taps, block.x, x_registers, block.pending, row);
 }
 
-/// Tcn::step in TPF_TCN_BYTES-byte registers (see tcn_x86_kernels.hpp).
-template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
+/// Tcn::step in TPF_TCN_BYTES-byte registers (see tcn_x86_kernels.hpp). The hidden blocks' taps
+/// are w.taps (HiddenTap = S, `paired` unused) or, HiddenTap = BFloat16Pair, `paired`: tap j of
+/// block l ≥ 1 from paired + ((l − 1)·Kernel + j)·Hidden²/2 (Tcn::paired_taps_).
+template <typename S, int In, int Hidden, int Levels, int Kernel, int Out, typename HiddenTap>
 __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
-    const TcnWeights<S, In, Hidden, Levels, Kernel, Out>& w, const TcnStepBuffers<S>& b) noexcept {
+    const TcnWeights<S, In, Hidden, Levels, Kernel, Out>& w, const TcnStepBuffers<S>& b,
+    const HiddenTap* paired) noexcept {
   using Shape = TcnShape<Levels, Kernel>;
   using Register = decltype(TPF_TCN_LOAD(static_cast<const S*>(nullptr)));
   constexpr int lanes = TPF_TCN_BYTES / int(sizeof(S)), V = Hidden / lanes,
@@ -128,7 +151,7 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   Register h[V], lagged_input[V];
 
   // Block 0: z = b + pending(t) + P·x(t) + W_0·x(t), h = ReLU(z).
-  tcn_x86::BlockStep<S, Kernel> block;
+  tcn_x86::BlockStep<S, S, Kernel> block;
   for (int j = 0; j < Kernel; ++j) {
     block.taps[j] = w.input_taps[j].data();
     block.pending[j] = b.pending + Hidden * tcn_x86::wrap(b.input_head + j, Kernel);
@@ -150,13 +173,18 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   // Block l ≥ 1: z = b_l + h + pending(t) + W_{l,0}·h, h = h_{l−1}(t) also written to block
   // l's ring (the portable path's history). Then the previous block's lagged taps:
   // pending(t + j·d) += W_j·x(t); they wait on nothing that follows, so they come after what
-  // does in the instruction stream and fill the vector unit while it waits.
+  // does in the instruction stream and fill the vector unit while it waits. `block` stays block
+  // 0's (its taps are S), `hidden_block` is block l − 1 ≥ 1's.
+  tcn_x86::BlockStep<HiddenTap, S, Kernel> hidden_block{};
   TPF_TCN_UNROLL(16)
   for (int l = 1; l < Levels; ++l) {
     const int length = Shape::history_length(l), dilation = Shape::dilation(l);
-    tcn_x86::BlockStep<S, Kernel> next;
+    tcn_x86::BlockStep<HiddenTap, S, Kernel> next;
     for (int j = 0; j < Kernel; ++j) {
-      next.taps[j] = w.taps[l - 1][j].data();
+      if constexpr (std::is_same_v<HiddenTap, S>)
+        next.taps[j] = w.taps[l - 1][j].data();
+      else
+        next.taps[j] = paired + ((l - 1) * Kernel + j) * (Hidden * Hidden / 2);
       next.pending[j] =
           b.pending + Hidden * (pendings[l] + tcn_x86::wrap(b.heads[l] + j * dilation, length));
     }
@@ -182,13 +210,13 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
     if (l == 1)
       TPF_TCN_LATER_ALL<R, Kernel, Hidden, In, false>(block, h);
     else
-      TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden, true>(block, lagged_input);
+      TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden, true>(hidden_block, lagged_input);
     TPF_TCN_UNROLL(8)
     for (int v = 0; v < V; ++v) {
       lagged_input[v] = h[v];
       h[v] = out[v];
     }
-    block = next;
+    hidden_block = next;
   }
 
   TPF_TCN_UNROLL(8)
@@ -207,7 +235,7 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   if constexpr (Levels == 1)
     TPF_TCN_LATER_ALL<R, Kernel, Hidden, In, false>(block, lagged_input);
   else
-    TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden, true>(block, lagged_input);
+    TPF_TCN_LATER_ALL<R, Kernel, Hidden, Hidden, true>(hidden_block, lagged_input);
 }
 
 // This width's parameters end here; the next inclusion defines its own.
@@ -215,6 +243,7 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
 #undef TPF_TCN_TARGET
 #undef TPF_TCN_BYTES
 #undef TPF_TCN_LOAD
+#undef TPF_TCN_WEIGHTS
 #undef TPF_TCN_SPLAT
 #undef TPF_TCN_SUM
 #undef TPF_TCN_NOW

@@ -15,7 +15,9 @@ namespace tpf::offline {
 
 /// The compensator kinds the offline tools are compiled for (those `tpf train` writes).
 inline constexpr int kAllJointsHidden = 32;
-inline constexpr int kPerJointHiddenSmall = 16;  ///< `tpf train --per-joint` (the default)
+/// `tpf train --per-joint` (the default); evaluated as the examples' controllers do, in float with
+/// the hidden taps in bfloat16 (PerJointTcn<BFloat16Weights, 16>, docs/tcn.md "Precision").
+inline constexpr int kPerJointHiddenSmall = 16;
 inline constexpr int kPerJointHiddenLarge = 32;
 
 /// Satisfies FrictionCompensator<AnyCompensator<N>, double, N>; no compensation until load().
@@ -38,7 +40,7 @@ class AnyCompensator {
         break;
       case CompensatorLayout::PerJoint:
         if (weights.hidden == kPerJointHiddenSmall)
-          return emplace<PerJointTcn<float, kPerJointHiddenSmall>>(weights);
+          return emplace<PerJointTcn<BFloat16Weights, kPerJointHiddenSmall>>(weights);
         if (weights.hidden == kPerJointHiddenLarge)
           return emplace<PerJointTcn<float, kPerJointHiddenLarge>>(weights);
         break;
@@ -74,7 +76,7 @@ class AnyCompensator {
   template <typename Kind>
   using Network = std::unique_ptr<typename Kind::template For<double, N>>;
   using Networks = std::variant<None, Network<AllJointsTcn<kAllJointsHidden>>,
-                                Network<PerJointTcn<float, kPerJointHiddenSmall>>,
+                                Network<PerJointTcn<BFloat16Weights, kPerJointHiddenSmall>>,
                                 Network<PerJointTcn<float, kPerJointHiddenLarge>>>;
 
   template <typename Kind>
