@@ -75,6 +75,21 @@ TEST(WriteLog, RoundTripIsExact) {
   EXPECT_NE(read_text(dir / "a.csv").find("\n0.0025,"), std::string::npos);
 }
 
+// A metadata line without a key whose text holds a colon ("# :rate_hz: 40" read as key "" and
+// text "rate_hz: 40") is written so that it reads back keyless, not as a rate_hz entry (a fuzz
+// find: the copy used to fail on its rate).
+TEST(WriteLog, AKeylessMetadataLineWithAColonStaysKeyless) {
+  TempDir dir("keyless");
+  write_text(dir / "a.csv", "# tpf-log: 1\n# :rate_hz: 40-x\n# note without a key\nt,q1\n0,1\n");
+  const Log original = read_log(dir / "a.csv");
+  ASSERT_EQ(original.meta.entries.size(), 3u);
+  EXPECT_EQ(original.meta.entries[1], (std::pair<std::string, std::string>{"", "rate_hz: 40-x"}));
+  write_log(dir / "b.csv", original);
+  const Log back = read_log(dir / "b.csv");
+  EXPECT_EQ(back.meta.entries, original.meta.entries);
+  EXPECT_FALSE(back.meta.get("rate_hz").has_value());
+}
+
 TEST(WriteLog, RoundTripOfALogLargeEnoughForTwoThreads) {
   TempDir dir("roundtrip_big");
   Log log;

@@ -20,7 +20,11 @@ std::string prelude(const LogMetadata& meta, const std::vector<std::string>& col
     if (key == "tpf-log") continue;
     if (has_line_break(key) || has_line_break(value) || key.find(':') != std::string::npos)
       throw Error::at(path, 0, "metadata", "entry '" + key + "' cannot be written on one line");
-    text += key.empty() ? "# " + value + "\n" : "# " + key + ": " + value + "\n";
+    // A line without a key is read back as one when its text holds no ':' before which a key
+    // would be read; otherwise it is written after an empty key ("# : text").
+    const bool keyless_needs_colon = key.empty() && value.find(':') != std::string::npos;
+    text += key.empty() ? (keyless_needs_colon ? "# : " : "# ") + value + "\n"
+                        : "# " + key + ": " + value + "\n";
   }
   std::set<std::string_view> seen;
   for (std::size_t c = 0; c < columns.size(); ++c) {
