@@ -196,10 +196,10 @@ TPF_TCN_AVX2 __m256d relu(__m256d a) {
   return _mm256_max_pd(a, _mm256_setzero_pd());
 }
 /// Rows [offset, offset + width) of the columns from c on that one load holds
-/// (columns_per_load) of a Hidden-row tap: one column in S, or two unpacked from bfloat16 pairs
-/// (c even; the even column masks off the low halves, the odd one shifts them up). The pairs'
-/// load is made opaque, so that the compiler loads them once for both columns rather than
-/// folding the load into each.
+/// (columns_per_load) of a Hidden-row tap: one column in S, or two from bfloat16 pairs (c even:
+/// the even column is the words themselves, the odd one their low halves shifted up;
+/// bfloat16.hpp). The pairs' load is made opaque, so that the compiler loads them once for both
+/// columns rather than folding the load into each.
 template <int Hidden>
 TPF_TCN_AVX2 void weights256(const float* tap, int c, int offset, __m256 (&w)[1]) {
   w[0] = load256(tap + c * Hidden + offset);
