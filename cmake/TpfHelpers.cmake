@@ -15,6 +15,19 @@ if(TPF_SANITIZE)
   target_compile_options(tpf_warnings INTERFACE ${TPF_SANITIZER_FLAGS})
   target_link_options(tpf_warnings INTERFACE -fsanitize=${TPF_SANITIZE})
 endif()
+# tpf_unoptimised_when_sanitized(<target>...): in a sanitized build (CI), compiles the targets
+# that exist at -O0. For programs whose sanitized tests run in seconds, or that no test runs: -O1
+# doubled their compile (docs/reliability.md, "CI time").
+function(tpf_unoptimised_when_sanitized)
+  if(NOT TPF_SANITIZE)
+    return()
+  endif()
+  foreach(target IN LISTS ARGN)
+    if(TARGET ${target})
+      target_compile_options(${target} PRIVATE -O0)
+    endif()
+  endforeach()
+endfunction()
 # Fuzzing (tests/fuzz): libFuzzer targets; tests/fuzz adds the coverage instrumentation to the
 # code the fuzzers reach, and only there.
 option(TPF_FUZZ "Build tests/fuzz as libFuzzer targets (needs clang)" OFF)

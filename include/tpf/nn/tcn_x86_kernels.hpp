@@ -309,10 +309,13 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 //          dealt by column to A sums (A·R ≥ 4 chains): the critical path from block to block;
 //   later  pending(t + j·d) += W_j·x(t) for 1 ≤ j < K, K − 1 taps on one broadcast of each x_c,
 //          each dealt to B sums ((K − 1)·R·B ≥ 6 chains); its slot t + (K − 1)·d starts at zero.
-// Every x_c is broadcast once for `now` and once for `later` instead of once per tap, both from
-// the registers that hold x (a lane permute; only block 0's raw input is loaded from memory): a
-// step's 64-byte weight loads keep the load ports busy, a permute runs beside the FMAs. `later`
-// of block l comes after `now` of block l + 1 in the instruction stream, so the vector unit
+// Every x_c is broadcast once for `now` and once for `later` instead of once per tap. In AVX-512
+// the lagged taps' broadcasts are lane permutes of the registers that hold x (only block 0's raw
+// input is loaded from memory): a step's 64-byte weight loads keep the load ports busy, a permute
+// runs beside the FMAs. In AVX2 they are loads from the ring column: 16 registers cannot also
+// keep the eight lane indices, so each permute first builds or loads its index; loaded, the
+// 16-channel float step took 117–118 against 140–145 ns on a Zen 3 core (docs/performance.md).
+// `later` of block l comes after `now` of block l + 1 in the instruction stream, so the vector unit
 // fills the waits of the critical path with it. The sum of the lagged taps thus runs from
 // the oldest tap to the newest, one FMA at a time; the order differs from the portable path's
 // and each multiply-add rounds once: equal to rounding (tests/nn/tcn_kernel_test.cpp). Weights,
@@ -323,6 +326,7 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #define TPF_TCN_BYTES 32
 #define TPF_TCN_LOAD load256
 #define TPF_TCN_WEIGHTS weights256
+#define TPF_TCN_LANE_BROADCAST 0
 #define TPF_TCN_SPLAT splat256
 #define TPF_TCN_REGISTERS 16
 #define TPF_TCN_SUM sum256
@@ -337,6 +341,7 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 #define TPF_TCN_BYTES 64
 #define TPF_TCN_LOAD load512
 #define TPF_TCN_WEIGHTS weights512
+#define TPF_TCN_LANE_BROADCAST 1
 #define TPF_TCN_SPLAT splat512
 #define TPF_TCN_REGISTERS 32
 #define TPF_TCN_SUM sum512

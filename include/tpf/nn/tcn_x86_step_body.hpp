@@ -6,6 +6,8 @@
 //   TPF_TCN_REGISTERS  vector registers of the width (16 or 32)
 //   TPF_TCN_LOAD, TPF_TCN_SPLAT                             the width's load and broadcast
 //   TPF_TCN_WEIGHTS    the width's load of a tap's columns (weights256, weights512)
+//   TPF_TCN_LANE_BROADCAST  1: the lagged taps' inputs are broadcast from registers (a lane
+//                      permute), 0: from memory (the ring column)
 //   TPF_TCN_SUM, TPF_TCN_NOW, TPF_TCN_LATER, TPF_TCN_LATER_ALL, TPF_TCN_STEP
 //                      the names this body defines
 // (A target attribute cannot depend on a template argument, and GCC 12 and clang 14 refuse a
@@ -68,7 +70,8 @@ TPF_TCN_INLINE void TPF_TCN_NOW(Register (&z)[R], const Tap* tap, const S* proje
 /// pending[j] += W_j·x for 1 ≤ j < K (the pending sum of time t + j·d; j = K − 1 starts it), for
 /// the R registers from element `row` on, each tap's axpys dealt by column c to B sums (c mod B);
 /// each broadcast x_c serves the K − 1 taps. x is broadcast from `x_registers` (V registers) if
-/// InRegisters, else loaded from `x` (block 0's raw input).
+/// InRegisters and the width permutes lanes (TPF_TCN_LANE_BROADCAST; float taps), else loaded
+/// from `x` (block 0's raw input, bfloat16 pairs, AVX2).
 template <int B, int R, int K, int Hidden, int Columns, bool InRegisters, int V, typename S,
           typename Tap, typename Register>
 TPF_TCN_INLINE void TPF_TCN_LATER(const Tap* const (&taps)[K], const S* x,
@@ -101,7 +104,7 @@ TPF_TCN_INLINE void TPF_TCN_LATER(const Tap* const (&taps)[K], const S* x,
           TPF_TCN_WEIGHTS<Hidden>(taps[j], c, row + r * lanes, w[j][r]);
       }
       Register s;
-      if constexpr (InRegisters && G == 1)
+      if constexpr (InRegisters && G == 1 && TPF_TCN_LANE_BROADCAST)
         s = splat_lane(x_registers[c / lanes], c % lanes);
       else
         s = TPF_TCN_SPLAT(x + c);
@@ -147,7 +150,7 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
   constexpr std::array<int, Levels + 1> rings = Shape::hidden_history_offsets(),
                                         pendings = Shape::pending_offsets();
   // h: the current block's input; lagged_input: the input of the block whose lagged taps are
-  // still to add (broadcast from registers: the weights' loads already fill the load ports).
+  // still to add (broadcast from registers where TPF_TCN_LANE_BROADCAST, else unused).
   Register h[V], lagged_input[V];
 
   // Block 0: z = b + pending(t) + P·x(t) + W_0·x(t), h = ReLU(z).
@@ -244,6 +247,7 @@ __attribute__((target(TPF_TCN_TARGET))) void TPF_TCN_STEP(
 #undef TPF_TCN_BYTES
 #undef TPF_TCN_LOAD
 #undef TPF_TCN_WEIGHTS
+#undef TPF_TCN_LANE_BROADCAST
 #undef TPF_TCN_SPLAT
 #undef TPF_TCN_SUM
 #undef TPF_TCN_NOW
