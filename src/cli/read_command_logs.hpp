@@ -29,12 +29,13 @@ inline offline::Log read_command_logs(const std::vector<std::string>& paths) {
 
 /// One log an estimator-running command (calibrate, evaluate, train) replays, read whole, its
 /// quality said on stderr ("log cal.csv: 8000 rows, 20.0 s at 400 Hz; 0 gaps; no missing
-/// values"). Rows with a missing value are the estimator's faulty cycles (it holds its last
-/// estimate), counted here; a log without a row is refused.
+/// values"), with --quiet too where the reader left something out or doubted it (missing
+/// values, a skipped row, a rate note). Rows with a missing value are the estimator's faulty
+/// cycles (it holds its last estimate), counted here; a log without a row is refused.
 inline offline::Log read_replayed_log(const std::string& path, bool quiet) {
   offline::Log log = offline::read_log(path);
   if (log.rows() == 0) throw Error::at(path, 0, "", "no rows: nothing to replay");
-  if (!quiet || log.quality.missing_total() > 0) {
+  if (!quiet || log.quality.missing_total() > 0 || !log.quality.notes.empty()) {
     std::fprintf(stderr, "log %s: %s\n", path.c_str(), log.quality.summary(log.columns).c_str());
     if (log.quality.missing_total() > 0)
       std::fprintf(stderr,

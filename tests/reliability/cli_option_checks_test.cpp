@@ -216,5 +216,24 @@ TEST(CliOptionChecks, DirectoryWhereAFileIsExpectedIsNamed) {
   EXPECT_EQ(box.tpf(calibrate + " --pads none").exit_code, 0);
 }
 
+TEST(CliOptionChecks, QuietReplayingCommandsStillSayWhatTheReaderSkipped) {
+  CliSandbox box("quiet_notes");
+  write_inputs(box);
+  std::string log = CliSandbox::slurp(box / "log.csv");
+  ASSERT_EQ(log.back(), '\n');
+  log.pop_back();  // a cut file: its last row without a newline
+  box.write("cut.csv", log);
+  const std::string evaluate = "evaluate --quiet --params p.json --calibration log.csv --out ev";
+  const CliResult cut = box.tpf(evaluate + " --excitation cut.csv");
+  EXPECT_EQ(cut.exit_code, 0) << cut.err;
+  EXPECT_NE(cut.err.find("log cut.csv: "), std::string::npos) << cut.err;
+  EXPECT_NE(cut.err.find("(1 more skipped)"), std::string::npos) << cut.err;
+  EXPECT_NE(cut.err.find("the file ends without a newline"), std::string::npos) << cut.err;
+  // Whole logs are not mentioned with --quiet.
+  const CliResult whole = box.tpf(evaluate + " --excitation log.csv");
+  EXPECT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.err.find("log log.csv"), std::string::npos) << whole.err;
+}
+
 }  // namespace
 }  // namespace tpf::test
