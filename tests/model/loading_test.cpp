@@ -232,8 +232,17 @@ TEST(Loading, InertiaBreakingTheTriangleInequalityIsReportedNamingTheInequality)
   // with its warnings.
   EXPECT_EQ(stderr_of_loading(data_path("arm4.urdf")), "");
   EXPECT_EQ(stderr_of_loading(data_path("bench1.urdf")), "");
-  EXPECT_NE(stderr_of_loading(data_path("real/kinova-gen3/gen3.urdf")).find("'shoulder_link'"),
-            std::string::npos);
+  const std::string gen3 = stderr_of_loading(data_path("real/kinova-gen3/gen3.urdf"));
+  EXPECT_NE(gen3.find("'shoulder_link'"), std::string::npos) << gen3;
+  // Its base_link breaks it too, but the base (the root and what is fixed to it) never moves.
+  EXPECT_EQ(gen3.find("'base_link'"), std::string::npos) << gen3;
+  const std::string broken = R"(ixx="0.01" iyy="0.01" izz="0.03" ixy="0" ixz="0" iyz="0")";
+  EXPECT_EQ(stderr_of_loading(
+                write("triangle_base.urdf", "<robot name=\"r\"><link name=\"world\"/>" +
+                                                link_with_inertia("base", broken) + link("b") +
+                                                joint("fix", "fixed", "world", "base") +
+                                                joint("j1", "revolute", "base", "b") + "</robot>")),
+            "");
 }
 
 TEST(Loading, InertiaThatIsNotPositiveSemiDefiniteIsRefused) {

@@ -101,7 +101,9 @@ void warn_once(const std::string& message) {
             << (warned.size() > kMaxWarnings ? "more URDF warnings, not shown" : message) << "\n";
 }
 
-Inertia<double> link_inertia(const LinkSite& site) {
+/// The link's inertia in its frame. `moves`: a joint moves it. The base (the root and the links
+/// fixed to it) never enters the dynamics, so its tensor is not checked for being physical.
+Inertia<double> link_inertia(const LinkSite& site, bool moves) {
   Inertia<double> in;
   const urdf::Link& link = site.link;
   if (!link.inertial) return in;
@@ -115,7 +117,8 @@ Inertia<double> link_inertia(const LinkSite& site) {
   if (!(smallest >= -1e-12)) throw site.error("inertia is not positive semi-definite");
   // Not physical, yet M(q) stays positive definite and every algorithm computes: a warning, as
   // makers publish such tensors (Kinova's Gen3 description, data/real/kinova-gen3).
-  if (const std::string broken = broken_triangle_inequality(I); !broken.empty())
+  if (const std::string broken = moves ? broken_triangle_inequality(I) : std::string();
+      !broken.empty())
     warn_once(site.error("inertia breaks the triangle inequality (" + broken +
                          " kg·m²): no rigid body has this inertia; check the "
                          "<inertia> values and their frame")
@@ -157,16 +160,17 @@ bool subtree_moves(const urdf::Link& link) {
 
 /// Folds a subtree made only of fixed joints into `body` (expressed in the frame `pose` of `body`).
 /// Returns whether any of its links declares an <inertial>.
-bool fold_fixed_subtree(const LinkSite& site, const Transform<double>& pose,
+bool fold_fixed_subtree(const LinkSite& site, const Transform<double>& pose, bool moves,
                         Inertia<double>& body) {
   const urdf::Link& link = site.link;
-  body = combine(body, link_inertia(site), pose);
+  body = combine(body, link_inertia(site, moves), pose);
   bool declared = link.inertial != nullptr;
   for (const auto& j : link.child_joints) {
     const auto child = std::find_if(link.child_links.begin(), link.child_links.end(),
                                     [&](const auto& l) { return l->name == j->child_link_name; });
-    declared |= fold_fixed_subtree({site.file, site.text, **child},
-                                   pose * to_transform(j->parent_to_joint_origin_transform), body);
+    declared |=
+        fold_fixed_subtree({site.file, site.text, **child},
+                           pose * to_transform(j->parent_to_joint_origin_transform), moves, body);
   }
   return declared;
 }
@@ -285,7 +289,7 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
   chain.robot_name = urdf->getName();
   const urdf::Link* link = urdf->getRoot().get();
   chain.base_link = link->name;
-  chain.inertias.push_back(link_inertia({file, content, *link}));
+  chain.inertias.push_back(link_inertia({file, content, *link}, false));
   Inertia<double>* body = &chain.inertias.back();
   MovingBody moving;         // the base first: no inertial required
   Transform<double> offset;  // fixed joints since the last moving link
@@ -300,7 +304,8 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
       const bool moves = j->type != urdf::Joint::FIXED || subtree_moves(c);
       if (!moves) {
         moving.declared |= fold_fixed_subtree(
-            {file, content, c}, offset * to_transform(j->parent_to_joint_origin_transform), *body);
+            {file, content, c}, offset * to_transform(j->parent_to_joint_origin_transform),
+            moving.link != nullptr, *body);
         continue;
       }
       if (next != nullptr) {
@@ -317,7 +322,7 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
     const Transform<double> placement = offset * to_transform(j.parent_to_joint_origin_transform);
     if (j.type == urdf::Joint::FIXED) {
       offset = placement;  // a fixed joint between moving links: its child's mass joins `body`
-      *body = combine(*body, link_inertia({file, content, *next}), offset);
+      *body = combine(*body, link_inertia({file, content, *next}, moving.link != nullptr), offset);
       moving.declared |= next->inertial != nullptr;
       link = next;
       continue;
@@ -331,7 +336,7 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
     }
     require_declared_mass(moving, file, content);
     chain.joints.push_back(chain_joint(j, *next, placement, file));
-    chain.inertias.push_back(link_inertia({file, content, *next}));
+    chain.inertias.push_back(link_inertia({file, content, *next}, true));
     body = &chain.inertias.back();
     moving = {next, j.name, next->inertial != nullptr};
     offset = Transform<double>{};
