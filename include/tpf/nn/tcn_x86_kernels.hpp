@@ -314,7 +314,7 @@ TPF_TCN_AVX512 double lane_sum(__m512d a) {
 // input is loaded from memory): a step's 64-byte weight loads keep the load ports busy, a permute
 // runs beside the FMAs. In AVX2 they are loads from the ring column: 16 registers cannot also
 // keep the eight lane indices, so each permute first builds or loads its index; loaded, the
-// 16-channel float step took 117–118 against 140–145 ns on a Zen 3 core (docs/performance.md).
+// 16-channel float step took 119–121 against 141–146 ns on a Zen 3 core (docs/performance.md).
 // `later` of block l comes after `now` of block l + 1 in the instruction stream, so the vector unit
 // fills the waits of the critical path with it. The sum of the lagged taps thus runs from
 // the oldest tap to the newest, one FMA at a time; the order differs from the portable path's
