@@ -91,6 +91,27 @@ TEST(ImportLog, RegularRuleRewritesJitteredTime) {
   EXPECT_NEAR(log.col("t")[2], 0.2, 1e-12);
 }
 
+TEST(ImportLog, ARateTheTimeColumnContradictsIsRefused) {
+  // 2.5 ms steps (400 Hz) recorded, 1000 Hz declared: 'regular' would have shrunk the time 2.5×.
+  TempDir dir("import_rate");
+  write_text(dir / "map.json", R"({"format": "tpf-import", "version": 1, "joints": 1,
+    "rate_hz": 1000, "time": {"column": "time_ms", "unit": "ms", "rule": "regular"},
+    "columns": {"q": {"source": "q{j}", "unit": "rad"}, "dq": {"source": "dq{j}", "unit": "rad/s"},
+                "tau": {"source": "tau{j}", "unit": "Nm"}}})");
+  write_text(dir / "in.csv", "time_ms,q1,dq1,tau1\n0,0,0,1\n2.5,0,0,1\n5,0,0,1\n7.5,0,0,1\n");
+  const std::string message = error_of(dir / "in.csv", load_import_map(dir / "map.json"));
+  EXPECT_NE(message.find("map.json: rate_hz: 1000 Hz is a step of 0.001 s, but the time column "
+                         "of "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("steps 0.0025 s at the median (400 Hz)"), std::string::npos) << message;
+  // Within 10 % of the declared step (the jitter of a recording computer's clock) it imports.
+  write_text(dir / "near.csv", "time_ms,q1,dq1,tau1\n0,0,0,1\n1.05,0,0,1\n2.1,0,0,1\n3,0,0,1\n");
+  ImportReport report;
+  const Log log = import_log(dir / "near.csv", load_import_map(dir / "map.json"), report);
+  EXPECT_NEAR(log.col("t")[3], 0.003, 1e-15);
+}
+
 /// A 1-joint map (or of `joints` joints) whose column names hold no {j}.
 std::string plain_names_map(int joints) {
   return R"({"format": "tpf-import", "version": 1, "joints": )" + std::to_string(joints) +
@@ -179,6 +200,19 @@ TEST(ImportLog, ErrorsNameFileLineAndColumn) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("bad_unit.json"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("'grad' is not one of rad, deg"), std::string::npos)
+        << e.what();
+  }
+  // Two efforts: the log would carry tau beside i, and every tool would read i alone.
+  write_text(dir / "two_efforts.json", R"({"format": "tpf-import", "version": 1, "joints": 1,
+    "time": {"column": "t"}, "columns": {"q": {"source": "q{j}", "unit": "rad"},
+    "dq": {"source": "dq{j}", "unit": "rad/s"}, "i": {"source": "i{j}", "unit": "A"},
+    "tau": {"source": "tau{j}", "unit": "N*m"}}})");
+  try {
+    load_import_map(dir / "two_efforts.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("two_efforts.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("columns: maps both i and tau"), std::string::npos)
         << e.what();
   }
 }

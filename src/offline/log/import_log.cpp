@@ -67,6 +67,22 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
+/// Refuses a map's rate_hz that the recorded time (s, ms or µs) contradicts: a median step more
+/// than 10 % off 1 / rate_hz. Rule 'regular' would rewrite every time stamp by the wrong clock,
+/// rule 'keep' judge every step by it, and both write it into the log's header.
+void check_rate_against_time(const Eigen::VectorXd& kept_t, const ImportMap& map,
+                             const std::string& csv_source) {
+  if (map.rate_hz <= 0.0 || map.time_unit == TimeUnit::SampleIndex) return;
+  const double nominal = 1.0 / map.rate_hz;
+  const double median = median_step(kept_t);
+  if (std::abs(median - nominal) <= 0.1 * nominal) return;
+  throw Error::at(map.file, 0, "rate_hz",
+                  format("%.6g", map.rate_hz) + " Hz is a step of " + format("%.6g", nominal) +
+                      " s, but the time column of " + csv_source + " steps " +
+                      format("%.6g", median) + " s at the median (" + format("%.6g", 1.0 / median) +
+                      " Hz): correct rate_hz or time.unit; nothing written");
+}
+
 }  // namespace
 
 std::vector<std::string> ImportReport::lines() const {
@@ -120,6 +136,7 @@ Log import_log(const std::filesystem::path& csv, const ImportMap& map, ImportRep
   Eigen::VectorXd kept_t(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t k = 0; k < rows.size(); ++k)
     kept_t[static_cast<Eigen::Index>(k)] = t[rows[k]];
+  check_rate_against_time(kept_t, map, table.log.source);
   report.nominal_step_s = map.rate_hz > 0 ? 1.0 / map.rate_hz : median_step(kept_t);
   count_steps(t, rows, table.first_data_line, report);
   if (map.timestamps == TimestampRule::Regular) {

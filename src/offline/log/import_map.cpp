@@ -107,6 +107,10 @@ ImportMap load_import_map(const std::filesystem::path& path) {
   };
   if (!has("q") || !has("dq")) root.fail("columns", "needs q and dq");
   if (!has("i") && !has("tau")) root.fail("columns", "needs an effort: i (current) or tau");
+  if (has("i") && has("tau"))
+    root.fail("columns",
+              "maps both i and tau: a log has one effort (the tools would read i and "
+              "never tau); keep the one the identification should fit");
 
   if (root.has("metadata")) {
     auto meta = root.child("metadata");
