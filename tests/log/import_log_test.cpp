@@ -74,12 +74,17 @@ TEST(ImportLog, MapsColumnsUnitsJointOrderAndTime) {
   EXPECT_EQ(report.largest_step_line, 5);
 }
 
+/// A 1-joint map of time in ms at `rate_hz`, rule 'regular'.
+std::string regular_time_map(const std::string& rate_hz) {
+  return R"({"format": "tpf-import", "version": 1, "joints": 1, "rate_hz": )" + rate_hz +
+         R"(, "time": {"column": "time_ms", "unit": "ms", "rule": "regular"},
+    "columns": {"q": {"source": "q{j}", "unit": "rad"}, "dq": {"source": "dq{j}", "unit": "rad/s"},
+                "tau": {"source": "tau{j}", "unit": "Nm"}}})";
+}
+
 TEST(ImportLog, RegularRuleRewritesJitteredTime) {
   TempDir dir("import_regular");
-  write_text(dir / "map.json", R"({"format": "tpf-import", "version": 1, "joints": 1,
-    "rate_hz": 10, "time": {"column": "time_ms", "unit": "ms", "rule": "regular"},
-    "columns": {"q": {"source": "q{j}", "unit": "rad"}, "dq": {"source": "dq{j}", "unit": "rad/s"},
-                "tau": {"source": "tau{j}", "unit": "Nm"}}})");
+  write_text(dir / "map.json", regular_time_map("10"));
   write_text(dir / "in.csv", "time_ms,q1,dq1,tau1\n0,0,0,1\n102,0,0,1\n260,0,0,1\n300,0,0,1\n");
   ImportReport report;
   const Log log = import_log(dir / "in.csv", load_import_map(dir / "map.json"), report);
@@ -94,10 +99,7 @@ TEST(ImportLog, RegularRuleRewritesJitteredTime) {
 TEST(ImportLog, ARateTheTimeColumnContradictsIsRefused) {
   // 2.5 ms steps (400 Hz) recorded, 1000 Hz declared: 'regular' would have shrunk the time 2.5×.
   TempDir dir("import_rate");
-  write_text(dir / "map.json", R"({"format": "tpf-import", "version": 1, "joints": 1,
-    "rate_hz": 1000, "time": {"column": "time_ms", "unit": "ms", "rule": "regular"},
-    "columns": {"q": {"source": "q{j}", "unit": "rad"}, "dq": {"source": "dq{j}", "unit": "rad/s"},
-                "tau": {"source": "tau{j}", "unit": "Nm"}}})");
+  write_text(dir / "map.json", regular_time_map("1000"));
   write_text(dir / "in.csv", "time_ms,q1,dq1,tau1\n0,0,0,1\n2.5,0,0,1\n5,0,0,1\n7.5,0,0,1\n");
   const std::string message = error_of(dir / "in.csv", load_import_map(dir / "map.json"));
   EXPECT_NE(message.find("map.json: rate_hz: 1000 Hz is a step of 0.001 s, but the time column "
