@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "offline/replay/replay_estimator.hpp"
+#include "support/temp_dir.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/nn/load_tcn_weights.hpp"
@@ -24,9 +25,9 @@ std::string read_text(const std::filesystem::path& p) {
 }
 
 TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
+  const test::TempDir dir("demo_pipeline");  // per process: two runs at once do not share it
   DemoOptions o;
-  o.out = std::filesystem::temp_directory_path() / "tpf_demo_pipeline_test";
-  std::filesystem::remove_all(o.out);
+  o.out = dir.path();
   o.training_s = 30.0;
   o.calibration_s = 10.0;
   o.test_s = 10.0;
@@ -77,7 +78,6 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   ASSERT_EQ(r.training.results.size(), 4u);
   for (const auto& t : r.training.results)
     EXPECT_LE(t.history.size(), 2u);
-  std::filesystem::remove_all(o.out);
 }
 
 }  // namespace
