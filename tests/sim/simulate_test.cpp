@@ -68,7 +68,8 @@ TEST(Simulate, SameSeedSameLogBitForBitOtherSeedDiffers) {
 
 TEST(Simulate, LogWriteReadRoundTrip) {
   const Scenario s = scenario("static-contacts.json");
-  const auto path = std::filesystem::temp_directory_path() / "tpf_twin_roundtrip.csv";
+  const tpf::test::TempDir dir("twin_roundtrip");
+  const auto path = dir / "roundtrip.csv";
   const auto summary = simulate_to_file(s, 3, 3.0, path);
   const Log written = simulate_to_log(s, 3, 3.0);
   const Log read = read_log(path);
@@ -79,7 +80,6 @@ TEST(Simulate, LogWriteReadRoundTrip) {
   EXPECT_EQ(read.meta.get("seed").value_or(""), "3");
   EXPECT_EQ(read.joint_count(), kArm4Joints);
   EXPECT_EQ(read.pad_count(), 11);
-  std::filesystem::remove(path);
 }
 
 TEST(Simulate, SensorsReportAtHardwareResolutionWithGapsAndJitter) {
@@ -238,7 +238,8 @@ TEST(Simulate, PerJointVectorsMustFitTheRobot) {
   }
   // Left out, they default per joint: the arm4's contact scenario keys are all present, so take
   // a scenario that names none and run it on the Kinova.
-  const auto path = std::filesystem::temp_directory_path() / "tpf_generic_scenario.json";
+  const tpf::test::TempDir temp("generic_scenario");
+  const auto path = temp / "generic.json";
   std::ofstream(path) << R"({"kind": "static-contacts", "duration_s": 1})";
   const Scenario k =
       load_scenario(path.string(), TPF_TEST_DATA_DIR "/real/kinova-gen3/gen3.robot.json");
@@ -246,11 +247,11 @@ TEST(Simulate, PerJointVectorsMustFitTheRobot) {
   EXPECT_EQ(k.initial_q.size(), 7);
   EXPECT_EQ(k.excitation.lower.size(), 7);
   EXPECT_EQ(k.effects.coupling.matrix.rows(), 7);
-  std::filesystem::remove(path);
 }
 
 TEST(Simulate, TeachingNeedsPads) {
-  const auto path = std::filesystem::temp_directory_path() / "tpf_teaching_noskin.json";
+  const tpf::test::TempDir dir("teaching_noskin");
+  const auto path = dir / "teaching.json";
   std::ofstream(path) << R"({"kind": "teaching", "robot": ")" TPF_TEST_DATA_DIR
                          R"(/bench1.robot.json"})";
   try {
@@ -261,7 +262,6 @@ TEST(Simulate, TeachingNeedsPads) {
               std::string::npos)
         << e.what();
   }
-  std::filesystem::remove(path);
 }
 
 TEST(Simulate, InitialPoseOutsideTheJointLimitsIsRefused) {
