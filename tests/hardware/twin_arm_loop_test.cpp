@@ -17,6 +17,7 @@
 #include "arm/arm_loop.hpp"
 #include "arm/estimator_hook.hpp"
 #include "arm/log_recorder.hpp"
+#include "arm/report_printer.hpp"
 #include "dynamixel/emulator/motor_chain_emulator.hpp"
 #include "dynamixel/ph54/chain_setup.hpp"
 #include "dynamixel/serial/pty_pair.hpp"
@@ -118,6 +119,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   LogRecorder log(log_path, RecordedColumns{4, EstimatorHook::kPads, true}, meta);
   ArmLoop loop(bus, reader, ids, &pads, &log, options, &estimator);
   std::atomic<bool> done{false}, realtime{false};
+  const double steal_before = test::stolen_cpu_seconds();
   std::thread runner([&] {
     realtime.store(serial::set_current_thread_fifo(kDevicePriority));
     loop.run();
@@ -150,6 +152,7 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   pads.stop();
   board.stop();
   motors.stop();
+  const double stolen_s = test::stolen_cpu_seconds() - steal_before;
   // Without SCHED_FIFO (no CAP_SYS_NICE) the loop keeps its period only on an otherwise idle CPU.
   SCOPED_TRACE(realtime.load() ? "the loop ran SCHED_FIFO"
                                : "SCHED_FIFO refused: the loop ran at normal priority");
@@ -157,6 +160,8 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
 
   // Every fault is counted.
   const ArmLoopReport r = loop.report();
+  print_report(stdout, r, ids.size());  // timing and counters: what a failure below needs
+  std::printf("CPU stolen by the hypervisor during the run: %.2f s\n", stolen_s);
   EXPECT_EQ(r.timing.cycles, kCycles);
   EXPECT_GE(r.bus.crc_errors, 1u);
   EXPECT_GE(r.bus.garbage_bytes, 9u + 17u);
@@ -172,7 +177,11 @@ TEST(TwinArmLoop, EstimatorFollowsTheTwinsPushThroughInjectedFaults) {
   // The loop keeps its period: a fixed number of cycles on the absolute-deadline grid, so the
   // last one starts 4 s after the first unless whole periods were skipped (counted).
   EXPECT_NEAR(loop.last_sample().t, (kCycles - 1 + r.missed_deadlines) / 400.0, 0.05);
-  EXPECT_LT(r.missed_deadlines, kCycles / 10);
+  // Fewer than 10 % missed, besides the periods the hypervisor took: whatever its priority, the
+  // loop (or the emulator it waits for) loses the periods its CPU is stolen. 0 on bare metal.
+  const auto stolen_periods = static_cast<std::uint64_t>(stolen_s * 400.0);
+  EXPECT_LT(r.missed_deadlines, kCycles / 10 + stolen_periods)
+      << stolen_s << " s of CPU stolen by the hypervisor during the run";
   EXPECT_LT(r.motor_read_failures, kCycles / 4);
 
   // The estimator ran on every cycle; each faulty cycle is flagged, not estimated.
