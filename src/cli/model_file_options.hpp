@@ -60,10 +60,10 @@ inline std::string describe_pads(std::size_t pads, const std::string& file) {
 template <int N>
 EstimatorSetup<N> load_model_setup(const ModelFiles& files, const std::string& weights,
                                    bool with_pads = true) {
+  const RobotDescription robot = load_robot_description(files.robot);
   EstimatorSetup<N> setup;
-  setup.nominal = load_nominal_model<N>(files.params, files.robot);
-  const std::string pads =
-      with_pads ? pad_layout_file(files, load_robot_description(files.robot)) : std::string();
+  setup.nominal = load_nominal_model<N>(files.params, robot);
+  const std::string pads = with_pads ? pad_layout_file(files, robot) : std::string();
   if (!pads.empty()) setup.pads = load_pads(pads, setup.nominal.model);
   setup.weights = find_compensator_weights(weights, N);
   return setup;

@@ -1,6 +1,7 @@
 // JSON files (robot, pads, friction, scenario, weights) that escaped the tpf::Error contract:
 // each is a fixed regression test here.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -15,7 +16,8 @@ namespace tpf {
 namespace {
 
 std::filesystem::path write(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("tpf_json_regression_" + name);
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("tpf_json_regression_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }

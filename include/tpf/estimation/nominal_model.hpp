@@ -26,6 +26,8 @@
 
 namespace tpf {
 
+struct RobotDescription;  // tpf/model/robot_description.hpp
+
 /// The identified model: the rigid body in base parameters, the friction and the effects added by
 /// diagnosis, all in SI (N·m).
 template <typename S, int N>
@@ -195,6 +197,10 @@ NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
 template <int N>
 NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
                                            const std::filesystem::path& robot_file);
+/// The same with the robot file already loaded (load_robot_description).
+template <int N>
+NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
+                                           const RobotDescription& robot);
 
 /// Writes a parameter file (atomically: temporary + rename). `fit_quality_json` (a JSON object's
 /// text, may be empty) is stored under "fit" for people and scripts; `source` (e.g. the log path)

@@ -44,17 +44,15 @@ int column_by_name(const std::string& name) {
 }
 
 /// Fails when the file names a robot ("robot", the URDF's robot name when it was identified)
-/// other than `robot_file`'s (read into `description`): the parameters of another arm, or the
+/// other than the robot file's (`description`): the parameters of another arm, or the
 /// tools' default robot file where the user's was meant. Checked before the joint counts, so that
 /// this is what is said.
-void require_robot(json::Object& top, const RobotDescription& description,
-                   const std::filesystem::path& robot_file) {
+void require_robot(json::Object& top, const RobotDescription& description) {
   const std::string robot = top.text("robot", "");
   if (robot.empty()) return;
   const std::string& name = description.chain.robot_name;
   if (robot != name)
-    top.fail("robot", "'" + robot + "', but the robot file " + robot_file.string() + " is '" +
-                          name +
+    top.fail("robot", "'" + robot + "', but the robot file " + description.source + " is '" + name +
                           "': these parameters were identified for another arm (give its robot "
                           "file, --robot)");
 }
@@ -129,6 +127,12 @@ NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
 template <int N>
 NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
                                            const std::filesystem::path& robot_file) {
+  return load_nominal_model<N>(params_file, load_robot_description(robot_file));
+}
+
+template <int N>
+NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
+                                           const RobotDescription& description) {
   using Bound = json::Object::Bound;
   json::Object top = json::Object::read_document(params_file, kParamsFormat, kParamsVersion);
   if (top.number("version", 0, 1e9) < kParamsVersion)
@@ -136,8 +140,7 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
              "is 1: friction and added effects in the log's effort unit (mA for a log of "
              "currents); this tpf reads version 2, every torque in N*m. Convert the file with "
              "`tpf upgrade --params FILE` (or identify again)");
-  const RobotDescription description = load_robot_description(robot_file);  // read once
-  require_robot(top, description, robot_file);
+  require_robot(top, description);
   top.require_joints(N);
   top.text("source", "");
   top.choice("torque_unit", "N*m", {"N*m"});
@@ -262,6 +265,8 @@ void save_nominal_model(const std::filesystem::path& params_file,
                                                          const StribeckParameters<double, N>&); \
   template NominalModel<double, N> load_nominal_model<N>(const std::filesystem::path&,          \
                                                          const std::filesystem::path&);         \
+  template NominalModel<double, N> load_nominal_model<N>(const std::filesystem::path&,          \
+                                                         const RobotDescription&);              \
   template void save_nominal_model<N>(const std::filesystem::path&,                             \
                                       const NominalModel<double, N>&, const std::string&,       \
                                       const std::string&);
