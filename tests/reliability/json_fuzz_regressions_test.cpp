@@ -1,11 +1,11 @@
 // JSON files (robot, pads, friction, scenario, weights) that escaped the tpf::Error contract:
 // each is a fixed regression test here.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "support/temp_dir.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/common/json_object.hpp"
 #include "tpf/common/json_parse.hpp"
@@ -15,9 +15,9 @@
 namespace tpf {
 namespace {
 
-std::filesystem::path write(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("tpf_json_regression_" + std::to_string(::getpid()) + "_" + name);
+std::filesystem::path write(const test::TempDir& dir, const std::string& name,
+                            const std::string& text) {
+  const auto path = dir / name;
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }
@@ -38,7 +38,8 @@ std::string message_of(F&& f) {
 // parse_error: it escaped every loader as "tpf: unexpected error: [json.exception.out_of_range.406]
 // number overflow parsing '1e999'", exit 2, no file name. Now it names the file and the line.
 TEST(JsonFuzzRegressions, NumberBeyondTheDoubleRangeNamesFileAndLine) {
-  const auto path = write("overflow.json",
+  const test::TempDir dir("json_regression");
+  const auto path = write(dir, "overflow.json",
                           "{\n  \"format\": \"tpf-friction\",\n  \"coulomb\": "
                           "[1, 1e999, 1, 1]\n}\n");
   const std::string file = path.string();
@@ -49,21 +50,21 @@ TEST(JsonFuzzRegressions, NumberBeyondTheDoubleRangeNamesFileAndLine) {
     EXPECT_EQ(msg.rfind(file + ":3: not valid JSON: ", 0), 0u) << msg;
     EXPECT_NE(msg.find("1e999"), std::string::npos) << msg;
   }
-  std::filesystem::remove(path);
 }
 
 // 300 000 nested '[': parsing succeeded, then copying the value (Object) recursed once per level
 // and overflowed the stack (ASan stack-overflow). Nesting is now refused past 64 levels, naming
 // the line where it happens, in every loader.
 TEST(JsonFuzzRegressions, DeepNestingIsRefusedNamingTheLine) {
-  const auto path = write(
-      "deep.json", "{\"format\":\n" + std::string(300000, '[') + std::string(300000, ']') + "}");
+  const test::TempDir dir("json_regression");
+  const auto path =
+      write(dir, "deep.json",
+            "{\"format\":\n" + std::string(300000, '[') + std::string(300000, ']') + "}");
   const std::string file = path.string();
   for (const std::string& msg : {message_of([&] { json::parse_file(path); }),
                                  message_of([&] { json::Object::read_file(path); }),
                                  message_of([&] { read_tcn_weight_file(file); })})
     EXPECT_EQ(msg, file + ":2: nested deeper than 64 levels");
-  std::filesystem::remove(path);
 }
 
 // A tensor shape of four 10⁶ dimensions overflowed the signed product of the shape (UBSan
