@@ -19,6 +19,7 @@
 #include "tpf/kinematics/point_jacobian.hpp"
 #include "tpf/model/data.hpp"
 #include "tpf/model/effort_unit.hpp"
+#include "tpf/model/joint_count_cast.hpp"
 #include "tpf/model/load_robot.hpp"
 #include "tpf/model/model.hpp"
 #include "tpf/skin/pad_layout.hpp"

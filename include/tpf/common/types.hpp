@@ -1,9 +1,12 @@
-// Fixed-size Eigen aliases used throughout the core. N is the joint count, fixed at compile time.
+// Eigen aliases used throughout the core. N is the joint count: fixed at compile time in a
+// controller (fixed-size storage, nothing allocated per cycle) or Eigen::Dynamic in the offline
+// tools (one compiled copy for any count, sized when the model is loaded; Pinocchio's way).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cassert>
 #include <type_traits>
 #include <vector>
 
@@ -24,6 +27,38 @@ using ChannelArray = std::conditional_t<Count == Eigen::Dynamic, std::vector<T>,
                                         std::array<T, std::size_t(Count < 0 ? 0 : Count)>>;
 template <typename S, int N>
 using JointMatrix = Eigen::Matrix<S, N, N>;
+
+/// Per-joint or per-link storage of N + Extra elements: std::array for a fixed N, std::vector
+/// for Eigen::Dynamic (sized by size_for_joints when the model's joint count is known).
+template <typename T, int N, int Extra = 0>
+using LinkArray = std::conditional_t<N == Eigen::Dynamic, std::vector<T>,
+                                     std::array<T, std::size_t(N < 0 ? 0 : N + Extra)>>;
+
+/// Whether N is a compile-time joint count (a controller's) rather than Eigen::Dynamic.
+template <int N>
+inline constexpr bool is_fixed_joint_count = N != Eigen::Dynamic;
+
+/// The zero of an Eigen type of fixed size, or an empty one of dynamic size (sized later): the
+/// default member value that works for both.
+template <typename M>
+M zero_or_empty() {
+  if constexpr (M::SizeAtCompileTime == Eigen::Dynamic)
+    return M();
+  else
+    return M::Zero();
+}
+
+/// Sizes per-joint or per-link storage to `count` elements: a std::vector (Eigen::Dynamic) is
+/// resized, a std::array already has its size (count must equal it).
+template <typename T, std::size_t K>
+void resize_storage(std::array<T, K>&, std::size_t count) noexcept {
+  assert(count == K);
+  (void)count;
+}
+template <typename T>
+void resize_storage(std::vector<T>& storage, std::size_t count) {
+  storage.resize(count);
+}
 template <typename S>
 using Vector3 = Eigen::Matrix<S, 3, 1>;
 template <typename S>

@@ -15,12 +15,13 @@ const JointMatrix<S, N>& compute_coriolis_matrix(const Model<S, N>& model, Data<
                                                  const NoDeduce<JointVector<S, N>>& q,
                                                  const NoDeduce<JointVector<S, N>>& dq) {
   forward_kinematics(model, data, q);
-  const JointVector<S, N> zero = JointVector<S, N>::Zero();
+  const int n = model.joint_count();
+  const JointVector<S, N> zero = JointVector<S, N>::Zero(n);
   const Vector3<S> no_gravity = Vector3<S>::Zero();
   detail::newton_euler_passes(model, data, dq, zero, no_gravity);
   const JointVector<S, N> c_dq = data.tau;
-  for (int j = 0; j < N; ++j) {
-    JointVector<S, N> v = JointVector<S, N>::Unit(j);
+  for (int j = 0; j < n; ++j) {
+    JointVector<S, N> v = JointVector<S, N>::Unit(n, j);
     detail::newton_euler_passes(model, data, v, zero, no_gravity);
     const JointVector<S, N> c_e = data.tau;
     v += dq;

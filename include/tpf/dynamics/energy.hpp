@@ -19,7 +19,7 @@ S potential_energy(const Model<S, N>& model, Data<S, N>& data,
                    const NoDeduce<JointVector<S, N>>& q) {
   forward_kinematics(model, data, q);
   S v = S(0);
-  for (int k = 1; k <= N; ++k) {
+  for (int k = 1; k <= model.joint_count(); ++k) {
     const Inertia<S>& body = model.inertias[k];
     v -= body.mass * model.gravity.dot(data.oMi[k].apply(body.com));
   }

@@ -21,9 +21,10 @@ const JointMatrix<S, N>& compute_mass_matrix(const Model<S, N>& model, Data<S, N
                                              const NoDeduce<JointVector<S, N>>& q) noexcept {
   joint_transforms(model, data, q);
   const ModelConstants<S, N>& c = model.constants;
-  data.composite_first_moment[N] = c.first_moment[N];
-  data.composite_inertia[N] = c.inertia_about_origin[N];
-  for (int k = N - 1; k >= 1; --k) {
+  const int last = model.joint_count();
+  data.composite_first_moment[last] = c.first_moment[last];
+  data.composite_inertia[last] = c.inertia_about_origin[last];
+  for (int k = last - 1; k >= 1; --k) {
     const Matrix3<S>& R = data.liMi[k + 1].R;
     const Vector3<S>& p = data.liMi[k + 1].p;
     const S m = c.subtree_mass[k + 1];
@@ -45,7 +46,7 @@ const JointMatrix<S, N>& compute_mass_matrix(const Model<S, N>& model, Data<S, N
     I(1, 2) = I(2, 1);
     data.composite_first_moment[k] = c.first_moment[k] + m * p + h;
   }
-  for (int i = N; i >= 1; --i) {
+  for (int i = last; i >= 1; --i) {
     const Vector3<S>& z = model.axes[i - 1];
     Vector3<S> f = z.cross(data.composite_first_moment[i]);
     Vector3<S> n = data.composite_inertia[i] * z;

@@ -10,9 +10,9 @@
 namespace tpf {
 
 /// Number of regressor columns for N joints: 10 inertial parameters per link, then armature,
-/// Coulomb and viscous friction per joint.
+/// Coulomb and viscous friction per joint (Eigen::Dynamic for a run-time joint count).
 template <int N>
-inline constexpr int regressor_columns = 13 * N;
+inline constexpr int regressor_columns = N == Eigen::Dynamic ? Eigen::Dynamic : 13 * N;
 
 template <typename S, int N>
 using Regressor = Eigen::Matrix<S, N, regressor_columns<N>>;
@@ -26,12 +26,13 @@ template <typename S, int N>
 DynamicParameters<S, N> dynamic_parameters(const Model<S, N>& model,
                                            const NoDeduce<JointVector<S, N>>& coulomb,
                                            const NoDeduce<JointVector<S, N>>& viscous) {
-  DynamicParameters<S, N> pi;
-  for (int k = 1; k <= N; ++k)
+  const int n = model.joint_count();
+  DynamicParameters<S, N> pi(13 * n);
+  for (int k = 1; k <= n; ++k)
     pi.template segment<10>(10 * (k - 1)) = model.inertias[k].parameters();
-  pi.template segment<N>(10 * N) = model.armature;
-  pi.template segment<N>(11 * N) = coulomb;
-  pi.template segment<N>(12 * N) = viscous;
+  pi.segment(10 * n, n) = model.armature;
+  pi.segment(11 * n, n) = coulomb;
+  pi.segment(12 * n, n) = viscous;
   return pi;
 }
 
@@ -44,16 +45,19 @@ DynamicParameters<S, N> dynamic_parameters(const Model<S, N>& model,
 ///   Y(j, π_k) = u_jᵀ M + v_jᵀ F,   u_j = z_j and v_j = z_j × r, both in link k's frame,
 /// carried up the chain link by link (v ← Rᵀ(v + u × p), u ← Rᵀ u): O(N²) 3-vectors instead of
 /// moving every link's 3 × 10 wrench matrices down to each joint. Fills data.oMi as
-/// forward_kinematics does. Allocation-free.
+/// forward_kinematics does. Allocation-free at a fixed N (Y is resized at Eigen::Dynamic).
 template <typename S, int N>
 void compute_regressor(const Model<S, N>& model, Data<S, N>& data,
                        const NoDeduce<JointVector<S, N>>& q, const NoDeduce<JointVector<S, N>>& dq,
                        const NoDeduce<JointVector<S, N>>& ddq, Regressor<S, N>& Y) {
   forward_kinematics(model, data, q);
-  Y.setZero();
-  std::array<Vector3<S>, N> u, v;  // joint j's axis and z_j × r in the current link's frame
+  const int n = model.joint_count();
+  Y.setZero(n, 13 * n);
+  LinkArray<Vector3<S>, N> u, v;  // joint j's axis and z_j × r in the current link's frame
+  resize_storage(u, static_cast<std::size_t>(n));
+  resize_storage(v, static_cast<std::size_t>(n));
   Vector3<S> w = Vector3<S>::Zero(), dw = Vector3<S>::Zero(), a = -model.gravity;
-  for (int k = 1; k <= N; ++k) {
+  for (int k = 1; k <= n; ++k) {
     const Matrix3<S>& R = data.liMi[k].R;
     const Vector3<S>& p = data.liMi[k].p;
     const Vector3<S>& z = model.axes[k - 1];
@@ -92,10 +96,10 @@ void compute_regressor(const Model<S, N>& model, Data<S, N>& data,
       Y.template block<1, 6>(j, column + 4) = u[j].transpose() * M_I;
     }
   }
-  for (int j = 0; j < N; ++j) {
-    Y(j, 10 * N + j) = ddq(j);
-    Y(j, 11 * N + j) = dq(j) > S(0) ? S(1) : (dq(j) < S(0) ? S(-1) : S(0));
-    Y(j, 12 * N + j) = dq(j);
+  for (int j = 0; j < n; ++j) {
+    Y(j, 10 * n + j) = ddq(j);
+    Y(j, 11 * n + j) = dq(j) > S(0) ? S(1) : (dq(j) < S(0) ? S(-1) : S(0));
+    Y(j, 12 * n + j) = dq(j);
   }
 }
 

@@ -16,9 +16,10 @@ namespace detail {
 template <typename S, int N>
 void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
                                 JointVector<S, N>& tau) noexcept {
-  Vector3<S> f = data.force[N], n = data.moment[N];
-  tau(N - 1) = model.axes[N - 1].dot(n);
-  for (int k = N - 1; k >= 1; --k) {
+  const int last = model.joint_count();
+  Vector3<S> f = data.force[last], n = data.moment[last];
+  tau(last - 1) = model.axes[last - 1].dot(n);
+  for (int k = last - 1; k >= 1; --k) {
     const Matrix3<S>& R = data.liMi[k + 1].R;
     const Vector3<S> f_child = R * f;
     n = data.moment[k] + (R * n + data.liMi[k + 1].p.cross(f_child));
@@ -45,7 +46,8 @@ void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
   data.omega[0] = w;
   data.domega[0] = dw;
   data.acc[0] = a;
-  for (int k = 1; k <= N; ++k) {
+  const int n = model.joint_count();
+  for (int k = 1; k <= n; ++k) {
     const Matrix3<S>& R = data.liMi[k].R;
     const Vector3<S>& p = data.liMi[k].p;
     const Vector3<S>& z = model.axes[k - 1];
@@ -121,16 +123,17 @@ template <typename S, int N>
 const JointVector<S, N>& gravity_at_pose(const Model<S, N>& model, Data<S, N>& data) noexcept {
   const ModelConstants<S, N>& c = model.constants;
   // Both recursions run on locals, each value stored once (no store-to-load round trip).
+  const int n = model.joint_count();
   Vector3<S> a = -model.gravity;
   data.acc[0] = a;
-  for (int k = 1; k <= N; ++k) {
+  for (int k = 1; k <= n; ++k) {
     a = detail::rotate_back(data.liMi[k].R, a);
     data.acc[k] = a;
   }
-  Vector3<S> H = c.first_moment[N];
-  data.composite_first_moment[N] = H;
-  data.g(N - 1) = detail::dot(model.axes[N - 1], detail::cross(H, a));
-  for (int k = N - 1; k >= 1; --k) {
+  Vector3<S> H = c.first_moment[n];
+  data.composite_first_moment[n] = H;
+  data.g(n - 1) = detail::dot(model.axes[n - 1], detail::cross(H, a));
+  for (int k = n - 1; k >= 1; --k) {
     const Transform<S>& child = data.liMi[k + 1];
     H = detail::rotate(child.R, H) + (c.first_moment[k] + c.subtree_mass[k + 1] * child.p);
     data.composite_first_moment[k] = H;
@@ -155,7 +158,7 @@ const JointVector<S, N>& velocity_torques(const Model<S, N>& model, Data<S, N>& 
                                           const NoDeduce<JointVector<S, N>>& q,
                                           const NoDeduce<JointVector<S, N>>& dq) {
   joint_transforms(model, data, q);
-  detail::newton_euler_passes(model, data, dq, JointVector<S, N>::Zero().eval(),
+  detail::newton_euler_passes(model, data, dq, JointVector<S, N>::Zero(model.joint_count()).eval(),
                               Vector3<S>::Zero().eval());
   return data.tau;
 }

@@ -16,17 +16,36 @@
 namespace tpf {
 
 /// Stribeck curve plus the bristle stiffness σ0 and damping σ1 of each joint.
+/// At Eigen::Dynamic the vectors start empty: resize(n) gives n joints the defaults below.
 template <typename S, int N>
 struct LuGreParameters {
+  using Vector = JointVector<S, N>;
   StribeckParameters<S, N> stribeck;
-  JointVector<S, N> bristle_stiffness = JointVector<S, N>::Constant(S(1e4));  ///< σ0 > 0
-  JointVector<S, N> bristle_damping = JointVector<S, N>::Zero();              ///< σ1 ≥ 0
+  Vector bristle_stiffness = stiffness_or_empty();        ///< σ0 > 0
+  Vector bristle_damping = zero_or_empty<Vector>();  ///< σ1 ≥ 0
+
+  /// Sizes every coefficient for n joints with the defaults (σ0 = 1e4, σ1 = 0).
+  void resize(int n) {
+    stribeck.resize(n);
+    bristle_stiffness = Vector::Constant(n, kDefaultStiffness);
+    bristle_damping = Vector::Zero(n);
+  }
+
+ private:
+  static constexpr S kDefaultStiffness = S(1e4);
+  static Vector stiffness_or_empty() {
+    if constexpr (N == Eigen::Dynamic)
+      return Vector();
+    else
+      return Vector::Constant(kDefaultStiffness);
+  }
 };
 
-/// The memory of the model: bristle deflection z of each joint, rad.
+/// The memory of the model: bristle deflection z of each joint, rad (at Eigen::Dynamic sized by
+/// the caller: LuGreState{JointVector::Zero(n)}).
 template <typename S, int N>
 struct LuGreState {
-  JointVector<S, N> z = JointVector<S, N>::Zero();
+  JointVector<S, N> z = zero_or_empty<JointVector<S, N>>();
 };
 
 /// One joint's result of a step: new deflection and the friction torque over the step.
@@ -65,7 +84,8 @@ JointVector<S, N> lugre_step(const LuGreParameters<S, N>& p, LuGreState<S, N>& s
                              const JointVector<S, N>& dq, const JointVector<S, N>& abs_gravity,
                              S dt) {
   JointVector<S, N> tau;
-  for (int j = 0; j < N; ++j) {
+  tau.resize(dq.size());
+  for (int j = 0; j < dq.size(); ++j) {
     const LuGreJointStep<S> step = lugre_joint_step(p, j, state.z[j], dq[j], abs_gravity[j], dt);
     state.z[j] = step.z;
     tau[j] = step.torque;
@@ -79,7 +99,8 @@ JointVector<S, N> lugre_steady_deflection(const LuGreParameters<S, N>& p,
                                           const JointVector<S, N>& dq,
                                           const JointVector<S, N>& abs_gravity) {
   JointVector<S, N> z;
-  for (int j = 0; j < N; ++j) {
+  z.resize(dq.size());
+  for (int j = 0; j < dq.size(); ++j) {
     const S level = stribeck_level(p.stribeck, j, dq[j], abs_gravity[j]);
     const S sign = dq[j] > S(0) ? S(1) : (dq[j] < S(0) ? S(-1) : S(0));
     z[j] = sign * level / p.bristle_stiffness[j];

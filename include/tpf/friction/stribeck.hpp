@@ -21,19 +21,41 @@ namespace tpf {
 /// τ_c − a_c backward (viscous b ± a_v). The neighbour-load terms β, γ (zero diagonal) let joint
 /// j's friction grow with the gravity load |G_k| of another joint k (a shared bearing or belt);
 /// only the whole-arm form (JointVector abs_gravity) evaluates them.
+///
+/// At Eigen::Dynamic the vectors start empty: resize(n) gives n joints the defaults below.
 template <typename S, int N>
 struct StribeckParameters {
-  JointVector<S, N> coulomb = JointVector<S, N>::Zero();            ///< τ_c ≥ 0
-  JointVector<S, N> static_friction = JointVector<S, N>::Zero();    ///< τ_s ≥ 0 (break-away)
-  JointVector<S, N> stribeck_velocity = JointVector<S, N>::Ones();  ///< q̇_s > 0, rad/s
-  JointVector<S, N> stribeck_exponent = JointVector<S, N>::Constant(S(2));  ///< δ > 0
-  JointVector<S, N> viscous = JointVector<S, N>::Zero();                    ///< b ≥ 0, per rad/s
-  JointVector<S, N> load_coulomb = JointVector<S, N>::Zero();  ///< α_c ≥ 0, per unit |G|
-  JointVector<S, N> load_viscous = JointVector<S, N>::Zero();  ///< α_v ≥ 0, per unit |G|·rad/s
-  JointVector<S, N> coulomb_asymmetry = JointVector<S, N>::Zero();       ///< a_c, |a_c| ≤ τ_c
-  JointVector<S, N> viscous_asymmetry = JointVector<S, N>::Zero();       ///< a_v, per rad/s
-  JointMatrix<S, N> neighbour_load_coulomb = JointMatrix<S, N>::Zero();  ///< β, zero diagonal
-  JointMatrix<S, N> neighbour_load_viscous = JointMatrix<S, N>::Zero();  ///< γ, zero diagonal
+  using Vector = JointVector<S, N>;
+  using Matrix = JointMatrix<S, N>;
+  Vector coulomb = zero_or_empty<Vector>();                  ///< τ_c ≥ 0
+  Vector static_friction = zero_or_empty<Vector>();          ///< τ_s ≥ 0 (break-away)
+  Vector stribeck_velocity = constant_or_empty(S(1));        ///< q̇_s > 0, rad/s
+  Vector stribeck_exponent = constant_or_empty(S(2));        ///< δ > 0
+  Vector viscous = zero_or_empty<Vector>();                  ///< b ≥ 0, per rad/s
+  Vector load_coulomb = zero_or_empty<Vector>();             ///< α_c ≥ 0, per unit |G|
+  Vector load_viscous = zero_or_empty<Vector>();             ///< α_v ≥ 0, per unit |G|·rad/s
+  Vector coulomb_asymmetry = zero_or_empty<Vector>();        ///< a_c, |a_c| ≤ τ_c
+  Vector viscous_asymmetry = zero_or_empty<Vector>();        ///< a_v, per rad/s
+  Matrix neighbour_load_coulomb = zero_or_empty<Matrix>();  ///< β, zero diagonal
+  Matrix neighbour_load_viscous = zero_or_empty<Matrix>();  ///< γ, zero diagonal
+
+  /// Sizes every coefficient for n joints with the defaults (no friction, q̇_s = 1, δ = 2).
+  void resize(int n) {
+    for (Vector* v : {&coulomb, &static_friction, &viscous, &load_coulomb, &load_viscous,
+                      &coulomb_asymmetry, &viscous_asymmetry})
+      *v = Vector::Zero(n);
+    stribeck_velocity = Vector::Ones(n);
+    stribeck_exponent = Vector::Constant(n, S(2));
+    neighbour_load_coulomb = neighbour_load_viscous = Matrix::Zero(n, n);
+  }
+
+ private:
+  static Vector constant_or_empty(S value) {
+    if constexpr (N == Eigen::Dynamic)
+      return Vector();
+    else
+      return Vector::Constant(value);
+  }
 };
 
 /// True when some neighbour-load coefficient is non-zero (G(q) of every joint is then needed).
@@ -90,7 +112,8 @@ template <typename S, int N>
 JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p, const JointVector<S, N>& dq,
                                     const JointVector<S, N>& abs_gravity) {
   JointVector<S, N> tau;
-  for (int j = 0; j < N; ++j)
+  tau.resize(dq.size());
+  for (int j = 0; j < dq.size(); ++j)
     tau[j] = stribeck_friction(p, j, dq[j], abs_gravity[j]) +
              neighbour_load_friction(p, j, dq[j], abs_gravity);
   return tau;
@@ -103,7 +126,8 @@ JointVector<S, N> own_load_stribeck_friction(const StribeckParameters<S, N>& p,
                                              const JointVector<S, N>& dq,
                                              const JointVector<S, N>& abs_gravity) {
   JointVector<S, N> tau;
-  for (int j = 0; j < N; ++j)
+  tau.resize(dq.size());
+  for (int j = 0; j < dq.size(); ++j)
     tau[j] = stribeck_friction(p, j, dq[j], abs_gravity[j]);
   return tau;
 }
@@ -113,7 +137,7 @@ JointVector<S, N> own_load_stribeck_friction(const StribeckParameters<S, N>& p,
 template <typename S, int N>
 JointVector<S, N> stribeck_friction(const StribeckParameters<S, N>& p,
                                     const JointVector<S, N>& dq) {
-  return own_load_stribeck_friction(p, dq, JointVector<S, N>::Zero().eval());
+  return own_load_stribeck_friction(p, dq, JointVector<S, N>::Zero(dq.size()).eval());
 }
 
 /// Smooth form for gradient-based fitting: sgn(q̇) is replaced by tanh(q̇/ε), which makes τ_f
@@ -127,7 +151,8 @@ JointVector<S, N> smooth_stribeck_friction(const StribeckParameters<S, N>& p,
                                            S epsilon = kDefaultFrictionSmoothing<S>) {
   using std::tanh;
   JointVector<S, N> tau;
-  for (int j = 0; j < N; ++j) {
+  tau.resize(dq.size());
+  for (int j = 0; j < dq.size(); ++j) {
     tau[j] = stribeck_level(p, j, dq[j], abs_gravity[j]) * tanh(dq[j] / epsilon) +
              viscous_coefficient(p, j, abs_gravity[j]) * dq[j];
   }

@@ -8,7 +8,17 @@
 #include "tpf/model/model.hpp"
 
 namespace tpf {
+
+/// The last_link of link_poses and forward_kinematics that means every link of the model.
+inline constexpr int kAllLinks = -1;
+
 namespace detail {
+
+/// The link count a kinematics call runs to: last_link, or the model's joint count for kAllLinks.
+inline int resolve_last_link(int last_link, int joint_count) noexcept {
+  assert(last_link >= kAllLinks && last_link <= joint_count);
+  return last_link == kAllLinks ? joint_count : last_link;
+}
 
 /// data.liMi[k] = placement_k · Rot(axis_k, q_k), the rotation by Rodrigues' formula on the
 /// model's constants: placement.R + sin q·placement.R[z]× + (1 − cos q)·placement.R[z]×².
@@ -45,20 +55,21 @@ template <typename S, int N>
 void joint_transforms(const Model<S, N>& model, Data<S, N>& data,
                       const NoDeduce<JointVector<S, N>>& q) noexcept {
   assert(model.constants_current() && "Model::update_constants() after editing the model");
-  for (int k = 1; k <= N; ++k)
+  const int n = model.joint_count();
+  for (int k = 1; k <= n; ++k)
     detail::joint_transform(model, data, k, q(k - 1));
 }
 
 /// Link poses from the joint transforms already in data.liMi (joint_transforms at q first), from
-/// the base to link `last_link`: data.oMi[k] = data.oMi[k−1] · data.liMi[k] (oMi[0] = identity, the
+/// the base to link `last_link` (kAllLinks: every link): data.oMi[k] = data.oMi[k−1] · data.liMi[k] (oMi[0] = identity, the
 /// base is the world frame) and data.axis_world[k] = oMi[k].R · axis_k. Links beyond `last_link`
 /// keep what they held. A per-cycle caller whose dynamics ran on joint_transforms pays for the
 /// poses only where it needs them (a contact Jacobian at link k: links 1..k). Allocation-free.
 template <typename S, int N>
-void link_poses(const Model<S, N>& model, Data<S, N>& data, int last_link = N) noexcept {
-  assert(last_link >= 0 && last_link <= N);
+void link_poses(const Model<S, N>& model, Data<S, N>& data, int last_link = kAllLinks) noexcept {
+  const int last = detail::resolve_last_link(last_link, model.joint_count());
   data.oMi[0] = Transform<S>{};
-  for (int k = 1; k <= last_link; ++k) {
+  for (int k = 1; k <= last; ++k) {
     const Transform<S>& parent = data.oMi[k - 1];
     data.oMi[k].R.noalias() = parent.R * data.liMi[k].R;
     data.oMi[k].p.noalias() = parent.R * data.liMi[k].p;
@@ -73,12 +84,12 @@ void link_poses(const Model<S, N>& model, Data<S, N>& data, int last_link = N) n
 /// held. Allocation-free.
 template <typename S, int N>
 void forward_kinematics(const Model<S, N>& model, Data<S, N>& data,
-                        const NoDeduce<JointVector<S, N>>& q, int last_link = N) noexcept {
+                        const NoDeduce<JointVector<S, N>>& q, int last_link = kAllLinks) noexcept {
   assert(model.constants_current() && "Model::update_constants() after editing the model");
-  assert(last_link >= 0 && last_link <= N);
-  for (int k = 1; k <= last_link; ++k)
+  const int last = detail::resolve_last_link(last_link, model.joint_count());
+  for (int k = 1; k <= last; ++k)
     detail::joint_transform(model, data, k, q(k - 1));
-  link_poses(model, data, last_link);
+  link_poses(model, data, last);
 }
 
 /// World position of a point given in link k's frame. Needs forward_kinematics first.

@@ -12,9 +12,9 @@ namespace tpf {
 /// [v; ω] = J q̇, and a force f with moment m at p maps to joint torques τ = Jᵀ [f; m].
 /// Needs forward_kinematics first. Allocation-free.
 template <typename S, int N>
-void point_jacobian(const Model<S, N>&, const Data<S, N>& data, int link,
+void point_jacobian(const Model<S, N>& model, const Data<S, N>& data, int link,
                     const NoDeduce<Vector3<S>>& p, Jacobian<S, N>& J) {
-  J.setZero();
+  J.setZero(6, model.joint_count());
   for (int i = 1; i <= link; ++i) {
     const Vector3<S>& z = data.axis_world[i];
     J.template block<3, 1>(0, i - 1) = z.cross(p - data.oMi[i].p);
@@ -35,7 +35,7 @@ Jacobian<S, N> point_jacobian(const Model<S, N>& model, const Data<S, N>& data, 
 /// coordinates), e.g. a contact frame: J_local = diag(Rᵀ, Rᵀ) · J_world.
 template <typename S, int N>
 Jacobian<S, N> rotate_jacobian(const Jacobian<S, N>& J_world, const Matrix3<S>& R) {
-  Jacobian<S, N> J;
+  Jacobian<S, N> J(6, J_world.cols());
   J.template topRows<3>().noalias() = R.transpose() * J_world.template topRows<3>();
   J.template bottomRows<3>().noalias() = R.transpose() * J_world.template bottomRows<3>();
   return J;

@@ -1,4 +1,5 @@
-// Turns a loaded robot description into the fixed-size Model<S, N>.
+// Turns a loaded robot description into a Model<S, N>: of a fixed N (a controller's, checked
+// against the file) or of Eigen::Dynamic (the tools': any joint count).
 #pragma once
 
 #include <filesystem>
@@ -10,20 +11,24 @@
 
 namespace tpf {
 
-/// Builds a Model<S, N> from a chain; throws tpf::Error if the chain does not have exactly N
-/// joints.
+/// Builds a Model<S, N> from a chain; throws tpf::Error if N is fixed and the chain does not have
+/// exactly N joints, or if the chain has none.
 template <typename S, int N>
 Model<S, N> make_model(const ChainDescription& chain) {
-  if (static_cast<int>(chain.joints.size()) != N) {
+  const int n = static_cast<int>(chain.joints.size());
+  if (n < 1 || (N != Eigen::Dynamic && n != N)) {
     throw Error::at(chain.source, 0, "",
-                    "the chain has " + std::to_string(chain.joints.size()) +
-                        " revolute joints, this program is built for " + std::to_string(N));
+                    "the chain has " + std::to_string(n) + " revolute joints" +
+                        (N != Eigen::Dynamic
+                             ? ", this program is built for " + std::to_string(N)
+                             : std::string(", a model needs at least one")));
   }
   Model<S, N> model;
+  model.resize(n);
   model.name = chain.robot_name;
   model.link_names[0] = chain.base_link;
   model.inertias[0] = chain.inertias[0].template cast<S>();
-  for (int k = 0; k < N; ++k) {
+  for (int k = 0; k < n; ++k) {
     const ChainJoint& j = chain.joints[k];
     model.joint_names[k] = j.name;
     model.link_names[k + 1] = j.child_link;
@@ -43,7 +48,7 @@ Model<S, N> make_model(const ChainDescription& chain) {
 template <typename S, int N>
 Model<S, N> make_model(const RobotDescription& robot) {
   Model<S, N> model = make_model<S, N>(robot.chain);
-  for (int k = 0; k < N; ++k) {
+  for (int k = 0; k < model.joint_count(); ++k) {
     const DriveDescription& d = robot.drives[k];
     model.armature(k) = S(d.armature());
     model.gear_ratio(k) = S(d.gear_ratio);
@@ -54,8 +59,8 @@ Model<S, N> make_model(const RobotDescription& robot) {
   return model;
 }
 
-/// Loads a robot file (data/arm4.robot.json) into a Model<S, N>: `tpf::load_robot<double,
-/// 4>(path)`.
+/// Loads a robot file (data/arm4.robot.json) into a Model<S, N>: `tpf::load_robot<double, 4>(path)`
+/// in a controller, `tpf::load_robot<double, Eigen::Dynamic>(path)` for any joint count.
 template <typename S, int N>
 Model<S, N> load_robot(const std::filesystem::path& robot_file) {
   return make_model<S, N>(load_robot_description(robot_file));

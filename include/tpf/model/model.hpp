@@ -1,7 +1,9 @@
-// The immutable description of a serial arm of N revolute joints (Pinocchio's Model).
+// The immutable description of a serial arm of N revolute joints (Pinocchio's Model): N fixed at
+// compile time in a controller, or Eigen::Dynamic (sized by resize or make_model) in the tools.
 #pragma once
 
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <string>
 
@@ -18,17 +20,28 @@ struct ModelConstants {
   /// Joint k's rotation in its parent: liMi[k].R = placement.R + sin q·rotation_sine[k] +
   /// (1 − cos q)·rotation_versine[k], with rotation_sine = placement.R·[z]×, rotation_versine =
   /// placement.R·[z]×² (Rodrigues' formula, z the unit axis).
-  std::array<Matrix3<S>, N> rotation_sine, rotation_versine;
-  std::array<Vector3<S>, N + 1> first_moment;          ///< h = m·c per link [kg·m].
-  std::array<Matrix3<S>, N + 1> inertia_about_origin;  ///< I_o per link [kg·m²].
-  std::array<S, N + 2> subtree_mass{};  ///< Σ_{j ≥ k} m_j: links k..N ([N + 1] = 0) [kg].
+  LinkArray<Matrix3<S>, N> rotation_sine, rotation_versine;
+  LinkArray<Vector3<S>, N, 1> first_moment;          ///< h = m·c per link [kg·m].
+  LinkArray<Matrix3<S>, N, 1> inertia_about_origin;  ///< I_o per link [kg·m²].
+  LinkArray<S, N, 2> subtree_mass{};  ///< Σ_{j ≥ k} m_j: links k..N ([N + 1] = 0) [kg].
   /// ±(i + 1) when joint k's axis is ±e_i (its world axis is then ± a column of the link's
   /// rotation, no product), 0 for any other axis.
-  std::array<int, N> axis_coordinate{};
+  LinkArray<int, N> axis_coordinate{};
 
-  std::array<Transform<S>, N> placements_used;  ///< the sources of the constants above
-  std::array<Vector3<S>, N> axes_used;
-  std::array<Inertia<S>, N + 1> inertias_used;
+  LinkArray<Transform<S>, N> placements_used;  ///< the sources of the constants above
+  LinkArray<Vector3<S>, N> axes_used;
+  LinkArray<Inertia<S>, N, 1> inertias_used;
+
+  /// Sizes the per-link arrays for n joints (Eigen::Dynamic; a fixed N is already sized).
+  void resize(int n) {
+    const auto joints = static_cast<std::size_t>(n);
+    resize_storage(rotation_sine, joints);
+    resize_storage(rotation_versine, joints);
+    resize_storage(first_moment, joints + 1);
+    resize_storage(inertia_about_origin, joints + 1);
+    resize_storage(subtree_mass, joints + 2);
+    resize_storage(axis_coordinate, joints);
+  }
 };
 
 /// A serial chain of N revolute joints with its inertias and drive data. Immutable after loading;
@@ -37,40 +50,72 @@ struct ModelConstants {
 /// Frames: link 0 is the base (world frame). Link k (1..N) moves with joint k. The frame of joint k
 /// sits at joint_placements[k-1] in link k−1's frame; link k's frame is that frame rotated by q_k
 /// about axes[k-1]. Joint indices in vectors are 0-based (q(0) is joint 1).
+///
+/// With N = Eigen::Dynamic the same model is sized at run time (resize(n), or make_model from a
+/// robot file): one compiled copy of every algorithm serves any joint count.
 template <typename S, int N>
 struct Model {
-  static_assert(N >= 1, "a model has at least one joint");
+  static_assert(N >= 1 || N == Eigen::Dynamic, "a model has at least one joint");
   using Scalar = S;
-  static constexpr int joints = N;
+  static constexpr int joints = N;  ///< the compile-time count, Eigen::Dynamic if chosen at run time
 
   std::string name;
-  std::array<std::string, N> joint_names;
-  std::array<std::string, N + 1> link_names;  ///< [0] is the base link.
+  LinkArray<std::string, N> joint_names;
+  LinkArray<std::string, N, 1> link_names;  ///< [0] is the base link.
 
-  std::array<Transform<S>, N> joint_placements;  ///< joint k frame in link k−1 frame, at q = 0.
-  std::array<Vector3<S>, N> axes;                ///< unit rotation axis in the joint frame.
-  std::array<Inertia<S>, N + 1> inertias;  ///< per link, in its own frame ([0]: base, unused).
+  LinkArray<Transform<S>, N> joint_placements;  ///< joint k frame in link k−1 frame, at q = 0.
+  LinkArray<Vector3<S>, N> axes;                ///< unit rotation axis in the joint frame.
+  LinkArray<Inertia<S>, N, 1> inertias;  ///< per link, in its own frame ([0]: base, unused).
 
-  JointVector<S, N> armature = JointVector<S, N>::Zero();  ///< reflected rotor inertia [kg·m²].
-  JointVector<S, N> gear_ratio = JointVector<S, N>::Ones();
-  JointVector<S, N> torque_constant = JointVector<S, N>::Ones();  ///< [N·m/A], output side.
-  JointVector<S, N> current_limit = JointVector<S, N>::Zero();    ///< [mA].
+  using Vector = JointVector<S, N>;
+  Vector armature = zero_or_empty<Vector>();  ///< reflected rotor inertia [kg·m²].
+  Vector gear_ratio = ones_or_empty();
+  Vector torque_constant = ones_or_empty();         ///< [N·m/A], output side.
+  Vector current_limit = zero_or_empty<Vector>();  ///< [mA].
   /// Position limits [rad]; ±∞ for a continuous joint (see has_position_limits).
-  JointVector<S, N> lower = JointVector<S, N>::Zero();
-  JointVector<S, N> upper = JointVector<S, N>::Zero();
-  JointVector<S, N> velocity_limit = JointVector<S, N>::Zero();  ///< [rad/s].
-  JointVector<S, N> effort_limit = JointVector<S, N>::Zero();    ///< [N·m].
+  Vector lower = zero_or_empty<Vector>();
+  Vector upper = zero_or_empty<Vector>();
+  Vector velocity_limit = zero_or_empty<Vector>();  ///< [rad/s].
+  Vector effort_limit = zero_or_empty<Vector>();    ///< [N·m].
 
   Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  ///< in the world frame [m/s²].
 
   /// Derived from joint_placements, axes and inertias; update_constants() after changing those.
   ModelConstants<S, N> constants;
 
+  /// The number of joints: N, or the run-time count of an Eigen::Dynamic model.
+  constexpr int joint_count() const noexcept {
+    if constexpr (N == Eigen::Dynamic)
+      return static_cast<int>(axes.size());
+    else
+      return N;
+  }
+
+  /// Sizes every per-joint and per-link member for n joints with the defaults of a fixed-size
+  /// model (identity placements, z axes, massless links, no armature, unit ratio and K_t, zero
+  /// limits). For Eigen::Dynamic; a fixed N is already sized (n must equal it).
+  void resize(int n) {
+    assert(n >= 1 && (N == Eigen::Dynamic || n == N));
+    const auto joints_n = static_cast<std::size_t>(n);
+    resize_storage(joint_names, joints_n);
+    resize_storage(link_names, joints_n + 1);
+    resize_storage(joint_placements, joints_n);
+    resize_storage(axes, joints_n);
+    resize_storage(inertias, joints_n + 1);
+    for (Vector* v : {&armature, &current_limit, &lower, &upper, &velocity_limit, &effort_limit})
+      *v = Vector::Zero(n);
+    gear_ratio = Vector::Ones(n);
+    torque_constant = Vector::Ones(n);
+    constants.resize(n);
+  }
+
   /// Recomputes `constants` from joint_placements, axes and inertias. make_model and cast call
   /// it; a caller that edits a loaded model (e.g. adds a payload to an inertia) calls it again.
   void update_constants() {
     ModelConstants<S, N>& c = constants;
-    for (int k = 0; k < N; ++k) {
+    const int n = joint_count();
+    c.resize(n);
+    for (int k = 0; k < n; ++k) {
       const Matrix3<S> K = skew(axes[k]);
       c.rotation_sine[k] = joint_placements[k].R * K;
       c.rotation_versine[k] = c.rotation_sine[k] * K;
@@ -79,8 +124,8 @@ struct Model {
         if (axes[k] == Vector3<S>::Unit(i) || axes[k] == -Vector3<S>::Unit(i))
           c.axis_coordinate[k] = axes[k][i] > S(0) ? i + 1 : -(i + 1);
     }
-    c.subtree_mass[N + 1] = S(0);
-    for (int k = N; k >= 0; --k) {
+    c.subtree_mass[n + 1] = S(0);
+    for (int k = n; k >= 0; --k) {
       c.first_moment[k] = inertias[k].first_moment();
       c.inertia_about_origin[k] = inertias[k].about_origin();
       c.subtree_mass[k] = c.subtree_mass[k + 1] + inertias[k].mass;
@@ -93,11 +138,15 @@ struct Model {
   /// Whether `constants` were computed from the current placements, axes and inertias.
   bool constants_current() const {
     const ModelConstants<S, N>& c = constants;
-    for (int k = 0; k < N; ++k)
+    const int n = joint_count();
+    if (static_cast<int>(c.placements_used.size()) != n ||
+        static_cast<int>(c.inertias_used.size()) != n + 1)
+      return false;
+    for (int k = 0; k < n; ++k)
       if (c.placements_used[k].R != joint_placements[k].R ||
           c.placements_used[k].p != joint_placements[k].p || c.axes_used[k] != axes[k])
         return false;
-    for (int k = 0; k <= N; ++k)
+    for (int k = 0; k <= n; ++k)
       if (c.inertias_used[k].mass != inertias[k].mass ||
           c.inertias_used[k].com != inertias[k].com ||
           c.inertias_used[k].rotational != inertias[k].rotational)
@@ -107,7 +156,7 @@ struct Model {
 
   /// Index (1..N) of the link called `link_name`, or −1.
   int link_index(const std::string& link_name) const {
-    for (int k = 0; k <= N; ++k)
+    for (int k = 0; k <= joint_count(); ++k)
       if (link_names[k] == link_name) return k;
     return -1;
   }
@@ -123,14 +172,16 @@ struct Model {
   template <typename T>
   Model<T, N> cast() const {
     Model<T, N> m;
+    const int n = joint_count();
+    m.resize(n);
     m.name = name;
     m.joint_names = joint_names;
     m.link_names = link_names;
-    for (int k = 0; k < N; ++k) {
+    for (int k = 0; k < n; ++k) {
       m.joint_placements[k] = joint_placements[k].template cast<T>();
       m.axes[k] = axes[k].template cast<T>();
     }
-    for (int k = 0; k <= N; ++k)
+    for (int k = 0; k <= n; ++k)
       m.inertias[k] = inertias[k].template cast<T>();
     m.armature = armature.template cast<T>();
     m.gear_ratio = gear_ratio.template cast<T>();
@@ -143,6 +194,14 @@ struct Model {
     m.gravity = gravity.template cast<T>();
     m.update_constants();
     return m;
+  }
+
+ private:
+  static Vector ones_or_empty() {
+    if constexpr (N == Eigen::Dynamic)
+      return Vector();
+    else
+      return Vector::Ones();
   }
 };
 
