@@ -73,10 +73,10 @@ void expect_dynamic_equals_fixed(const std::string& robot_file) {
     EXPECT_LT((compute_gravity(fixed, fd, q) - compute_gravity(dynamic, dd, qd)).norm(), tol);
     EXPECT_LT((compute_mass_matrix(fixed, fd, q) - compute_mass_matrix(dynamic, dd, qd)).norm(),
               tol);
-    EXPECT_LT((compute_coriolis_matrix(fixed, fd, q, dq) -
-               compute_coriolis_matrix(dynamic, dd, qd, dqd))
-                  .norm(),
-              tol);
+    EXPECT_LT(
+        (compute_coriolis_matrix(fixed, fd, q, dq) - compute_coriolis_matrix(dynamic, dd, qd, dqd))
+            .norm(),
+        tol);
     EXPECT_LT(
         (forward_dynamics(fixed, fd, q, dq, ddq) - forward_dynamics(dynamic, dd, qd, dqd, ddqd))
             .norm(),

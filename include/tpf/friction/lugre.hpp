@@ -21,7 +21,7 @@ template <typename S, int N>
 struct LuGreParameters {
   using Vector = JointVector<S, N>;
   StribeckParameters<S, N> stribeck;
-  Vector bristle_stiffness = stiffness_or_empty();        ///< σ0 > 0
+  Vector bristle_stiffness = stiffness_or_empty();   ///< σ0 > 0
   Vector bristle_damping = zero_or_empty<Vector>();  ///< σ1 ≥ 0
 
   /// Sizes every coefficient for n joints with the defaults (σ0 = 1e4, σ1 = 0).

@@ -27,15 +27,15 @@ template <typename S, int N>
 struct StribeckParameters {
   using Vector = JointVector<S, N>;
   using Matrix = JointMatrix<S, N>;
-  Vector coulomb = zero_or_empty<Vector>();                  ///< τ_c ≥ 0
-  Vector static_friction = zero_or_empty<Vector>();          ///< τ_s ≥ 0 (break-away)
-  Vector stribeck_velocity = constant_or_empty(S(1));        ///< q̇_s > 0, rad/s
-  Vector stribeck_exponent = constant_or_empty(S(2));        ///< δ > 0
-  Vector viscous = zero_or_empty<Vector>();                  ///< b ≥ 0, per rad/s
-  Vector load_coulomb = zero_or_empty<Vector>();             ///< α_c ≥ 0, per unit |G|
-  Vector load_viscous = zero_or_empty<Vector>();             ///< α_v ≥ 0, per unit |G|·rad/s
-  Vector coulomb_asymmetry = zero_or_empty<Vector>();        ///< a_c, |a_c| ≤ τ_c
-  Vector viscous_asymmetry = zero_or_empty<Vector>();        ///< a_v, per rad/s
+  Vector coulomb = zero_or_empty<Vector>();                 ///< τ_c ≥ 0
+  Vector static_friction = zero_or_empty<Vector>();         ///< τ_s ≥ 0 (break-away)
+  Vector stribeck_velocity = constant_or_empty(S(1));       ///< q̇_s > 0, rad/s
+  Vector stribeck_exponent = constant_or_empty(S(2));       ///< δ > 0
+  Vector viscous = zero_or_empty<Vector>();                 ///< b ≥ 0, per rad/s
+  Vector load_coulomb = zero_or_empty<Vector>();            ///< α_c ≥ 0, per unit |G|
+  Vector load_viscous = zero_or_empty<Vector>();            ///< α_v ≥ 0, per unit |G|·rad/s
+  Vector coulomb_asymmetry = zero_or_empty<Vector>();       ///< a_c, |a_c| ≤ τ_c
+  Vector viscous_asymmetry = zero_or_empty<Vector>();       ///< a_v, per rad/s
   Matrix neighbour_load_coulomb = zero_or_empty<Matrix>();  ///< β, zero diagonal
   Matrix neighbour_load_viscous = zero_or_empty<Matrix>();  ///< γ, zero diagonal
 

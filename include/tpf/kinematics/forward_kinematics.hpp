@@ -61,10 +61,11 @@ void joint_transforms(const Model<S, N>& model, Data<S, N>& data,
 }
 
 /// Link poses from the joint transforms already in data.liMi (joint_transforms at q first), from
-/// the base to link `last_link` (kAllLinks: every link): data.oMi[k] = data.oMi[k−1] · data.liMi[k] (oMi[0] = identity, the
-/// base is the world frame) and data.axis_world[k] = oMi[k].R · axis_k. Links beyond `last_link`
-/// keep what they held. A per-cycle caller whose dynamics ran on joint_transforms pays for the
-/// poses only where it needs them (a contact Jacobian at link k: links 1..k). Allocation-free.
+/// the base to link `last_link` (kAllLinks: every link): data.oMi[k] = data.oMi[k−1] · data.liMi[k]
+/// (oMi[0] = identity, the base is the world frame) and data.axis_world[k] = oMi[k].R · axis_k.
+/// Links beyond `last_link` keep what they held. A per-cycle caller whose dynamics ran on
+/// joint_transforms pays for the poses only where it needs them (a contact Jacobian at link k:
+/// links 1..k). Allocation-free.
 template <typename S, int N>
 void link_poses(const Model<S, N>& model, Data<S, N>& data, int last_link = kAllLinks) noexcept {
   const int last = detail::resolve_last_link(last_link, model.joint_count());

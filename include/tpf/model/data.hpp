@@ -20,8 +20,8 @@ struct Data {
   }
 
   // Kinematics (forward_kinematics).
-  LinkArray<Transform<S>, N, 1> liMi;  ///< link k in link k−1 at the current q ([0] unused).
-  LinkArray<Transform<S>, N, 1> oMi;   ///< link k in the world frame ([0] = identity).
+  LinkArray<Transform<S>, N, 1> liMi;      ///< link k in link k−1 at the current q ([0] unused).
+  LinkArray<Transform<S>, N, 1> oMi;       ///< link k in the world frame ([0] = identity).
   LinkArray<Vector3<S>, N, 1> axis_world;  ///< joint k axis in the world frame ([0] unused).
 
   // Recursive Newton–Euler, in link frames.
@@ -45,7 +45,8 @@ struct Data {
  private:
   void resize(int n) {
     const auto links = static_cast<std::size_t>(n + 1);
-    for (auto* a : {&liMi, &oMi}) resize_storage(*a, links);
+    for (auto* a : {&liMi, &oMi})
+      resize_storage(*a, links);
     for (auto* a : {&axis_world, &omega, &domega, &acc, &force, &moment, &composite_first_moment})
       resize_storage(*a, links);
     resize_storage(composite_inertia, links);

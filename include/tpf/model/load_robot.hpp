@@ -19,9 +19,8 @@ Model<S, N> make_model(const ChainDescription& chain) {
   if (n < 1 || (N != Eigen::Dynamic && n != N)) {
     throw Error::at(chain.source, 0, "",
                     "the chain has " + std::to_string(n) + " revolute joints" +
-                        (N != Eigen::Dynamic
-                             ? ", this program is built for " + std::to_string(N)
-                             : std::string(", a model needs at least one")));
+                        (N != Eigen::Dynamic ? ", this program is built for " + std::to_string(N)
+                                             : std::string(", a model needs at least one")));
   }
   Model<S, N> model;
   model.resize(n);

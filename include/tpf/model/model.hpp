@@ -57,7 +57,8 @@ template <typename S, int N>
 struct Model {
   static_assert(N >= 1 || N == Eigen::Dynamic, "a model has at least one joint");
   using Scalar = S;
-  static constexpr int joints = N;  ///< the compile-time count, Eigen::Dynamic if chosen at run time
+  static constexpr int joints =
+      N;  ///< the compile-time count, Eigen::Dynamic if chosen at run time
 
   std::string name;
   LinkArray<std::string, N> joint_names;
@@ -65,12 +66,12 @@ struct Model {
 
   LinkArray<Transform<S>, N> joint_placements;  ///< joint k frame in link k−1 frame, at q = 0.
   LinkArray<Vector3<S>, N> axes;                ///< unit rotation axis in the joint frame.
-  LinkArray<Inertia<S>, N, 1> inertias;  ///< per link, in its own frame ([0]: base, unused).
+  LinkArray<Inertia<S>, N, 1> inertias;         ///< per link, in its own frame ([0]: base, unused).
 
   using Vector = JointVector<S, N>;
   Vector armature = zero_or_empty<Vector>();  ///< reflected rotor inertia [kg·m²].
   Vector gear_ratio = ones_or_empty();
-  Vector torque_constant = ones_or_empty();         ///< [N·m/A], output side.
+  Vector torque_constant = ones_or_empty();        ///< [N·m/A], output side.
   Vector current_limit = zero_or_empty<Vector>();  ///< [mA].
   /// Position limits [rad]; ±∞ for a continuous joint (see has_position_limits).
   Vector lower = zero_or_empty<Vector>();
