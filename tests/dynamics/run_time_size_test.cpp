@@ -9,6 +9,7 @@
 
 #include "dynamics/reference_dynamics.hpp"
 #include "support/arm_fixture.hpp"
+#include "support/random_arm.hpp"
 #include "tpf/friction/lugre.hpp"
 
 namespace tpf::test {
@@ -17,34 +18,6 @@ namespace {
 using DynModel = Model<double, Eigen::Dynamic>;
 using DynData = Data<double, Eigen::Dynamic>;
 using DynVec = Eigen::VectorXd;
-
-/// A random serial arm of n revolute joints: placements up to 0.3 m and any rotation, random unit
-/// axes (some along a coordinate axis, the kinematics' shortcut), random positive definite link
-/// inertias, armature. Seeded.
-DynModel random_arm(int n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto vector3 = [&] { return Vector3<double>(u(rng), u(rng), u(rng)); };
-  DynModel model;
-  model.resize(n);
-  model.name = "random" + std::to_string(n);
-  for (int k = 0; k < n; ++k) {
-    model.joint_names[k] = "j" + std::to_string(k + 1);
-    model.link_names[k + 1] = "l" + std::to_string(k + 1);
-    const Eigen::Quaterniond rotation = Eigen::Quaterniond::UnitRandom();
-    model.joint_placements[k] = {rotation.toRotationMatrix(), 0.3 * vector3()};
-    model.axes[k] = k % 3 == 0 ? Vector3<double>::Unit(k % 2 == 0 ? 2 : 1) : vector3().normalized();
-    Inertia<double>& body = model.inertias[k + 1];
-    body.mass = 0.5 + std::abs(u(rng)) * 3.0;
-    body.com = 0.1 * vector3();
-    const Matrix3<double> A = 0.05 * Matrix3<double>::Random();
-    body.rotational = A * A.transpose() + 0.01 * Matrix3<double>::Identity();
-    model.armature(k) = 0.1 * std::abs(u(rng));
-  }
-  model.link_names[0] = "base";
-  model.update_constants();
-  return model;
-}
 
 DynVec random_dynamic(std::mt19937_64& rng, int n, double scale) {
   std::uniform_real_distribution<double> u(-scale, scale);

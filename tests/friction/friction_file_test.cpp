@@ -81,3 +81,44 @@ TEST(FrictionFile, MissingKeyAndMissingFileAreReported) {
 }
 
 }  // namespace
+
+TEST(FrictionFile, RunTimeCountIsTheArraysLength) {
+  const std::string path = TPF_TEST_DATA_DIR "/arm4.friction.json";
+  const auto any = tpf::load_lugre_parameters(path);
+  const auto four = tpf::load_lugre_parameters<double, 4>(path);
+  ASSERT_EQ(any.stribeck.coulomb.size(), 4);
+  EXPECT_EQ(any.stribeck.coulomb, four.stribeck.coulomb);
+  EXPECT_EQ(any.stribeck.load_viscous, four.stribeck.load_viscous);
+  EXPECT_EQ(any.bristle_stiffness, four.bristle_stiffness);
+  // Keys the file does not hold keep the defaults, sized for the file's joints.
+  EXPECT_EQ(any.stribeck.neighbour_load_coulomb.rows(), 4);
+  EXPECT_EQ(any.stribeck.coulomb_asymmetry, Eigen::VectorXd::Zero(4));
+
+  std::string nine = R"({"coulomb":[1,1,1,1,1,1,1,1,3],"static":[2,2,2,2,2,2,2,2,2],
+    "stribeck_velocity":[1,1,1,1,1,1,1,1,1],"stribeck_exponent":[2,2,2,2,2,2,2,2,2],
+    "viscous":[0,0,0,0,0,0,0,0,0.5]})";
+  const auto p = tpf::load_stribeck_parameters(write_temp("tpf_fric_nine.json", nine));
+  ASSERT_EQ(p.coulomb.size(), 9);
+  EXPECT_EQ(p.coulomb[8], 3.0);
+  EXPECT_EQ(p.viscous[8], 0.5);
+}
+
+TEST(FrictionFile, ArraysOfAnotherLengthAreRefusedByField) {
+  // The arrays disagree: the count comes from "coulomb" (2), "viscous" holds 3.
+  std::string text = kValid;
+  text.replace(text.find("\"viscous\":[0.5,0.6]"), 19, "\"viscous\":[0.5,0.6,0.7]");
+  const std::string path = write_temp("tpf_fric_length.json", text);
+  try {
+    tpf::load_lugre_parameters(path);
+    ADD_FAILURE() << "a 3-number viscous array of a 2-joint file was accepted";
+  } catch (const tpf::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("viscous"), std::string::npos) << e.what();
+  }
+  // A 2-joint file asked for as a 4-joint program's file.
+  try {
+    tpf::load_lugre_parameters<double, 4>(write_temp("tpf_fric_two.json", kValid));
+    ADD_FAILURE() << "a 2-joint file was accepted as a 4-joint one";
+  } catch (const tpf::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("coulomb"), std::string::npos) << e.what();
+  }
+}

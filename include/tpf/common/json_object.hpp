@@ -43,26 +43,28 @@ class Object {
   Eigen::Vector3d vector3(const std::string& key);
   /// Lower bound of joint_vector entries; the message says "must be >= 0 (non-negative)" etc.
   enum class Bound { kAny, kNonNegative, kPositive };
-  /// An array of exactly N numbers into `out` (unchanged when absent and not required).
+  /// An array of exactly out.size() numbers into `out` (unchanged when absent and not required).
   template <int N>
   void joint_vector(const std::string& key, Eigen::Matrix<double, N, 1>& out, bool required,
                     Bound bound = Bound::kAny) {
     if (!required && !has(key)) return;
-    const std::vector<double> v = numbers(key, -kInfinity, kInfinity, N);
-    for (int i = 0; i < N; ++i) {
+    const int n = static_cast<int>(out.size());
+    const std::vector<double> v = numbers(key, -kInfinity, kInfinity, n);
+    for (int i = 0; i < n; ++i) {
       check_bound(key + "[" + std::to_string(i) + "]", v[i], bound);
       out[i] = v[i];
     }
   }
-  /// A required array of N upper limits into `out`: each a positive number, or null for "no
-  /// limit" (+∞; JSON has no infinity).
+  /// A required array of out.size() upper limits into `out`: each a positive number, or null for
+  /// "no limit" (+∞; JSON has no infinity).
   template <int N>
   void joint_limits(const std::string& key, Eigen::Matrix<double, N, 1>& out) {
     if (!has(key)) fail(key, "missing");
     const nlohmann::json& v = get(key);
-    if (!v.is_array() || v.size() != static_cast<std::size_t>(N))
-      fail(key, "must be an array of " + std::to_string(N) + " numbers or nulls");
-    for (int i = 0; i < N; ++i) {
+    const int n = static_cast<int>(out.size());
+    if (!v.is_array() || v.size() != static_cast<std::size_t>(n))
+      fail(key, "must be an array of " + std::to_string(n) + " numbers or nulls");
+    for (int i = 0; i < n; ++i) {
       const std::string item = key + "[" + std::to_string(i) + "]";
       if (v[i].is_null()) {
         out[i] = kInfinity;
@@ -74,18 +76,23 @@ class Object {
       out[i] = v[i].get<double>();
     }
   }
-  /// An array of N rows of N numbers into `out` (unchanged when absent).
+  /// An array of out.rows() rows of as many numbers into `out` (unchanged when absent).
   template <int N>
   void joint_matrix(const std::string& key, Eigen::Matrix<double, N, N>& out) {
     if (!has(key)) return;
-    const std::vector<std::vector<double>> rows = number_rows(key, N, N);
-    for (int r = 0; r < N; ++r)
-      for (int c = 0; c < N; ++c)
+    const std::size_t n = static_cast<std::size_t>(out.rows());
+    const std::vector<std::vector<double>> rows = number_rows(key, n, n);
+    for (std::size_t r = 0; r < n; ++r)
+      for (std::size_t c = 0; c < n; ++c)
         out(r, c) = rows[r][c];
   }
   /// A required array of `rows` arrays of `cols` finite numbers.
   std::vector<std::vector<double>> number_rows(const std::string& key, std::size_t rows,
                                                std::size_t cols);
+  /// The length of the required array `key`, as a joint count: 1 … kMaxArrayJoints (an arm's
+  /// joint count where a file does not state it).
+  int joint_count_of(const std::string& key);
+  static constexpr int kMaxArrayJoints = 64;
   /// A required whole number in [lo, hi].
   int integer(const std::string& key, int lo, int hi);
   /// The file's "joints" count, which must be `expected` (the program's compile-time N).

@@ -7,8 +7,11 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cassert>
+#include <string>
 #include <type_traits>
 #include <vector>
+
+#include "tpf/common/error.hpp"
 
 namespace tpf {
 
@@ -59,6 +62,18 @@ template <typename T>
 void resize_storage(std::vector<T>& storage, std::size_t count) {
   storage.resize(count);
 }
+
+/// Throws when a run-time joint count does not fit the compile-time one `To` (Eigen::Dynamic fits
+/// any): the shared check of the joint_count_cast functions. Start-up code.
+template <int To>
+void require_joint_count(int count, const char* what) {
+  if constexpr (To != Eigen::Dynamic) {
+    if (count != To)
+      throw Error(std::string(what) + " has " + std::to_string(count) +
+                  " joints, the program asks for " + std::to_string(To));
+  }
+}
+
 template <typename S>
 using Vector3 = Eigen::Matrix<S, 3, 1>;
 template <typename S>

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <tuple>
+#include <utility>
 
 #include "tpf/effects/effect_input.hpp"
 #include "tpf/effects/effort_delay.hpp"
@@ -16,14 +17,15 @@
 namespace tpf {
 
 /// Evaluated at run time, in this order. Each type has a `key`, its parameters (zero = absent),
-/// present() (some parameter is in use: without one, add_torque adds nothing),
+/// resize(n) (n joints, absent), assign(other joint-count type), columns() (basis functions per
+/// joint), present() (some parameter is in use: without one, add_torque adds nothing),
 /// add_torque(EffectInput, τ) (allocation-free, noexcept) and read(Fields&) / write(Json&) of its
 /// fields of the parameter file's "added_effects".
 template <typename S, int N>
 using RunTimeEffects =
     std::tuple<JointSpring<S, N>, JointOffset<S, N>, MotionCoupling<S, N>, PositionRipple<S, N>>;
 
-/// Found by diagnosis but not evaluated at run time: each has a `key` and refuse<N>(Fields&),
+/// Found by diagnosis but not evaluated at run time: each has a `key` and refuse(Fields&, joints),
 /// which refuses a parameter file holding the effect.
 using OfflineOnlyEffects = std::tuple<ThermalFriction, EffortDelay>;
 
@@ -31,6 +33,19 @@ using OfflineOnlyEffects = std::tuple<ThermalFriction, EffortDelay>;
 template <typename S, int N>
 struct AddedEffects {
   RunTimeEffects<S, N> effects;
+
+  /// Sizes every effect for n joints, all absent (needed at Eigen::Dynamic before reading).
+  void resize(int n) {
+    for_each([n](auto& effect) { effect.resize(n); });
+  }
+  /// The effects of another joint-count type (the counts must agree).
+  template <int From>
+  void assign(const AddedEffects<S, From>& from) {
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      (std::get<I>(effects).assign(std::get<I>(from.effects)), ...);
+    }
+    (std::make_index_sequence<std::tuple_size_v<RunTimeEffects<S, N>>>{});
+  }
 
   /// The effect of type Effect, e.g. added.get<JointSpring>().stiffness.
   template <template <typename, int> class Effect>
@@ -56,9 +71,9 @@ struct AddedEffects {
     for_each([&present](const auto& effect) { present = present || effect.present(); });
     return present;
   }
-  /// Σ of every effect's torque [N·m]. Allocation-free.
-  JointVector<S, N> torque(const EffectInput<S, N>& x) const noexcept {
-    JointVector<S, N> tau = JointVector<S, N>::Zero();
+  /// Σ of every effect's torque [N·m]. Allocation-free at a fixed joint count.
+  JointVector<S, N> torque(const EffectInput<S, N>& x) const noexcept(N != Eigen::Dynamic) {
+    JointVector<S, N> tau = JointVector<S, N>::Zero(x.q.size());
     for_each([&](const auto& effect) { effect.add_torque(x, tau); });
     return tau;
   }

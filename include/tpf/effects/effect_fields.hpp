@@ -10,14 +10,14 @@ namespace tpf {
 
 template <typename S, int N>
 std::vector<double> joint_values(const JointVector<S, N>& v) {
-  return std::vector<double>(v.data(), v.data() + N);
+  return std::vector<double>(v.data(), v.data() + v.size());
 }
 
 /// One array per row.
 template <typename S, int N>
 std::vector<std::vector<double>> joint_rows(const JointMatrix<S, N>& m) {
   std::vector<std::vector<double>> rows;
-  for (int r = 0; r < N; ++r)
+  for (int r = 0; r < m.rows(); ++r)
     rows.push_back(joint_values<S, N>(m.row(r).transpose()));
   return rows;
 }

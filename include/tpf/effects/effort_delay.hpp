@@ -11,8 +11,8 @@ struct EffortDelay {
 
   /// Parameter file, "added_effects": "effort_lead_s": lead [s]; accepted only when absent or
   /// zero: a file that holds the effect is refused.
-  template <int N, typename Fields>
-  static void refuse(Fields& added) {
+  template <typename Fields>
+  static void refuse(Fields& added, int /*joints*/) {
     if (added.number("effort_lead_s", 0.0, -1.0, 1.0) != 0.0)
       added.fail("effort_lead_s",
                  "a delay between effort and motion is not evaluated by the run-time nominal "

@@ -30,6 +30,21 @@ struct PositionRipple {
 
   int count = 0;  ///< terms in use
   std::array<RippleTerm<S>, kMaxTerms> terms{};
+  int joints = N == Eigen::Dynamic ? 0 : N;  ///< the arm's joint count (a term's joint is below)
+
+  /// Sets the joint count to n, with no terms.
+  void resize(int n) {
+    joints = n;
+    count = 0;
+  }
+  /// The same effect of another joint-count type.
+  template <int From>
+  void assign(const PositionRipple<S, From>& from) {
+    count = from.count;
+    terms = from.terms;
+    joints = from.joints;
+  }
+  int columns() const noexcept { return kColumns; }
 
   /// The phase n·θ of `term`: n·q_j, or n·G_j·q_j on the motor side.
   static S phase(const EffectInput<S, N>& x, const RippleTerm<S>& term) noexcept {
@@ -74,7 +89,7 @@ struct PositionRipple {
     count = 0;
     for (auto& r : items) {
       RippleTerm<S> t;
-      t.joint = r.integer("joint", 1, N) - 1;
+      t.joint = r.integer("joint", 1, joints) - 1;
       t.cycles_per_rev = r.number("cycles_per_rev", 1e-9, kInf);
       t.motor_side = r.boolean("motor_side", t.motor_side);
       t.sin_amplitude = r.number("sin", -kInf, kInf);

@@ -13,10 +13,10 @@ struct ThermalFriction {
 
   /// Parameter file, "added_effects": "thermal_viscous": [β_1 … β_N], "reference_temperature":
   /// T_ref [°C]; accepted only when absent or zero: a file that holds the effect is refused.
-  template <int N, typename Fields>
-  static void refuse(Fields& added) {
-    JointVector<double, N> thermal = JointVector<double, N>::Zero();
-    added.template joint_vector<N>("thermal_viscous", thermal, false);
+  template <typename Fields>
+  static void refuse(Fields& added, int joints) {
+    Eigen::VectorXd thermal = Eigen::VectorXd::Zero(joints);
+    added.joint_vector("thermal_viscous", thermal, false);
     added.number("reference_temperature", 25.0, -273.15, 1e4);
     if (thermal.any())
       added.fail("thermal_viscous",

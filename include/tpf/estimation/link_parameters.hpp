@@ -20,28 +20,34 @@ namespace tpf {
 /// identified base values scattered onto their columns — has an exact link form.
 template <typename S, int N>
 struct LinkParameters {
-  std::array<S, N> mass{};
-  std::array<Vector3<S>, N> first_moment{};
-  std::array<Matrix3<S>, N> inertia{};
-  JointVector<S, N> armature = JointVector<S, N>::Zero();
-  JointVector<S, N> coulomb = JointVector<S, N>::Zero();
-  JointVector<S, N> viscous = JointVector<S, N>::Zero();
+  LinkArray<S, N> mass{};
+  LinkArray<Vector3<S>, N> first_moment{};
+  LinkArray<Matrix3<S>, N> inertia{};
+  JointVector<S, N> armature = zero_or_empty<JointVector<S, N>>();
+  JointVector<S, N> coulomb = zero_or_empty<JointVector<S, N>>();
+  JointVector<S, N> viscous = zero_or_empty<JointVector<S, N>>();
 };
 
-/// The link form of a standard parameter vector π (13N entries, dynamic_parameters order:
+/// The link form of a standard parameter vector π (13n entries, dynamic_parameters order:
 /// [m, h_x, h_y, h_z, I_xx, I_xy, I_xz, I_yy, I_yz, I_zz] per link, then I_a, f_c, f_v per joint).
+/// Allocation-free at a fixed joint count.
 template <typename S, int N>
-LinkParameters<S, N> link_parameters(const DynamicParameters<S, N>& pi) noexcept {
+LinkParameters<S, N> link_parameters(const DynamicParameters<S, N>& pi) noexcept(N !=
+                                                                                 Eigen::Dynamic) {
+  const int n = static_cast<int>(pi.size()) / 13;
   LinkParameters<S, N> p;
-  for (int k = 0; k < N; ++k) {
+  resize_storage(p.mass, n);
+  resize_storage(p.first_moment, n);
+  resize_storage(p.inertia, n);
+  for (int k = 0; k < n; ++k) {
     const auto v = pi.template segment<10>(10 * k);
     p.mass[k] = v(0);
     p.first_moment[k] = v.template segment<3>(1);
     p.inertia[k] << v(4), v(5), v(6), v(5), v(7), v(8), v(6), v(8), v(9);
   }
-  p.armature = pi.template segment<N>(10 * N);
-  p.coulomb = pi.template segment<N>(11 * N);
-  p.viscous = pi.template segment<N>(12 * N);
+  p.armature = pi.segment(10 * n, n);
+  p.coulomb = pi.segment(11 * n, n);
+  p.viscous = pi.segment(12 * n, n);
   return p;
 }
 
@@ -56,11 +62,13 @@ LinkParameters<S, N> link_parameters(const DynamicParameters<S, N>& pi) noexcept
 /// Equal to the regressor form for every π because both are the same linear map. Uses data's
 /// Newton–Euler scratch; allocation-free.
 template <typename S, int N>
-JointVector<S, N> link_parameter_torque(const Model<S, N>& model, const LinkParameters<S, N>& p,
-                                        Data<S, N>& data, const NoDeduce<JointVector<S, N>>& dq,
-                                        const NoDeduce<JointVector<S, N>>& ddq) noexcept {
+JointVector<S, N> link_parameter_torque(
+    const Model<S, N>& model, const LinkParameters<S, N>& p, Data<S, N>& data,
+    const NoDeduce<JointVector<S, N>>& dq,
+    const NoDeduce<JointVector<S, N>>& ddq) noexcept(N != Eigen::Dynamic) {
+  const int n = model.joint_count();
   Vector3<S> w = Vector3<S>::Zero(), dw = Vector3<S>::Zero(), a = -model.gravity;
-  for (int k = 1; k <= N; ++k) {
+  for (int k = 1; k <= n; ++k) {
     const Matrix3<S>& R = data.liMi[k].R;
     const Vector3<S>& r = data.liMi[k].p;
     const Vector3<S>& z = model.axes[k - 1];
@@ -74,8 +82,9 @@ JointVector<S, N> link_parameter_torque(const Model<S, N>& model, const LinkPara
     data.moment[k] = I * dw + w.cross(I * w) + h.cross(a);
   }
   JointVector<S, N> tau;
+  tau.resize(n);
   detail::newton_euler_backward_pass(model, data, tau);
-  for (int j = 0; j < N; ++j) {
+  for (int j = 0; j < n; ++j) {
     const S sign = dq(j) > S(0) ? S(1) : (dq(j) < S(0) ? S(-1) : S(0));
     tau(j) += p.armature(j) * ddq(j) + p.coulomb(j) * sign + p.viscous(j) * dq(j);
   }
@@ -87,14 +96,16 @@ JointVector<S, N> link_parameter_torque(const Model<S, N>& model, const LinkPara
 /// with zero rates (no ω terms). Allocation-free.
 template <typename S, int N>
 JointVector<S, N> link_parameter_gravity(const Model<S, N>& model, const LinkParameters<S, N>& p,
-                                         Data<S, N>& data) noexcept {
+                                         Data<S, N>& data) noexcept(N != Eigen::Dynamic) {
+  const int n = model.joint_count();
   Vector3<S> a = -model.gravity;
-  for (int k = 1; k <= N; ++k) {
+  for (int k = 1; k <= n; ++k) {
     a = data.liMi[k].R.transpose() * a;
     data.force[k] = p.mass[k - 1] * a;
     data.moment[k] = p.first_moment[k - 1].cross(a);
   }
   JointVector<S, N> g;
+  g.resize(n);
   detail::newton_euler_backward_pass(model, data, g);
   return g;
 }

@@ -8,10 +8,13 @@
 // τ_res, with τ_res = −τ_ext + what the model lacks (external torque acts on the robot).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "tpf/common/types.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
@@ -22,6 +25,7 @@
 #include "tpf/friction/stribeck.hpp"
 #include "tpf/kinematics/forward_kinematics.hpp"
 #include "tpf/model/data.hpp"
+#include "tpf/model/joint_count_cast.hpp"
 #include "tpf/model/model.hpp"
 
 namespace tpf {
@@ -29,16 +33,17 @@ namespace tpf {
 struct RobotDescription;  // tpf/model/robot_description.hpp
 
 /// The identified model: the rigid body in base parameters, the friction and the effects added by
-/// diagnosis, all in SI (N·m).
+/// diagnosis, all in SI (N·m). At Eigen::Dynamic, resize(n) sizes it for n joints.
 template <typename S, int N>
 struct NominalModel {
   Model<S, N> model;  ///< kinematics, URDF inertias, drives (torque_constant) from the robot file
   /// Identified rigid-body part (incl. armature): effort_rigid = Y(q,q̇,q̈).cols(base_columns)·
-  /// base_values [N·m]. Only the first base_count entries count.
+  /// base_values [N·m]. Only the first base_count entries count (13n entries are kept).
   int base_count = 0;
-  std::array<int, regressor_columns<N>> base_columns{};
-  Eigen::Matrix<S, regressor_columns<N>, 1> base_values =
-      Eigen::Matrix<S, regressor_columns<N>, 1>::Zero();
+  std::conditional_t<N == Eigen::Dynamic, std::vector<int>,
+                     std::array<int, std::size_t(N < 0 ? 0 : regressor_columns<N>)>>
+      base_columns{};
+  DynamicParameters<S, N> base_values = zero_or_empty<DynamicParameters<S, N>>();
   /// Stribeck + viscous + load dependence (α_c, α_v on |G_j(q)| of `model`), N·m.
   StribeckParameters<S, N> friction;
   /// The memoryless effects diagnosis added (tpf/effects/added_effects.hpp). An unmodelled
@@ -47,7 +52,33 @@ struct NominalModel {
   /// (OfflineOnlyEffects) are reported by diagnosis, not written, and a file holding them is
   /// refused.
   AddedEffects<S, N> added;
+
+  /// Sizes everything but the model (make_model gives that) for n joints: no base parameters, no
+  /// friction, no added effects.
+  void resize(int n) {
+    base_count = 0;
+    resize_storage(base_columns, static_cast<std::size_t>(13 * n));
+    base_values = DynamicParameters<S, N>::Zero(13 * n);
+    friction.resize(n);
+    added.resize(n);
+  }
 };
+
+/// The same nominal model with joint count `To` (Eigen::Dynamic, or the model's own: tpf::Error
+/// otherwise). Start-up code.
+template <int To, typename S, int From>
+NominalModel<S, To> joint_count_cast(const NominalModel<S, From>& from) {
+  NominalModel<S, To> to;
+  to.model = joint_count_cast<To>(from.model);
+  const int n = from.model.joint_count();
+  to.resize(n);
+  to.base_count = from.base_count;
+  std::copy(from.base_columns.begin(), from.base_columns.end(), to.base_columns.begin());
+  to.base_values = from.base_values;
+  to.friction = joint_count_cast<To, S>(from.friction);
+  to.added.template assign<From>(from.added);
+  return to;
+}
 
 /// Rigid-body effort of the base parameters, N·m: τ = Y(q,q̇,q̈).cols(base_columns)·base_values,
 /// with the regressor computed into `Y` (scratch). Allocation-free.
@@ -57,7 +88,7 @@ JointVector<S, N> rigid_body_torque(const NominalModel<S, N>& nominal, Data<S, N
                                     const NoDeduce<JointVector<S, N>>& dq,
                                     const NoDeduce<JointVector<S, N>>& ddq) {
   compute_regressor(nominal.model, data, q, dq, ddq, Y);
-  JointVector<S, N> tau = JointVector<S, N>::Zero();
+  JointVector<S, N> tau = JointVector<S, N>::Zero(q.size());
   for (int i = 0; i < nominal.base_count; ++i)
     tau += Y.col(nominal.base_columns[i]) * nominal.base_values[i];
   return tau;
@@ -69,7 +100,8 @@ template <typename S, int N>
 JointVector<S, N> added_effort(const NominalModel<S, N>& nominal,
                                const NoDeduce<JointVector<S, N>>& q,
                                const NoDeduce<JointVector<S, N>>& dq,
-                               const NoDeduce<JointVector<S, N>>& ddq) noexcept {
+                               const NoDeduce<JointVector<S, N>>& ddq) noexcept(N !=
+                                                                                Eigen::Dynamic) {
   return nominal.added.torque({q, dq, ddq, nominal.model.gear_ratio});
 }
 
@@ -87,13 +119,15 @@ struct NominalLinks {
   bool added_effects = false;   ///< some added effect is present (without one, they add zeros)
 };
 
-/// NominalLinks of `nominal` (see there). Allocation-free; columns outside 0..13N−1 are ignored.
+/// NominalLinks of `nominal` (see there). Allocation-free at a fixed joint count; columns outside
+/// 0..13n−1 are ignored.
 template <typename S, int N>
-NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept {
-  DynamicParameters<S, N> pi = DynamicParameters<S, N>::Zero();
+NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept(N != Eigen::Dynamic) {
+  const int columns = 13 * nominal.model.joint_count();
+  DynamicParameters<S, N> pi = DynamicParameters<S, N>::Zero(columns);
   for (int i = 0; i < nominal.base_count; ++i) {
     const int c = nominal.base_columns[i];
-    if (c >= 0 && c < regressor_columns<N>) pi[c] += nominal.base_values[i];
+    if (c >= 0 && c < columns) pi[c] += nominal.base_values[i];
   }
   NominalLinks<S, N> links;
   links.rigid = link_parameters<S, N>(pi);
@@ -115,14 +149,15 @@ void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLink
                             Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
                             const NoDeduce<JointVector<S, N>>& dq,
                             const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
-                            JointVector<S, N>& friction) noexcept {
+                            JointVector<S, N>& friction) noexcept(N != Eigen::Dynamic) {
   rigid = link_parameter_torque(nominal.model, links.rigid, data, dq, ddq);
   if (links.added_effects) rigid += added_effort(nominal, q, dq, ddq);
-  JointVector<S, N> abs_gravity = JointVector<S, N>::Zero();
+  const int n = nominal.model.joint_count();
+  JointVector<S, N> abs_gravity = JointVector<S, N>::Zero(n);
   if (links.load_dependent) {
     // Element by element: data.g was just stored that way (a vector load of it would wait).
     const JointVector<S, N>& gravity = gravity_at_pose(nominal.model, data);
-    for (int j = 0; j < N; ++j)
+    for (int j = 0; j < n; ++j)
       abs_gravity[j] = std::abs(gravity[j]);
   }
   friction = links.neighbour_load ? stribeck_friction(nominal.friction, dq, abs_gravity)
@@ -145,7 +180,8 @@ template <typename S, int N>
 void predict_effort(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
                     Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
                     const NoDeduce<JointVector<S, N>>& dq, const NoDeduce<JointVector<S, N>>& ddq,
-                    JointVector<S, N>& rigid, JointVector<S, N>& friction) noexcept {
+                    JointVector<S, N>& rigid,
+                    JointVector<S, N>& friction) noexcept(N != Eigen::Dynamic) {
   forward_kinematics(nominal.model, data, q);
   predict_effort_at_pose(nominal, links, data, q, dq, ddq, rigid, friction);
 }
@@ -180,40 +216,74 @@ void predict_effort_by_regressor(const NominalModel<S, N>& nominal, Data<S, N>& 
 /// (Coulomb), "fv<j>" (viscous).
 std::string regressor_column_name(int joints, int column);
 
+/// The start-up code below works at the run-time joint count (Eigen::Dynamic); each function has
+/// a header-only form for a program of N joints that converts (joint_count_cast).
+using NominalModelX = NominalModel<double, Eigen::Dynamic>;
+
 /// A nominal model whose rigid body is the robot model itself (base parameters β·π of the model's
 /// inertias and armature) and whose friction is `friction`: the "true" model of the digital twin
 /// when given the twin's robot and friction, or the starting point before identification.
 /// Start-up code (allocates).
-template <int N>
-NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
-                                           const StribeckParameters<double, N>& friction);
+NominalModelX nominal_from_model(const Model<double, Eigen::Dynamic>& model,
+                                 const StribeckParameters<double, Eigen::Dynamic>& friction);
 
 /// Loads a parameter file (JSON, "format": "tpf-params", "version": 2, torques in N·m) written by
 /// `tpf identify` / `tpf diagnose`, with the robot file it was identified for. Start-up code:
 /// throws tpf::Error "file: field: reason" on a version-1 file (efforts in the log's unit; `tpf
 /// upgrade` converts it), a missing/unknown field, a wrong size, a joint count that differs
-/// from N, an unknown base parameter name, a non-finite or out-of-range value, or an effect the
-/// run time cannot evaluate (non-zero thermal_viscous or effort_lead_s, named in the message).
-template <int N>
-NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
-                                           const std::filesystem::path& robot_file);
+/// from the robot file's (or from `joints` when that is > 0), an unknown base parameter name, a
+/// non-finite or out-of-range value, or an effect the run time cannot evaluate (non-zero
+/// thermal_viscous or effort_lead_s, named in the message).
+NominalModelX load_nominal_model(const std::filesystem::path& params_file,
+                                 const std::filesystem::path& robot_file, int joints = 0);
 /// The same with the robot file already loaded (load_robot_description).
-template <int N>
-NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
-                                           const RobotDescription& robot);
+NominalModelX load_nominal_model(const std::filesystem::path& params_file,
+                                 const RobotDescription& robot, int joints = 0);
 
 /// Writes a parameter file (atomically: temporary + rename). `fit_quality_json` (a JSON object's
 /// text, may be empty) is stored under "fit" for people and scripts; `source` (e.g. the log path)
 /// under "source". Throws tpf::Error on I/O failure or bad JSON text.
+void save_nominal_model(const std::filesystem::path& params_file, const NominalModelX& nominal,
+                        const std::string& source = "", const std::string& fit_quality_json = "");
+
+/// The rigid-body base parameters (inertial + armature columns 0..11n−1 of the regressor) of a
+/// model's kinematics: find_base_parameters on regressors stacked at 200 seeded random states
+/// within the joint limits (or ±π). Deterministic. Start-up/offline code.
+BaseParameters rigid_body_base_parameters(const Model<double, Eigen::Dynamic>& model);
+
+/// nominal_from_model for a program of N joints.
+template <int N>
+NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
+                                           const StribeckParameters<double, N>& friction) {
+  return joint_count_cast<N>(nominal_from_model(
+      joint_count_cast<Eigen::Dynamic>(model), joint_count_cast<Eigen::Dynamic, double>(friction)));
+}
+
+/// load_nominal_model for a program of N joints: the file must be of an N-joint arm.
+template <int N>
+NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
+                                           const std::filesystem::path& robot_file) {
+  return joint_count_cast<N>(load_nominal_model(params_file, robot_file, N));
+}
+template <int N>
+NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
+                                           const RobotDescription& robot) {
+  return joint_count_cast<N>(load_nominal_model(params_file, robot, N));
+}
+
+/// save_nominal_model of an N-joint program's model.
 template <int N>
 void save_nominal_model(const std::filesystem::path& params_file,
                         const NominalModel<double, N>& nominal, const std::string& source = "",
-                        const std::string& fit_quality_json = "");
+                        const std::string& fit_quality_json = "") {
+  save_nominal_model(params_file, joint_count_cast<Eigen::Dynamic>(nominal), source,
+                     fit_quality_json);
+}
 
-/// The rigid-body base parameters (inertial + armature columns 0..11N−1 of the regressor) of a
-/// model's kinematics: find_base_parameters on regressors stacked at 200 seeded random states
-/// within the joint limits (or ±π). Deterministic. Start-up/offline code.
+/// rigid_body_base_parameters of an N-joint program's model.
 template <int N>
-BaseParameters rigid_body_base_parameters(const Model<double, N>& model);
+BaseParameters rigid_body_base_parameters(const Model<double, N>& model) {
+  return rigid_body_base_parameters(joint_count_cast<Eigen::Dynamic>(model));
+}
 
 }  // namespace tpf

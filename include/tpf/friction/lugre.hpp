@@ -41,6 +41,16 @@ struct LuGreParameters {
   }
 };
 
+/// The same parameters with joint count `To` and scalar `ToS` (see the Stribeck cast).
+template <int To, typename ToS, typename S, int From>
+LuGreParameters<ToS, To> joint_count_cast(const LuGreParameters<S, From>& from) {
+  LuGreParameters<ToS, To> to;
+  to.stribeck = joint_count_cast<To, ToS>(from.stribeck);
+  to.bristle_stiffness = from.bristle_stiffness.template cast<ToS>();
+  to.bristle_damping = from.bristle_damping.template cast<ToS>();
+  return to;
+}
+
 /// The memory of the model: bristle deflection z of each joint, rad (at Eigen::Dynamic sized by
 /// the caller: LuGreState{JointVector::Zero(n)}).
 template <typename S, int N>

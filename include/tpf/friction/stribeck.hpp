@@ -58,6 +58,26 @@ struct StribeckParameters {
   }
 };
 
+/// The same parameters with joint count `To` (Eigen::Dynamic, or the count they have: tpf::Error
+/// otherwise) and scalar `ToS`. Start-up code.
+template <int To, typename ToS, typename S, int From>
+StribeckParameters<ToS, To> joint_count_cast(const StribeckParameters<S, From>& from) {
+  require_joint_count<To>(static_cast<int>(from.coulomb.size()), "the friction parameters");
+  StribeckParameters<ToS, To> to;
+  to.coulomb = from.coulomb.template cast<ToS>();
+  to.static_friction = from.static_friction.template cast<ToS>();
+  to.stribeck_velocity = from.stribeck_velocity.template cast<ToS>();
+  to.stribeck_exponent = from.stribeck_exponent.template cast<ToS>();
+  to.viscous = from.viscous.template cast<ToS>();
+  to.load_coulomb = from.load_coulomb.template cast<ToS>();
+  to.load_viscous = from.load_viscous.template cast<ToS>();
+  to.coulomb_asymmetry = from.coulomb_asymmetry.template cast<ToS>();
+  to.viscous_asymmetry = from.viscous_asymmetry.template cast<ToS>();
+  to.neighbour_load_coulomb = from.neighbour_load_coulomb.template cast<ToS>();
+  to.neighbour_load_viscous = from.neighbour_load_viscous.template cast<ToS>();
+  return to;
+}
+
 /// True when some neighbour-load coefficient is non-zero (G(q) of every joint is then needed).
 template <typename S, int N>
 bool has_neighbour_load(const StribeckParameters<S, N>& p) {

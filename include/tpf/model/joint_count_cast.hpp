@@ -15,11 +15,7 @@ namespace tpf {
 template <int To, typename S, int From>
 Model<S, To> joint_count_cast(const Model<S, From>& from) {
   const int n = from.joint_count();
-  if constexpr (To != Eigen::Dynamic) {
-    if (n != To)
-      throw Error("the model '" + from.name + "' has " + std::to_string(n) +
-                  " joints, the program asks for " + std::to_string(To));
-  }
+  require_joint_count<To>(n, ("the model '" + from.name + "'").c_str());
   Model<S, To> to;
   to.resize(n);
   to.name = from.name;

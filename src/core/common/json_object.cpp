@@ -116,6 +116,15 @@ int Object::integer(const std::string& key, int lo, int hi) {
   return static_cast<int>(x);
 }
 
+int Object::joint_count_of(const std::string& key) {
+  if (!has(key)) fail(key, "missing");
+  const nlohmann::json& v = get(key);
+  if (!v.is_array() || v.empty() || v.size() > static_cast<std::size_t>(kMaxArrayJoints))
+    fail(key,
+         "must be an array of 1 to " + std::to_string(kMaxArrayJoints) + " numbers, one per joint");
+  return static_cast<int>(v.size());
+}
+
 void Object::require_joints(int expected) {
   const int joints = integer("joints", 1, 64);
   if (joints != expected)

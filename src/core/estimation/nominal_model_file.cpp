@@ -8,7 +8,6 @@
 
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/joint_counts.hpp"
 #include "tpf/common/json_object.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -28,18 +27,18 @@ Json array_json(const auto& v) {
   return a;
 }
 
-template <int N>
-Json matrix_to_json(const JointMatrix<double, N>& m) {
+constexpr int X = Eigen::Dynamic;
+
+Json matrix_to_json(const Eigen::MatrixXd& m) {
   Json a = Json::array();
-  for (int r = 0; r < N; ++r)
+  for (int r = 0; r < m.rows(); ++r)
     a.push_back(array_json(m.row(r).transpose().eval()));
   return a;
 }
 
-template <int N>
-int column_by_name(const std::string& name) {
-  for (int c = 0; c < 11 * N; ++c)
-    if (regressor_column_name(N, c) == name) return c;
+int column_by_name(int joints, const std::string& name) {
+  for (int c = 0; c < 11 * joints; ++c)
+    if (regressor_column_name(joints, c) == name) return c;
   return -1;
 }
 
@@ -60,8 +59,7 @@ void require_robot(json::Object& top, const RobotDescription& description) {
 /// Fails when the file's rigid_body gives fewer values than the robot file has base parameters:
 /// the missing ones would silently be 0 (a link without weight or inertia). Which columns stand
 /// for the base is the identification's choice, so only the count is checked.
-template <int N>
-void require_every_base_parameter(const json::Object& top, const NominalModel<double, N>& nominal) {
+void require_every_base_parameter(const json::Object& top, const NominalModelX& nominal) {
   const int expected = rigid_body_base_parameters(nominal.model).size();
   if (nominal.base_count < expected)
     top.fail("rigid_body", std::to_string(nominal.base_count) +
@@ -80,41 +78,41 @@ std::string regressor_column_name(int joints, int column) {
   return "fv" + std::to_string(j);
 }
 
-template <int N>
-BaseParameters rigid_body_base_parameters(const Model<double, N>& model) {
+BaseParameters rigid_body_base_parameters(const Model<double, X>& model) {
   constexpr int kStates = 200;
-  constexpr int kRigid = 11 * N;
+  const int n = model.joint_count();
+  const int rigid = 11 * n;
   std::mt19937_64 rng(20240601);
   auto uniform = [&rng](double lo, double hi) {
     return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
   };
-  Eigen::MatrixXd W(kStates * N, kRigid);
-  Data<double, N> data;
-  Regressor<double, N> Y;
+  Eigen::MatrixXd W(kStates * n, rigid);
+  Data<double, X> data(model);
+  Regressor<double, X> Y;
   for (int s = 0; s < kStates; ++s) {
-    JointVector<double, N> q, dq, ddq;
-    for (int j = 0; j < N; ++j) {
+    Eigen::VectorXd q(n), dq(n), ddq(n);
+    for (int j = 0; j < n; ++j) {
       q[j] = model.has_position_limits(j) ? uniform(model.lower[j], model.upper[j])
                                           : uniform(-M_PI, M_PI);
       dq[j] = uniform(-2.0, 2.0);
       ddq[j] = uniform(-5.0, 5.0);
     }
     compute_regressor(model, data, q, dq, ddq, Y);
-    W.middleRows(s * N, N) = Y.leftCols(kRigid);
+    W.middleRows(s * n, n) = Y.leftCols(rigid);
   }
   return find_base_parameters(W);
 }
 
-template <int N>
-NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
-                                           const StribeckParameters<double, N>& friction) {
-  NominalModel<double, N> nominal;
+NominalModelX nominal_from_model(const Model<double, X>& model,
+                                 const StribeckParameters<double, X>& friction) {
+  const int n = model.joint_count();
+  NominalModelX nominal;
+  nominal.resize(n);
   nominal.model = model;
   nominal.friction = friction;
   const BaseParameters base = rigid_body_base_parameters(model);
   const Eigen::VectorXd pi =
-      dynamic_parameters(model, JointVector<double, N>::Zero(), JointVector<double, N>::Zero())
-          .head(11 * N);
+      dynamic_parameters(model, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)).head(11 * n);
   const Eigen::VectorXd values = base.project(pi);
   nominal.base_count = base.size();
   for (int i = 0; i < base.size(); ++i) {
@@ -124,15 +122,13 @@ NominalModel<double, N> nominal_from_model(const Model<double, N>& model,
   return nominal;
 }
 
-template <int N>
-NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
-                                           const std::filesystem::path& robot_file) {
-  return load_nominal_model<N>(params_file, load_robot_description(robot_file));
+NominalModelX load_nominal_model(const std::filesystem::path& params_file,
+                                 const std::filesystem::path& robot_file, int joints) {
+  return load_nominal_model(params_file, load_robot_description(robot_file), joints);
 }
 
-template <int N>
-NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_file,
-                                           const RobotDescription& description) {
+NominalModelX load_nominal_model(const std::filesystem::path& params_file,
+                                 const RobotDescription& description, int joints) {
   using Bound = json::Object::Bound;
   json::Object top = json::Object::read_document(params_file, kParamsFormat, kParamsVersion);
   if (top.number("version", 0, 1e9) < kParamsVersion)
@@ -141,21 +137,26 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
              "currents); this tpf reads version 2, every torque in N*m. Convert the file with "
              "`tpf upgrade --params FILE` (or identify again)");
   require_robot(top, description);
-  top.require_joints(N);
+  NominalModelX nominal;
+  nominal.model = make_model<double, X>(description);
+  const int n = nominal.model.joint_count();
+  if (joints > 0 && joints != n)
+    throw Error::at(description.source, 0, "joints",
+                    "the robot file has " + std::to_string(n) + " joints, the program asks for " +
+                        std::to_string(joints));
+  top.require_joints(n);
   top.text("source", "");
   top.choice("torque_unit", "N*m", {"N*m"});
-
-  NominalModel<double, N> nominal;
-  nominal.model = make_model<double, N>(description);
+  nominal.resize(n);
 
   std::vector<json::Object> rigid = top.children("rigid_body");
   if (!top.has("rigid_body")) top.fail("rigid_body", "missing");
-  if (rigid.size() > static_cast<std::size_t>(11 * N))
-    top.fail("rigid_body", "must be an array of at most " + std::to_string(11 * N) + " parameters");
+  if (rigid.size() > static_cast<std::size_t>(11 * n))
+    top.fail("rigid_body", "must be an array of at most " + std::to_string(11 * n) + " parameters");
   for (std::size_t i = 0; i < rigid.size(); ++i) {
     json::Object& r = rigid[i];
     const std::string name = r.text("name");
-    const int column = column_by_name<N>(name);
+    const int column = column_by_name(n, name);
     if (column < 0) r.fail("name", "unknown rigid-body parameter '" + name + "'");
     for (std::size_t k = 0; k < i; ++k)
       if (nominal.base_columns[k] == column) r.fail("name", "'" + name + "' appears twice");
@@ -169,19 +170,19 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
 
   if (!top.has("friction")) top.fail("friction", "missing");
   json::Object f = top.child("friction");
-  StribeckParameters<double, N>& p = nominal.friction;
-  f.joint_vector<N>("coulomb", p.coulomb, true, Bound::kNonNegative);
-  f.joint_vector<N>("static", p.static_friction, true, Bound::kNonNegative);
-  f.joint_vector<N>("stribeck_velocity", p.stribeck_velocity, true, Bound::kPositive);
-  f.joint_vector<N>("stribeck_exponent", p.stribeck_exponent, true, Bound::kPositive);
-  f.joint_vector<N>("viscous", p.viscous, true);
-  f.joint_vector<N>("load_coulomb", p.load_coulomb, false);
-  f.joint_vector<N>("load_viscous", p.load_viscous, false);
-  f.joint_vector<N>("coulomb_asymmetry", p.coulomb_asymmetry, false);
-  f.joint_vector<N>("viscous_asymmetry", p.viscous_asymmetry, false);
-  f.joint_matrix<N>("neighbour_load_coulomb", p.neighbour_load_coulomb);
-  f.joint_matrix<N>("neighbour_load_viscous", p.neighbour_load_viscous);
-  for (int j = 0; j < N; ++j) {
+  StribeckParameters<double, X>& p = nominal.friction;
+  f.joint_vector("coulomb", p.coulomb, true, Bound::kNonNegative);
+  f.joint_vector("static", p.static_friction, true, Bound::kNonNegative);
+  f.joint_vector("stribeck_velocity", p.stribeck_velocity, true, Bound::kPositive);
+  f.joint_vector("stribeck_exponent", p.stribeck_exponent, true, Bound::kPositive);
+  f.joint_vector("viscous", p.viscous, true);
+  f.joint_vector("load_coulomb", p.load_coulomb, false);
+  f.joint_vector("load_viscous", p.load_viscous, false);
+  f.joint_vector("coulomb_asymmetry", p.coulomb_asymmetry, false);
+  f.joint_vector("viscous_asymmetry", p.viscous_asymmetry, false);
+  f.joint_matrix("neighbour_load_coulomb", p.neighbour_load_coulomb);
+  f.joint_matrix("neighbour_load_viscous", p.neighbour_load_viscous);
+  for (int j = 0; j < n; ++j) {
     if (p.neighbour_load_coulomb(j, j) != 0.0 || p.neighbour_load_viscous(j, j) != 0.0)
       f.fail("neighbour_load_coulomb",
              "the diagonal must be zero (a joint's own load is load_coulomb / load_viscous)");
@@ -193,7 +194,7 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
 
   json::Object added = top.child("added_effects");
   nominal.added.for_each([&added](auto& effect) { effect.read(added); });
-  for_each_offline_only_effect([&added]<typename Effect>() { Effect::template refuse<N>(added); });
+  for_each_offline_only_effect([&added, n]<typename Effect>() { Effect::refuse(added, n); });
   added.finish();
 
   if (top.has("fit")) top.child("fit");  // free-form fit quality, for people
@@ -201,24 +202,23 @@ NominalModel<double, N> load_nominal_model(const std::filesystem::path& params_f
   return nominal;
 }
 
-template <int N>
-void save_nominal_model(const std::filesystem::path& params_file,
-                        const NominalModel<double, N>& nominal, const std::string& source,
-                        const std::string& fit_quality_json) {
+void save_nominal_model(const std::filesystem::path& params_file, const NominalModelX& nominal,
+                        const std::string& source, const std::string& fit_quality_json) {
+  const int n = nominal.model.joint_count();
   const std::string file = params_file.string();
   Json j;
   j["format"] = kParamsFormat;
   j["version"] = kParamsVersion;
   j["robot"] = nominal.model.name;
-  j["joints"] = N;
+  j["joints"] = n;
   if (!source.empty()) j["source"] = source;
   j["torque_unit"] = "N*m";
 
   // Names and combinations of the base parameters, from the model's own base-parameter map.
   const BaseParameters base = rigid_body_base_parameters(nominal.model);
   std::vector<std::string> names;
-  for (int c = 0; c < 11 * N; ++c)
-    names.push_back(regressor_column_name(N, c));
+  for (int c = 0; c < 11 * n; ++c)
+    names.push_back(regressor_column_name(n, c));
   Json rigid = Json::array();
   for (int i = 0; i < nominal.base_count; ++i) {
     Json p;
@@ -231,7 +231,7 @@ void save_nominal_model(const std::filesystem::path& params_file,
   }
   j["rigid_body"] = rigid;
 
-  const StribeckParameters<double, N>& p = nominal.friction;
+  const StribeckParameters<double, X>& p = nominal.friction;
   j["friction"] = {{"coulomb", array_json(p.coulomb)},
                    {"static", array_json(p.static_friction)},
                    {"stribeck_velocity", array_json(p.stribeck_velocity)},
@@ -241,8 +241,8 @@ void save_nominal_model(const std::filesystem::path& params_file,
                    {"load_viscous", array_json(p.load_viscous)},
                    {"coulomb_asymmetry", array_json(p.coulomb_asymmetry)},
                    {"viscous_asymmetry", array_json(p.viscous_asymmetry)},
-                   {"neighbour_load_coulomb", matrix_to_json<N>(p.neighbour_load_coulomb)},
-                   {"neighbour_load_viscous", matrix_to_json<N>(p.neighbour_load_viscous)}};
+                   {"neighbour_load_coulomb", matrix_to_json(p.neighbour_load_coulomb)},
+                   {"neighbour_load_viscous", matrix_to_json(p.neighbour_load_viscous)}};
 
   Json added = Json::object();
   nominal.added.for_each([&added](const auto& effect) { effect.write(added); });
@@ -258,19 +258,5 @@ void save_nominal_model(const std::filesystem::path& params_file,
   json::require_finite(j, params_file);
   write_file_atomically(params_file, j.dump(2) + "\n");
 }
-
-#define TPF_INSTANTIATE_NOMINAL_MODEL(N)                                                        \
-  template BaseParameters rigid_body_base_parameters<N>(const Model<double, N>&);               \
-  template NominalModel<double, N> nominal_from_model<N>(const Model<double, N>&,               \
-                                                         const StribeckParameters<double, N>&); \
-  template NominalModel<double, N> load_nominal_model<N>(const std::filesystem::path&,          \
-                                                         const std::filesystem::path&);         \
-  template NominalModel<double, N> load_nominal_model<N>(const std::filesystem::path&,          \
-                                                         const RobotDescription&);              \
-  template void save_nominal_model<N>(const std::filesystem::path&,                             \
-                                      const NominalModel<double, N>&, const std::string&,       \
-                                      const std::string&);
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_NOMINAL_MODEL)
-#undef TPF_INSTANTIATE_NOMINAL_MODEL
 
 }  // namespace tpf

@@ -1,14 +1,14 @@
 // Start-up loading of friction parameter files (see include/tpf/friction/friction_file.hpp).
 #include "tpf/friction/friction_file.hpp"
 
-#include <cmath>
-
-#include "tpf/common/error.hpp"
-#include "tpf/common/joint_counts.hpp"
 #include "tpf/common/json_object.hpp"
 
 namespace tpf {
 namespace {
+
+using Stribeck = StribeckParameters<double, Eigen::Dynamic>;
+using LuGre = LuGreParameters<double, Eigen::Dynamic>;
+using Bound = json::Object::Bound;
 
 /// Opens a friction file; effort_unit and description are read here, the arrays by the callers.
 json::Object open_friction_file(const std::string& path) {
@@ -18,54 +18,50 @@ json::Object open_friction_file(const std::string& path) {
   return o;
 }
 
-using Bound = json::Object::Bound;
-
-// Fills `out` from the array `key`; a missing optional key leaves the default in place.
-template <typename S, int N>
-void read_vector(json::Object& o, const std::string& key, Bound bound, bool required,
-                 JointVector<S, N>& out) {
-  JointVector<double, N> v = out.template cast<double>();
-  o.joint_vector<N>(key, v, required, bound);
-  out = v.template cast<S>();
+/// The joint count: `joints` when given, else the length of the first array, "coulomb".
+int joint_count(json::Object& o, int joints) {
+  return joints > 0 ? joints : o.joint_count_of("coulomb");
 }
 
-template <typename S, int N>
-StribeckParameters<S, N> read_stribeck(json::Object& o) {
-  StribeckParameters<S, N> p;
-  read_vector<S, N>(o, "coulomb", Bound::kNonNegative, true, p.coulomb);
-  read_vector<S, N>(o, "static", Bound::kNonNegative, true, p.static_friction);
-  read_vector<S, N>(o, "stribeck_velocity", Bound::kPositive, true, p.stribeck_velocity);
-  read_vector<S, N>(o, "stribeck_exponent", Bound::kPositive, true, p.stribeck_exponent);
-  read_vector<S, N>(o, "viscous", Bound::kNonNegative, true, p.viscous);
-  read_vector<S, N>(o, "load_coulomb", Bound::kNonNegative, false, p.load_coulomb);
-  read_vector<S, N>(o, "load_viscous", Bound::kNonNegative, false, p.load_viscous);
+Stribeck read_stribeck(json::Object& o, int n) {
+  Stribeck p;
+  p.resize(n);
+  o.joint_vector("coulomb", p.coulomb, true, Bound::kNonNegative);
+  o.joint_vector("static", p.static_friction, true, Bound::kNonNegative);
+  o.joint_vector("stribeck_velocity", p.stribeck_velocity, true, Bound::kPositive);
+  o.joint_vector("stribeck_exponent", p.stribeck_exponent, true, Bound::kPositive);
+  o.joint_vector("viscous", p.viscous, true, Bound::kNonNegative);
+  o.joint_vector("load_coulomb", p.load_coulomb, false, Bound::kNonNegative);
+  o.joint_vector("load_viscous", p.load_viscous, false, Bound::kNonNegative);
   return p;
 }
 
-template <typename S, int N>
-void read_bristles(json::Object& o, bool required, LuGreParameters<S, N>& p) {
-  read_vector<S, N>(o, "bristle_stiffness", Bound::kPositive, required, p.bristle_stiffness);
-  read_vector<S, N>(o, "bristle_damping", Bound::kNonNegative, required, p.bristle_damping);
+/// Reads the bristle parameters into `p` (sized for the joints already).
+void read_bristles(json::Object& o, bool required, LuGre& p) {
+  o.joint_vector("bristle_stiffness", p.bristle_stiffness, required, Bound::kPositive);
+  o.joint_vector("bristle_damping", p.bristle_damping, required, Bound::kNonNegative);
 }
 
 }  // namespace
 
-template <typename S, int N>
-StribeckParameters<S, N> load_stribeck_parameters(const std::string& path) {
+Stribeck load_stribeck_parameters(const std::string& path, int joints) {
   json::Object o = open_friction_file(path);
-  LuGreParameters<S, N> lugre;  // validated, not returned
-  read_bristles<S, N>(o, false, lugre);
-  const StribeckParameters<S, N> p = read_stribeck<S, N>(o);
+  const int n = joint_count(o, joints);
+  LuGre lugre;  // validated, not returned
+  lugre.resize(n);
+  read_bristles(o, false, lugre);
+  const Stribeck p = read_stribeck(o, n);
   o.finish();
   return p;
 }
 
-template <typename S, int N>
-LuGreParameters<S, N> load_lugre_parameters(const std::string& path) {
+LuGre load_lugre_parameters(const std::string& path, int joints) {
   json::Object o = open_friction_file(path);
-  LuGreParameters<S, N> p;
-  p.stribeck = read_stribeck<S, N>(o);
-  read_bristles<S, N>(o, true, p);
+  const int n = joint_count(o, joints);
+  LuGre p;
+  p.resize(n);
+  p.stribeck = read_stribeck(o, n);
+  read_bristles(o, true, p);
   o.finish();
   return p;
 }
@@ -73,11 +69,5 @@ LuGreParameters<S, N> load_lugre_parameters(const std::string& path) {
 std::string friction_effort_unit(const std::string& path) {
   return open_friction_file(path).choice("effort_unit", "N*m", {"N*m", "mA"});
 }
-
-#define TPF_INSTANTIATE_FRICTION_FILE(N)                                                          \
-  template StribeckParameters<double, N> load_stribeck_parameters<double, N>(const std::string&); \
-  template LuGreParameters<double, N> load_lugre_parameters<double, N>(const std::string&);
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_FRICTION_FILE)
-#undef TPF_INSTANTIATE_FRICTION_FILE
 
 }  // namespace tpf
