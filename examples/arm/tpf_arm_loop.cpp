@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
     arm::enter_realtime(priority, rt_message);
     std::printf("%s\n", rt_message.c_str());
     // Torque on last: from here the bus watchdog (100 ms) expects the loop's reads. Goal =
-    // present position first, so torque-on never jumps to a goal left from an earlier session;
+    // present position first, so torque-on never jumps to a goal left from an earlier run;
     // the excitation ramps in from that pose.
     if (excite > 0.0 || hold) dxl::ph54::hold_present_position(bus, id_bytes);
     bus.set_timing(timing);  // in the loop: wire time + 1 ms USB turnaround + margin

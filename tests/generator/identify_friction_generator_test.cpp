@@ -1,7 +1,7 @@
 // Issue 16, requirement 4: identify's friction curve is at least as good in held-out RMS as a
 // linear Coulomb + viscous fit (plain least squares, unconstrained) of the same friction target
 // on the same samples, on every test log: the generator's logs (friction with memory, noise,
-// quantisation, random stops; each trap of the issue planted) and the measured Kinova Gen3 logs.
+// quantisation, random stops; each trap planted) and the measured Kinova Gen3 logs.
 // Where that fit needs a negative coefficient (Kinova joint 3: τ_c 1.78, b −1.15 N·m·s/rad), the
 // curve is held to the best dissipative linear fit and identify must say why it loses to the plain
 // one.

@@ -36,7 +36,7 @@ void write_u8(Bus& bus, std::uint8_t id, std::uint16_t address, std::uint8_t val
 
 /// Current mode: Goal Current = 0; velocity mode: Goal Velocity = 0 (torque still off). The goal
 /// registers hold their power-on value (the emulator's Goal Current = Current Limit) or the last
-/// session's goal while the motor stays powered, and Torque Enable = 1 drives towards it at once.
+/// run's goal while the motor stays powered, and Torque Enable = 1 drives towards it at once.
 void write_neutral_goal(Bus& bus, std::uint8_t id, OperatingMode mode) {
   const std::uint8_t zero[4] = {};
   if (mode == OperatingMode::current)

@@ -92,9 +92,9 @@ std::string measured_target_sentence(const MeasuredSplit& split, double target) 
     else
       met.push_back(std::to_string(j + 1) + " (" + joined(names, ", ") + ")");
   }
-  return "The issue's target (the current-based joint torque ≥ " +
+  return "The goal against the arm maker's estimate (the current-based joint torque ≥ " +
          format_sentence("%.0f %%", 100 * target) +
-         " closer to the torque sensor than the maker's own current-based torque, on every joint "
+         " closer to the torque sensor than the maker's own K_t·i, on every joint "
          "whose sensor moves) is met on joints " +
          (met.empty() ? std::string("none") : joined(met, "; ")) + " and missed on joints " +
          (missed.empty() ? std::string("none") : joined(missed, ", ")) + ".";
