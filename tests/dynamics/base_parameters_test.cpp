@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "support/arm_fixture.hpp"
@@ -41,6 +42,35 @@ TEST(BaseParameters, RankIsTheSameForAnotherSeed) {
   RandomStates a(41), b(42);
   EXPECT_EQ(find_base_parameters(stacked_regressor(a, 150)).size(),
             find_base_parameters(stacked_regressor(b, 150)).size());
+}
+
+TEST(BaseParameters, AStructurallyZeroColumnIsNoBaseParameter) {
+  // A column that is zero but for rounding (~1e-14, as a term that cancels on some arms): scaled
+  // to unit norm it looks independent, and its base parameter fits the noise divided by 1e-14.
+  RandomStates rs(51);
+  Eigen::MatrixXd W = stacked_regressor(rs, 200);
+  const BaseParameters clean = find_base_parameters(W);
+  int zero = -1;  // a column of W that is no base parameter (dependent or zero)
+  for (int c = 0; c < W.cols() && zero < 0; ++c)
+    if (!std::binary_search(clean.independent.begin(), clean.independent.end(), c)) zero = c;
+  ASSERT_GE(zero, 0);
+  std::mt19937_64 rng(52);
+  std::normal_distribution<double> unit;
+  for (Eigen::Index r = 0; r < W.rows(); ++r)
+    W(r, zero) = 1e-14 * unit(rng);
+  const BaseParameters base = find_base_parameters(W);
+  EXPECT_EQ(base.independent, clean.independent);
+  EXPECT_TRUE(base.beta.col(zero).isZero(0.0));
+  // Least squares of torques with a little noise on the base columns: every parameter stays of
+  // the size of the arm's own (a base parameter of the planted column fits the noise / 1e-14).
+  const Eigen::VectorXd pi =
+      dynamic_parameters(arm(), Vec::Constant(0.3), Vec::Constant(1.5)).head(W.cols());
+  Eigen::VectorXd tau = W * pi;
+  for (Eigen::Index r = 0; r < tau.size(); ++r)
+    tau[r] += 1e-6 * unit(rng);
+  const Eigen::VectorXd fitted = base.reduce(W).colPivHouseholderQr().solve(tau);
+  EXPECT_LT(fitted.cwiseAbs().maxCoeff(), 1e3 * std::max(1.0, pi.cwiseAbs().maxCoeff()));
+  EXPECT_LT((fitted - base.project(pi)).cwiseAbs().maxCoeff(), 1e-3);
 }
 
 TEST(BaseParameters, OfAnArmWithContinuousJoints) {

@@ -26,7 +26,9 @@ struct BaseParameters {
 };
 
 /// Finds the base parameters from a stacked regressor W (rows = samples × joints, columns =
-/// parameters), with rank tolerance `tol` relative to the largest |R_ii|.
+/// parameters), with rank tolerance `tol` relative to the largest |R_ii| of the unit-norm
+/// columns. A column whose norm is at most `tol` times the largest column's is structurally zero
+/// (rounding only): it is never a base parameter, and β gives it no weight.
 BaseParameters find_base_parameters(const Eigen::MatrixXd& W, double tol = 1e-8);
 
 }  // namespace tpf

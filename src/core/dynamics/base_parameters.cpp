@@ -70,10 +70,14 @@ std::vector<int> independent_columns(const Eigen::MatrixXd& Ws, double tol) {
 }  // namespace
 
 BaseParameters find_base_parameters(const Eigen::MatrixXd& W, double tol) {
-  // Scale columns so that the rank decision does not depend on parameter units.
+  // Scale columns so that the rank decision does not depend on parameter units. A column whose
+  // norm is at most `tol` times the largest is structurally zero (rounding of a term that
+  // cancels, ~1e-14): scaled to unit norm it would look independent and become a base parameter
+  // of ~1e14, so it is zeroed (unidentifiable) instead.
   Eigen::VectorXd scale = W.colwise().norm().transpose();
+  const double largest = scale.size() > 0 ? scale.maxCoeff() : 0.0;
   for (Eigen::Index c = 0; c < scale.size(); ++c)
-    scale(c) = scale(c) > 0 ? 1.0 / scale(c) : 0.0;
+    scale(c) = scale(c) > tol * largest ? 1.0 / scale(c) : 0.0;
   const Eigen::MatrixXd Ws = W * scale.asDiagonal();
 
   const std::vector<int> independent = independent_columns(Ws, tol);
