@@ -165,6 +165,16 @@ void note_non_dissipative_linear(const Eigen::MatrixXd& training,
   notes.push_back(joint + text);
 }
 
+// The RMS of the linear candidate's residual on the samples `x` (columns q̇, |G|, target): the
+// scale of the Stribeck fit's Cauchy loss, the typical sliding misfit, so that the onsets and
+// reversals (residuals of several times it) weigh less than the sliding samples.
+double linear_residual_rms(const Eigen::MatrixXd& x, const JointStribeck& linear) {
+  const Eigen::ArrayXd v = x.col(0).array(), g = x.col(1).array();
+  const Eigen::ArrayXd fitted = (linear.coulomb + linear.load_coulomb * g) * v.sign() +
+                                (linear.viscous + linear.load_viscous * g) * v;
+  return std::sqrt((x.col(2).array() - fitted).square().mean());
+}
+
 // Joint j's curve in fit_stribeck's terms.
 template <int N>
 JointStribeck joint_stribeck(const StribeckParameters<double, N>& p, int j) {
@@ -260,10 +270,12 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
       return;
     }
     const Eigen::MatrixXd strided = gather(stride);
+    const double scale = linear_residual_rms(all, start);
     const StribeckFit fit =
         judged ? refine_stribeck(strided.col(0), strided.col(1), strided.col(2),
-                                 joint_stribeck(judged->parameters, j), fit_load_here)
-               : fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load_here);
+                                 joint_stribeck(judged->parameters, j), fit_load_here, scale)
+               : fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load_here,
+                              scale);
     StribeckParameters<double, N> curve = clamped;
     curve.coulomb[j] = fit.curve.coulomb;
     curve.static_friction[j] = fit.curve.static_friction;

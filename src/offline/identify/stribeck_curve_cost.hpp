@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <utility>
 
 namespace tpf::offline {
 
@@ -16,13 +17,16 @@ namespace tpf::offline {
 ///   r = s·L + (b + α_v|G|)·q̇ − f,
 ///   ∂r/∂τ_c = s(1 − E), ∂r/∂τ_s = s·E, ∂r/∂q̇_s = s(τ_s − τ_c)·E·δ·u^δ/q̇_s,
 ///   ∂r/∂δ = −s(τ_s − τ_c)·E·u^δ·ln u, ∂r/∂b = q̇, ∂r/∂α_c = s|G|, ∂r/∂α_v = |G|·q̇.
+/// With a Cauchy scale c > 0 each residual is r̃ = sgn(r)·√ρ(r²), ρ(s) = c²·ln(1 + s/c²), so the
+/// cost ½Σr̃² is the Cauchy loss of every sample (a block-wide Ceres loss would robustify the
+/// sum), and ∂r̃/∂x = ρ'(r²)·|r|/√ρ(r²)·∂r/∂x with ρ'(s) = 1/(1 + s/c²) (1 at r = 0).
 class StribeckCurveCost final : public ceres::CostFunction {
  public:
   static constexpr int kParameters = 7;
 
   StribeckCurveCost(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                    const Eigen::VectorXd& target)
-      : dq_(dq), abs_gravity_(abs_gravity), target_(target) {
+                    const Eigen::VectorXd& target, double cauchy_scale = 0.0)
+      : dq_(dq), abs_gravity_(abs_gravity), target_(target), cauchy_scale_(cauchy_scale) {
     set_num_residuals(static_cast<int>(dq.size()));
     mutable_parameter_block_sizes()->push_back(kParameters);
   }
@@ -37,24 +41,35 @@ class StribeckCurveCost final : public ceres::CostFunction {
       const double u = std::abs(v) / x[2];
       const double u_delta = std::pow(u, x[3]);
       const double e = std::exp(-u_delta);
-      residuals[k] = sign * (x[0] + x[5] * g + drop * e) + (x[4] + x[6] * g) * v - target_[k];
+      const double r = sign * (x[0] + x[5] * g + drop * e) + (x[4] + x[6] * g) * v - target_[k];
+      const auto [robust, slope] = robustified(r);
+      residuals[k] = robust;
       if (jacobians == nullptr || jacobians[0] == nullptr) continue;
       double* row = jacobians[0] + k * kParameters;
-      row[0] = sign * (1.0 - e);
-      row[1] = sign * e;
-      row[2] = sign * drop * e * x[3] * u_delta / x[2];
-      row[3] = u > 0 ? -sign * drop * e * u_delta * std::log(u) : 0.0;
-      row[4] = v;
-      row[5] = sign * g;
-      row[6] = g * v;
+      row[0] = slope * sign * (1.0 - e);
+      row[1] = slope * sign * e;
+      row[2] = slope * sign * drop * e * x[3] * u_delta / x[2];
+      row[3] = u > 0 ? -slope * sign * drop * e * u_delta * std::log(u) : 0.0;
+      row[4] = slope * v;
+      row[5] = slope * sign * g;
+      row[6] = slope * g * v;
     }
     return true;
   }
 
  private:
+  // r̃ and dr̃/dr (r itself and 1 without a Cauchy scale).
+  std::pair<double, double> robustified(double r) const {
+    if (!(cauchy_scale_ > 0) || r == 0.0) return {r, 1.0};
+    const double c2 = cauchy_scale_ * cauchy_scale_, ratio = r * r / c2;
+    const double root = std::sqrt(c2 * std::log1p(ratio));
+    return {std::copysign(root, r), std::abs(r) / ((1.0 + ratio) * root)};
+  }
+
   const Eigen::VectorXd& dq_;
   const Eigen::VectorXd& abs_gravity_;
   const Eigen::VectorXd& target_;
+  double cauchy_scale_;
 };
 
 }  // namespace tpf::offline

@@ -41,10 +41,11 @@ StribeckFit with_bounds_named(const double* x, bool fit_load, const double* lowe
 
 // One local fit from x (in place); returns the final cost.
 double solve_from(double* x, const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                  const Eigen::VectorXd& target, bool fit_load, const double* lower,
-                  const double* upper) {
+                  const Eigen::VectorXd& target, bool fit_load, double cauchy_scale,
+                  const double* lower, const double* upper) {
   ceres::Problem problem;
-  problem.AddResidualBlock(new StribeckCurveCost(dq, abs_gravity, target), nullptr, x);
+  problem.AddResidualBlock(new StribeckCurveCost(dq, abs_gravity, target, cauchy_scale), nullptr,
+                           x);
   for (int i = 0; i < 7; ++i) {
     problem.SetParameterLowerBound(x, i, lower[i]);
     problem.SetParameterUpperBound(x, i, upper[i]);
@@ -68,7 +69,8 @@ double solve_from(double* x, const Eigen::VectorXd& dq, const Eigen::VectorXd& a
 }  // namespace
 
 StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
-                         const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load) {
+                         const Eigen::VectorXd& target, const JointStribeck& start, bool fit_load,
+                         double cauchy_scale) {
   // Three starts, from a narrow dip to one as wide as the motion (friction that falls over the
   // whole range, which a linear fit shows as b < 0): the cost has a local minimum per width.
   const double dip[3][2] = {
@@ -87,20 +89,20 @@ StribeckFit fit_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_g
                        std::max(start.viscous, 0.0),
                        fit_load ? std::max(start.load_coulomb, 0.0) : 0.0,
                        fit_load ? std::max(start.load_viscous, 0.0) : 0.0};
-    const double cost =
-        solve_from(trial, coarse_dq, coarse_g, coarse_target, fit_load, kLower, kUpper);
+    const double cost = solve_from(trial, coarse_dq, coarse_g, coarse_target, fit_load,
+                                   cauchy_scale, kLower, kUpper);
     if (cost < best_cost) {
       best_cost = cost;
       std::copy(trial, trial + 7, x);
     }
   }
-  if (k > 1) solve_from(x, dq, abs_gravity, target, fit_load, kLower, kUpper);
+  if (k > 1) solve_from(x, dq, abs_gravity, target, fit_load, cauchy_scale, kLower, kUpper);
   return with_bounds_named(x, fit_load, kLower, kUpper);
 }
 
 StribeckFit refine_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& abs_gravity,
                             const Eigen::VectorXd& target, const JointStribeck& curve,
-                            bool fit_load) {
+                            bool fit_load, double cauchy_scale) {
   double x[7] = {std::max(curve.coulomb, 0.0),
                  std::max(curve.static_friction, 0.0),
                  std::clamp(curve.stribeck_velocity, kLower[2], kUpper[2]),
@@ -108,7 +110,7 @@ StribeckFit refine_stribeck(const Eigen::VectorXd& dq, const Eigen::VectorXd& ab
                  std::max(curve.viscous, 0.0),
                  fit_load ? std::max(curve.load_coulomb, 0.0) : 0.0,
                  fit_load ? std::max(curve.load_viscous, 0.0) : 0.0};
-  solve_from(x, dq, abs_gravity, target, fit_load, kLower, kUpper);
+  solve_from(x, dq, abs_gravity, target, fit_load, cauchy_scale, kLower, kUpper);
   return with_bounds_named(x, fit_load, kLower, kUpper);
 }
 

@@ -1,0 +1,61 @@
+// The demo's Table I (SIMULATED) at the demo's own scale against the rows README.md states: the
+// static and static-to-kinetic RMSE, nominal and with the compensator, within 2 % of the README's
+// figures. The rows are read from README.md, so the README and the tree cannot drift apart.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "offline/pipeline/demo_pipeline.hpp"
+#include "support/temp_dir.hpp"
+
+namespace tpf::offline {
+namespace {
+
+struct StatedRow {
+  double nominal = 0, compensated = 0;
+};
+
+// The first README row "| <state> | nominal | compensated | …": Table I of `tpf demo`.
+StatedRow readme_row(const std::string& state) {
+  std::ifstream in(std::filesystem::path(TPF_TEST_DATA_DIR).parent_path() / "README.md");
+  std::string line;
+  const std::string head = "| " + state + " |";
+  while (std::getline(in, line)) {
+    if (line.rfind(head, 0) != 0) continue;
+    std::istringstream cells(line.substr(head.size()));
+    StatedRow row;
+    char bar = 0;
+    cells >> row.nominal >> bar >> row.compensated;
+    if (!cells || bar != '|') ADD_FAILURE() << "README row not read: " << line;
+    return row;
+  }
+  ADD_FAILURE() << "README.md has no row starting with " << head;
+  return {};
+}
+
+TEST(DemoTable, StaticAndStaticToKineticAsTheReadmeStates) {
+  const test::TempDir dir("demo_table");
+  DemoOptions o;  // the demo's scale: logs, seeds, epochs
+  o.out = dir.path();
+  o.run_measured = false;
+  const DemoResult r = run_demo(o);
+  for (const auto& [regime, name] : {std::pair{Regime::Static, "static"},
+                                     std::pair{Regime::StaticToKinetic, "static-to-kinetic"}}) {
+    const StatedRow stated = readme_row(name);
+    bool found = false;
+    for (const ResidualRow& row : r.evaluation.table) {
+      if (row.joint != -1 || row.regime != regime) continue;
+      found = true;
+      EXPECT_NEAR(row.nominal.rmse, stated.nominal, 0.02 * stated.nominal) << name << " nominal";
+      EXPECT_NEAR(row.compensated.rmse, stated.compensated, 0.02 * stated.compensated)
+          << name << " with the compensator";
+    }
+    EXPECT_TRUE(found) << name;
+  }
+}
+
+}  // namespace
+}  // namespace tpf::offline
