@@ -108,7 +108,7 @@ namespace tpf::cli {
 void register_train_command(CLI::App& app) {
   auto o = std::make_shared<TrainCommandOptions>();
   o->tcn.max_seconds = 0.0;
-  o->tcn.min_learning_rate = 5e-5;  // the sixth halving of 2e-3 ends training (docs/tcn.md)
+  o->tcn.min_learning_rate = 5e-5;  // the sixth halving of 2e-3 stops (docs/tcn-training.md)
   CLI::App* cmd = app.add_subcommand(
       "train",
       "Train the friction compensator (TCN) on contact-free excitation logs: target = effort − "

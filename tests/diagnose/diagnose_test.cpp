@@ -80,7 +80,7 @@ TEST(Diagnose, NamesLoadDependentFriction) {
   // sgn(last motion)·α|G| (fitted on static samples). The static residual is dominated by the
   // pre-sliding memory (≈140 mA on joint 2 with or without load friction in the twin, against
   // ≈25 mA of load-dependent variation), so it may not grow but cannot halve
-  // (docs/identification.md).
+  // (docs/diagnosis.md).
   EXPECT_LE(d.after[1][0].rmse(), 1.01 * d.before[1][0].rmse());
 }
 

@@ -548,7 +548,7 @@ TEST(Generator, TemperatureDependentFrictionOfOneJoint) {
   // A cold start under a heavy cycle: joint 2 warms 32 → 46 °C (rise 15 K, 40 s time constant)
   // and its viscous friction falls by 3 %/K (by 42 % over the log). Joint 1 warms too (30 →
   // 41 °C) with a friction that does not depend on it. (At 2 %/K over 9 K the term removes 2.7 %
-  // of joint 2's held-out SSE at 1.9 SE: not claimed, docs/identification.md.)
+  // of joint 2's held-out SSE at 1.9 SE: not claimed, docs/identification-tests.md.)
   PlanarArmPlant plant;
   plant.seed = 53;
   plant.log_temperature = true;

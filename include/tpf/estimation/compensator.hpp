@@ -31,7 +31,7 @@ concept FrictionCompensator = requires(C c, const CompensatorInput<S, N>& x) {
 ///   τ_fric,nom = the nominal model's friction at q̇ as predict_effort evaluates it,
 ///                [τ_c + α_c|G| + (τ_s − τ_c)·exp(−|q̇/q̇_s|^δ)]·sgn(q̇) + (b + α_v|G|)·q̇.
 /// τ_fric,nom is bounded and tells rest (sgn 0 = 0) from the first velocity quantum at full
-/// Coulomb level, which the normalised q̇ cannot (docs/tcn.md, "Break-away"). The trainer builds
+/// Coulomb level, which the normalised q̇ cannot (docs/tcn-break-away.md). The trainer builds
 /// its training inputs with this same function.
 template <typename S, int N>
 CompensatorInput<S, N> compensator_input(const JointVector<S, N>& q, const JointVector<S, N>& dq,

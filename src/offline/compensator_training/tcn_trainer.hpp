@@ -60,7 +60,7 @@ struct TcnTrainOptions {
   /// Stop (converged, counted as an early stop) when the decay would halve the learning rate
   /// below this; ≤ 0: never. Up to that epoch nothing changes. With the default rate 2e-3 and
   /// 5e-5 the sixth decay ends training: on the 30-minute twin log the held-out loss then was
-  /// within 1 % of training on to patience, at ≈ 3/4 of the epochs (docs/tcn.md).
+  /// within 1 % of training on to patience, at ≈ 3/4 of the epochs (docs/tcn-performance.md).
   double min_learning_rate = 0.0;
   /// Stop after the epoch that crosses this wall-clock budget [s]; ≤ 0: no budget. Results then
   /// depend on the machine's speed: use max_epochs for a reproducible budget and this only as a

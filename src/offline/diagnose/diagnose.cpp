@@ -166,7 +166,7 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
   } else {
     const std::vector<std::size_t>& held = split.groups[split.selection_group];
     text = "Held out by file: " + file_names(log, held) + " (fitted on the other files)";
-    text += "; for the transfer test, in turn:";
+    text += "; for the transfer test, one at a time:";
     for (std::size_t g = 0; g < split.groups.size(); ++g)
       if (g != split.selection_group) {
         text += text.back() == ':' ? " " : "; ";

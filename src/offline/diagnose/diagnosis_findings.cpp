@@ -47,7 +47,7 @@ std::string untransferred_payload_finding(const CadPayloadCheck& c) {
              "effects, ",
              c.mass, c.mass_standard_error, 100 * c.improvement) +
          format_sentence("but %.1f %% on ", 100 * c.transfer_improvement) + c.transfer_file +
-         " held out in turn: it does not transfer between files, so it is not the arm's and "
+         " held out one at a time: it does not transfer between files, so it is not the arm's and "
          "is not claimed.";
 }
 
@@ -229,8 +229,8 @@ void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
                         "changes that of ",
                         100 * t.improvement) +
         t.transfer_file +
-        format_sentence(", held out in turn, by %+.1f %% (claims need −%.0f %% on every file): it "
-                        "does not transfer between files.",
+        format_sentence(", held out one at a time, by %+.1f %% (claims need −%.0f %% on every "
+                        "file): it does not transfer between files.",
                         -100 * t.transfer_improvement, 100 * options.min_improvement));
   }
 }
@@ -301,7 +301,7 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
         "No candidate effect is claimed: none lowers the held-out residual by the threshold (" +
         format_sentence("%.0f %%", 100 * options.min_improvement) +
         " of the residual sum of squares)" +
-        (untransferred ? " and does so on every file held out in turn and, for a term that "
+        (untransferred ? " and does so on every file held out one at a time and, for a term that "
                          "extrapolates in q, outside the range of q the fit saw (below)."
                        : "."));
   for (const Claim& c : d.claims)

@@ -480,7 +480,7 @@ void add_diagnosis_section(HtmlReport& page, const MeasuredResult& r) {
   page.paragraph(
       "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
       ", with the files that repeat its motion: it claims an effect only if it lowers the "
-      "current residual there, on each other group of files held out in turn and, for a term "
+      "current residual there, on each other group of files held out one at a time and, for a term "
       "that extrapolates in q, on the held-out samples outside the range of q its fit saw. The "
       "column "
       "\"diagnose's model\" above scores its written model against the sensor on the held-out "
