@@ -15,12 +15,13 @@ namespace tpf::cli {
 
 /// Prints the identification of `log` (held-out RMSE per joint and regime in the log's unit,
 /// consistency, friction notes) and writes its model to `out` (tpf-params), with the wall time
-/// since `start`.
+/// since `start`. `extra_fit` (e.g. identify's "log_checks") is added to the file's fit.
 template <int N>
 void print_and_save_identification(const offline::Log& log, const offline::Identification<N>& id,
                                    const offline::SampleOptions& sample_options,
                                    const std::string& out,
-                                   std::chrono::steady_clock::time_point start) {
+                                   std::chrono::steady_clock::time_point start,
+                                   const nlohmann::json& extra_fit = nlohmann::json::object()) {
   using offline::Regime;
   const auto& s = id.samples;
   std::printf("%s%s: %ld samples (%s), effort in %s\n", s.simulated ? "SIMULATED log " : "log ",
@@ -80,6 +81,7 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
   fit["consistent"] = id.consistency.consistent();
   fit["problems"] = id.consistency.problems;
   fit["simulated"] = s.simulated;
+  fit.update(extra_fit);
   tpf::save_nominal_model<N>(out, id.nominal, log.source, fit.dump());
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -15,10 +15,10 @@ const std::string kTiago = std::string(TPF_TEST_DATA_DIR) + "/real/tiago";
 TEST(TiagoImport, ShippedMapReproducesTheShippedLog) {
   const ImportMap map = load_import_map(kTiago + "/tiago.import.json");
   ImportReport report;
-  const Log imported = import_log({kTiago + "/source/tiago_position.csv.gz",
-                                   kTiago + "/source/tiago_velocity.csv.gz",
-                                   kTiago + "/source/tiago_effort.csv.gz"},
-                                  map, report);
+  const Log imported =
+      import_log({kTiago + "/source/tiago_position.csv.gz",
+                  kTiago + "/source/tiago_velocity.csv.gz", kTiago + "/source/tiago_effort.csv.gz"},
+                 map, report);
   const Log shipped = read_log(kTiago + "/logs/tiago.csv.gz");
   ASSERT_EQ(imported.rows(), 8022);
   EXPECT_EQ(report.unmatched_rows, 0u);
