@@ -2,10 +2,13 @@
 // by time, currents through signed torque constants and the gear ratios.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "offline/log/import_log.hpp"
 #include "offline/log/read_log.hpp"
+#include "offline/log/unit_check.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -40,6 +43,30 @@ TEST(TiagoImport, CurrentsAreInMilliampereWithTheOutputConstantsSign) {
   EXPECT_DOUBLE_EQ(log.col("i5")[0], -1192.0);
   // the torso is prismatic, in m: its first position 0.0598 m
   EXPECT_NEAR(log.col("q1")[0], 0.059777934162170615, 1e-15);
+}
+
+TEST(TiagoImport, TheWristCurrentsAreFlaggedDead) {
+  const Log log = read_log(kTiago + "/logs/tiago.csv.gz");
+  UnitCheckInput in;
+  in.t = log.col("t");
+  const auto family = [&](const char* prefix) {
+    Eigen::MatrixXd m(log.rows(), 8);
+    for (int j = 0; j < 8; ++j)
+      m.col(j) = log.col(indexed_name(prefix, j + 1));
+    return m;
+  };
+  in.q = family("q");
+  in.dq = family("dq");
+  in.effort = family("i");  // exact zeros and distinct values do not depend on K_t
+  in.ddq = Eigen::MatrixXd::Constant(log.rows(), 8, std::nan(""));  // no rest is compared
+  in.gravity = in.ddq;
+  in.gear_ratio = Eigen::VectorXd::Ones(8);
+  in.torque_constant = Eigen::VectorXd::Ones(8);
+  in.lower = Eigen::VectorXd::Constant(8, -std::numeric_limits<double>::infinity());
+  in.upper = -in.lower;
+  const LogChecks checks = check_log_units(in);
+  // arm 5, 6, 7: exact 0 in 88 %, 90 %, 90 % of the samples
+  EXPECT_EQ(checks.dead_joints, (std::vector<int>{6, 7, 8}));
 }
 
 }  // namespace
