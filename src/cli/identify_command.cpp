@@ -10,7 +10,6 @@
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
 #include "joint_dispatch.hpp"
-#include "log_unit_checks.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
@@ -44,10 +43,8 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const auto model = tpf::load_robot<double, N>(a.robot);
   const Identification<N> id = identify<N>(log, model, options);
-  const nlohmann::json checks =
-      tpf::cli::print_log_checks(tpf::cli::check_log_units<N>(model, id.samples));
   print_and_save_identification<N>(log, id, options.samples, a.out, start,
-                                   {{"log_checks", checks}});
+                                   tpf::cli::check_log_units<N>(model, id.samples));
 }
 
 }  // namespace
