@@ -140,5 +140,41 @@ TEST(UnitCheck, ADeadEffortChannelIsNamed) {
       << checks.problems.at(0);
 }
 
+/// A swinging joint with no rest, its effort alive: only the limit and velocity checks speak.
+UnitCheckInput swinging_joint() {
+  UnitCheckInput in;
+  const int n = 2000;
+  in.t = Eigen::VectorXd::LinSpaced(n, 0.0, 1.999);
+  in.q = (2.0 * in.t.array()).sin().matrix();
+  in.dq = (2.0 * (2.0 * in.t.array()).cos()).matrix();
+  in.ddq = -4.0 * in.q;
+  in.effort = in.q + 0.1 * in.t;
+  in.gravity = Eigen::VectorXd::Constant(n, std::nan(""));
+  in.gear_ratio = Eigen::VectorXd::Constant(1, 100.0);
+  in.torque_constant = Eigen::VectorXd::Ones(1);
+  in.lower = Eigen::VectorXd::Constant(1, -2.0);
+  in.upper = Eigen::VectorXd::Constant(1, 2.0);
+  return in;
+}
+
+TEST(UnitCheck, VelocityInDegreesAgainstPositionInRadiansIsFlagged) {
+  UnitCheckInput in = swinging_joint();
+  EXPECT_TRUE(check_log_units(in).problems.empty());
+  in.dq *= 180.0 / std::numbers::pi;
+  const LogChecks checks = check_log_units(in);
+  ASSERT_EQ(checks.problems.size(), 1u);
+  EXPECT_NE(checks.problems[0].find("dq is 57.3x the difference quotient of q"), std::string::npos)
+      << checks.problems[0];
+}
+
+TEST(UnitCheck, PositionsBeyondTheLimitsAreFlagged) {
+  UnitCheckInput in = swinging_joint();
+  in.upper[0] = 0.5;  // the swing reaches 1 rad
+  const LogChecks checks = check_log_units(in);
+  ASSERT_EQ(checks.problems.size(), 1u);
+  EXPECT_NE(checks.problems[0].find("q outside the robot file's limits"), std::string::npos)
+      << checks.problems[0];
+}
+
 }  // namespace
 }  // namespace tpf::offline
