@@ -37,7 +37,7 @@ Trajectory trajectory(int j) {
   return {0.3 + 0.1 * j, 2.0 * std::numbers::pi * (0.4 + 0.15 * j), 0.5 * j, 0.2 * j - 0.4};
 }
 
-/// R = diag(ratio)·coupling: the last motor turns with q5 + q6.
+/// R = diag(ratio)·coupling: the last motor rotates with q5 + q6.
 Eigen::MatrixXd transmission() {
   Eigen::VectorXd ratio(kJoints);
   ratio << 32, 32, 45, -48, 45, 32;

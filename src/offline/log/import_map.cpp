@@ -108,7 +108,7 @@ void read_transmission(json::Object& root, ImportMap& map) {
   }
   tr.finish();
   for (std::size_t k = 0; k < n; ++k)
-    if (ratio[k] == 0.0) tr.fail("ratio", "must not hold 0 (a motor that does not turn)");
+    if (ratio[k] == 0.0) tr.fail("ratio", "must not hold 0 (a motor that does not rotate)");
   map.transmission = Eigen::VectorXd::Map(ratio.data(), map.joints).asDiagonal() * coupling;
   map.coupled = !coupling.isDiagonal();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(map.transmission);

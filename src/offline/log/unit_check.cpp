@@ -25,7 +25,7 @@ struct Reading {
   std::string question;
 };
 
-/// The readings that would turn the right effort into one `factor` times it.
+/// The readings that would make the right effort `factor` times what it is.
 std::vector<Reading> effort_readings(const UnitCheckInput& in, int j) {
   const double r = std::abs(in.gear_ratio[j]);
   const double kt = std::abs(in.torque_constant[j]);
