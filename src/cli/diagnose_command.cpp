@@ -52,7 +52,8 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   identify_options.friction_from_sensor = a.friction_from_sensor;
   identify_options.inertia_prior = a.inertia_prior;
   Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
-  tpf::cli::print_and_save_identification<N>(log, id, options.samples, a.identify_out, start);
+  tpf::cli::print_and_save_identification<N>(log, id, options.samples, a.identify_out, start,
+                                             tpf::cli::check_log_units<N>(model, id.samples));
   return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
 }
 

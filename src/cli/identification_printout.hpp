@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "log_unit_checks.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/log.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -15,12 +16,14 @@ namespace tpf::cli {
 
 /// Prints the identification of `log` (held-out RMSE per joint and regime in the log's unit,
 /// consistency, friction notes) and writes its model to `out` (tpf-params), with the wall time
-/// since `start`.
+/// since `start`. `log_checks` (the log against the robot file, check_log_units) are printed
+/// after the consistency check and written as the fit's "log_checks".
 template <int N>
 void print_and_save_identification(const offline::Log& log, const offline::Identification<N>& id,
                                    const offline::SampleOptions& sample_options,
                                    const std::string& out,
-                                   std::chrono::steady_clock::time_point start) {
+                                   std::chrono::steady_clock::time_point start,
+                                   const offline::LogChecks& log_checks) {
   using offline::Regime;
   const auto& s = id.samples;
   std::printf("%s%s: %ld samples (%s), effort in %s\n", s.simulated ? "SIMULATED log " : "log ",
@@ -47,6 +50,7 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
               id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
   for (const auto& p : id.consistency.problems)
     std::printf("  problem: %s\n", p.c_str());
+  fit["log_checks"] = print_log_checks(log_checks);
   const auto& prior = id.inertia_prior;
   if (prior.asked && !(prior.floor > 0)) {
     std::printf(

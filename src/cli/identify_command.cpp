@@ -42,8 +42,9 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const auto model = tpf::load_robot<double, N>(a.robot);
-  print_and_save_identification<N>(log, identify<N>(log, model, options), options.samples, a.out,
-                                   start);
+  const Identification<N> id = identify<N>(log, model, options);
+  print_and_save_identification<N>(log, id, options.samples, a.out, start,
+                                   tpf::cli::check_log_units<N>(model, id.samples));
 }
 
 }  // namespace

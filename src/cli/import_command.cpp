@@ -31,13 +31,18 @@ std::filesystem::path output_in(const std::string& dir, const std::filesystem::p
   return std::filesystem::path(dir) / (name + (compress ? ".csv.gz" : ".csv"));
 }
 
-void import_one(const tpf::offline::ImportMap& map, const std::string& input,
+/// One recording: map.files inputs joined into one log.
+void import_one(const tpf::offline::ImportMap& map, const std::vector<std::string>& inputs,
                 const std::filesystem::path& output) {
   using namespace tpf::offline;
   ImportReport report;
-  const Log log = import_log(input, map, report);
+  const Log log =
+      import_log(std::vector<std::filesystem::path>(inputs.begin(), inputs.end()), map, report);
   write_log(output, log);
-  std::printf("import: %s -> %s\n", input.c_str(), output.string().c_str());
+  std::string names;
+  for (const std::string& input : inputs)
+    names.append(names.empty() ? "" : " + ").append(input);
+  std::printf("import: %s -> %s\n", names.c_str(), output.string().c_str());
   for (const std::string& line : report.lines())
     std::printf("  %s\n", line.c_str());
   if (log.quality.missing_total() > 0)
@@ -46,33 +51,43 @@ void import_one(const tpf::offline::ImportMap& map, const std::string& input,
     std::printf("  %s\n", line.c_str());
 }
 
-void check_output_options(const ImportArgs& a) {
+/// Inputs come in recordings of `files` each (the map's "files").
+void check_output_options(const ImportArgs& a, std::size_t files) {
   if (a.out.empty() == a.out_dir.empty())
-    throw tpf::Error("import: give either --out (one input) or --out-dir");
-  if (!a.out.empty() && a.inputs.size() != 1)
-    throw tpf::Error("import: --out takes one input; use --out-dir for " +
-                     std::to_string(a.inputs.size()));
+    throw tpf::Error("import: give either --out (one recording) or --out-dir");
+  if (a.inputs.size() % files != 0)
+    throw tpf::Error("import: " + a.map + " reads " + std::to_string(files) +
+                     " files per recording; " + std::to_string(a.inputs.size()) +
+                     " inputs are not a whole number of recordings");
+  if (!a.out.empty() && a.inputs.size() != files)
+    throw tpf::Error("import: --out takes one recording (" + std::to_string(files) +
+                     " file(s)); use --out-dir for " + std::to_string(a.inputs.size()) + " inputs");
 }
 
-/// The log each input is written to, in input order.
-tpf::cli::PathOptions output_files(const ImportArgs& a) {
+/// The log each recording is written to (named after its first file), in input order.
+tpf::cli::PathOptions output_files(const ImportArgs& a, std::size_t files) {
   if (!a.out.empty()) return {{"--out", a.out}};
   tpf::cli::PathOptions outputs;
-  for (const std::string& input : a.inputs)
-    outputs.push_back({"the --out-dir file", output_in(a.out_dir, input, a.compress).string()});
+  for (std::size_t k = 0; k < a.inputs.size(); k += files)
+    outputs.push_back(
+        {"the --out-dir file", output_in(a.out_dir, a.inputs[k], a.compress).string()});
   return outputs;
 }
 
 void run_import(const ImportArgs& a) {
   using namespace tpf::cli;
-  check_output_options(a);
-  const PathOptions outputs = output_files(a);
+  const tpf::offline::ImportMap map = tpf::offline::load_import_map(a.map);
+  const auto files = static_cast<std::size_t>(map.files);
+  check_output_options(a, files);
+  const PathOptions outputs = output_files(a, files);
   refuse_overwriting_inputs("import", joined({{"--map", a.map}}, each_of("the input", a.inputs)),
                             outputs);
-  const tpf::offline::ImportMap map = tpf::offline::load_import_map(a.map);
   if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
-  for (std::size_t k = 0; k < a.inputs.size(); ++k)
-    import_one(map, a.inputs[k], outputs[k].path);
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    import_one(map,
+               std::vector<std::string>(a.inputs.begin() + static_cast<long>(k * files),
+                                        a.inputs.begin() + static_cast<long>((k + 1) * files)),
+               outputs[k].path);
 }
 
 }  // namespace
@@ -85,12 +100,16 @@ void register_import_command(CLI::App& app) {
       "import",
       "Turn foreign CSV files (plain or .gz) into tpf logs with a column map (JSON: time column "
       "and unit or sample rate, q, dq, current or torque, torque sensor, temperature, units, "
-      "joint order; docs/log-format.md). Reports irregular time stamps and what was done about "
-      "them, and where the torque sensor is missing or flat");
+      "scale, sign, offset, joint order, several files per recording joined by index or time, "
+      "motor-side columns through a transmission, q-dot and q-ddot derived from q; "
+      "docs/log-format.md). Reports irregular time stamps and what was done about them, each "
+      "conversion, and where the torque sensor is missing or flat");
   cmd->add_option("--map", a->map, "Column map, e.g. data/real/kinova-gen3/kinova.import.json")
       ->required()
       ->check(input_file());
-  cmd->add_option("csv", a->inputs, "Foreign CSV file(s), plain or .gz")
+  cmd->add_option("csv", a->inputs,
+                  "Foreign CSV file(s), plain or .gz; a map of \"files\": n takes them n at a "
+                  "time, the files of one recording in the map's order")
       ->required()
       ->check(input_file());
   cmd->add_option("--out", a->out, "The tpf log to write (one input; .gz: compressed)");

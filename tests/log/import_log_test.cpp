@@ -157,7 +157,8 @@ TEST(ImportLog, AMapOfSeveralJointsNeedsJInEveryColumnName) {
     EXPECT_EQ(std::string(e.what()),
               (dir / "map2.json").string() +
                   ": columns.q.source: 'pos' needs {j} where the joint number goes (the map has 2 "
-                  "joints; only a 1-joint map may name its column without {j})");
+                  "joints; only a 1-joint map may name its column without {j}; or give an array "
+                  "of one name per joint)");
   }
 }
 

@@ -105,6 +105,12 @@ class Object {
   std::string choice(const std::string& key, std::string fallback,
                      const std::vector<std::string>& choices);
   bool has(const std::string& key) const { return object_.contains(key); }
+  /// Whether `key` is present and holds an array (for keys that take one value or one per item).
+  bool is_array(const std::string& key) const {
+    return object_.contains(key) && object_.at(key).is_array();
+  }
+  /// A required array of exactly `size` strings.
+  std::vector<std::string> texts(const std::string& key, std::size_t size);
   /// A nested object (an empty one when absent).
   Object child(const std::string& key);
   /// Array of objects.

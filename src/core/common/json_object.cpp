@@ -139,6 +139,19 @@ std::string Object::text(const std::string& key) {
   return text(key, "");
 }
 
+std::vector<std::string> Object::texts(const std::string& key, std::size_t size) {
+  if (!object_.contains(key)) fail(key, "missing");
+  const auto& v = get(key);
+  if (!v.is_array() || v.size() != size)
+    fail(key, "must be an array of " + std::to_string(size) + " strings");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < size; ++i) {
+    if (!v[i].is_string()) fail(key + "[" + std::to_string(i) + "]", "must be a string");
+    out.push_back(v[i].get<std::string>());
+  }
+  return out;
+}
+
 Object Object::read_file(const std::filesystem::path& path) {
   return Object(json::parse_file(path), path.string(), "");
 }

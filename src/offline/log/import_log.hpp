@@ -28,6 +28,12 @@ struct ImportReport {
   /// The CSV reader's, "file:line: what was found, and what was done": a row the file ends
   /// inside, skipped (not among rows_read).
   std::vector<std::string> reader_notes;
+  /// Several files: rows of the other files no row of the first matched in time (join "time"),
+  /// dropped.
+  std::size_t unmatched_rows = 0;
+  /// What was converted and how (join, transmission, torque constants, derived rates and their
+  /// agreement with a logged velocity), one line each.
+  std::vector<std::string> conversion_notes;
 
   /// Lines for the terminal, e.g. "time: 1942 rows, step 0.001 s: 0 irregular steps", the
   /// reader's notes first.
@@ -43,5 +49,14 @@ struct ImportReport {
 /// Throws tpf::Error naming the file, line and column: a column of the map missing from the
 /// header, a missing time, text in a mapped column, a wrong field count, corrupt gzip.
 Log import_log(const std::filesystem::path& csv, const ImportMap& map, ImportReport& report);
+
+/// The same for one recording kept in map.files files, joined row by row (join "index": the
+/// files must have as many rows) or by time stamp (join "time": the rows of the first file whose
+/// time every other file has, within a quarter of its median step; the others dropped and
+/// counted). A mapped column is read from the first file that has it. Then, per the map: scale,
+/// sign, offset and units; motor-side columns through the transmission (q = R⁻¹·θ,
+/// τ = Rᵀ·τ_motor, τ_motor = K_t·i); q̇ and q̈ derived from q (map.derive_cutoff_hz).
+Log import_log(const std::vector<std::filesystem::path>& files, const ImportMap& map,
+               ImportReport& report);
 
 }  // namespace tpf::offline

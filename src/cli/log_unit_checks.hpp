@@ -1,0 +1,61 @@
+// A log's units and dead channels checked against the robot file (offline/log/unit_check), as
+// `tpf identify` prints them and writes them into the parameter file's fit ("log_checks").
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "offline/identify/joint_samples.hpp"
+#include "offline/log/unit_check.hpp"
+#include "tpf/dynamics/rnea.hpp"
+#include "tpf/model/model.hpp"
+
+namespace tpf::cli {
+
+/// The checks of `samples` with the robot file's `model` (its gravity torque at every sample).
+template <int N>
+offline::LogChecks check_log_units(const Model<double, N>& model,
+                                   const offline::JointSamples& samples) {
+  offline::UnitCheckInput in;
+  in.t = samples.t;
+  in.q = samples.q;
+  in.dq = samples.dq;
+  in.ddq = samples.ddq;
+  in.effort = samples.effort;
+  in.gravity.setConstant(samples.size(), samples.joints(),
+                         std::numeric_limits<double>::quiet_NaN());
+  Data<double, N> data;
+  for (Eigen::Index r = 0; r < samples.size(); ++r) {
+    const JointVector<double, N> q = samples.q.row(r).transpose();
+    if (q.allFinite()) in.gravity.row(r) = compute_gravity(model, data, q).transpose();
+  }
+  in.gear_ratio = model.gear_ratio;
+  in.torque_constant = model.torque_constant;
+  in.effort_is_current = samples.units.unit == EffortUnit::Milliampere;
+  in.lower = model.lower;
+  in.upper = model.upper;
+  return offline::check_log_units(in);
+}
+
+/// Prints the checks ("log check: …" lines; "log checks: ok" when none) and returns them as the
+/// fit's "log_checks": {"problems": [...], "notes": [...], "dead_joints": [1-based],
+/// "rest_factor": [effort at rest / gravity torque, null: not checked]}.
+inline nlohmann::json print_log_checks(const offline::LogChecks& checks) {
+  std::printf("log checks against the robot file: %s\n",
+              checks.problems.empty() ? "ok" : "PROBLEMS");
+  for (const std::string& p : checks.problems)
+    std::printf("  problem: %s\n", p.c_str());
+  for (const std::string& n : checks.notes)
+    std::printf("  note: %s\n", n.c_str());
+  nlohmann::json rest = nlohmann::json::array();
+  for (const double f : checks.rest_factor)
+    rest.push_back(std::isfinite(f) ? nlohmann::json(f) : nlohmann::json(nullptr));
+  return {{"problems", checks.problems},
+          {"notes", checks.notes},
+          {"dead_joints", checks.dead_joints},
+          {"rest_factor", rest}};
+}
+
+}  // namespace tpf::cli
