@@ -100,7 +100,7 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
                   percent_change(b, w));
     }
   if (!a.report.empty()) {
-    write_diagnosis_report(d, a.report);
+    write_diagnosis_report(d, a.report, options);
     std::printf("wrote %s\n", a.report.c_str());
   }
   if (!a.json.empty()) {

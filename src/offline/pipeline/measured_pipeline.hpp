@@ -57,8 +57,8 @@ struct MeasuredOptions {
   double band_low_hz = 2.0;
   std::uint64_t seed = 1;
   int threads = 2;
-  /// The target: the current-based joint torque this much closer to the sensor than the
-  /// maker's own current-based torque.
+  /// tpf's goal on a measured arm: the current-based joint torque this much closer to the sensor
+  /// than the maker's own current-based torque.
   double target_reduction = 0.60;
   /// The compensator's target: this much below the best memoryless model's RMSE.
   double compensator_target = 0.30;
