@@ -417,26 +417,64 @@ std::size_t file_count(const std::string& files) {
 
 }  // namespace
 
-void add_measured_headline(HtmlReport& page, const MeasuredResult& r, double target, int width) {
-  const MeasuredSplit& split = r.forward;
-  std::vector<std::string> groups;
-  std::vector<BarSeries> series{{"maker's estimate K_t·i", {}, "#7a8594"}};
+namespace {
+
+/// The columns the first screen and the short summary show: maker, then tpf's identified model
+/// and its friction fitted against the sensor with the current low-pass (when present), each
+/// with its short name.
+std::vector<std::pair<int, std::string>> headline_columns(const MeasuredSplit& split) {
+  std::vector<std::pair<int, std::string>> columns{{0, "maker's estimate K_t·i"}};
   const std::vector<std::pair<std::string, std::string>> shown{
       {"after identification", "tpf, identified"},
       {"+ current low-pass", "tpf, friction against the sensor + current low-pass"}};
-  std::vector<int> columns;
   for (const auto& [name, label] : shown)
-    if (const int c = measured_column(split, name); c >= 0) {
-      columns.push_back(c);
-      series.push_back({label, {}, ""});
+    if (const int c = measured_column(split, name); c >= 0) columns.emplace_back(c, label);
+  return columns;
+}
+
+}  // namespace
+
+std::string measured_brief(const MeasuredResult& r, double target) {
+  const MeasuredSplit& split = r.forward;
+  const auto columns = headline_columns(split);
+  std::string text = std::string(kMeasuredLabel) + "\n";
+  text +=
+      "RMSE against the torque sensor on the held-out files [N·m], change against the "
+      "maker's estimate:\n  joint";
+  for (const auto& [c, label] : columns)
+    text += " | " + label;
+  text += " | goal −" + format_sentence("%.0f %%", 100 * target) + "\n";
+  for (int j : sensor_scored_joints(split)) {
+    const auto jj = static_cast<std::size_t>(j);
+    const double maker = split.columns[0].rmse[jj];
+    char line[64];
+    std::snprintf(line, sizeof line, "  %5d | %6.3f", j + 1, maker);
+    text += line;
+    for (std::size_t k = 1; k < columns.size(); ++k) {
+      const double rmse = split.columns[static_cast<std::size_t>(columns[k].first)].rmse[jj];
+      std::snprintf(line, sizeof line, " | %6.3f (%+.1f %%)", rmse, percent_change(maker, rmse));
+      text += line;
     }
+    text += estimates_meeting_target(split, j, target).empty() ? " | missed\n" : " | met\n";
+  }
+  return text;
+}
+
+void add_measured_headline(HtmlReport& page, const MeasuredResult& r, double target, int width) {
+  const MeasuredSplit& split = r.forward;
+  std::vector<std::string> groups;
+  std::vector<BarSeries> series;
+  std::vector<int> columns;
+  for (const auto& [c, label] : headline_columns(split)) {
+    columns.push_back(c);
+    series.push_back({label, {}, c == 0 ? "#7a8594" : ""});
+  }
   std::vector<std::string> met, missed;
   for (int j : sensor_scored_joints(split)) {
     const auto jj = static_cast<std::size_t>(j);
     groups.push_back("joint " + std::to_string(j + 1));
-    series[0].values.push_back(split.columns[0].rmse[jj]);
     for (std::size_t k = 0; k < columns.size(); ++k)
-      series[k + 1].values.push_back(split.columns[static_cast<std::size_t>(columns[k])].rmse[jj]);
+      series[k].values.push_back(split.columns[static_cast<std::size_t>(columns[k])].rmse[jj]);
     (estimates_meeting_target(split, j, target).empty() ? missed : met)
         .push_back(std::to_string(j + 1));
   }

@@ -50,6 +50,10 @@ std::string measured_headline(const MeasuredResult& result, double target);
 void add_measured_headline(HtmlReport& page, const MeasuredResult& result, double target,
                            int width);
 
+/// The terminal's short summary (a dozen lines): per joint the maker's estimate and tpf's models
+/// of the first screen (add_measured_headline) against the sensor, and where the goal is met.
+std::string measured_brief(const MeasuredResult& result, double target);
+
 /// The MEASURED section of the demo's index page.
 void add_measured_summary(HtmlReport& page, const MeasuredResult& result, double target);
 
