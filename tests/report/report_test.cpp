@@ -229,6 +229,18 @@ TEST(BarChart, BarsStartAtZeroAndHaveOneValuePerGroup) {
   EXPECT_NE(svg.find(">static<"), std::string::npos);
   EXPECT_NE(svg.find(">280<"), std::string::npos);  // value label
   EXPECT_THROW(bar_chart(options, {"a"}, {{"x", {1.0, 2.0}, ""}}), Error);
+  // A label wider than its bar (5 characters of ≈ 6 px in 24 px bars) keeps 2 digits, so that
+  // neighbours' labels never run into each other; one that fits keeps 3.
+  PlotOptions narrow;
+  narrow.width = 400;
+  const std::vector<std::string> joints{"1", "2", "3", "4"};
+  const std::string crowded = bar_chart(
+      narrow, joints,
+      {{"a", {0.652, 1, 1, 1}, ""}, {"b", {0.595, 1, 1, 1}, ""}, {"c", {1, 1, 1, 1}, ""}});
+  EXPECT_NE(crowded.find(">0.65<"), std::string::npos);
+  EXPECT_EQ(crowded.find(">0.652<"), std::string::npos);
+  const std::string roomy = bar_chart(options, {"one"}, {{"a", {0.652}, ""}});
+  EXPECT_NE(roomy.find(">0.652<"), std::string::npos);
 }
 
 // Category names wider than their slot wrap after a space or a hyphen instead of running into

@@ -16,7 +16,7 @@ std::string table_one_panel(const DemoResult& r) {
   HtmlReport panel("");
   panel.heading("Digital twin (SIMULATED): Table I");
   panel.table(table_one_summary(r.evaluation));
-  panel.paragraph("Detection, force, dead bands and teaching: evaluate.html.");
+  panel.nav({{"evaluate.html", "Detection, force, dead bands and teaching", ""}});
   return panel.body();
 }
 
