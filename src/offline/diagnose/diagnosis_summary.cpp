@@ -1,6 +1,7 @@
 #include "offline/diagnose/diagnosis_summary.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 
@@ -81,12 +82,14 @@ void add_rejected_rows(Table& table, const EffectDiagnosis& d, const DiagnoseOpt
   // Per candidate (its title), its last trial and its best gain in any round.
   std::map<std::string, std::pair<const CandidateTrial*, double>> candidates;
   for (const CandidateTrial& t : d.trials) {
-    auto [it, fresh] = candidates.try_emplace(t.title, &t, t.improvement);
+    const auto it = candidates.try_emplace(t.title, &t, t.improvement).first;
     it->second.first = &t;
     it->second.second = std::max(it->second.second, t.improvement);
   }
   std::vector<std::pair<const CandidateTrial*, double>> rejected;
-  for (const auto& [title, entry] : candidates) {
+  for (const auto& candidate : candidates) {
+    const std::string& title = candidate.first;
+    const auto& entry = candidate.second;
     const bool claimed = std::any_of(d.selected.begin(), d.selected.end(),
                                      [&](int g) { return d.groups[g].title == title; });
     if (!claimed && entry.first->key != "payload" && entry.second >= 0.5 * o.min_improvement)
