@@ -105,7 +105,7 @@ TEST(ScatterPlot, DataRangeMapsOntoThePlotArea) {
   EXPECT_TRUE(test::check_tags(svg).empty()) << test::check_tags(svg);
 }
 
-TEST(ScatterPlot, KeepsOneDotPerSeriesInEachTwoPixelCell) {
+TEST(ScatterPlot, KeepsOneDotPerSeriesInEachThreePixelCell) {
   PlotOptions options;
   options.width = 500;
   options.height = 300;

@@ -9,9 +9,9 @@
 namespace tpf::offline {
 namespace {
 
-/// Side of the cells a series keeps one dot of [px]: a dot is 4 px across, so a second dot in
-/// the same 2 px cell changes no pixel the reader can tell apart.
-constexpr double kCell = 2.0;
+/// Side of the cells a series keeps one dot of [px]: a dot is 4 px across, so neighbouring cells'
+/// dots still touch and a second dot in the same cell changes nothing the reader can tell apart.
+constexpr double kCell = 3.0;
 
 /// The dots of one series as one path ("M x y h0" per dot, drawn with round caps): the first
 /// finite sample of each occupied cell, at most `max_points` cells (thinned by a fixed stride
