@@ -16,6 +16,7 @@ namespace tpf::cli {
 void register_demo_command(CLI::App& app) {
   auto o = std::make_shared<offline::DemoOptions>();
   auto out = std::make_shared<std::string>("tpf-demo");
+  auto verbose = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand(
       "demo",
       "Run the whole loop on the digital twin and on the measured Kinova Gen3 logs and write one "
@@ -58,7 +59,9 @@ void register_demo_command(CLI::App& app) {
       "the measured compensator sees every input (q and τ̂_fric,s too; by default it does not: "
       "the held-out files move outside the fitting files' range of q, and against the sensor "
       "τ̂_fric,s holds the rigid body's error)");
-  cmd->callback([o, out] {
+  cmd->add_flag("--verbose", *verbose,
+                "print every stage's progress lines and the long summary (the report has both)");
+  cmd->callback([o, out, verbose] {
     o->out = *out;
     if (!o->run_twin && !o->run_measured)
       throw Error("tpf demo: --no-twin and --no-measured leave nothing to run");
@@ -66,7 +69,9 @@ void register_demo_command(CLI::App& app) {
     const std::string measured = o->run_measured ? "the Kinova Gen3 logs (MEASURED)" : "";
     std::printf("tpf demo: the whole loop on %s%s%s, output in %s\n", twin.c_str(),
                 twin.empty() || measured.empty() ? "" : " and on ", measured.c_str(), out->c_str());
-    const auto result = offline::run_demo(*o, [](const std::string& line) {
+    // By default one line per stage ("[k/6] …"); --verbose: every line of every stage.
+    const auto result = offline::run_demo(*o, [verbose](const std::string& line) {
+      if (!*verbose && line.rfind('[', 0) != 0) return;
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
     });
@@ -76,7 +81,9 @@ void register_demo_command(CLI::App& app) {
     if (result.measured)
       std::printf(
           "\n%s",
-          offline::measured_headline(*result.measured, o->measured.target_reduction).c_str());
+          (*verbose ? offline::measured_headline(*result.measured, o->measured.target_reduction)
+                    : offline::measured_brief(*result.measured, o->measured.target_reduction))
+              .c_str());
     for (const auto& t : result.training.results)
       if (t.stopped_on_time) {
         std::printf(

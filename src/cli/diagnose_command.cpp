@@ -13,8 +13,10 @@
 #include "identification_printout.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
+#include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "offline/report/text_table.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
@@ -28,7 +30,7 @@ struct DiagnoseArgs {
   std::vector<std::string> logs;
   std::string robot, report, json, params, identify_out;
   double static_velocity = 1e-4, min_improvement = 0.10;
-  bool quiet = false, inertia_prior = true;
+  bool quiet = false, verbose = false, inertia_prior = true;
   bool no_load_friction = false, friction_from_sensor = false;  ///< of --identify-out's fit
 };
 
@@ -57,28 +59,24 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
 }
 
-template <int N>
-void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
-  using namespace tpf::offline;
-  DiagnoseOptions options;
-  options.samples.regimes.static_velocity = a.static_velocity;
-  options.min_improvement = a.min_improvement;
-  options.inertia_prior = a.inertia_prior;
-  if (!a.quiet)
-    options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
-  const auto model = tpf::load_robot<double, N>(a.robot);
-  const auto d = a.identify_out.empty() ? diagnose<N>(log, model, options)
-                                        : identify_then_diagnose<N>(log, model, options, a);
-  if (d.samples.simulated) std::printf("SIMULATED log (digital twin)\n");
-  for (const auto& f : d.findings)
-    std::printf("%s\n", f.c_str());
-  for (const auto& n : d.notes)
-    std::printf("note: %s\n", n.c_str());
+/// The inertia prior's line, when diagnose's fits needed one.
+void print_inertia_prior(const tpf::offline::EffectDiagnosis& d) {
   if (d.inertia_prior_strength > 0)
     std::printf(
         "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (declared model); "
         "every fit pulled toward the robot file's inertias with strength %.3g\n",
         d.min_mass_eigenvalue_without_prior, d.inertia_prior_strength);
+}
+
+/// Everything: the findings, notes, the inertia prior and the held-out table per joint and regime.
+template <int N>
+void print_in_full(const tpf::offline::Diagnosis<N>& d) {
+  using namespace tpf::offline;
+  for (const auto& f : d.findings)
+    std::printf("%s\n", f.c_str());
+  for (const auto& n : d.notes)
+    std::printf("note: %s\n", n.c_str());
+  print_inertia_prior(d);
   const char* names[4] = {"static", "static-to-kinetic", "moving", "all"};
   std::printf(
       "held-out RMSE [%s] before -> after: the selection's linear fit (friction held at "
@@ -100,8 +98,53 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
                   j + 1, names[r], before, after, percent_change(before, after), b, w,
                   percent_change(b, w));
     }
+}
+
+/// The verdict per effect and, per joint, the written model's held-out RMSE before and after.
+template <int N>
+void print_brief(const tpf::offline::Diagnosis<N>& d, const tpf::offline::DiagnoseOptions& o) {
+  using namespace tpf::offline;
+  const Table verdict = diagnosis_summary_table(d, o);
+  if (verdict.rows.empty())  // nothing to show: the findings say why
+    for (const auto& f : d.findings)
+      std::printf("%s\n", f.c_str());
+  else
+    std::printf("%s", table_text(verdict).c_str());
+  print_inertia_prior(d);
+  std::printf("held-out RMSE [%s] of the written model (--params), declared -> with the effects:\n",
+              d.samples.units.name());
+  for (int j = 0; j < N; ++j) {
+    std::printf("  joint %d", j + 1);
+    for (const Regime r : {Regime::Static, Regime::StaticToKinetic, Regime::Moving}) {
+      const double b = d.samples.units.to_effort(j, d.written_before[j][r].rmse);
+      const double w = d.samples.units.to_effort(j, d.written_after[j][r].rmse);
+      std::printf("  %s %.4g -> %.4g (%+.0f %%)", std::string(regime_name(r)).c_str(), b, w,
+                  percent_change(b, w));
+    }
+    std::printf("\n");
+  }
+  std::printf("(--verbose: the findings in full, notes, every regime of both fits)\n");
+}
+
+template <int N>
+void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
+  using namespace tpf::offline;
+  DiagnoseOptions options;
+  options.samples.regimes.static_velocity = a.static_velocity;
+  options.min_improvement = a.min_improvement;
+  options.inertia_prior = a.inertia_prior;
+  if (!a.quiet)
+    options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  const auto model = tpf::load_robot<double, N>(a.robot);
+  const auto d = a.identify_out.empty() ? diagnose<N>(log, model, options)
+                                        : identify_then_diagnose<N>(log, model, options, a);
+  if (d.samples.simulated) std::printf("SIMULATED log (digital twin)\n");
+  if (a.verbose)
+    print_in_full(d);
+  else
+    print_brief(d, options);
   if (!a.report.empty()) {
-    write_diagnosis_report(d, a.report);
+    write_diagnosis_report(d, a.report, options);
     std::printf("wrote %s\n", a.report.c_str());
   }
   if (!a.json.empty()) {
@@ -166,6 +209,10 @@ void register_diagnose_command(CLI::App& app) {
       ->capture_default_str()
       ->check(in_half_open(0.0, 1.0));
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
+  cmd->add_flag("--verbose", a->verbose,
+                "Print the findings in full, the notes and the held-out table of both fits per "
+                "joint and regime (by default: the verdict per effect and the written model's "
+                "held-out error)");
   cmd->callback([a] {
     refuse_overwriting_inputs("diagnose",
                               joined(each_of("--log", a->logs), {{"--robot", a->robot}}),

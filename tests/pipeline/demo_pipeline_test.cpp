@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "offline/replay/replay_estimator.hpp"
+#include "support/page_structure.hpp"
 #include "support/temp_dir.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
@@ -50,6 +51,12 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   EXPECT_NE(index.find("SIMULATED"), std::string::npos);
   EXPECT_NE(read_text(o.out / "evaluate.html").find("SIMULATED"), std::string::npos);
   EXPECT_NE(read_text(o.out / "diagnose.html").find("SIMULATED"), std::string::npos);
+  // Each page reads at a glance: it leads with a figure or a table, short paragraphs, light,
+  // no words of its making; the entry page shows Table I and the diagnosis before any click.
+  for (const char* page : {"index.html", "diagnose.html", "evaluate.html"})
+    EXPECT_EQ(test::page_problems(read_text(o.out / page)), "") << page;
+  EXPECT_GE(test::figures_before_details(index), 2);
+  EXPECT_NE(index.find("<th>why</th>"), std::string::npos);
 
   const auto json = nlohmann::json::parse(read_text(o.out / "evaluation.json"));
   EXPECT_TRUE(json.at("simulated").get<bool>());

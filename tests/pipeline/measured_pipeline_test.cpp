@@ -13,6 +13,7 @@
 
 #include "offline/pipeline/demo_pipeline.hpp"
 #include "offline/pipeline/measured_report.hpp"
+#include "support/page_structure.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -86,6 +87,10 @@ void expect_report_and_json(const std::filesystem::path& out, const MeasuredResu
   EXPECT_NE(html.find("<svg"), std::string::npos);
   EXPECT_NE(read_measured_text(out / "index.html").find("href=\"measured.html\""),
             std::string::npos);
+  // Both pages lead with the per-joint figure, keep their paragraphs short and stay light.
+  EXPECT_EQ(test::page_problems(html), "");
+  EXPECT_EQ(test::page_problems(read_measured_text(out / "index.html")), "");
+  EXPECT_EQ(test::leading_element(html), "figure");
   const auto json = nlohmann::json::parse(read_measured_text(out / "measured.json"));
   EXPECT_TRUE(json.at("measured").get<bool>());
   const int c = measured_column(r.forward, "friction against the sensor");

@@ -45,8 +45,9 @@ TEST(CliIdentifyThenDiagnose, GivesTheFilesAndPrintoutOfBothCommands) {
   EXPECT_EQ(without_wall_time(both.out), expected);
   // The progress of both passes, identify's first.
   EXPECT_LT(both.err.find("identify: pass 3/3"), both.err.find("diagnose: pass 1/4")) << both.err;
-  // Not a vacuous comparison: a diagnosis that found an effect, and identify's table.
-  EXPECT_NE(both.out.find("Found: "), std::string::npos) << both.out;
+  // Not a vacuous comparison: a diagnosis that wrote an effect (its verdict table's "yes"), and
+  // identify's table.
+  EXPECT_NE(both.out.find("  yes  "), std::string::npos) << both.out;
   EXPECT_NE(both.out.find("held-out residual RMSE"), std::string::npos) << both.out;
 
   // One file for two outputs is refused before the log is read, naming the file and the options.

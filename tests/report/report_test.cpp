@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -73,14 +74,14 @@ TEST(TextFormat, EscapingAndNumbers) {
   EXPECT_EQ(format_percent_change(0, 1), "\u2013");
 }
 
-/// The numbers of attribute `name` in `svg` in order, e.g. every cx of the circles.
-std::vector<double> attribute_values(const std::string& svg, const std::string& name) {
-  std::vector<double> values;
-  const std::regex pattern(" " + name + "=\"([-0-9.]+)\"");
+/// The dots of a scatter plot's series paths ("M x yh0" each), in order.
+std::vector<std::pair<double, double>> dots(const std::string& svg) {
+  std::vector<std::pair<double, double>> xy;
+  const std::regex pattern("M([-0-9.]+) ([-0-9.]+)h0");
   for (auto it = std::sregex_iterator(svg.begin(), svg.end(), pattern);
        it != std::sregex_iterator(); ++it)
-    values.push_back(std::stod((*it)[1]));
-  return values;
+    xy.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+  return xy;
 }
 
 TEST(ScatterPlot, DataRangeMapsOntoThePlotArea) {
@@ -89,19 +90,43 @@ TEST(ScatterPlot, DataRangeMapsOntoThePlotArea) {
   options.height = 300;
   const Series s{"r", vec({-3.0, 7.0, 2.0}), vec({0.0, 10.0, 5.0}), ""};
   const std::string svg = scatter_plot(options, {s});
-  const auto cx = attribute_values(svg, "cx");
-  const auto cy = attribute_values(svg, "cy");
-  ASSERT_EQ(cx.size(), 3u);
-  // x_min lands on the left axis, x_max on the right edge, the middle in proportion.
-  EXPECT_NEAR(cx[0], PlotCanvas::kLeft, 0.05);
-  EXPECT_NEAR(cx[1], 500 - PlotCanvas::kRight, 0.05);
-  EXPECT_NEAR(cx[2], PlotCanvas::kLeft + 0.5 * (500 - PlotCanvas::kLeft - PlotCanvas::kRight),
-              0.05);
+  const auto xy = dots(svg);
+  ASSERT_EQ(xy.size(), 3u);
+  // x_min lands on the left axis, x_max on the right edge, the middle in proportion (whole
+  // pixels).
+  EXPECT_NEAR(xy[0].first, PlotCanvas::kLeft, 0.5);
+  EXPECT_NEAR(xy[1].first, 500 - PlotCanvas::kRight, 0.5);
+  EXPECT_NEAR(xy[2].first, PlotCanvas::kLeft + 0.5 * (500 - PlotCanvas::kLeft - PlotCanvas::kRight),
+              0.5);
   // y: 0 and 10 are nice ticks, so they land on the bottom and top of the plot area.
-  EXPECT_NEAR(cy[0], 300 - PlotCanvas::kBottom, 0.05);
-  EXPECT_NEAR(cy[1], PlotCanvas::kTop, 0.05);
-  EXPECT_NEAR(cy[2], 0.5 * (PlotCanvas::kTop + 300 - PlotCanvas::kBottom), 0.05);
+  EXPECT_NEAR(xy[0].second, 300 - PlotCanvas::kBottom, 0.5);
+  EXPECT_NEAR(xy[1].second, PlotCanvas::kTop, 0.5);
+  EXPECT_NEAR(xy[2].second, 0.5 * (PlotCanvas::kTop + 300 - PlotCanvas::kBottom), 0.5);
   EXPECT_TRUE(test::check_tags(svg).empty()) << test::check_tags(svg);
+}
+
+TEST(ScatterPlot, KeepsOneDotPerSeriesInEachThreePixelCell) {
+  PlotOptions options;
+  options.width = 500;
+  options.height = 300;
+  // 200 000 samples on a sine: the dots left are about the cells the curve crosses, a few per
+  // pixel column, and every cell the curve crosses keeps one (its top and bottom too).
+  const Eigen::Index n = 200000;
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0);
+  const Eigen::VectorXd y = (2 * std::numbers::pi * x).array().sin();
+  const std::string svg = scatter_plot(options, {{"sine", x, y, ""}}, 1000000);
+  const auto xy = dots(svg);
+  const double columns = 500 - PlotCanvas::kLeft - PlotCanvas::kRight;
+  EXPECT_GT(xy.size(), static_cast<std::size_t>(columns / 2));
+  EXPECT_LT(xy.size(), static_cast<std::size_t>(4 * columns));
+  const auto [lowest, highest] = std::minmax_element(
+      xy.begin(), xy.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  const PlotCanvas canvas(options, 0.0, 1.0, -1.0, 1.0);
+  EXPECT_NEAR(lowest->second, canvas.y()(1.0), 1.0);
+  EXPECT_NEAR(highest->second, canvas.y()(-1.0), 1.0);
+  EXPECT_LT(svg.size(), 20000u);
+  // max_points still caps a series: every other cell is kept.
+  EXPECT_LE(dots(scatter_plot(options, {{"sine", x, y, ""}}, 200)).size(), 200u);
 }
 
 TEST(AxisMap, IsAffine) {
@@ -127,9 +152,9 @@ TEST(LinePlot, NaNBreaksTheLineAndLongSeriesAreDecimated) {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(100000);
   y[61234] = 5.0;
   const std::string big = line_plot(options, {Series{"", x, y, ""}});
-  EXPECT_LT(big.size(), 40000u);
-  EXPECT_NE(big.find(" " + svg_coordinate(PlotCanvas::kTop)),
-            std::string::npos);  // the spike's top
+  EXPECT_LT(big.size(), 20000u);
+  // The spike's top, at whole pixels: the second point of its column ("V44").
+  EXPECT_NE(big.find("V" + std::to_string(std::lround(PlotCanvas::kTop))), std::string::npos);
   EXPECT_THROW(line_plot(options, {Series{"bad", vec({1, 2}), vec({1}), ""}}), Error);
 }
 
@@ -204,6 +229,18 @@ TEST(BarChart, BarsStartAtZeroAndHaveOneValuePerGroup) {
   EXPECT_NE(svg.find(">static<"), std::string::npos);
   EXPECT_NE(svg.find(">280<"), std::string::npos);  // value label
   EXPECT_THROW(bar_chart(options, {"a"}, {{"x", {1.0, 2.0}, ""}}), Error);
+  // A label wider than its bar (5 characters of ≈ 6 px in 24 px bars) keeps 2 digits, so that
+  // neighbours' labels never run into each other; one that fits keeps 3.
+  PlotOptions narrow;
+  narrow.width = 400;
+  const std::vector<std::string> joints{"1", "2", "3", "4"};
+  const std::string crowded = bar_chart(
+      narrow, joints,
+      {{"a", {0.652, 1, 1, 1}, ""}, {"b", {0.595, 1, 1, 1}, ""}, {"c", {1, 1, 1, 1}, ""}});
+  EXPECT_NE(crowded.find(">0.65<"), std::string::npos);
+  EXPECT_EQ(crowded.find(">0.652<"), std::string::npos);
+  const std::string roomy = bar_chart(options, {"one"}, {{"a", {0.652}, ""}});
+  EXPECT_NE(roomy.find(">0.652<"), std::string::npos);
 }
 
 // Category names wider than their slot wrap after a space or a hyphen instead of running into

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/regimes/regime_stats.hpp"
 #include "offline/report/bar_chart.hpp"
@@ -135,7 +136,8 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::path& html) {
+void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::path& html,
+                            const DiagnoseOptions& options) {
   const int N = d.joints();
   const JointSamples& s = d.samples;
   // Fitted in N·m; shown in the log's unit (mA for a log of currents).
@@ -146,11 +148,25 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
   HtmlReport page("tpf diagnose: " + s.source);
   if (s.simulated) page.mark_simulated();
   page.subtitle("effort unit " + unit + "; held-out = every 4th 5 s block, never fitted");
-  page.heading("Findings");
+  page.table(diagnosis_summary_table(d, options));
+  std::vector<std::string> groups;
+  BarSeries before{"before", {}, ""}, after{"after", {}, ""};
+  for (int i = 0; i < N; ++i)
+    for (int r = 0; r < 3; ++r) {
+      std::string label = "j";  // appended piecewise: GCC 12 -Wrestrict false positive on a + b + c
+      label.append(std::to_string(i + 1)).append(" ").append(kRegimeNames[r]);
+      groups.push_back(label);
+      before.values.push_back(u.to_effort(i, d.before[i][r].rmse()));
+      after.values.push_back(u.to_effort(i, d.after[i][r].rmse()));
+    }
+  page.figure(bar_chart({"Held-out RMSE per joint and regime", "", unit, 900, 320, true}, groups,
+                        {before, after}));
+
+  page.open_details("Findings in full");
   page.list(d.findings);
   if (!d.notes.empty()) page.list(d.notes);
-
-  page.heading("Held-out residual before and after");
+  page.close_details();
+  page.open_details("Held-out residual per joint and regime, before and after");
   Table table;
   table.header = {"joint",      "regime",     "samples",   "RMSE before",
                   "std before", "RMSE after", "std after", "change"};
@@ -167,20 +183,8 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
     }
   table.caption = "Residual = effort − model, " + unit + ", held-out samples.";
   page.table(table);
-  std::vector<std::string> groups;
-  BarSeries before{"before", {}, ""}, after{"after", {}, ""};
-  for (int i = 0; i < N; ++i)
-    for (int r = 0; r < 3; ++r) {
-      std::string label = "j";  // appended piecewise: GCC 12 -Wrestrict false positive on a + b + c
-      label.append(std::to_string(i + 1)).append(" ").append(kRegimeNames[r]);
-      groups.push_back(label);
-      before.values.push_back(u.to_effort(i, d.before[i][r].rmse()));
-      after.values.push_back(u.to_effort(i, d.after[i][r].rmse()));
-    }
-  page.figure(bar_chart({"Held-out RMSE per joint and regime", "", unit, 900, 320, true}, groups,
-                        {before, after}));
-
-  page.heading("Evidence: every candidate tried");
+  page.close_details();
+  page.open_details("Every candidate tried, round by round");
   Table evidence;
   evidence.header = {"round", "candidate effect", "held-out SSE removed", "BIC change", "selected"};
   for (const CandidateTrial& t : d.trials)
@@ -191,6 +195,8 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
       "SSE over the moving held-out samples of the joints the effect acts on; selected when it "
       "removes at least 10 % and the BIC falls.";
   page.table(evidence);
+  page.close_details();
+  page.open_details("Residual over time per joint, and against each effect's term");
 
   for (int i = 0; i < N; ++i) {
     page.figure(line_plot({"Joint " + std::to_string(i + 1) + ": residual over time (held-out)",
@@ -209,8 +215,10 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
                       heldout_series(s, "after", term, residual_after.col(i))}),
         "Before, the residual follows the term (slope 1); after adding it, it is flat.");
   }
-  page.heading("Numbers");
-  page.preformatted(diagnosis_json(d));
+  page.close_details();
+  page.paragraph(
+      "Every number: tpf diagnose --json (the demo writes diagnosis.json beside this "
+      "page).");
   page.write(html);
 }
 

@@ -13,9 +13,11 @@ namespace tpf::offline {
 /// findings and notes, and "simulated".
 std::string diagnosis_json(const EffectDiagnosis& diagnosis);
 
-/// Writes the HTML report (labelled SIMULATED when the log's metadata says so): findings, the
-/// before/after table, per-regime bars, the evidence table, residual over time before and after,
-/// and the residual against each selected effect's term before and after.
-void write_diagnosis_report(const EffectDiagnosis& diagnosis, const std::filesystem::path& html);
+/// Writes the HTML report (labelled SIMULATED when the log's metadata says so): the verdict per
+/// effect (diagnosis_summary_table, judged with `options`) and the per-regime bars first, then
+/// in collapsed sections the findings, the before/after table, the evidence table, residual over
+/// time before and after, and the residual against each selected effect's term.
+void write_diagnosis_report(const EffectDiagnosis& diagnosis, const std::filesystem::path& html,
+                            const DiagnoseOptions& options = {});
 
 }  // namespace tpf::offline

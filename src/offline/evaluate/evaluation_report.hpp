@@ -14,6 +14,10 @@ namespace tpf::offline {
 HtmlReport evaluation_report(const Evaluation& evaluation, bool simulated,
                              const std::vector<std::string>& notes);
 
+/// Table I pooled over joints, one row per state: RMSE nominal → with the TCN, the change and the
+/// paper's goal for that state (static ≤ −90 %, static-to-kinetic ≤ −60 %) met or not.
+Table table_one_summary(const Evaluation& evaluation);
+
 /// The headline: Table I pooled over joints and the targets, as fixed-width text, labelled
 /// SIMULATED or MEASURED and with the logs' effort unit.
 std::string evaluation_headline(const Evaluation& evaluation, bool simulated);

@@ -11,8 +11,10 @@
 #include "offline/common/data_files.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
+#include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/pipeline/demo_index.hpp"
 #include "offline/pipeline/measured_report.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/report/html_report.hpp"
@@ -82,61 +84,6 @@ std::string training_summary(const CompensatorTraining& training) {
   return text;
 }
 
-/// The twin's section of the index page (SIMULATED).
-void add_twin_section(HtmlReport& page, const DemoOptions& o, const DemoResult& r,
-                      const std::vector<SimulationJob>& jobs) {
-  page.heading("SIMULATED — the digital twin of the 4-joint arm");
-  page.heading("Pages", 3);
-  page.links({{"diagnose.html", "diagnose",
-               "— what the declared model misses, the effects added, held-out before/after"},
-              {"evaluate.html", "evaluate",
-               "— tactile-only, proprioceptive-only and fusion side by side (Table I, dead "
-               "bands, detection, force, teaching)"}});
-  page.heading("Diagnosis", 3);
-  page.list(r.findings);
-  page.heading("Headline", 3);
-  page.preformatted(evaluation_headline(r.evaluation, true));
-  page.heading("Stages", 3);
-  std::vector<std::string> stages;
-  for (const SimulationJob& j : jobs)
-    stages.push_back("log: " + j.log.source);
-  stages.push_back(
-      "nominal model: identify then diagnose on the training log (identified.params.json, "
-      "nominal.params.json = identified + the effects diagnosis added)");
-  stages.push_back(
-      "train: " +
-      std::string(o.per_joint ? "one network per joint" : "one network for all joints") +
-      ", budget " + std::to_string(o.training_epochs) +
-      " epochs per network (reproducible: the same seed gives the same weights on "
-      "any machine), took " +
-      format_number(r.training.seconds, 3) + " s;" + training_summary(r.training) +
-      " weights in tcn.json or tcn.joint<j>.json");
-  page.list(stages);
-}
-
-void write_index(const std::filesystem::path& out, const DemoOptions& o, const DemoResult& r,
-                 const std::vector<SimulationJob>& jobs) {
-  HtmlReport page("tpf demo: the whole loop on the digital twin and on measured logs");
-  if (r.measured && o.run_twin)
-    page.mark_mixed();
-  else if (r.measured)
-    page.mark_measured("Kinova Gen3 logs, W. Chiha, MIT licence");
-  else
-    page.mark_simulated();
-  page.paragraph(
-      "Twin (SIMULATED): simulate → identify → diagnose → train → evaluate. Kinova Gen3 logs "
-      "(MEASURED): identify → diagnose → train on fitting files, validate against the torque "
-      "sensor on held-out files. " +
-      format_number(r.seconds, 3) + " s.");
-  if (o.run_twin) add_twin_section(page, o, r, jobs);
-  if (r.measured) add_measured_summary(page, *r.measured, o.measured.target_reduction);
-  page.write(out / "index.html");
-}
-
-}  // namespace
-
-namespace {
-
 /// Stages 1–5: the loop on the digital twin (SIMULATED).
 void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJob>& jobs,
               const std::function<void(const std::string&)>& say) {
@@ -173,11 +120,12 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
     say("diagnose: " + f);
   save_nominal_model<kDemoJoints>(o.out / "nominal.params.json", diagnosis.nominal,
                                   training_log.source);
-  write_diagnosis_report(diagnosis, o.out / "diagnose.html");
+  write_diagnosis_report(diagnosis, o.out / "diagnose.html", diagnose_options);
   AtomicFile diagnosis_file(o.out / "diagnosis.json");
   diagnosis_file.write(diagnosis_json(diagnosis));
   diagnosis_file.commit();
   result.findings = diagnosis.findings;
+  result.diagnosis_summary = diagnosis_summary_table(diagnosis, diagnose_options);
   EstimatorSetup<kDemoJoints> setup;
   setup.nominal = diagnosis.nominal;
   setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
@@ -242,6 +190,19 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
           ";" + training_summary(result.training)};
   for (const SimulationJob& j : jobs)
     if (&j != &jobs[0]) notes.push_back("log: " + j.log.source);
+  for (const SimulationJob& j : jobs)
+    result.stages.push_back("log: " + j.log.source);
+  result.stages.push_back(
+      "nominal model: identify then diagnose on the training log (identified.params.json, "
+      "nominal.params.json = identified + the effects diagnosis added)");
+  result.stages.push_back(
+      "train: " +
+      std::string(o.per_joint ? "one network per joint" : "one network for all joints") +
+      ", budget " + std::to_string(o.training_epochs) +
+      " epochs per network (reproducible: the same seed gives the same weights on any "
+      "machine), took " +
+      format_number(result.training.seconds, 3) + " s;" + training_summary(result.training) +
+      " weights in tcn.json or tcn.joint<j>.json");
   evaluation_report(result.evaluation, true, notes).write(o.out / "evaluate.html");
   AtomicFile json(o.out / "evaluation.json");
   json.write(evaluation_json(result.evaluation));
@@ -269,7 +230,7 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
     write_measured_report(*result.measured, measured, o.out);
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_index(o.out, o, result, jobs);
+  write_demo_index(o.out, o, result);
   result.index = o.out / "index.html";
   return result;
 }

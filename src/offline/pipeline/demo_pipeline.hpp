@@ -11,6 +11,7 @@
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/pipeline/measured_pipeline.hpp"
+#include "offline/report/html_report.hpp"
 
 namespace tpf::offline {
 
@@ -51,6 +52,8 @@ struct DemoResult {
   Evaluation evaluation;
   CompensatorTraining training;
   std::vector<std::string> findings;       ///< the diagnosis, in plain sentences
+  Table diagnosis_summary;                 ///< the diagnosis at a glance (diagnosis_summary_table)
+  std::vector<std::string> stages;         ///< the twin's logs, nominal model and training
   std::optional<MeasuredResult> measured;  ///< stage 6, when run
   std::filesystem::path index;             ///< the report's entry page
   double seconds = 0.0;

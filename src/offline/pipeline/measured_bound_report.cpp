@@ -185,7 +185,7 @@ std::vector<std::string> measured_bound_verdicts(const MeasuredBound& forward,
 
 void add_measured_bound_section(HtmlReport& page, const MeasuredBound& forward,
                                 const MeasuredBound& reverse) {
-  page.heading("What bounds the held-out error", 3);
+  page.open_details("What bounds the held-out error");
   std::vector<int> missed;
   for (const MeasuredBound* b : {&forward, &reverse}) {
     if (b->maker.empty()) continue;
@@ -201,6 +201,7 @@ void add_measured_bound_section(HtmlReport& page, const MeasuredBound& forward,
   page.list(verdicts);
   for (int j : missed)
     add_measured_bound_figure(page, forward, j);
+  page.close_details();
 }
 
 std::string measured_bound_json(const MeasuredBound& b) {

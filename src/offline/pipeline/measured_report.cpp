@@ -8,6 +8,7 @@
 #include <string>
 
 #include "offline/pipeline/measured_bound_report.hpp"
+#include "offline/report/bar_chart.hpp"
 #include "offline/report/line_plot.hpp"
 #include "offline/report/scatter_plot.hpp"
 #include "offline/report/text_format.hpp"
@@ -404,8 +405,92 @@ std::string measured_headline(const MeasuredResult& r, double target) {
   return text;
 }
 
+namespace {
+
+/// 3 of "a.csv.gz + b.csv.gz + c.csv.gz".
+std::size_t file_count(const std::string& files) {
+  std::size_t n = 1;
+  for (std::size_t at = files.find(" + "); at != std::string::npos; at = files.find(" + ", at + 3))
+    ++n;
+  return n;
+}
+
+}  // namespace
+
+namespace {
+
+/// The columns the first screen and the short summary show: maker, then tpf's identified model
+/// and its friction fitted against the sensor with the current low-pass (when present), each
+/// with its short name.
+std::vector<std::pair<int, std::string>> headline_columns(const MeasuredSplit& split) {
+  std::vector<std::pair<int, std::string>> columns{{0, "maker's estimate K_t·i"}};
+  const std::vector<std::pair<std::string, std::string>> shown{
+      {"after identification", "tpf, identified"},
+      {"+ current low-pass", "tpf, friction against the sensor + current low-pass"}};
+  for (const auto& [name, label] : shown)
+    if (const int c = measured_column(split, name); c >= 0) columns.emplace_back(c, label);
+  return columns;
+}
+
+}  // namespace
+
+std::string measured_brief(const MeasuredResult& r, double target) {
+  const MeasuredSplit& split = r.forward;
+  const auto columns = headline_columns(split);
+  std::string text = std::string(kMeasuredLabel) + "\n";
+  text +=
+      "RMSE against the torque sensor on the held-out files [N·m], change against the "
+      "maker's estimate:\n  joint";
+  for (const auto& [c, label] : columns)
+    text += " | " + label;
+  text += " | goal −" + format_sentence("%.0f %%", 100 * target) + "\n";
+  for (int j : sensor_scored_joints(split)) {
+    const auto jj = static_cast<std::size_t>(j);
+    const double maker = split.columns[0].rmse[jj];
+    char line[64];
+    std::snprintf(line, sizeof line, "  %5d | %6.3f", j + 1, maker);
+    text += line;
+    for (std::size_t k = 1; k < columns.size(); ++k) {
+      const double rmse = split.columns[static_cast<std::size_t>(columns[k].first)].rmse[jj];
+      std::snprintf(line, sizeof line, " | %6.3f (%+.1f %%)", rmse, percent_change(maker, rmse));
+      text += line;
+    }
+    text += estimates_meeting_target(split, j, target).empty() ? " | missed\n" : " | met\n";
+  }
+  return text;
+}
+
+void add_measured_headline(HtmlReport& page, const MeasuredResult& r, double target, int width) {
+  const MeasuredSplit& split = r.forward;
+  std::vector<std::string> groups;
+  std::vector<BarSeries> series;
+  std::vector<int> columns;
+  for (const auto& [c, label] : headline_columns(split)) {
+    columns.push_back(c);
+    series.push_back({label, {}, c == 0 ? "#7a8594" : ""});
+  }
+  std::vector<std::string> met, missed;
+  for (int j : sensor_scored_joints(split)) {
+    const auto jj = static_cast<std::size_t>(j);
+    groups.push_back("joint " + std::to_string(j + 1));
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      series[k].values.push_back(split.columns[static_cast<std::size_t>(columns[k])].rmse[jj]);
+    (estimates_meeting_target(split, j, target).empty() ? missed : met)
+        .push_back(std::to_string(j + 1));
+  }
+  page.heading("Kinova Gen3 (MEASURED): error against the torque sensor");
+  page.figure(bar_chart({"", "", "RMSE on held-out files [N·m]", width, 260, true}, groups, series),
+              "Held out by file: fitted on " + std::to_string(file_count(split.fitted_on)) +
+                  " files, scored on " + std::to_string(file_count(split.scored_on)) +
+                  " others. tpf's goal, " + format_sentence("%.0f %%", 100 * target) +
+                  " below the maker's estimate: met on joints " +
+                  (met.empty() ? std::string("none") : joined(met, ", ")) + "; missed on " +
+                  (missed.empty() ? std::string("none") : joined(missed, ", ")) +
+                  ". Data: Kinova Gen3 logs, W. Chiha, MIT licence.");
+}
+
 void add_measured_summary(HtmlReport& page, const MeasuredResult& r, double target) {
-  page.heading(kMeasuredLabel);
+  page.subtitle(kMeasuredLabel);
   page.paragraph("Held out by file: fitted on " + r.forward.fitted_on + ", scored on " +
                  r.forward.scored_on + " against the joint torque sensor, in " +
                  format_number(r.seconds, 3) +
@@ -421,7 +506,7 @@ namespace {
 
 /// The reverse split's table, target and low-pass time constants.
 void add_reverse_section(HtmlReport& page, const MeasuredResult& r, const MeasuredOptions& o) {
-  page.heading("The reverse split", 3);
+  page.open_details("The reverse split: fitted on the scored files, scored on the fitting ones");
   page.table(measured_table(r.reverse, o.target_reduction));
   page.paragraph(measured_target_sentence(r.reverse, o.target_reduction));
   std::string taus;
@@ -429,6 +514,7 @@ void add_reverse_section(HtmlReport& page, const MeasuredResult& r, const Measur
     taus += (j ? " / " : " ") + format_number(1000 * r.reverse_low_pass_time_constants[j], 3);
   page.paragraph("Low-pass time constants chosen on this split's fitting files (joints 1–7, ms):" +
                  taus + ".");
+  page.close_details();
 }
 
 /// What the two compensators are and how they trained.
@@ -476,7 +562,7 @@ void add_compensator_section(HtmlReport& page, const MeasuredResult& r, const Me
 
 /// diagnose's findings on the fitting files and its effects against the held-out current.
 void add_diagnosis_section(HtmlReport& page, const MeasuredResult& r) {
-  page.heading("What diagnose adds", 3);
+  page.open_details("What diagnose adds");
   page.paragraph(
       "diagnose ran on the fitting files and held out the last one, " + r.diagnosis_heldout +
       ", with the files that repeat its motion: it claims an effect only if it lowers the "
@@ -490,6 +576,7 @@ void add_diagnosis_section(HtmlReport& page, const MeasuredResult& r) {
   if (!r.diagnosis_unseen.empty()) page.paragraph(r.diagnosis_unseen);
   page.table(diagnosis_effort_table(r));
   page.paragraph(diagnosis_transfer_sentence(r));
+  page.close_details();
 }
 
 }  // namespace
@@ -499,34 +586,44 @@ void write_measured_report(const MeasuredResult& r, const MeasuredOptions& o,
   HtmlReport page("tpf: the loop on measured data (Kinova Gen3)");
   page.mark_measured("Kinova Gen3 logs, W. Chiha, MIT licence (data/real/kinova-gen3/SOURCE.md)");
   page.subtitle(kMeasuredLabel);
+  add_measured_headline(page, r, o.target_reduction, 900);
   page.paragraph(
       "K_t·i (the maker's own current-based joint torque: TorqueCur = K_t·Cur exactly) against "
       "the torque sensor behind each gear, before and after the model: K_t·i − d with d the "
       "drive loss the model predicts (friction + armature·q̈). Held out by file: nothing scored "
       "was fitted on. " +
       format_number(r.seconds, 3) + " s.");
-  page.heading("Held out by file");
+  page.open_details("Every model against the sensor, per joint (held out by file)");
   page.table(measured_table(r.forward, o.target_reduction));
   page.paragraph(measured_target_sentence(r.forward, o.target_reduction));
   page.paragraph(columns_sentence(r));
+  page.close_details();
   if (!r.reverse.columns.empty()) add_reverse_section(page, r, o);
-  if (!r.training.results.empty()) add_compensator_section(page, r, o);
+  if (!r.training.results.empty()) {
+    page.open_details("The compensators: what they learn and how they trained");
+    add_compensator_section(page, r, o);
+    page.close_details();
+  }
   if (!r.floor.best_rmse.empty()) {
-    page.heading("The compensator against the best memoryless model, and the noise floor", 3);
+    page.open_details("The compensator against the best memoryless model, and the noise floor");
     page.table(compensator_floor_table(r.floor));
     page.paragraph(compensator_floor_sentence(r.floor));
+    page.close_details();
   }
   if (!r.bound.maker.empty()) add_measured_bound_section(page, r.bound, r.reverse_bound);
   if (!r.diagnosis_heldout.empty()) add_diagnosis_section(page, r);
-  page.heading("What the residual holds: candidates against the sensor");
+  page.open_details("What the residual holds: candidates against the sensor");
   page.table(candidate_table(r));
   page.paragraph(candidate_summary(r));
-  page.heading("What these files cannot decide");
+  page.close_details();
+  page.open_details("What these files cannot decide");
   page.list(measured_fact_lines(r.facts));
   if (!r.notes.empty()) page.list(r.notes);
-  page.heading("Residuals on the held-out files");
+  page.close_details();
+  page.open_details("Residuals on the held-out files, per joint");
   for (int j : sensor_scored_joints(r.forward))
     add_measured_joint_plots(page, r.traces, j, r.forward.scored_on);
+  page.close_details();
   page.write(folder / "measured.html");
   AtomicFile json(folder / "measured.json");
   json.write(measured_json(r, o.target_reduction));

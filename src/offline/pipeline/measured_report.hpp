@@ -44,6 +44,16 @@ std::string candidate_summary(const MeasuredResult& result);
 /// target.
 std::string measured_headline(const MeasuredResult& result, double target);
 
+/// The measured arm at a glance (for the first screen): per joint the RMSE against the torque
+/// sensor on the held-out files of the maker's estimate and of tpf's models (identified; friction
+/// fitted against the sensor with the current low-pass), and on which joints the goal is met.
+void add_measured_headline(HtmlReport& page, const MeasuredResult& result, double target,
+                           int width);
+
+/// The terminal's short summary (a dozen lines): per joint the maker's estimate and tpf's models
+/// of the first screen (add_measured_headline) against the sensor, and where the goal is met.
+std::string measured_brief(const MeasuredResult& result, double target);
+
 /// The MEASURED section of the demo's index page.
 void add_measured_summary(HtmlReport& page, const MeasuredResult& result, double target);
 

@@ -7,6 +7,19 @@
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {
+namespace {
+
+/// `value` with 3 significant digits, or 2 when that is too wide for a bar `bar` px wide (≈ 6 px
+/// a character of the 11 px labels), so that neighbours' labels never run into each other.
+std::string bar_label(double value, double bar) {
+  const std::string three = format_number(value, 3);
+  std::size_t characters = 0;
+  for (const char c : three)
+    characters += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  return 6.0 * static_cast<double>(characters) <= bar ? three : format_number(value, 2);
+}
+
+}  // namespace
 
 std::string bar_chart(const PlotOptions& options, const std::vector<std::string>& groups,
                       const std::vector<BarSeries>& series) {
@@ -44,7 +57,7 @@ std::string bar_chart(const PlotOptions& options, const std::vector<std::string>
       if (labels)
         texts += "<text class=\"bar-value\" text-anchor=\"middle\" x=\"" +
                  svg_coordinate(left + 0.5 * bar) + "\" y=\"" +
-                 svg_coordinate(v >= 0 ? top - 4 : bottom + 12) + "\">" + format_number(v, 3) +
+                 svg_coordinate(v >= 0 ? top - 4 : bottom + 12) + "\">" + bar_label(v, bar) +
                  "</text>";
     }
     canvas.add(bars + "</g>\n" + texts + "\n");

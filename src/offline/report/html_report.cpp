@@ -1,13 +1,20 @@
 #include "offline/report/html_report.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <string_view>
 
 #include "offline/report/plot_canvas.hpp"
 #include "offline/report/text_format.hpp"
 #include "tpf/common/atomic_file.hpp"
+#include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
+
+/// A paragraph longer than this many words is cut after a sentence (a reader takes in a short
+/// one at a glance).
+constexpr int kParagraphWords = 60;
 
 constexpr const char* kStyle = R"(
 :root { --ink: #1d2430; --muted: #5b6575; --line: #d9dee6; --accent: #0072B2; }
@@ -41,6 +48,20 @@ figure { margin: 16px 0 22px; }
 figcaption { color: var(--muted); font-size: 13.5px; margin-top: 2px; max-width: 78ch; }
 pre { background: #f4f6f9; border: 1px solid var(--line); border-radius: 4px; padding: 8px 12px;
   font-size: 13px; overflow-x: auto; }
+main.wide { max-width: 1360px; padding: 18px 32px 56px; }
+main.wide h1 { font-size: 23px; margin-top: 2px; }
+main.wide .subtitle { margin-bottom: 10px; }
+details { margin: 14px 0; border: 1px solid var(--line); border-radius: 4px; padding: 4px 14px; }
+details > summary { cursor: pointer; color: var(--accent); font-weight: 600; padding: 4px 0; }
+details[open] > summary { margin-bottom: 6px; }
+.panels { display: flex; flex-wrap: wrap; gap: 14px 28px; align-items: flex-start; margin: 4px 0 8px; }
+.panel { flex: 1 1 0; min-width: 360px; }
+.panel h2 { font-size: 16px; margin: 4px 0 4px; }
+.panel table { font-size: 13.5px; margin-top: 2px; }
+.panel th, .panel td { padding: 3px 9px; }
+.panel figure { margin: 2px 0 4px; }
+.panel p { margin: 4px 0; font-size: 13.5px; color: var(--muted); }
+nav { margin: 0 0 12px; font-size: 14px; }
 footer { margin-top: 40px; color: var(--muted); font-size: 12.5px; border-top: 1px solid var(--line);
   padding-top: 8px; }
 )";
@@ -56,6 +77,41 @@ bool looks_numeric(const std::string& cell) {
     return false;
   }
   return true;
+}
+
+/// Words of `text` (runs of non-space characters).
+int word_count(std::string_view text) {
+  int words = 0;
+  bool in_word = false;
+  for (const char c : text) {
+    const bool space = c == ' ' || c == '\n' || c == '\t';
+    words += !space && !in_word;
+    in_word = !space;
+  }
+  return words;
+}
+
+/// `text` cut after sentences (". " before a capital letter or a digit) into pieces of at most
+/// kParagraphWords words each; a longer sentence stays whole.
+std::vector<std::string> paragraph_pieces(const std::string& text) {
+  std::vector<std::string> sentences;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i + 2 < text.size(); ++i) {
+    const unsigned char next = static_cast<unsigned char>(text[i + 2]);
+    if (text[i] == '.' && text[i + 1] == ' ' && (std::isupper(next) || std::isdigit(next))) {
+      sentences.push_back(text.substr(start, i + 1 - start));
+      start = i + 2;
+    }
+  }
+  sentences.push_back(text.substr(start));
+  std::vector<std::string> pieces;
+  for (const std::string& sentence : sentences) {
+    if (!pieces.empty() && word_count(pieces.back()) + word_count(sentence) <= kParagraphWords)
+      pieces.back() += " " + sentence;
+    else
+      pieces.push_back(sentence);
+  }
+  return pieces;
 }
 
 }  // namespace
@@ -88,7 +144,8 @@ void HtmlReport::heading(const std::string& text, int level) {
 }
 
 void HtmlReport::paragraph(const std::string& text) {
-  body_ += "<p>" + html_escape(text) + "</p>\n";
+  for (const std::string& piece : paragraph_pieces(text))
+    body_ += "<p>" + html_escape(piece) + "</p>\n";
 }
 
 void HtmlReport::list(const std::vector<std::string>& items) {
@@ -104,6 +161,14 @@ void HtmlReport::links(const std::vector<Link>& links) {
     body_ += "<li><a href=\"" + html_escape(link.href) + "\">" + html_escape(link.text) + "</a> " +
              html_escape(link.description) + "</li>\n";
   body_ += "</ul>\n";
+}
+
+void HtmlReport::nav(const std::vector<Link>& links) {
+  body_ += "<nav>";
+  for (std::size_t i = 0; i < links.size(); ++i)
+    body_ += std::string(i ? " · " : "") + "<a href=\"" + html_escape(links[i].href) + "\">" +
+             html_escape(links[i].text) + "</a>";
+  body_ += "</nav>\n";
 }
 
 void HtmlReport::table(const Table& table) {
@@ -148,12 +213,37 @@ void HtmlReport::preformatted(const std::string& text) {
   body_ += "<pre>" + html_escape(text) + "</pre>\n";
 }
 
+void HtmlReport::open_details(const std::string& summary) {
+  body_ += "<details>\n<summary>" + html_escape(summary) + "</summary>\n";
+  ++open_details_;
+}
+
+void HtmlReport::close_details() {
+  if (open_details_ == 0) throw Error("report '" + title_ + "': close_details() with none open");
+  body_ += "</details>\n";
+  --open_details_;
+}
+
+void HtmlReport::panels(const std::vector<std::string>& fragments,
+                        const std::vector<int>& weights) {
+  body_ += "<div class=\"panels\">\n";
+  for (std::size_t i = 0; i < fragments.size(); ++i)
+    body_ += "<section class=\"panel\" style=\"flex-grow: " +
+             std::to_string(i < weights.size() ? weights[i] : 1) + "\">\n" + fragments[i] +
+             "</section>\n";
+  body_ += "</div>\n";
+}
+
 std::string HtmlReport::html() const {
+  if (open_details_ != 0)
+    throw Error("report '" + title_ + "': " + std::to_string(open_details_) +
+                " collapsed section(s) left open");
   std::string page = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   page += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   page += "<title>" + html_escape(title_) + "</title>\n<style>" + kStyle + plot_style_sheet() +
           "</style>\n</head>\n";
-  page += "<body>\n" + banner_ + "<main>\n<h1>" + html_escape(title_) + "</h1>\n" + body_;
+  page += "<body>\n" + banner_ + (wide_ ? "<main class=\"wide\">\n<h1>" : "<main>\n<h1>") +
+          html_escape(title_) + "</h1>\n" + body_;
   page +=
       "<footer>Generated by tpf. Self-contained page: no scripts, no network access.</footer>\n";
   page += "</main>\n</body>\n</html>\n";

@@ -31,15 +31,19 @@ Bounds bounds_of(const std::vector<Series>& series) {
   return b;
 }
 
-/// SVG path of one series: pixel-column min/max decimation, a new sub-path after each NaN.
+/// SVG path of one series, a new sub-path after each NaN. A series with more samples than twice
+/// the plot's pixel columns is decimated to what the pixels show: per column its smallest and
+/// largest sample, in time order, at whole pixels, drawn as a point and a vertical stroke
+/// ("L x y1 V y2").
 std::string path_of(const Series& s, const PlotCanvas& canvas) {
   std::string d;
   bool pen_down = false;
-  const auto point = [&](double px, double py) {
+  const auto point = [&](const std::string& px, const std::string& py) {
     d += pen_down ? 'L' : 'M';
-    d += svg_coordinate(px) + " " + svg_coordinate(py);
+    d.append(px).append(" ").append(py);
     pen_down = true;
   };
+  const auto pixel = [](double p) { return std::to_string(std::lround(p)); };
   const double columns = canvas.plot_right() - canvas.plot_left();
   const bool decimate = static_cast<double>(s.x.size()) > 2.0 * columns;
   long column = std::numeric_limits<long>::min();
@@ -47,8 +51,8 @@ std::string path_of(const Series& s, const PlotCanvas& canvas) {
   const auto flush = [&] {
     if (lo < 0) return;
     const Eigen::Index first = std::min(lo, hi), second = std::max(lo, hi);
-    point(canvas.x()(s.x[first]), canvas.y()(s.y[first]));
-    if (second != first) point(canvas.x()(s.x[second]), canvas.y()(s.y[second]));
+    point(std::to_string(column), pixel(canvas.y()(s.y[first])));
+    if (second != first) d.append("V").append(pixel(canvas.y()(s.y[second])));
     lo = hi = -1;
   };
   for (Eigen::Index k = 0; k < s.x.size(); ++k) {
@@ -58,7 +62,7 @@ std::string path_of(const Series& s, const PlotCanvas& canvas) {
       continue;
     }
     if (!decimate) {
-      point(canvas.x()(s.x[k]), canvas.y()(s.y[k]));
+      point(svg_coordinate(canvas.x()(s.x[k])), svg_coordinate(canvas.y()(s.y[k])));
       continue;
     }
     const long c = std::lround(std::floor(canvas.x()(s.x[k])));

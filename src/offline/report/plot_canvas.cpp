@@ -22,7 +22,7 @@ svg.plot .grid line { stroke: #e6e9ee; stroke-width: 1; }
 svg.plot .axis { fill: none; stroke: #3a4350; stroke-width: 1.2; }
 svg.plot .zero { stroke: #9aa3af; stroke-width: 1; stroke-dasharray: 4 3; }
 svg.plot .line { fill: none; stroke-width: 1.4; stroke-linejoin: round; }
-svg.plot .dots { fill-opacity: .45; }
+svg.plot .dots { fill: none; stroke-width: 4; stroke-linecap: round; stroke-opacity: .45; }
 svg.plot .hist { fill-opacity: .28; stroke-width: 1.4; }
 svg.plot .bar-value { fill: var(--muted); font-size: 11px; }
 )";

@@ -9,9 +9,10 @@
 
 namespace tpf::offline {
 
-/// Scatter plot of several series (translucent dots, one colour each, legend). Series with more
-/// than `max_points` finite points are thinned by a fixed stride (deterministic).
-/// Throws tpf::Error when x and y sizes differ.
+/// Scatter plot of several series (translucent dots, one colour each, legend), decimated to what
+/// the pixels show: one dot per series in each 3 px cell (dots are 4 px across); a series that
+/// still has more than `max_points` dots is thinned by a fixed stride (deterministic). Throws
+/// tpf::Error when x and y sizes differ.
 std::string scatter_plot(const PlotOptions& options, const std::vector<Series>& series,
                          int max_points = 4000);
 
