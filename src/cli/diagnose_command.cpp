@@ -53,7 +53,11 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   identify_options.inertia_prior = a.inertia_prior;
   Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification<N>(log, id, options.samples, a.identify_out, start);
-  return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
+  DiagnoseOptions with_identify_prior = options;  // its written model fitted as identify's
+  if (a.inertia_prior)
+    with_identify_prior.inertia_prior_strength = id.inertia_prior.written_strength;
+  return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity},
+                     with_identify_prior);
 }
 
 template <int N>
@@ -76,8 +80,9 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   if (d.inertia_prior_strength > 0)
     std::printf(
         "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (declared model); "
-        "every fit pulled toward the robot file's inertias with strength %.3g\n",
-        d.min_mass_eigenvalue_without_prior, d.inertia_prior_strength);
+        "every fit pulled toward the robot file's inertias with strength %.3g: %s\n",
+        d.min_mass_eigenvalue_without_prior, d.inertia_prior_strength,
+        d.inertia_prior_choice.c_str());
   const char* names[4] = {"static", "static-to-kinetic", "moving", "all"};
   std::printf(
       "held-out RMSE [%s] before -> after: the selection's linear fit (friction held at "
