@@ -160,7 +160,8 @@ void register_diagnose_command(CLI::App& app) {
   cmd->add_flag("--inertia-prior,!--no-inertia-prior", a->inertia_prior,
                 "On by default: where the declared model's M(q) is not positive definite, every "
                 "fit is pulled toward the robot file's inertias as tpf identify's are (the "
-                "strength found for the declared model); with --identify-out, its fit too. "
+                "strength identify would choose for the declared model; with --identify-out, the "
+                "one it chose). "
                 "--no-inertia-prior: every fit plain");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str()

@@ -108,6 +108,7 @@ TEST(InertiaPriorKinova, DiagnoseWritesItsModelWithIdentifysStrength) {
   const auto d = offline::diagnose<7>(log, kinova_model(), options);
   EXPECT_EQ(d.inertia_prior_strength, id.inertia_prior.written_strength);
   EXPECT_NE(d.inertia_prior_choice.find("identify's"), std::string::npos);
+  EXPECT_EQ(d.heldout_method, "by file: RecordTrajectory_quadratic.csv.gz");
   EXPECT_GT(offline::min_mass_eigenvalue<7>(d.nominal), 0.0);
   const Eigen::VectorXd identified = scoring_rms(id.nominal), diagnosed = scoring_rms(d.nominal);
   for (int j = 0; j < 7; ++j)
@@ -151,8 +152,11 @@ TEST(InertiaPriorKinova, WhereNoStrengthLiftsMOfQTheLowestHeldOutErrorIsKept) {
     if (k.heldout_error < best->heldout_error) best = &k;
   }
   EXPECT_LT(fit.strength, 100.0);
-  for (const offline::PriorCandidate& k : fit.candidates)
-    if (k.strength == fit.strength) EXPECT_LE(k.heldout_error, 1.01 * best->heldout_error);
+  for (const offline::PriorCandidate& k : fit.candidates) {
+    if (k.strength == fit.strength) {
+      EXPECT_LE(k.heldout_error, 1.01 * best->heldout_error);
+    }
+  }
   EXPECT_NE(fit.choice.find("no strength"), std::string::npos) << fit.choice;
 }
 
