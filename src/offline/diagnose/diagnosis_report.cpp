@@ -149,7 +149,9 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
   const Eigen::MatrixXd residual_after = u.to_effort(d.residual_after);
   HtmlReport page("tpf diagnose: " + s.source);
   if (s.simulated) page.mark_simulated();
-  page.subtitle("effort unit " + unit + "; held out " + d.heldout_method + ", never fitted");
+  page.subtitle("effort unit " + unit +
+                (d.heldout_method == "none" ? std::string("; nothing held out")
+                                            : "; held out " + d.heldout_method + ", never fitted"));
   page.heading("Findings");
   page.list(d.findings);
   if (!d.notes.empty()) page.list(d.notes);

@@ -26,16 +26,19 @@ double static_noise(const JointSamples& s, int j) {
 }
 
 // RMS of the effort above `band_hz` (effort − its zero-phase low-pass) over the moving samples of
-// joint j (NaN: never moves, or the band reaches the Nyquist frequency 1/(2·step)).
+// joint j, the held-out ones where some are (the rows the moving held-out error is of); NaN: it
+// never moves there, or the band reaches the Nyquist frequency 1/(2·step).
 double motion_noise(const JointSamples& s, int j, double band_hz, double step) {
   if (!(band_hz < 0.45 / step)) return std::nan("");
   Eigen::VectorXd effort = s.effort.col(j);
   for (Eigen::Index k = 0; k < s.size(); ++k)
     if (!s.valid[k]) effort[k] = std::nan("");
   const Eigen::VectorXd smooth = zero_phase_low_pass(s.t, effort, band_hz, step);
+  const bool heldout_only = holds_rows_out(s);
   double sum = 0, count = 0;
   for (Eigen::Index k = 0; k < s.size(); ++k)
-    if (s.valid[k] && s.regimes[j][k] == Regime::Moving && std::isfinite(smooth[k])) {
+    if (s.valid[k] && (!heldout_only || s.heldout[k]) && s.regimes[j][k] == Regime::Moving &&
+        std::isfinite(smooth[k])) {
       sum += std::pow(effort[k] - smooth[k], 2);
       ++count;
     }

@@ -14,7 +14,8 @@ namespace tpf::offline {
 struct ResidualAnalysis {
   Eigen::VectorXd noise_floor;  ///< per joint: effort noise at rest, std of Δeffort/√2
   /// Per joint: effort noise in motion, the RMS of the effort above the model's band (effort −
-  /// its zero-phase low-pass at the acceleration filter's cutoff) over the moving samples; NaN
+  /// its zero-phase low-pass at the acceleration filter's cutoff) over the moving samples (the
+  /// held-out ones where some are, the rows of the moving held-out error); NaN
   /// where the joint never moves or the cutoff is not below the sampling's Nyquist frequency.
   Eigen::VectorXd motion_noise;
   /// Per joint: (1 + ρ)/(1 − ρ), ρ the lag-1 autocorrelation of the residual on motion: the
