@@ -56,7 +56,11 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification<N>(log, id, options.samples, a.identify_out, start,
                                              tpf::cli::check_log_units<N>(model, id.samples));
-  return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity}, options);
+  DiagnoseOptions with_identify_prior = options;  // its written model fitted as identify's
+  if (a.inertia_prior)
+    with_identify_prior.inertia_prior_strength = id.inertia_prior.written_strength;
+  return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity},
+                     with_identify_prior);
 }
 
 /// The inertia prior's line, when diagnose's fits needed one.
@@ -64,8 +68,9 @@ void print_inertia_prior(const tpf::offline::EffectDiagnosis& d) {
   if (d.inertia_prior_strength > 0)
     std::printf(
         "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (declared model); "
-        "every fit pulled toward the robot file's inertias with strength %.3g\n",
-        d.min_mass_eigenvalue_without_prior, d.inertia_prior_strength);
+        "every fit pulled toward the robot file's inertias with strength %.3g: %s\n",
+        d.min_mass_eigenvalue_without_prior, d.inertia_prior_strength,
+        d.inertia_prior_choice.c_str());
 }
 
 /// Everything: the findings, notes, the inertia prior and the held-out table per joint and regime.
@@ -199,7 +204,8 @@ void register_diagnose_command(CLI::App& app) {
   cmd->add_flag("--inertia-prior,!--no-inertia-prior", a->inertia_prior,
                 "On by default: where the declared model's M(q) is not positive definite, every "
                 "fit is pulled toward the robot file's inertias as tpf identify's are (the "
-                "strength found for the declared model); with --identify-out, its fit too. "
+                "strength identify would choose for the declared model; with --identify-out, the "
+                "one it chose). "
                 "--no-inertia-prior: every fit plain");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str()

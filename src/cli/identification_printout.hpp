@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -13,6 +14,41 @@
 #include "tpf/model/load_robot.hpp"
 
 namespace tpf::cli {
+
+/// Prints which strength of the inertia prior identify chose and why (a table of the strengths
+/// tried), and keeps them in `fit["inertia_prior"]`.
+template <typename InertiaPrior>
+void print_inertia_prior_choice(const InertiaPrior& prior, nlohmann::json& fit) {
+  std::printf(
+      "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (judged fit), %.4g "
+      "(written fit); the rigid body pulled toward the robot file's inertias with strength "
+      "%.3g (judged) and %.3g (written): %s\n",
+      prior.judged_min_eigenvalue, prior.written_min_eigenvalue, prior.judged_strength,
+      prior.written_strength, prior.choice.c_str());
+  std::printf(
+      "  strength   held-out error (in σ)   min eigenvalue of M(q) [kg·m²] against the floor "
+      "%.4g (a tenth of the robot file's own)\n",
+      prior.floor);
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const auto& c : prior.candidates) {
+    std::printf("  %8.3g   %21.4f   %+14.4g %s%s\n", c.strength, c.heldout_error, c.min_eigenvalue,
+                c.positive_definite ? "above: positive definite" : "below",
+                c.strength == prior.judged_strength ? "  <- chosen" : "");
+    candidates.push_back(
+        {{"strength", c.strength},
+         {"heldout_error", std::isfinite(c.heldout_error) ? nlohmann::json(c.heldout_error)
+                                                          : nlohmann::json(nullptr)},
+         {"min_mass_eigenvalue", c.min_eigenvalue},
+         {"positive_definite", c.positive_definite}});
+  }
+  fit["inertia_prior"] = {{"judged_strength", prior.judged_strength},
+                          {"written_strength", prior.written_strength},
+                          {"judged_min_mass_eigenvalue_without", prior.judged_min_eigenvalue},
+                          {"written_min_mass_eigenvalue_without", prior.written_min_eigenvalue},
+                          {"floor", prior.floor},
+                          {"choice", prior.choice},
+                          {"candidates", candidates}};
+}
 
 /// Prints the identification of `log` (held-out RMSE per joint and regime in the log's unit,
 /// consistency, friction notes) and writes its model to `out` (tpf-params), with the wall time
@@ -64,18 +100,8 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
     std::printf(
         "inertia prior: not needed (M(q)'s smallest eigenvalue is at least a tenth of "
         "the robot file's own without it)\n");
-  }
-  if (prior.judged_strength > 0 || prior.written_strength > 0) {
-    std::printf(
-        "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (judged fit), %.4g "
-        "(written fit); the rigid body pulled toward the robot file's inertias with strength "
-        "%.3g and %.3g, the smallest that lifts it to a tenth of the robot file's own\n",
-        prior.judged_min_eigenvalue, prior.written_min_eigenvalue, prior.judged_strength,
-        prior.written_strength);
-    fit["inertia_prior"] = {{"judged_strength", prior.judged_strength},
-                            {"written_strength", prior.written_strength},
-                            {"judged_min_mass_eigenvalue_without", prior.judged_min_eigenvalue},
-                            {"written_min_mass_eigenvalue_without", prior.written_min_eigenvalue}};
+  } else if (prior.asked) {
+    print_inertia_prior_choice(prior, fit);
   }
   for (const auto& n : id.friction_notes)
     std::printf("  friction: %s\n", n.c_str());

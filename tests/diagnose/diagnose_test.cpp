@@ -6,6 +6,7 @@
 
 #include <cstdio>
 
+#include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "support/arm_fixture.hpp"
@@ -47,6 +48,11 @@ std::vector<std::string> selected_keys(const Diagnosis<kJoints>& d) {
 TEST(Diagnose, CleanLogClaimsNothing) {
   const auto d = run(clean_scenario(), 21);
   EXPECT_TRUE(d.selected.empty());
+  // One file: held out by time, and the JSON says so.
+  EXPECT_EQ(d.heldout_method, "by time blocks: 1 in 4 of interleaved 5 s blocks");
+  EXPECT_NE(offline::diagnosis_json(d).find(
+                R"("heldout_method": "by time blocks: 1 in 4 of interleaved 5 s blocks")"),
+            std::string::npos);
   EXPECT_FALSE(d.cad_payload.claimed) << d.cad_payload.mass << " kg";
 }
 

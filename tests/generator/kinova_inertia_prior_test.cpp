@@ -1,17 +1,25 @@
 // The inertia prior on the measured Kinova Gen3 (held out by file): its 8.8 s of fitting files do
-// not excite every inertia, so the plain fit's M(q) is not positive definite; pulled toward the
-// robot file's inertias just enough, identify's model is physical and predicts the two scoring
-// files' effort better (every joint measured ≈ 4–48 % lower RMS). diagnose's:
+// not excite every inertia, so the plain fit's M(q) is not positive definite; with the strength
+// of lowest held-out error among those that lift M(q) (not the strongest, which is worse),
+// identify's model is physical and predicts the two scoring files' effort better (every joint
+// measured ≈ 4–48 % lower RMS); diagnose given identify's strength writes a model as good; where
+// no strength lifts M(q), the lowest held-out error is kept. diagnose's CLI:
 // cli_inertia_prior_test.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 #include <string>
 
 #include "kinova_logs.hpp"
+#include "offline/diagnose/diagnose.hpp"
+#include "offline/effects/effect_columns.hpp"
+#include "offline/identify/effect_design.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/identify/inertia_prior.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 
@@ -63,6 +71,92 @@ TEST(InertiaPriorKinova, MakesTheMassMatrixPhysicalAndPredictsTheHeldOutFilesBet
   }
   EXPECT_GE(lower, 6);
   EXPECT_LT(after.squaredNorm(), 0.6 * before.squaredNorm());  // measured 0.49
+
+  // Held out by file, the strongest prior (100) fits the robot file's inertias better than the
+  // data: its held-out error is far above the best. The strength chosen is the one of lowest
+  // held-out error among those that lift M(q) to the floor; every strength tried is kept.
+  const auto& c = with.inertia_prior.candidates;
+  ASSERT_GE(c.size(), 9u);  // 0, the ladder 1e-4 … 100 and the smallest that lifts M(q)
+  EXPECT_EQ(c.front().strength, 0.0);
+  EXPECT_FALSE(c.front().positive_definite);
+  EXPECT_EQ(c.back().strength, 100.0);
+  EXPECT_TRUE(c.back().positive_definite);
+  const offline::PriorCandidate* chosen = nullptr;
+  double best = std::numeric_limits<double>::infinity();
+  for (const offline::PriorCandidate& k : c) {
+    EXPECT_TRUE(std::isfinite(k.heldout_error));
+    if (k.strength == with.inertia_prior.judged_strength) chosen = &k;
+    if (k.positive_definite) best = std::min(best, k.heldout_error);
+  }
+  ASSERT_NE(chosen, nullptr);
+  EXPECT_TRUE(chosen->positive_definite);
+  EXPECT_LE(chosen->heldout_error, 1.01 * best);
+  EXPECT_GT(c.back().heldout_error, 1.1 * chosen->heldout_error);  // measured 0.949 vs 0.777
+  EXPECT_NE(with.inertia_prior.choice.find("lowest held-out error"), std::string::npos);
+}
+
+TEST(InertiaPriorKinova, DiagnoseWritesItsModelWithIdentifysStrength) {
+  // diagnose --identify-out hands identify's strength to diagnose: every fit of the diagnosis,
+  // its written model too, has it, and that model predicts the scoring files no worse than
+  // identify's.
+  const offline::Log log = offline::read_logs(kinova_fitting_files());
+  const auto id = offline::identify<7>(log, kinova_model());
+  ASSERT_GT(id.inertia_prior.written_strength, 0.0);
+  offline::DiagnoseOptions options;
+  options.inertia_prior_strength = id.inertia_prior.written_strength;
+  const auto d = offline::diagnose<7>(log, kinova_model(), options);
+  EXPECT_EQ(d.inertia_prior_strength, id.inertia_prior.written_strength);
+  EXPECT_NE(d.inertia_prior_choice.find("identify's"), std::string::npos);
+  EXPECT_EQ(d.heldout_method, "by file: RecordTrajectory_quadratic.csv.gz");
+  EXPECT_GT(offline::min_mass_eigenvalue<7>(d.nominal), 0.0);
+  const Eigen::VectorXd identified = scoring_rms(id.nominal), diagnosed = scoring_rms(d.nominal);
+  for (int j = 0; j < 7; ++j)
+    std::printf(
+        "[ measured ] joint %d: scoring files' effort RMS identify %.3f, diagnose %.3f N·m\n",
+        j + 1, identified[j], diagnosed[j]);
+  EXPECT_LE(diagnosed.squaredNorm(), 1.05 * identified.squaredNorm());
+}
+
+TEST(InertiaPriorKinova, WhereNoStrengthLiftsMOfQTheLowestHeldOutErrorIsKept) {
+  // A floor no strength reaches (ten times the robot file's own smallest eigenvalue): the
+  // strongest prior would pull the fit to the robot file and still not make M(q) reach it, so
+  // the strength of lowest held-out error is kept, not the strongest.
+  const offline::Log log = offline::read_logs(kinova_fitting_files());
+  const Model<double, 7> model = kinova_model();
+  offline::IdentificationSetup<7> setup = offline::prepare_identification(log, model, {});
+  const offline::JointSamples& s = setup.samples;
+  const auto regressors = std::make_shared<const offline::SampleRegressors<7>>(
+      model, offline::EffectDesign<7>::regressor_columns(setup.base.independent, false), s);
+  const offline::EffectDesign<7> design(model, setup.base, s, regressors, {}, 1e-4);
+  const offline::DesignGrams grams = design.accumulate(s);
+  std::vector<int> columns;
+  for (const offline::FeatureGroup& g : design.groups())
+    if (g.key == offline::RigidBodyColumns::key)
+      columns.insert(columns.end(), g.columns.begin(), g.columns.end());
+    else if (g.key == offline::JointFrictionColumns::key)
+      columns.insert(columns.end(), g.columns.begin(), g.columns.begin() + 2);
+  offline::FitSelection selection;
+  selection.regimes = {false, true, true};
+  selection.joint_weights =
+      offline::moving_residual_weights(grams, offline::fit_columns(grams, columns, selection));
+  offline::RobotFileInertiaPrior<7> prior =
+      offline::robot_file_inertia_prior(model, design, setup.base);
+  prior.floor *= 100;
+  const offline::PriorFit<7> fit =
+      offline::choose_inertia_prior(model, design, setup.base, grams, columns, selection, &prior);
+  ASSERT_FALSE(fit.candidates.empty());
+  const offline::PriorCandidate* best = &fit.candidates.front();
+  for (const offline::PriorCandidate& k : fit.candidates) {
+    EXPECT_FALSE(k.positive_definite);
+    if (k.heldout_error < best->heldout_error) best = &k;
+  }
+  EXPECT_LT(fit.strength, 100.0);
+  for (const offline::PriorCandidate& k : fit.candidates) {
+    if (k.strength == fit.strength) {
+      EXPECT_LE(k.heldout_error, 1.01 * best->heldout_error);
+    }
+  }
+  EXPECT_NE(fit.choice.find("no strength"), std::string::npos) << fit.choice;
 }
 
 }  // namespace

@@ -36,40 +36,63 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
 
 /// Pass 1: the declared model fitted on motion (every 4th sample is plenty for the candidates'
 /// inputs; selection and the before/after table use every sample), its residual, its rigid-body
-/// prediction, and the joint weights 1/σ_j² of the fit; with an inertia prior, the larger
-/// strength fit_with_inertia_prior finds for the weighted fit on the training rows and on every
-/// row (what the written model is refitted on), which the fit then has.
+/// prediction, and the joint weights 1/σ_j² of the fit; with an inertia prior, the strength the
+/// fit then has: `given` (identify's) when it is a number, else the one identify would write
+/// (choose_inertia_prior on the training rows, refit_with_inertia_prior on every row).
 struct DeclaredFit {
   double prior_strength = 0;
   double min_mass_eigenvalue_without_prior = 0;
+  std::string prior_choice;
   Eigen::VectorXd joint_weights;
   Eigen::VectorXd viscous;           ///< per joint: the fitted viscous coefficient b_j
   Eigen::MatrixXd residual;          ///< effort − declared prediction
   Eigen::MatrixXd rigid_prediction;  ///< its rigid-body part
 };
 
+/// The strength of the prior for every fit of diagnose (DeclaredFit), its M(q) without it and
+/// why, into `fit`.
+template <int N>
+void declared_prior_strength(const Model<double, N>& model, const BaseParameters& base,
+                             const EffectDesign<N>& declared, const JointSamples& s,
+                             const DesignGrams& grams, const FitSelection& selection,
+                             const RobotFileInertiaPrior<N>& prior, double given,
+                             DeclaredFit& fit) {
+  const std::vector<int> columns = declared.declared_columns();
+  FitSelection every = selection;
+  every.heldout_rows = true;
+  if (std::isfinite(given)) {
+    const PriorFit<N> with = fit_with_inertia_prior_strength(model, declared, base, grams, columns,
+                                                             every, &prior, given);
+    fit.prior_strength = given;
+    fit.min_mass_eigenvalue_without_prior = with.min_eigenvalue_without;
+    fit.prior_choice = "identify's (chosen on its held-out rows)";
+    return;
+  }
+  const PriorFit<N> judged =
+      choose_inertia_prior(model, declared, base, grams, columns, selection, &prior);
+  const PriorFit<N> written =
+      holds_rows_out(s)
+          ? refit_with_inertia_prior(model, declared, base, grams, columns, every, &prior, judged)
+          : judged;
+  fit.prior_strength = written.strength;
+  fit.min_mass_eigenvalue_without_prior =
+      std::min(judged.min_eigenvalue_without, written.min_eigenvalue_without);
+  fit.prior_choice = judged.choice;
+}
+
 template <int N>
 DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& base,
                          const EffectDesign<N>& declared, const JointSamples& s,
-                         FitSelection selection, const RobotFileInertiaPrior<N>* prior) {
+                         FitSelection selection, const RobotFileInertiaPrior<N>* prior,
+                         double given_strength) {
   const DesignGrams grams = declared.accumulate(s, 4);
   Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
   DeclaredFit fit;
   fit.joint_weights = moving_residual_weights(grams, theta);
   selection.joint_weights = fit.joint_weights;
-  if (prior) {  // the strength the fit on the training rows needs, or on every row if more
-    FitSelection every = selection;
-    every.heldout_rows = true;
-    std::vector<FitSelection> fits{selection};
-    if (holds_rows_out(s)) fits.push_back(every);  // else every row is a training row
-    fit.min_mass_eigenvalue_without_prior = std::numeric_limits<double>::infinity();
-    for (const FitSelection& rows : fits) {
-      const PriorFit<N> with = fit_with_inertia_prior(model, declared, base, grams,
-                                                      declared.declared_columns(), rows, prior);
-      fit.prior_strength = std::max(fit.prior_strength, with.strength);
-      fit.min_mass_eigenvalue_without_prior =
-          std::min(fit.min_mass_eigenvalue_without_prior, with.min_eigenvalue_without);
-    }
+  if (prior) {
+    declared_prior_strength(model, base, declared, s, grams, selection, *prior, given_strength,
+                            fit);
     selection.prior = prior->prior;
     selection.prior.strength = fit.prior_strength;
   }
@@ -189,6 +212,16 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
                 : ".";
   }
   return text;
+}
+
+/// How rows are held out, in a phrase: by file (which) or by time blocks (their length).
+std::string heldout_method(const Log& log, const FileSplit& split, const JointSamples& s,
+                           const DiagnoseOptions& o) {
+  if (!holds_rows_out(s)) return "none";
+  if (split.groups.size() > 1)
+    return "by file: " + file_names(log, split.groups[split.selection_group]);
+  return format_sentence("by time blocks: 1 in %.0f of interleaved %g s blocks",
+                         o.samples.heldout_every, o.samples.block_s);
 }
 
 /// The folds a candidate's gain must transfer to (each group of files but the selection's held
@@ -379,6 +412,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   out.samples = std::move(setup.samples);
   const FileSplit split = split_by_file(log, out.samples, options);
   out.heldout_split = split_sentence(log, split, out.samples, options);
+  out.heldout_method = heldout_method(log, split, out.samples, options);
   const JointSamples& s = out.samples;
   std::vector<char> training(s.heldout.size());
   for (std::size_t k = 0; k < training.size(); ++k)
@@ -396,10 +430,12 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
       options.inertia_prior ? robot_file_inertia_prior(model, declared, setup.base)
                             : RobotFileInertiaPrior<N>{};
   const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
-                                       options.inertia_prior ? &declared_prior : nullptr);
+                                       options.inertia_prior ? &declared_prior : nullptr,
+                                       options.inertia_prior_strength);
   selection.joint_weights = fit.joint_weights;
   out.inertia_prior_strength = fit.prior_strength;
   out.min_mass_eigenvalue_without_prior = fit.min_mass_eigenvalue_without_prior;
+  out.inertia_prior_choice = fit.prior_choice;
   if (options.inertia_prior && !(declared_prior.floor > 0))
     out.notes.push_back(
         "inertia prior not applied: the robot file's own M(q) is not positive "
@@ -409,8 +445,11 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
 
   say("diagnose: pass 2/4: residual analysis");
   const ResidualAnalysis analysis =
-      analyse_residual(s, fit.residual, fit.rigid_prediction, model.gear_ratio);
+      analyse_residual(s, fit.residual, fit.rigid_prediction, model.gear_ratio,
+                       options.samples.acceleration_cutoff_hz);
   out.noise_floor = analysis.noise_floor;
+  out.motion_noise = analysis.motion_noise;
+  out.model_band_hz = options.samples.acceleration_cutoff_hz;
   out.notes = analysis.notes;
   if (s.temperature.cols() != N)
     out.notes.push_back("temperature-dependent friction not checked: the log has no temp<j>");

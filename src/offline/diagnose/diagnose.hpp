@@ -38,10 +38,14 @@ struct DiagnoseOptions {
   /// Several files: two files repeat one motion when the RMS of Δq over their common length is
   /// below this on every joint [rad] (repeated_motions); such files are held out together.
   double repeat_tolerance = 0.01;
-  /// IdentifyOptions::inertia_prior for diagnose's fits: the strength found for the declared
-  /// model's fit (on the training rows or on every row, the larger) holds for every fit of the
-  /// selection and the written model. Off: every fit plain, whatever M(q).
+  /// IdentifyOptions::inertia_prior for diagnose's fits: one strength holds for every fit of the
+  /// selection and the written model, `inertia_prior_strength` where it is given, else the one
+  /// identify would write for the declared model (choose_inertia_prior on the training rows, kept
+  /// or raised for every row by refit_with_inertia_prior). Off: every fit plain, whatever M(q).
   bool inertia_prior = true;
+  /// The strength identify chose for this log (Identification::inertia_prior.written_strength),
+  /// so that diagnose's written model is fitted as identify's is; NaN: diagnose chooses it.
+  double inertia_prior_strength = std::numeric_limits<double>::quiet_NaN();
   ProgressLine progress;
 };
 
@@ -159,6 +163,11 @@ struct EffectDiagnosis {
   std::vector<RegimeStats> written_before, written_after;
   Eigen::MatrixXd residual_written;  ///< effort − predict_effort(nominal), per sample and joint
   Eigen::VectorXd noise_floor;       ///< per joint: effort noise at rest (std of Δeffort/√2)
+  /// Per joint: effort noise in motion, above the model's band (ResidualAnalysis::motion_noise).
+  Eigen::VectorXd motion_noise;
+  double model_band_hz = 0;  ///< that band's edge, the acceleration filter's cutoff [Hz]
+  /// How the rows were held out: "by file: …", "by time blocks: …" or "none".
+  std::string heldout_method;
   Eigen::MatrixXd residual_before, residual_after;  ///< per sample and joint
   std::vector<Eigen::MatrixXd> effect_terms;        ///< per selected group: its fitted effort term
   /// The held-out split in a sentence: which files are held out, and which are grouped because
@@ -173,6 +182,7 @@ struct EffectDiagnosis {
   /// the smallest eigenvalue of M(q) of the declared model's fit without it [kg·m²].
   double inertia_prior_strength = 0;
   double min_mass_eigenvalue_without_prior = 0;
+  std::string inertia_prior_choice;  ///< why that strength, in a sentence
 
   int joints() const { return static_cast<int>(noise_floor.size()); }
 };

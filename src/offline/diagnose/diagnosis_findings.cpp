@@ -255,19 +255,40 @@ void add_not_extrapolating(const EffectDiagnosis& d, const DiagnoseOptions& opti
   }
 }
 
-// What no candidate explains: held-out RMSE over 3× the noise floor at rest (in the log's unit).
+// What no candidate explains: moving held-out RMSE over 3× the effort's noise in motion (above
+// the model's band; the noise at rest where the joint has none), static over 3× the noise at
+// rest (in the log's unit); thousands of times the noise: perhaps the effort's unit.
 void add_unexplained(const EffectDiagnosis& d, std::vector<std::string>& findings) {
+  constexpr double kUnitsSuspect = 1000;
   for (int j = 0; j < d.joints(); ++j) {
     const DriveUnits& u = d.samples.units;
     const double moving = u.to_effort(j, d.after[j][2].rmse());
     const double still = u.to_effort(j, d.after[j][0].rmse());
     const double floor = u.to_effort(j, d.noise_floor[j]);
-    if (std::isfinite(floor) && moving > 3 * floor)
-      findings.push_back("Left unexplained on joint " + std::to_string(j + 1) +
-                         format_sentence(": moving held-out RMSE %.3g is %.1f× the noise floor at "
-                                         "rest (%.3g); no candidate of the library explains the "
-                                         "rest.",
-                                         moving, moving / floor, floor));
+    const double in_motion =
+        j < d.motion_noise.size() ? u.to_effort(j, d.motion_noise[j]) : std::nan("");
+    const double noise = std::isfinite(in_motion) ? in_motion : floor;
+    if (std::isfinite(noise) && moving > 3 * noise) {
+      std::string text =
+          "Left unexplained on joint " + std::to_string(j + 1) +
+          format_sentence(
+              ": moving held-out RMSE %.3g is %.1f× the effort's noise in motion "
+              "(%.3g",
+              moving, moving / noise, noise) +
+          (std::isfinite(in_motion)
+               ? format_sentence(", above the model's %g Hz band; %.3g at rest)", d.model_band_hz,
+                                 floor)
+               : std::string(" at rest: the joint's effort in motion was not measured)"));
+      text += "; no candidate of the library explains the rest.";
+      const double least = std::isfinite(floor) ? std::min(noise, floor) : noise;
+      if (moving > kUnitsSuspect * least)
+        text += format_sentence(
+            " An error %.0f× the noise is more than a missing effect usually leaves: check that "
+            "the effort is in the unit the log declares (a current read as N·m, a torque "
+            "constant or gear ratio off by a factor).",
+            moving / least);
+      findings.push_back(text);
+    }
     if (std::isfinite(floor) && still > 3 * floor)
       findings.push_back(
           "Left unexplained on joint " + std::to_string(j + 1) +

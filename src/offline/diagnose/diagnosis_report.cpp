@@ -38,14 +38,18 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   j["source"] = d.samples.source;
   j["simulated"] = d.samples.simulated;
   j["effort_unit"] = u.name();
+  j["heldout_method"] = d.heldout_method;
   if (d.inertia_prior_strength > 0)
     j["inertia_prior"] = {{"strength", d.inertia_prior_strength},
-                          {"min_mass_eigenvalue_without", d.min_mass_eigenvalue_without_prior}};
+                          {"min_mass_eigenvalue_without", d.min_mass_eigenvalue_without_prior},
+                          {"choice", d.inertia_prior_choice}};
   nlohmann::json joints = nlohmann::json::array();
   for (int i = 0; i < N; ++i) {
     nlohmann::json joint;
     joint["joint"] = i + 1;
     joint["noise_floor"] = u.to_effort(i, d.noise_floor[i]);
+    if (i < d.motion_noise.size() && std::isfinite(d.motion_noise[i]))
+      joint["noise_in_motion"] = u.to_effort(i, d.motion_noise[i]);
     for (int r = 0; r < 4; ++r) {
       const ResidualSums& b = d.before[i][r];
       const ResidualSums& a = d.after[i][r];
@@ -147,7 +151,9 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
   const Eigen::MatrixXd residual_after = u.to_effort(d.residual_after);
   HtmlReport page("tpf diagnose: " + s.source);
   if (s.simulated) page.mark_simulated();
-  page.subtitle("effort unit " + unit + "; held-out = every 4th 5 s block, never fitted");
+  page.subtitle("effort unit " + unit +
+                (d.heldout_method == "none" ? std::string("; nothing held out")
+                                            : "; held out " + d.heldout_method + ", never fitted"));
   page.table(diagnosis_summary_table(d, options));
   std::vector<std::string> groups;
   BarSeries before{"before", {}, ""}, after{"after", {}, ""};

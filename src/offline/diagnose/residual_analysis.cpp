@@ -25,6 +25,26 @@ double static_noise(const JointSamples& s, int j) {
   return count > 0 ? std::sqrt(sum / count / 2.0) : std::nan("");
 }
 
+// RMS of the effort above `band_hz` (effort − its zero-phase low-pass) over the moving samples of
+// joint j, the held-out ones where some are (the rows the moving held-out error is of); NaN: it
+// never moves there, or the band reaches the Nyquist frequency 1/(2·step).
+double motion_noise(const JointSamples& s, int j, double band_hz, double step) {
+  if (!(band_hz < 0.45 / step)) return std::nan("");
+  Eigen::VectorXd effort = s.effort.col(j);
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if (!s.valid[k]) effort[k] = std::nan("");
+  const Eigen::VectorXd smooth = zero_phase_low_pass(s.t, effort, band_hz, step);
+  const bool heldout_only = holds_rows_out(s);
+  double sum = 0, count = 0;
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if (s.valid[k] && (!heldout_only || s.heldout[k]) && s.regimes[j][k] == Regime::Moving &&
+        std::isfinite(smooth[k])) {
+      sum += std::pow(effort[k] - smooth[k], 2);
+      ++count;
+    }
+  return count > 0 ? std::sqrt(sum / count) : std::nan("");
+}
+
 // The training samples where joint j moves.
 std::vector<Eigen::Index> moving_training_samples(const JointSamples& s, int j) {
   std::vector<Eigen::Index> moving;
@@ -58,9 +78,10 @@ double range_of_motion(const Eigen::VectorXd& q) {
 /// Joint j's part of the analysis: its entries of `a`, and its notes into `notes`.
 void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
                             const Eigen::MatrixXd& rigid_prediction,
-                            const Eigen::VectorXd& gear_ratio, double step, int j,
+                            const Eigen::VectorXd& gear_ratio, double step, double band_hz, int j,
                             ResidualAnalysis& a, std::vector<std::string>& notes) {
   a.noise_floor[j] = static_noise(s, j);
+  a.motion_noise[j] = motion_noise(s, j, band_hz, step);
   const std::vector<Eigen::Index> moving = moving_training_samples(s, j);
   a.variance_inflation[j] = variance_inflation(residual.col(j), moving);
   a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0, step);
@@ -89,10 +110,11 @@ void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residu
 
 ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
                                   const Eigen::MatrixXd& rigid_prediction,
-                                  const Eigen::VectorXd& gear_ratio) {
+                                  const Eigen::VectorXd& gear_ratio, double model_band_hz) {
   const int joints = static_cast<int>(residual.cols());
   ResidualAnalysis a;
   a.noise_floor.resize(joints);
+  a.motion_noise.resize(joints);
   a.variance_inflation = Eigen::VectorXd::Ones(joints);
   a.ripple_cycles = Eigen::VectorXd::Zero(joints);
   a.ripple_motor_cycles = Eigen::VectorXd::Zero(joints);
@@ -102,7 +124,7 @@ ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& 
   std::vector<std::vector<std::string>> notes(static_cast<std::size_t>(joints));
   const double step = median_step(s.t);  // once for every joint's filter
   parallel_jobs(joints, [&](int j) {
-    analyse_joint_residual(s, residual, rigid_prediction, gear_ratio, step, j, a,
+    analyse_joint_residual(s, residual, rigid_prediction, gear_ratio, step, model_band_hz, j, a,
                            notes[static_cast<std::size_t>(j)]);
   });
   for (const std::vector<std::string>& joint_notes : notes)

@@ -13,6 +13,11 @@ namespace tpf::offline {
 
 struct ResidualAnalysis {
   Eigen::VectorXd noise_floor;  ///< per joint: effort noise at rest, std of Δeffort/√2
+  /// Per joint: effort noise in motion, the RMS of the effort above the model's band (effort −
+  /// its zero-phase low-pass at the acceleration filter's cutoff) over the moving samples (the
+  /// held-out ones where some are, the rows of the moving held-out error); NaN
+  /// where the joint never moves or the cutoff is not below the sampling's Nyquist frequency.
+  Eigen::VectorXd motion_noise;
   /// Per joint: (1 + ρ)/(1 − ρ), ρ the lag-1 autocorrelation of the residual on motion: the
   /// samples are not independent, which inflates every coefficient's variance by this much.
   Eigen::VectorXd variance_inflation;
@@ -26,8 +31,10 @@ struct ResidualAnalysis {
 /// part (the delay candidate shifts that: the friction's own lag at a reversal is memory, not a
 /// delay), `gear_ratio` per joint. A ripple period must fit in the joint's range of motion, or
 /// the sine cannot be told from an offset or a slope (those are checked from 3 periods/rev up).
+/// `model_band_hz`: the acceleration filter's cutoff (SampleOptions::acceleration_cutoff_hz),
+/// above which the model predicts nothing (motion_noise).
 ResidualAnalysis analyse_residual(const JointSamples& samples, const Eigen::MatrixXd& residual,
                                   const Eigen::MatrixXd& rigid_prediction,
-                                  const Eigen::VectorXd& gear_ratio);
+                                  const Eigen::VectorXd& gear_ratio, double model_band_hz);
 
 }  // namespace tpf::offline

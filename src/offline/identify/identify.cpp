@@ -460,16 +460,18 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                                              : RobotFileInertiaPrior<N>{};
   const RobotFileInertiaPrior<N>* inertia_prior = options.inertia_prior ? &prior : nullptr;
   PriorFit<N> judged =
-      fit_with_inertia_prior(model, design, base, grams, columns, selection, inertia_prior);
-  PriorFit<N> written = out.refitted ? fit_with_inertia_prior(model, design, base, grams, columns,
-                                                              every, inertia_prior)
+      choose_inertia_prior(model, design, base, grams, columns, selection, inertia_prior);
+  PriorFit<N> written = out.refitted ? refit_with_inertia_prior(model, design, base, grams, columns,
+                                                                every, inertia_prior, judged)
                                      : judged;
   out.inertia_prior = {options.inertia_prior,
                        judged.strength,
                        written.strength,
                        judged.min_eigenvalue_without,
                        written.min_eigenvalue_without,
-                       prior.floor};
+                       prior.floor,
+                       judged.candidates,
+                       judged.choice};
   LinearNominal<N> fit = std::move(judged.fit);
   LinearNominal<N> final_fit = std::move(written.fit);
   std::vector<Eigen::MatrixXd> rigids = design.predict_each(

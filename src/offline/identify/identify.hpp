@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,11 @@ struct IdentifyOptions {
   /// the gear, instead of effort − rigid-body prediction (joints without a usable sensor keep the
   /// latter). The rigid body is fitted from the effort as before.
   bool friction_from_sensor = false;
-  /// Where the fitted M(q) is not positive definite (a log that does not excite every inertia),
-  /// pull the rigid body toward the robot file's own inertias: the smallest relative prior
-  /// strength (ColumnPrior) that makes M(q) positive definite at check_consistency's poses, found
-  /// for the judged fit and for the written one apart. Off: the plain fit, whatever M(q).
+  /// Pull the rigid body toward the robot file's own inertias (a relative prior, ColumnPrior)
+  /// with the strength of lowest held-out error among those that make M(q) positive definite at
+  /// check_consistency's poses (choose_inertia_prior: 0 and a ladder of strengths, on the
+  /// training rows); the written fit keeps it (or the next stronger where its M(q) needs it).
+  /// Off: the plain fit, whatever M(q).
   bool inertia_prior = true;
   ProgressLine progress;
 };
@@ -43,6 +45,17 @@ struct ConsistencyCheck {
 };
 
 /// The identified model and its quality.
+/// One strength of the inertia prior tried on the training rows (choose_inertia_prior).
+struct PriorCandidate {
+  double strength = 0;
+  /// The linear fit's held-out error: √(Σ_j w_j SSE_j / Σ_j n_j) over the held-out rows of the
+  /// fit's regimes, each joint's residual in units of its σ_j (w_j = 1/σ_j²); NaN: nothing is
+  /// held out.
+  double heldout_error = std::numeric_limits<double>::quiet_NaN();
+  double min_eigenvalue = 0;       ///< of M(q) at check_consistency's poses [kg·m²]
+  bool positive_definite = false;  ///< min_eigenvalue above the prior's floor
+};
+
 template <int N>
 struct Identification {
   /// What the parameter file gets: fitted on the training rows, judged on the held-out ones,
@@ -58,14 +71,15 @@ struct Identification {
   Eigen::VectorXd joint_weights;      ///< 1/σ_j² of the weighted least squares
   ConsistencyCheck consistency;
   /// IdentifyOptions::inertia_prior: the prior strength of the judged and of the written fit (0:
-  /// M(q) was positive definite without it) and the smallest eigenvalue of M(q) [kg·m²] each had
-  /// without it.
+  /// none) and the smallest eigenvalue of M(q) [kg·m²] each had without it.
   struct InertiaPrior {
     bool asked = false;  ///< IdentifyOptions::inertia_prior
     double judged_strength = 0, written_strength = 0;
     double judged_min_eigenvalue = 0, written_min_eigenvalue = 0;
     double floor = 0;  ///< RobotFileInertiaPrior::floor (≤ 0: the robot file's own M(q) is not
                        ///< positive definite, the prior was not applied)
+    std::vector<PriorCandidate> candidates;  ///< the strengths tried on the training rows
+    std::string choice;                      ///< why judged_strength, in a sentence
   } inertia_prior;
   std::vector<std::string> friction_notes;  ///< bounds that bind, curve vs linear (FrictionCurves)
 };
@@ -87,8 +101,8 @@ struct FrictionCurves {
 ///    effort − rigid prediction (moving training samples, subsampled);
 /// 3. held-out residual per regime (interleaved blocks not used in 1–2) and a consistency check.
 /// With options.friction_from_sensor, step 2 (and its linear start) uses the torque sensor; with
-/// options.inertia_prior, step 1 is fit_with_inertia_prior (inertia_prior.hpp), for the judged
-/// and the written fit apart.
+/// options.inertia_prior, step 1 is choose_inertia_prior (inertia_prior.hpp) for the judged fit
+/// and refit_with_inertia_prior for the written one.
 template <int N>
 Identification<N> identify(const Log& log, const Model<double, N>& model,
                            const IdentifyOptions& options = {});

@@ -1,7 +1,9 @@
-// The robot file's inertias as a prior on the identified rigid body, as strong as M(q) needs.
+// The robot file's inertias as a prior on the identified rigid body: its strength chosen on
+// held-out error among those that make M(q) positive definite.
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "offline/identify/effect_design.hpp"
@@ -31,6 +33,8 @@ class MassMatrixProbe {
   /// Whether every eigenvalue of M(q) (symmetrised) of `nominal` exceeds `floor` at every pose: a
   /// Cholesky factor of M − floor·1 exists (the first pose without one ends the test).
   bool above(const NominalModel<double, N>& nominal, double floor) const;
+  /// The smallest eigenvalue of M(q) (symmetrised) of `nominal` over the poses [kg·m²].
+  double min_eigenvalue(const NominalModel<double, N>& nominal) const;
 
  private:
   std::vector<Eigen::MatrixXd> maps_;  ///< per pose: (N·N) × base_count, column-major M
@@ -58,17 +62,48 @@ struct PriorFit {
   LinearNominal<N> fit;
   double strength = 0;                ///< 0: no prior was needed (or none given)
   double min_eigenvalue_without = 0;  ///< of M(q) of the fit without the prior [kg·m²] (with one)
+  std::vector<PriorCandidate> candidates;  ///< ascending strength (choose_inertia_prior)
+  std::string choice;                      ///< why `strength`, in a sentence (empty: no prior)
 };
 
-/// Least squares of `columns` on `selection`'s rows (fit_columns). With a `prior` (of `design`),
-/// where M(q) of that fit has its smallest eigenvalue (min_mass_eigenvalue, 200 poses) below the
-/// prior's floor, the fit with the smallest strength of the prior that lifts it there: bisection
-/// on log10 of the strength in [−8, 2] (20 halvings: to 1e-5 of a decade); the strength 100 if
-/// even that does not. Without a floor (≤ 0) the fit without the prior.
+/// The ladder of strengths choose_inertia_prior tries: 0 and 1e-4 … 100 by decades.
+std::vector<double> inertia_prior_ladder();
+
+/// Least squares of `columns` on `selection`'s rows (fit_columns). With a `prior` (of `design`)
+/// that has a floor, where M(q) of that fit has its smallest eigenvalue (min_mass_eigenvalue)
+/// below the floor, the strength of the prior chosen on held-out error: every strength of
+/// inertia_prior_ladder, and the smallest that lifts M(q) to the floor (bisection on log10 of
+/// the strength in [−8, 2], to 1e-5 of a decade), is fitted on the training rows and scored on
+/// the held-out ones; among those whose M(q) is above the floor, the lowest held-out error wins,
+/// a weaker strength within 1 % of it preferred (the prior biases toward the robot file; it must
+/// pay for itself). None above the floor: the lowest held-out error of all. Nothing held out:
+/// the weakest above the floor (the strongest if none). A plain fit above the floor, or no prior
+/// or no floor (≤ 0): the plain fit, no candidates.
 template <int N>
-PriorFit<N> fit_with_inertia_prior(const Model<double, N>& model, const EffectDesign<N>& design,
-                                   const BaseParameters& base, const DesignGrams& grams,
-                                   const std::vector<int>& columns, FitSelection selection,
-                                   const RobotFileInertiaPrior<N>* prior);
+PriorFit<N> choose_inertia_prior(const Model<double, N>& model, const EffectDesign<N>& design,
+                                 const BaseParameters& base, const DesignGrams& grams,
+                                 const std::vector<int>& columns, FitSelection selection,
+                                 const RobotFileInertiaPrior<N>* prior);
+
+/// The fit on `selection`'s rows (every row, for the file) with the strength `judged` chose on
+/// the training rows, raised to the smallest that lifts this fit's M(q) to the floor where it
+/// does not (not where no strength lifted the judged fit either). Where `judged` needed none:
+/// plain, or the smallest that lifts it if this fit's M(q) is below the floor. Without a prior
+/// or a floor: the plain fit.
+template <int N>
+PriorFit<N> refit_with_inertia_prior(const Model<double, N>& model, const EffectDesign<N>& design,
+                                     const BaseParameters& base, const DesignGrams& grams,
+                                     const std::vector<int>& columns, FitSelection selection,
+                                     const RobotFileInertiaPrior<N>* prior,
+                                     const PriorFit<N>& judged);
+
+/// A fit with a given strength of the prior (none: the plain fit), its M(q)'s smallest
+/// eigenvalue without the prior in min_eigenvalue_without (with a prior).
+template <int N>
+PriorFit<N> fit_with_inertia_prior_strength(const Model<double, N>& model,
+                                            const EffectDesign<N>& design,
+                                            const BaseParameters& base, const DesignGrams& grams,
+                                            const std::vector<int>& columns, FitSelection selection,
+                                            const RobotFileInertiaPrior<N>* prior, double strength);
 
 }  // namespace tpf::offline
