@@ -61,6 +61,8 @@ SteppedEstimator<N>::SteppedEstimator(const EstimatorSetup<N>& setup)
     : estimator_(
           std::make_unique<ReplayEstimator<N>>(setup.nominal, setup.pads, setup.parameters)) {
   estimator_->compensator().inner.load(setup.weights);
+  estimator_->set_compensated_joints(
+      compensated_joints(setup.weights, N, setup.parameters.compensator_min_held_out_gain));
 }
 
 template <int N>

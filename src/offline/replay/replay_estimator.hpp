@@ -32,6 +32,8 @@ template <int N, typename Use>
 auto with_estimator(const EstimatorSetup<N>& s, Use&& use) {
   auto e = std::make_unique<ReplayEstimator<N>>(s.nominal, s.pads, s.parameters);
   e->compensator().inner.load(s.weights);
+  e->set_compensated_joints(
+      compensated_joints(s.weights, N, s.parameters.compensator_min_held_out_gain));
   return use(*e);
 }
 
