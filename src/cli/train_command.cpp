@@ -92,8 +92,14 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(
     // never an input of the networks.
     for (const std::string& line : torque_sensor_problems(log, N))
       std::printf("%s\n", line.c_str());
+    std::vector<int> never_rests;
     setup.parameters = estimator_parameters_from_noise<N>(
-        estimate_sensor_noise(log, setup.nominal.model.torque_constant));
+        estimate_sensor_noise(log, setup.nominal.model.torque_constant, &never_rests));
+    for (int j : never_rests)
+      std::printf(
+          "train: %s: joint %d never rests (fewer than 10 consecutive rows with |dq| < 1e-4 "
+          "rad/s): its network is trained and scored without the rest regime\n",
+          log.source.c_str(), j + 1);
     traces.push_back(replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0)));
   }
   return traces;
