@@ -42,8 +42,9 @@ struct TrainCommandOptions {
 /// Share of a single log's rows held out (its last time block) when one log is given.
 constexpr double kHeldOutShare = 0.2;
 
-/// The logs split into training and held-out data: the last file when several are given, else
-/// the last kHeldOutShare of the one log's rows (a time block). Says which.
+/// The logs split into training and held-out data: the last file when several are given and the
+/// others hold at least 1 − kHeldOutShare of the rows, else the last kHeldOutShare of the last
+/// log's rows (a time block). Says which.
 struct SplitLogs {
   std::vector<tpf::offline::Log> training, held_out;
 };
@@ -53,14 +54,19 @@ SplitLogs split_logs(const TrainCommandOptions& o) {
   SplitLogs split;
   for (const std::string& path : o.logs)
     split.training.push_back(tpf::cli::read_replayed_log(path, o.quiet));
-  if (split.training.size() > 1) {
+  Eigen::Index others = 0;  // rows of every file but the last
+  for (std::size_t i = 0; i + 1 < split.training.size(); ++i)
+    others += split.training[i].rows();
+  // By file when the other files hold at least 80 % of the rows (else the last file's last 20 %).
+  if (split.training.size() > 1 && double(others) >= (1.0 - kHeldOutShare) / kHeldOutShare *
+                                                         double(split.training.back().rows())) {
     split.held_out.push_back(std::move(split.training.back()));
     split.training.pop_back();
     std::printf("train: held out by file: %s (scored, not trained on)\n",
                 split.held_out.back().source.c_str());
     return split;
   }
-  Log& whole = split.training.front();
+  Log& whole = split.training.back();
   const Eigen::Index rows = whole.rows();
   const Eigen::Index cut = rows - static_cast<Eigen::Index>(kHeldOutShare * double(rows));
   Log tail = whole;
