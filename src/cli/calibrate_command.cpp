@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "compensator_gate_printout.hpp"
 #include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
 #include "offline/calibrate/estimator_calibration.hpp"
@@ -63,6 +64,8 @@ void run_calibrate(const CalibrateCommandOptions& o) {
                   tpf::cli::pad_layout_file(o.model, tpf::load_robot_description(o.model.robot)))
                   .c_str(),
               describe(setup.weights).c_str());
+  tpf::cli::print_compensated_joints("calibrate", setup.weights, N,
+                                     p.compensator_min_held_out_gain);
   std::printf("  static dead band [%s]: %s\n", unit.c_str(),
               joint_values(in_log_unit(p.static_dead_band)).c_str());
   std::printf("  transition sigma, nominal [%s]: %s\n", unit.c_str(),

@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
+#include "offline/compensator_training/held_out_score.hpp"
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/log/torque_sensor.hpp"
@@ -38,24 +39,95 @@ struct TrainCommandOptions {
   tpf::offline::TcnTrainOptions tcn;
 };
 
-/// The estimator's trace over each log (no compensator, no skin: the network reads no pad), with
-/// parameters from the log's own noise.
+/// Share of a single log's rows held out (its last time block) when one log is given.
+constexpr double kHeldOutShare = 0.2;
+
+/// The logs split into training and held-out data: the last file when several are given and the
+/// others hold at least 1 − kHeldOutShare of the rows, else the last kHeldOutShare of the last
+/// log's rows (a time block). Says which.
+struct SplitLogs {
+  std::vector<tpf::offline::Log> training, held_out;
+};
+
+SplitLogs split_logs(const TrainCommandOptions& o) {
+  using tpf::offline::Log;
+  SplitLogs split;
+  for (const std::string& path : o.logs)
+    split.training.push_back(tpf::cli::read_replayed_log(path, o.quiet));
+  Eigen::Index others = 0;  // rows of every file but the last
+  for (std::size_t i = 0; i + 1 < split.training.size(); ++i)
+    others += split.training[i].rows();
+  // By file when the other files hold at least 80 % of the rows (else the last file's last 20 %).
+  if (split.training.size() > 1 && double(others) >= (1.0 - kHeldOutShare) / kHeldOutShare *
+                                                         double(split.training.back().rows())) {
+    split.held_out.push_back(std::move(split.training.back()));
+    split.training.pop_back();
+    std::printf("train: held out by file: %s (scored, not trained on)\n",
+                split.held_out.back().source.c_str());
+    return split;
+  }
+  Log& whole = split.training.back();
+  const Eigen::Index rows = whole.rows();
+  const Eigen::Index cut = rows - static_cast<Eigen::Index>(kHeldOutShare * double(rows));
+  Log tail = whole;
+  tail.values = whole.values.bottomRows(rows - cut).eval();
+  tail.file_starts = {0};
+  tail.source = whole.source + " (last 20 %)";
+  whole.values.conservativeResize(cut, Eigen::NoChange);
+  const int t = whole.column("t");
+  if (t >= 0 && cut > 0 && cut < rows)
+    std::printf("train: held out by time: the last 20 %% of %s (t >= %.3f s, %lld of %lld rows)\n",
+                whole.source.c_str(), tail.values(0, t), static_cast<long long>(rows - cut),
+                static_cast<long long>(rows));
+  split.held_out.push_back(std::move(tail));
+  return split;
+}
+
+/// The estimator's trace over each log (no skin: the network reads no pad; the compensator of
+/// `weights`, none by default), with parameters from the log's own noise.
 template <int N>
-std::vector<tpf::offline::EstimatorTrace> trace_logs(const TrainCommandOptions& o) {
+std::vector<tpf::offline::EstimatorTrace> trace_logs(
+    const TrainCommandOptions& o, const std::vector<tpf::offline::Log>& logs,
+    const tpf::CompensatorWeightFiles& weights = {}) {
   using namespace tpf::offline;
   tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, "", false);
+  setup.weights = weights;
   std::vector<EstimatorTrace> traces;
-  for (const std::string& path : o.logs) {
-    const Log log = tpf::cli::read_replayed_log(path, o.quiet);
+  for (const Log& log : logs) {
     // Where the torque sensor is flat or missing, as identify and diagnose say it: the sensor is
     // never an input of the networks.
     for (const std::string& line : torque_sensor_problems(log, N))
       std::printf("%s\n", line.c_str());
+    std::vector<int> never_rests;
     setup.parameters = estimator_parameters_from_noise<N>(
-        estimate_sensor_noise(log, setup.nominal.model.torque_constant));
+        estimate_sensor_noise(log, setup.nominal.model.torque_constant, &never_rests));
+    for (int j : never_rests)
+      std::printf(
+          "train: %s: joint %d never rests (fewer than 10 consecutive rows with |dq| < 1e-4 "
+          "rad/s): its network is trained and scored without the rest regime\n",
+          log.source.c_str(), j + 1);
     traces.push_back(replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0)));
   }
   return traces;
+}
+
+/// Scores the written networks on the held-out logs, writes the gains into the weight files
+/// and prints them with the gate's verdict (the estimator's default threshold).
+template <int N>
+void score_and_rewrite(const TrainCommandOptions& o, const std::vector<tpf::offline::Log>& held_out,
+                       tpf::offline::CompensatorTraining& result) {
+  using namespace tpf::offline;
+  const auto weights = tpf::find_compensator_weights(o.out, N);
+  const HeldOutScore score = score_held_out(trace_logs<N>(o, held_out, weights));
+  set_held_out_gains(result, score);
+  write_compensator(result, o.out);
+  const double min_gain = tpf::EstimatorParameters<double, N>{}.compensator_min_held_out_gain;
+  std::printf(
+      "train: held out, RMSE nominal -> with the network (change); the gate keeps a network whose "
+      "gain is >= %.1f %% in every regime scored:\n",
+      100.0 * min_gain);
+  for (const std::string& line : describe_held_out(score, min_gain))
+    std::printf("train:   %s\n", line.c_str());
 }
 
 /// Refuses weight files (--out, --checkpoint; per joint, each joint's) that would overwrite an
@@ -71,9 +143,10 @@ void refuse_colliding_outputs(const TrainCommandOptions& o) {
 
 void run_train(TrainCommandOptions o) {
   using namespace tpf::offline;
+  const SplitLogs split = split_logs(o);
   std::vector<EstimatorTrace> traces;
   tpf::cli::with_joint_count(tpf::cli::robot_joint_count(o.model.robot), o.model.robot,
-                             [&]<int N>() { traces = trace_logs<N>(o); });
+                             [&]<int N>() { traces = trace_logs<N>(o, split.training); });
   CompensatorTrainingOptions options;
   options.tcn = o.tcn;
   options.tcn.checkpoint_path = o.checkpoint;
@@ -83,7 +156,7 @@ void run_train(TrainCommandOptions o) {
   options.static_weight = o.static_weight;
   for (const std::string& name : o.without)
     options.masked_inputs.push_back(compensator_input_channel(name));
-  const CompensatorTraining result = train_compensator(
+  CompensatorTraining result = train_compensator(
       traces, options,
       o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr, ::isatty(STDERR_FILENO) == 1));
   for (const std::string& p : write_compensator(result, o.out))
@@ -99,6 +172,8 @@ void run_train(TrainCommandOptions o) {
   }
   std::printf("train: %zu training / %zu held-out windows, %.1f s\n", result.training_windows,
               result.validation_windows, result.seconds);
+  tpf::cli::with_joint_count(tpf::cli::robot_joint_count(o.model.robot), o.model.robot,
+                             [&]<int N>() { score_and_rewrite<N>(o, split.held_out, result); });
 }
 
 }  // namespace

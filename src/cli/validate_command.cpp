@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "compensator_gate_printout.hpp"
 #include "joint_dispatch.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
@@ -40,6 +41,8 @@ void run(const tpf::offline::Log& log, const ValidateArgs& a) {
     setup.nominal = nominal;
     if (!a.estimator.empty()) setup.parameters = tpf::load_estimator_parameters<N>(a.estimator);
     setup.weights = tpf::find_compensator_weights(a.weights, N);
+    tpf::cli::print_compensated_joints("validate", setup.weights, N,
+                                       setup.parameters.compensator_min_held_out_gain);
     estimates.push_back(compensated_estimate<N>(setup, log, estimates.front()));
   }
   Validation v = score_estimates(log, samples, estimates);

@@ -3,7 +3,19 @@
 // extrapolates badly at speeds it never saw cannot raise the torque-only contact alarm, and a
 // push off the pads still can (hand-made samples on the twin's nominal model).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tpf/common/error.hpp"
+#include "tpf/estimation/compensator_weight_files.hpp"
+#include "tpf/nn/tcn_weight_file.hpp"
 #include "twin_fixture.hpp"
 
 namespace {
@@ -178,3 +190,68 @@ TEST(CompensatorDomain, TheWrenchWeighsAJointOutsideTheDomainByTheNominalSigma) 
 }
 
 }  // namespace
+
+// The held-out gate: a joint whose network is gated off runs on the nominal residual and band,
+// flagged every cycle, whatever the network answers; the other joints keep theirs.
+TEST(CompensatorGate, AGatedJointRunsOnTheNominalResidual) {
+  ConstantCompensator c;
+  c.b.setConstant(kExtrapolation);
+  auto est =
+      std::make_unique<DomainEstimator>(twin_nominal(), twin_pads(), domain_parameters(1.0), c);
+  est->set_compensated_joints(~1u);  // joint 1 gated off
+  EXPECT_EQ(est->compensated_joints(), 0b1110u);
+  int gated = 0, alarms = 0;
+  for (const ArmSample& s : turning(0.5, 0.0)) {
+    const auto& out = est->update(s);
+    gated += (out.status & kStatusCompensatorGated) ? 1 : 0;
+    alarms += out.contact ? 1 : 0;
+    EXPECT_EQ(out.estimate(TorqueEstimator::Fused).residual[0], 0.0);  // d(τ_res = 0, 150)
+    EXPECT_NEAR(out.estimate(TorqueEstimator::Fused).residual[1],
+                -(kExtrapolation - 1.5 * kFusedSigma), 1e-6);  // the network's, d(0 − b, 30)
+  }
+  EXPECT_EQ(gated, 200);
+  EXPECT_LE(alarms, 200 - (kAlarmSamples - 1));  // joints 2–4 still alarm on their network
+}
+
+// The gate reads the held-out gains the weight files hold: a joint's network is kept when its
+// gain reaches the threshold in every regime scored, gated off otherwise, and a file without a
+// score keeps its network; a bad held_out field is refused naming file and field.
+TEST(CompensatorGate, ReadsTheHeldOutGainsOfTheWeightFiles) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("tpf-gate-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path shipped = fs::path(TPF_TEST_DATA_DIR) / "weights" / "arm4.tcn.json";
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::array<double, 3>> gains{
+      {0.9, 0.7, 0.3}, {0.9, 0.7, -0.08}, {nan, 0.4, 0.1}, {0.0, 0.0, 0.0}};
+  for (int j = 0; j < kJoints; ++j) {
+    TcnWeightFile f = read_tcn_weight_file(joint_weight_path(shipped, j).string());
+    if (j < 3)
+      for (int r = 0; r < 3; ++r)
+        f.held_out_gain[static_cast<std::size_t>(r)] = {
+            gains[static_cast<std::size_t>(j)][static_cast<std::size_t>(r)]};
+    write_tcn_weight_file(joint_weight_path(dir / "arm4.tcn.json", j).string(), f);
+  }
+  const CompensatorWeightFiles w = find_compensator_weights(dir / "arm4.tcn.json", kJoints);
+  std::vector<std::string> gated;
+  EXPECT_EQ(compensated_joints(w, kJoints, 0.0, &gated), 0b1101u);  // joint 2 worse when moving
+  ASSERT_EQ(gated.size(), 1u);
+  EXPECT_EQ(gated[0], "joint 2: held-out gain -8.0 % at moving < +0.0 %");
+  EXPECT_EQ(compensated_joints(w, kJoints, 0.2), 0b1001u);  // joint 3 below, 4 not scored
+  EXPECT_EQ(read_tcn_weight_file(w.files[2]).held_out_gain[0].size(), 1u);
+  EXPECT_TRUE(std::isnan(read_tcn_weight_file(w.files[2]).held_out_gain[0][0]));  // null
+
+  // A bad field, named.
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(w.files[0]));
+  j["held_out"]["moving"] = {0.1, 0.2};
+  std::ofstream(dir / "bad.json") << j.dump();
+  try {
+    read_tcn_weight_file((dir / "bad.json").string());
+    ADD_FAILURE() << "a held_out of two outputs for one was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json: held_out.moving: must be an array of 1"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(dir);
+}

@@ -40,7 +40,7 @@ constexpr int field_count() {
 
 // If one of these fails, a field was added: serialise it in estimator_parameter_file.cpp, then
 // set it in every_field_changed() and compare it in expect_same() below.
-static_assert(field_count<Parameters>() == 17, "EstimatorParameters changed");
+static_assert(field_count<Parameters>() == 18, "EstimatorParameters changed");
 static_assert(field_count<tpf::StaticFrictionSettings<double>>() == 4, "StaticFriction changed");
 static_assert(field_count<tpf::SkinSettings<double>>() == 3, "SkinSettings changed");
 static_assert(field_count<tpf::PadDetectorSettings<double>>() == 4, "PadDetector changed");
@@ -79,6 +79,7 @@ Parameters every_field_changed() {
   p.static_dead_band << 19.7, 20.1, 21.9, 22.3;
   p.compensator_speed_limit << 0.78, 0.77, 0.68, 0.79;
   p.compensator_acceleration_limit << 1.21, 2.13, 9.15, 3.18;
+  p.compensator_min_held_out_gain = 0.07;
   return p;
 }
 
@@ -113,6 +114,7 @@ void expect_same(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.static_dead_band, b.static_dead_band);
   EXPECT_EQ(a.compensator_speed_limit, b.compensator_speed_limit);
   EXPECT_EQ(a.compensator_acceleration_limit, b.compensator_acceleration_limit);
+  EXPECT_EQ(a.compensator_min_held_out_gain, b.compensator_min_held_out_gain);
 }
 
 class EstimatorParameterFile : public ::testing::Test {
@@ -184,6 +186,7 @@ TEST_F(EstimatorParameterFile, EveryMissingFieldIsNamed) {
   for (const auto& key : keys) {
     if (key.size() == 1 && key[0] == "source") continue;       // optional, for people
     if (key.size() == 1 && key[0] == "torque_unit") continue;  // optional: N·m is the only unit
+    if (key.size() == 1 && key[0] == "compensator_min_held_out_gain") continue;  // optional
     Json j = full;
     Json* parent = &j;
     std::string name;
@@ -230,6 +233,13 @@ TEST_F(EstimatorParameterFile, RefusesUnknownAndBadFieldsNamingThem) {
   j["torque_alarm_samples"] = 0;
   EXPECT_NE(load_error(j).find("torque_alarm_samples: must be in [1,"), std::string::npos)
       << load_error(j);
+  j = full;
+  j["compensator_min_held_out_gain"] = 1.5;  // a gain is at most 1
+  EXPECT_NE(load_error(j).find("compensator_min_held_out_gain: must be"), std::string::npos)
+      << load_error(j);
+  j = full;
+  j.erase("compensator_min_held_out_gain");  // files calibrated before the gate: the default
+  EXPECT_EQ(load_error(j), "");
   j = full;
   j["sample_period_s"] = 0.0;
   EXPECT_NE(load_error(j).find("sample_period_s: must be > 0"), std::string::npos) << load_error(j);

@@ -130,6 +130,14 @@ class Estimator {
   const Vector& moving_sigma() const noexcept { return moving_sigma_; }
   Compensator& compensator() noexcept { return compensator_; }
 
+  /// Start-up: the joints whose network the Fused estimate uses (bit j: joint j; default all),
+  /// e.g. compensated_joints(weights, …) of the held-out gate. Elsewhere the Fused estimate is
+  /// the nominal residual with the nominal band, flagged kStatusCompensatorGated every cycle.
+  void set_compensated_joints(std::uint32_t mask) noexcept {
+    compensated_joints_ = mask & kEveryJoint<N>;
+  }
+  std::uint32_t compensated_joints() const noexcept { return compensated_joints_; }
+
  private:
   /// What the sample's timing and readings say before any estimate: the step h, time gap, frozen
   /// joints, stuck pads.
@@ -238,11 +246,14 @@ class Estimator {
     FusedEvidence fused{out.residual - out.compensation, moving_sigma_};
     Vector fused_band = parameters_.dead_band_factor * parameters_.fused_sigma;
     for (int j = 0; j < N; ++j) {
-      if (!outside_compensator_domain(j, sample.dq[j], ddq[j])) continue;
+      const bool outside = outside_compensator_domain(j, sample.dq[j], ddq[j]);
+      const bool gated = !(compensated_joints_ & (1u << j));
+      if (!outside && !gated) continue;
       fused.residual[j] = out.residual[j];
       fused_band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
       fused.sigma[j] = nominal_moving_sigma_[j];
-      status |= kStatusOutsideCompensatorDomain;
+      status |=
+          (outside ? kStatusOutsideCompensatorDomain : 0u) | (gated ? kStatusCompensatorGated : 0u);
     }
     set_estimate(TorqueEstimator::Fused, dead_band(fused.residual, fused_band), all);
     const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
@@ -388,6 +399,7 @@ class Estimator {
   RepeatedReadingDetector<S, P> stuck_pads_;
   PersistenceTest torque_alarm_;
   Compensator compensator_;
+  std::uint32_t compensated_joints_ = kEveryJoint<N>;
   Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
   Vector held_residual_ = Vector::Zero();  ///< last torque-only estimate (StopPolicy)
   /// Per joint: cycles until its compensator input window is back inside the domain.

@@ -49,6 +49,11 @@ struct EstimatorParameters {
   /// impact) drives the network far outside what it was trained on. +inf: no limit.
   JointVector<S, N> compensator_acceleration_limit =
       JointVector<S, N>::Constant(std::numeric_limits<S>::infinity());
+  /// The held-out gate: a joint's network is used only where its weight file's held-out gain
+  /// (1 − RMSE with / without it, per regime, written by `tpf train`) is at least this in every
+  /// regime scored; elsewhere the joint runs on the nominal residual (kStatusCompensatorGated).
+  /// 0: never worse than the nominal model on data the network was not trained on.
+  S compensator_min_held_out_gain = S(0);
   /// The torque-only contact alarm (EstimatorOutput::contact without a pad) needs the combined
   /// external torque outside its dead band on some joint for this many consecutive cycles
   /// (PersistenceTest): a contact-free arm's outliers (break-away transitions) are short, a push

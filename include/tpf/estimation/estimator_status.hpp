@@ -39,10 +39,14 @@ enum EstimatorStatus : std::uint32_t {
   /// compensator_acceleration_limit: what it was trained and calibrated on), now or within the
   /// network's input window: its Fused estimate is the nominal one.
   kStatusOutsideCompensatorDomain = 1u << 10,
+  /// A joint's compensator is gated off (Estimator::compensated_joints): its network did not
+  /// lower the nominal residual on held-out data by compensator_min_held_out_gain in every regime
+  /// scored, so its Fused estimate is the nominal one, every cycle.
+  kStatusCompensatorGated = 1u << 11,
 };
 
 /// Number of status bits (bits 0 … kEstimatorStatusBits − 1).
-inline constexpr int kEstimatorStatusBits = 11;
+inline constexpr int kEstimatorStatusBits = 12;
 
 /// Name of status bit b ("non-finite input (skipped)", …), for reports; "unknown" outside.
 constexpr const char* estimator_status_name(int bit) noexcept {
@@ -56,7 +60,8 @@ constexpr const char* estimator_status_name(int bit) noexcept {
                                                        "frozen input",
                                                        "pad stuck",
                                                        "pad ignored",
-                                                       "outside compensator domain"};
+                                                       "outside compensator domain",
+                                                       "compensator gated (held out)"};
   return bit >= 0 && bit < kEstimatorStatusBits ? names[bit] : "unknown";
 }
 

@@ -53,6 +53,8 @@ template <int N, int P, typename Kind = NoCompensator>
 std::unique_ptr<EstimatorOf<N, P, Kind>> make_estimator(const EstimatorSetup<N>& setup) {
   auto e = std::make_unique<EstimatorOf<N, P, Kind>>(setup.nominal, setup.pads, setup.parameters);
   Kind::template load<double, N>(e->compensator(), setup.weights);
+  e->set_compensated_joints(
+      compensated_joints(setup.weights, N, setup.parameters.compensator_min_held_out_gain));
   return e;
 }
 

@@ -2,6 +2,7 @@
 // tensors by name. Written by the offline trainer, read by the core at start-up.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <string_view>
@@ -26,6 +27,9 @@ struct TcnTensor {
 ///   blocks.<l>.conv.weight [C_out, C_in, K], blocks.<l>.conv.bias [C_out],
 ///   blocks.0.downsample.weight [Hidden, In, 1] (only when In ≠ Hidden),
 ///   head_low.weight / head_high.weight [Out, Hidden], head_low.bias / head_high.bias [Out].
+/// Optional, written by `tpf train`: "held_out": { "static": [Out], "static-to-kinetic": [Out],
+/// "moving": [Out] }, per output the gain 1 − RMSE with the network / RMSE of the nominal residual
+/// on data the network was not trained on (> 0: it helped), null where that regime had no data.
 /// The weights act on the normalised input; the core folds the normalisation in when loading.
 struct TcnWeightFile {
   static constexpr int kVersion = 2;
@@ -39,6 +43,12 @@ struct TcnWeightFile {
   std::vector<double> input_mean;
   std::vector<double> input_std;
   std::map<std::string, TcnTensor> tensors;
+  /// The regimes of held_out_gain, in its order.
+  static constexpr std::array<const char*, 3> kHeldOutRegimes{"static", "static-to-kinetic",
+                                                              "moving"};
+  /// Held-out gain per regime (kHeldOutRegimes) and output; NaN: not scored. All empty: the file
+  /// holds no held-out score (the network is used as it is).
+  std::array<std::vector<double>, 3> held_out_gain;
 
   /// The tensor `name`, checked to have exactly `shape`; otherwise throws tpf::Error
   /// "<path>: tensors.<name>: shape [a, b] in the file, [c, d] expected" (or "missing").

@@ -1,5 +1,8 @@
 #include "tpf/estimation/compensator_weight_files.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/compensator.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
@@ -42,6 +45,34 @@ CompensatorWeightFiles find_compensator_weights(const std::filesystem::path& pat
   }
   w.layout = CompensatorLayout::PerJoint;
   return w;
+}
+
+std::uint32_t compensated_joints(const CompensatorWeightFiles& weights, int joints, double min_gain,
+                                 std::vector<std::string>* gated) {
+  std::uint32_t mask = joints >= 32 ? ~0u : (1u << joints) - 1u;
+  if (weights.layout == CompensatorLayout::None) return mask;
+  const bool per_joint = weights.layout == CompensatorLayout::PerJoint;
+  std::vector<TcnWeightFile> files;
+  for (const std::string& f : weights.files)
+    files.push_back(read_tcn_weight_file(f));
+  for (int j = 0; j < joints; ++j) {
+    const TcnWeightFile& file = files[per_joint ? static_cast<std::size_t>(j) : 0];
+    const std::size_t output = per_joint ? 0 : static_cast<std::size_t>(j);
+    for (std::size_t r = 0; r < file.held_out_gain.size(); ++r) {
+      if (file.held_out_gain[r].size() <= output) continue;  // not scored
+      const double gain = file.held_out_gain[r][output];
+      if (!std::isfinite(gain) || gain >= min_gain) continue;
+      mask &= ~(1u << j);
+      if (gated) {
+        char line[200];
+        std::snprintf(line, sizeof line, "joint %d: held-out gain %+.1f %% at %s < %+.1f %%", j + 1,
+                      100.0 * gain, TcnWeightFile::kHeldOutRegimes[r], 100.0 * min_gain);
+        gated->push_back(line);
+      }
+      break;
+    }
+  }
+  return mask;
 }
 
 std::string describe(const CompensatorWeightFiles& w) {

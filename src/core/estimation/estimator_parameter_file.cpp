@@ -131,6 +131,9 @@ EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::
   top.joint_vector<N>("static_dead_band", p.static_dead_band, true, Bound::kNonNegative);
   top.joint_limits<N>("compensator_speed_limit", p.compensator_speed_limit);
   top.joint_limits<N>("compensator_acceleration_limit", p.compensator_acceleration_limit);
+  // Optional (files calibrated before the gate hold none): the default, 0.
+  p.compensator_min_held_out_gain =
+      top.number("compensator_min_held_out_gain", p.compensator_min_held_out_gain, -1e3, 1.0);
   top.finish();
   return p;
 }
@@ -178,6 +181,7 @@ void save_estimator_parameters(const std::filesystem::path& file,
   j["static_dead_band"] = ordered_array(p.static_dead_band);
   j["compensator_speed_limit"] = limits_array(p.compensator_speed_limit);
   j["compensator_acceleration_limit"] = limits_array(p.compensator_acceleration_limit);
+  j["compensator_min_held_out_gain"] = p.compensator_min_held_out_gain;
   json::require_finite(j, file);
   write_file_atomically(file, j.dump(2) + "\n");
 }

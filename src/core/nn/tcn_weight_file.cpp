@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <sstream>
@@ -145,6 +146,42 @@ void TcnWeightFile::require_architecture(int in, int hid, int lev, int ker, int 
   }
 }
 
+namespace {
+
+// "held_out": one array of `outputs` gains (numbers ≤ 1, or null: not scored) per regime.
+void read_held_out(const nlohmann::json& held_out, const std::string& path, TcnWeightFile& file) {
+  if (!held_out.is_object())
+    fail(path, "held_out", "must be an object of gains per regime, got " + held_out.dump());
+  for (std::size_t r = 0; r < TcnWeightFile::kHeldOutRegimes.size(); ++r) {
+    const std::string field = std::string("held_out.") + TcnWeightFile::kHeldOutRegimes[r];
+    const nlohmann::json& gains = member(held_out, TcnWeightFile::kHeldOutRegimes[r], path, field);
+    if (!gains.is_array() || static_cast<int>(gains.size()) != file.outputs)
+      fail(path, field,
+           "must be an array of " + std::to_string(file.outputs) +
+               " gains (architecture.outputs), got " + gains.dump());
+    for (std::size_t o = 0; o < gains.size(); ++o) {
+      if (gains[o].is_null()) {
+        file.held_out_gain[r].push_back(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
+      if (!gains[o].is_number() || !(gains[o].get<double>() <= 1.0))
+        fail(path, field,
+             "element " + std::to_string(o) +
+                 " must be a gain ≤ 1 (1 − RMSE with / without the network) or null, got " +
+                 gains[o].dump());
+      file.held_out_gain[r].push_back(gains[o].get<double>());
+    }
+  }
+  for (const auto& [key, value] : held_out.items()) {
+    if (std::find(TcnWeightFile::kHeldOutRegimes.begin(), TcnWeightFile::kHeldOutRegimes.end(),
+                  key) == TcnWeightFile::kHeldOutRegimes.end())
+      fail(path, "held_out." + key,
+           "not a regime (static, static-to-kinetic, moving); value " + value.dump());
+  }
+}
+
+}  // namespace
+
 TcnWeightFile read_tcn_weight_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) fail(path, "", "cannot open the TCN weight file");
@@ -202,6 +239,7 @@ TcnWeightFile read_tcn_weight_file(const std::string& path) {
   for (const auto& [name, value] : tensors.items()) {
     file.tensors.emplace(name, read_tensor(value, path, "tensors." + name));
   }
+  if (json.contains("held_out")) read_held_out(json["held_out"], path, file);
   return file;
 }
 
@@ -226,6 +264,16 @@ void write_tcn_weight_file(const std::string& path, const TcnWeightFile& file) {
     tensors[name] = {{"shape", tensor.shape}, {"values", tensor.values}};
   }
   json["tensors"] = std::move(tensors);
+  if (!file.held_out_gain[0].empty()) {
+    nlohmann::json held_out = nlohmann::json::object();
+    for (std::size_t r = 0; r < TcnWeightFile::kHeldOutRegimes.size(); ++r) {
+      nlohmann::json gains = nlohmann::json::array();
+      for (double g : file.held_out_gain[r])
+        gains.push_back(std::isfinite(g) ? nlohmann::json(g) : nlohmann::json(nullptr));
+      held_out[TcnWeightFile::kHeldOutRegimes[r]] = std::move(gains);
+    }
+    json["held_out"] = std::move(held_out);
+  }
   json::require_finite(json, path);
   write_file_atomically(path, json.dump(1) + "\n");
 }

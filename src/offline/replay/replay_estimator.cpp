@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tpf/common/joint_counts.hpp"
 #include "tpf/model/effort_unit.hpp"
@@ -61,6 +62,8 @@ SteppedEstimator<N>::SteppedEstimator(const EstimatorSetup<N>& setup)
     : estimator_(
           std::make_unique<ReplayEstimator<N>>(setup.nominal, setup.pads, setup.parameters)) {
   estimator_->compensator().inner.load(setup.weights);
+  estimator_->set_compensated_joints(
+      compensated_joints(setup.weights, N, setup.parameters.compensator_min_held_out_gain));
 }
 
 template <int N>
@@ -72,7 +75,8 @@ const EstimatorOutput<double, N>& SteppedEstimator<N>::update(
   return estimator_->update(sample);
 }
 
-SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_constant) {
+SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_constant,
+                                  std::vector<int>* never_rests) {
   SensorNoise noise;
   const std::string effort = log.effort_prefix();
   if (torque_constant.size() != log.joint_count())
@@ -83,9 +87,21 @@ SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_
   const int joints = log.joint_count();
   noise.effort.resize(joints);
   noise.effort_step.resize(joints);
+  if (never_rests) never_rests->clear();
   for (int j = 0; j < joints; ++j) {
-    noise.effort[j] = units.to_torque(j, effort_noise(log, effort, j + 1, period));
     noise.effort_step[j] = units.to_torque(j, 1.0);
+    try {
+      noise.effort[j] = units.to_torque(j, effort_noise(log, effort, j + 1, period));
+    } catch (const Error&) {
+      if (!never_rests) throw;
+      never_rests->push_back(j);
+      noise.effort[j] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  if (never_rests && !never_rests->empty()) {
+    const double largest = noise.effort.array().isFinite().select(noise.effort, 0.0).maxCoeff();
+    for (int j : *never_rests)
+      noise.effort[j] = largest;
   }
   noise.pad_kpa = pad_noise(log);
   return noise;

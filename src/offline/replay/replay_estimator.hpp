@@ -32,6 +32,8 @@ template <int N, typename Use>
 auto with_estimator(const EstimatorSetup<N>& s, Use&& use) {
   auto e = std::make_unique<ReplayEstimator<N>>(s.nominal, s.pads, s.parameters);
   e->compensator().inner.load(s.weights);
+  e->set_compensated_joints(
+      compensated_joints(s.weights, N, s.parameters.compensator_min_held_out_gain));
   return use(*e);
 }
 
@@ -67,8 +69,11 @@ struct SensorNoise {
 /// likewise over all pairs of rows of every pad column where both readings are off the sensor's
 /// rails (0, full scale: clipped readings repeat and would bias σ low; contacts are rare and slow
 /// against the noise); 0 without pads.
-/// Throws tpf::Error naming the log when a joint never rests.
-SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_constant);
+/// Throws tpf::Error naming the log when a joint never rests, unless `never_rests` is given: it
+/// then gets those joints (0-based), whose noise is taken as the largest of the joints that rest
+/// (their static estimate, which needs rest, is never used; 0 when no joint rests).
+SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_constant,
+                                  std::vector<int>* never_rests = nullptr);
 
 /// Parameters from the noise: σ² = noise² + step²/12 (the effort's rounding), static dead band
 /// 3σ·√(1 + 1/5) (static_dead_band_from_noise with
