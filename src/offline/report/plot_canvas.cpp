@@ -46,14 +46,6 @@ std::string standalone_svg(const std::vector<std::string>& plots, int width, int
 }
 namespace {
 
-// Characters of UTF-8 `text` (the bytes that start one): widths are estimated per character.
-std::size_t characters(const std::string& text) {
-  std::size_t n = 0;
-  for (const char c : text)
-    n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-  return n;
-}
-
 // `text` in lines of about `width` characters, broken after a space or a hyphen; the last of
 // `max_lines` lines takes whatever is left.
 std::vector<std::string> wrap_label(const std::string& text, std::size_t width,
@@ -67,7 +59,7 @@ std::vector<std::string> wrap_label(const std::string& text, std::size_t width,
   if (!piece.empty()) pieces.push_back(piece);
   std::vector<std::string> lines{""};
   for (const std::string& p : pieces) {
-    if (!lines.back().empty() && characters(lines.back() + p) > width + 1 &&
+    if (!lines.back().empty() && utf8_characters(lines.back() + p) > width + 1 &&
         lines.size() < max_lines)
       lines.emplace_back();
     lines.back() += p;
@@ -132,7 +124,7 @@ std::string PlotCanvas::svg() const {
   // row between the left edge and the plot's right end; else rows under the x-axis label, from
   // the plot's left end, the SVG taller by those rows (an entry never leaves the picture).
   auto entry_width = [](const std::string& name) {
-    return 22.0 + 7.0 * static_cast<double>(characters(name));
+    return 22.0 + 7.0 * static_cast<double>(utf8_characters(name));
   };
   double row_width = 0;
   for (const auto& entry : legend_)

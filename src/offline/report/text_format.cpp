@@ -107,4 +107,11 @@ std::string format_sentence(const char* pattern, double a, double b, double c) {
   return text;
 }
 
+std::size_t utf8_characters(std::string_view text) {
+  std::size_t n = 0;
+  for (const char c : text)
+    n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  return n;
+}
+
 }  // namespace tpf::offline

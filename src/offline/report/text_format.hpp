@@ -25,6 +25,9 @@ std::string format_percent_change(double before, double after);
 /// `items` with `separator` between them: joined({"a", "b"}, " + ") → "a + b".
 std::string joined(const std::vector<std::string>& items, std::string_view separator);
 
+/// Characters of UTF-8 `text` (the bytes that start one): what a column or a label's width counts.
+std::size_t utf8_characters(std::string_view text);
+
 /// printf of up to three numbers into a sentence: format_sentence("removes %.1f %%", 12.34).
 std::string format_sentence(const char* pattern, double a, double b = 0, double c = 0);
 

@@ -4,15 +4,10 @@
 #include <cctype>
 #include <vector>
 
+#include "offline/report/text_format.hpp"
+
 namespace tpf::offline {
 namespace {
-
-std::size_t characters(const std::string& text) {
-  std::size_t n = 0;
-  for (const char c : text)
-    n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-  return n;
-}
 
 /// Starts with a digit, a sign or the typographic minus: right-aligned.
 bool numeric(const std::string& cell) {
@@ -26,7 +21,7 @@ std::string table_text(const Table& table, int indent) {
   std::vector<std::size_t> width(table.header.size(), 0);
   const auto widen = [&](const std::vector<std::string>& row) {
     for (std::size_t c = 0; c < row.size() && c < width.size(); ++c)
-      width[c] = std::max(width[c], characters(row[c]));
+      width[c] = std::max(width[c], utf8_characters(row[c]));
   };
   widen(table.header);
   for (const auto& row : table.rows)
@@ -34,7 +29,7 @@ std::string table_text(const Table& table, int indent) {
   const auto line = [&](const std::vector<std::string>& row) {
     std::string text(static_cast<std::size_t>(indent), ' ');
     for (std::size_t c = 0; c < row.size() && c < width.size(); ++c) {
-      const std::string pad(width[c] - characters(row[c]), ' ');
+      const std::string pad(width[c] - utf8_characters(row[c]), ' ');
       const bool last = c + 1 == row.size();
       text += c ? "  " : "";
       text += numeric(row[c]) ? pad + row[c] : row[c] + (last ? "" : pad);
