@@ -12,7 +12,7 @@ namespace tpf::offline {
 namespace {
 
 // Index in kHeldOutRegimes of a regime label, −1 for Invalid.
-int regime_index(Regime g) {
+int held_out_regime_index(Regime g) {
   switch (g) {
     case Regime::Static:
       return 0;
@@ -46,7 +46,7 @@ HeldOutScore score_held_out(const std::vector<EstimatorTrace>& traces, const Reg
       const std::vector<Regime> labels =
           label_regimes(tr.t, tr.dq.col(j), regimes, &nominal, &compensated);
       for (Eigen::Index k = 0; k < tr.rows(); ++k) {
-        const int r = regime_index(labels[static_cast<std::size_t>(k)]);
+        const int r = held_out_regime_index(labels[static_cast<std::size_t>(k)]);
         if (r < 0 || !std::isfinite(nominal[k]) || !std::isfinite(compensated[k])) continue;
         sum_nominal[r][j] += nominal[k] * nominal[k];
         sum_compensated[r][j] += compensated[k] * compensated[k];

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "offline/log/joint_side.hpp"
+#include "offline/log/log_text.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
@@ -76,12 +77,6 @@ std::vector<Eigen::Index> match_in_time(const Eigen::VectorXd& first_t,
       match[static_cast<std::size_t>(r)] = o;
   }
   return match;
-}
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
 }
 
 /// Reads the files of one recording and puts their columns side by side (map.join).
@@ -207,9 +202,10 @@ void check_rate_against_time(const Eigen::VectorXd& kept_t, const ImportMap& map
   const double median = median_step(kept_t);
   if (std::abs(median - nominal) <= 0.1 * nominal) return;
   throw Error::at(map.file, 0, "rate_hz",
-                  format("%.6g", map.rate_hz) + " Hz is a step of " + format("%.6g", nominal) +
-                      " s, but the time column of " + csv_source + " steps " +
-                      format("%.6g", median) + " s at the median (" + format("%.6g", 1.0 / median) +
+                  log_text::printed("%.6g", map.rate_hz) + " Hz is a step of " +
+                      log_text::printed("%.6g", nominal) + " s, but the time column of " +
+                      csv_source + " steps " + log_text::printed("%.6g", median) +
+                      " s at the median (" + log_text::printed("%.6g", 1.0 / median) +
                       " Hz): correct rate_hz or time.unit; nothing written");
 }
 
@@ -219,19 +215,19 @@ std::vector<std::string> ImportReport::lines() const {
   std::vector<std::string> out = reader_notes;
   out.push_back("time: " + std::to_string(rows_read) + " rows read, " +
                 std::to_string(rows_written) + " written; nominal step " +
-                format("%.6g", nominal_step_s) + " s");
+                log_text::printed("%.6g", nominal_step_s) + " s");
   if (not_increasing > 0)
     out.push_back("time: " + std::to_string(not_increasing) +
                   " rows dropped because their time does not increase (first on line " +
                   std::to_string(first_not_increasing_line) + ")");
   out.push_back("time: " + std::to_string(irregular_steps) +
                 " irregular steps (off the nominal by > 10 %), " + std::to_string(gap_steps) +
-                " of them gaps (> 1.5 nominal); largest step " + format("%.6g", largest_step_s) +
-                " s" +
+                " of them gaps (> 1.5 nominal); largest step " +
+                log_text::printed("%.6g", largest_step_s) + " s" +
                 (irregular_steps > 0 ? " before line " + std::to_string(largest_step_line) : ""));
   if (made_regular)
     out.push_back("time: rule 'regular': t rewritten as k / rate_hz, at most " +
-                  format("%.3g", regular_max_shift_s) +
+                  log_text::printed("%.3g", regular_max_shift_s) +
                   " s from the recorded time (no gap is left in the log)");
   else if (gap_steps > 0)
     out.push_back("time: rule 'keep': the " + std::to_string(gap_steps) +
@@ -281,7 +277,7 @@ Log import_log(const std::vector<std::filesystem::path>& files, const ImportMap&
   log.source = files.front().string();
   for (const auto& [key, value] : map.metadata)
     log.meta.set(key, value);
-  if (map.rate_hz > 0) log.meta.set("rate_hz", format("%.17g", map.rate_hz));
+  if (map.rate_hz > 0) log.meta.set("rate_hz", log_text::printed("%.17g", map.rate_hz));
   std::string names;
   for (const auto& file : files)
     names.append(names.empty() ? "" : " + ").append(file.filename().string());

@@ -5,22 +5,17 @@
 #include <cstdio>
 
 #include "offline/log/derived_rates.hpp"
+#include "offline/log/log_text.hpp"
 
 namespace tpf::offline {
 namespace {
 
 using Columns = std::vector<std::pair<std::string, Eigen::MatrixXd>>;
 
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
-
 std::string list(const Eigen::VectorXd& v, const char* pattern) {
   std::string out;
   for (Eigen::Index k = 0; k < v.size(); ++k)
-    out.append(k ? ", " : "").append(format(pattern, v[k]));
+    out.append(k ? ", " : "").append(log_text::printed(pattern, v[k]));
   return out;
 }
 
@@ -90,7 +85,7 @@ void derive_missing_rates(const Eigen::VectorXd& t, const ImportMap& map, Column
     acceleration.col(k) = rates.acceleration;
   }
   const std::string filter = "derived from q (Butterworth 2nd order forward and backward, " +
-                             format("%.6g", map.derive_cutoff_hz) +
+                             log_text::printed("%.6g", map.derive_cutoff_hz) +
                              " Hz, central differences; NaN at each segment's ends)";
   auto at = out.begin() + 1;
   if (map.has("dq")) {

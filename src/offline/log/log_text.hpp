@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <span>
 #include <string>
 #include <string_view>
@@ -25,6 +26,14 @@ inline void append_number(std::string& out, double value) {
   char buffer[kMaxNumberChars];
   const auto result = std::to_chars(buffer, buffer + kMaxNumberChars, value);
   out.append(buffer, result.ptr);
+}
+
+/// `value` through a printf pattern of one number ("%.6g"): the numbers of the import's and the
+/// checks' messages.
+inline std::string printed(const char* pattern, double value) {
+  char text[96];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
 }
 
 /// Appends one data line: values separated by ',' and a final '\n'.

@@ -6,14 +6,10 @@
 #include <numbers>
 #include <set>
 
+#include "offline/log/log_text.hpp"
+
 namespace tpf::offline {
 namespace {
-
-std::string format(const char* pattern, double value) {
-  char text[96];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
 
 std::string joint_name(int j) {
   return "joint " + std::to_string(j + 1);
@@ -34,14 +30,14 @@ std::vector<Reading> effort_readings(const UnitCheckInput& in, int j) {
       {1000.0, "is the effort 1000x too large (a current in A read as mA, or N*m as mN*m)?"},
       {1e-3, "is the effort 1000x too small (a current in mA read as A, or mN*m as N*m)?"},
       {1.0 / r, "is the effort motor-side torque (not taken through the gear ratio " +
-                    format("%.4g", r) + ")?"},
-      {r, "is the effort joint torque taken through the gear ratio " + format("%.4g", r) +
-              " as if it were motor torque?"}};
+                    log_text::printed("%.4g", r) + ")?"},
+      {r, "is the effort joint torque taken through the gear ratio " +
+              log_text::printed("%.4g", r) + " as if it were motor torque?"}};
   out.push_back({kt, "is the effort a joint torque in N*m read as a current in A (x K_t " +
-                         format("%.4g", kt) + ")?"});
+                         log_text::printed("%.4g", kt) + ")?"});
   out.push_back(
       {kt / r, "is the effort a motor torque in N*m read as a current in A (x K_t/ratio " +
-                   format("%.4g", kt / r) + ")?"});
+                   log_text::printed("%.4g", kt / r) + ")?"});
   out.push_back({1.0 / kt, "is the effort a current in A read as a joint torque in N*m?"});
   out.push_back({r / kt, "is the effort a current in A read as a motor torque in N*m?"});
   if (r != 1.0) out.push_back({r * 1000.0, "is the effort motor torque in mN*m?"});
@@ -92,13 +88,14 @@ void check_rest(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks& 
         ++used;
       }
     if (used < o.min_rest_samples) {
-      out.notes.push_back(
-          joint_name(j) + ": effort against gravity not checked: " + std::to_string(used) +
-          " samples at rest (|dq| < " + format("%.3g", o.rest_velocity) + " rad/s, |ddq| < " +
-          format("%.3g", o.rest_acceleration) + " rad/s^2 on every joint) with a " +
-          "gravity torque of at least " + format("%.3g", least) + " N*m (" +
-          format("%.0f", 100 * o.min_gravity_share) + " % of its largest), " +
-          std::to_string(o.min_rest_samples) + " needed");
+      out.notes.push_back(joint_name(j) +
+                          ": effort against gravity not checked: " + std::to_string(used) +
+                          " samples at rest (|dq| < " + log_text::printed("%.3g", o.rest_velocity) +
+                          " rad/s, |ddq| < " + log_text::printed("%.3g", o.rest_acceleration) +
+                          " rad/s^2 on every joint) with a " + "gravity torque of at least " +
+                          log_text::printed("%.3g", least) + " N*m (" +
+                          log_text::printed("%.0f", 100 * o.min_gravity_share) +
+                          " % of its largest), " + std::to_string(o.min_rest_samples) + " needed");
       continue;
     }
     const double f = tg / gg;
@@ -113,15 +110,15 @@ void check_rest(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks& 
     if (f >= 1.0 / o.fitting_factor && f <= o.fitting_factor && misfit <= o.rest_misfit) continue;
     if (f >= 1.0 / o.fitting_factor && f <= o.fitting_factor) {
       out.problems.push_back(joint_name(j) + ": the effort at rest does not follow the robot " +
-                             "file's gravity torque (" + format("%.0f", 100 * misfit) +
+                             "file's gravity torque (" + log_text::printed("%.0f", 100 * misfit) +
                              " % RMS off its best multiple, " + std::to_string(used) +
                              " samples at rest): are q's units, sign and zero right?");
       continue;
     }
     const std::string reading = matching_reading(effort_readings(in, j), f, o.reading_tolerance);
     out.problems.push_back(
-        joint_name(j) + " rests at " + format("%.3g", f) + "x the robot file's gravity torque (" +
-        std::to_string(used) + " samples at rest): " +
+        joint_name(j) + " rests at " + log_text::printed("%.3g", f) +
+        "x the robot file's gravity torque (" + std::to_string(used) + " samples at rest): " +
         (reading.empty() ? std::string("no single factor explains it; are q's units and zero, "
                                        "and the effort's kind, right?")
                          : reading));
@@ -147,8 +144,8 @@ void check_dead_channels(const UnitCheckInput& in, const UnitCheckOptions& o, Lo
     if (zero_share < o.dead_zero_fraction && !few) continue;
     out.dead_joints.push_back(j + 1);
     out.problems.push_back(joint_name(j) + ": dead effort channel: exactly 0 in " +
-                           format("%.0f", 100.0 * zero_share) + " % of " + std::to_string(finite) +
-                           " samples, " +
+                           log_text::printed("%.0f", 100.0 * zero_share) + " % of " +
+                           std::to_string(finite) + " samples, " +
                            (few ? std::to_string(distinct.size())
                                 : "more than " + std::to_string(o.dead_distinct_values)) +
                            " distinct values" + (few ? " while the joint moves" : "") +
@@ -171,9 +168,10 @@ void check_limits(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks
     }
     if (outside == 0) continue;
     out.problems.push_back(joint_name(j) + ": q outside the robot file's limits [" +
-                           format("%.4g", in.lower[j]) + ", " + format("%.4g", in.upper[j]) +
-                           "] rad in " + std::to_string(outside) + " of " + std::to_string(finite) +
-                           " samples (up to " + format("%.4g", worst) +
+                           log_text::printed("%.4g", in.lower[j]) + ", " +
+                           log_text::printed("%.4g", in.upper[j]) + "] rad in " +
+                           std::to_string(outside) + " of " + std::to_string(finite) +
+                           " samples (up to " + log_text::printed("%.4g", worst) +
                            " rad beyond): are q's units, sign and zero right?");
   }
 }
@@ -199,11 +197,13 @@ void check_velocity(const UnitCheckInput& in, const UnitCheckOptions& o, LogChec
         {-1.0, "is the sign of q or of dq reversed?"},
         {deg, "is q in radians and dq in degrees per second (or q read as degrees)?"},
         {1.0 / deg, "is q in degrees and dq in radians per second?"},
-        {r, "is dq motor-side (not through the gear ratio " + format("%.4g", r) + ")?"},
-        {1.0 / r, "is q motor-side (not through the gear ratio " + format("%.4g", r) + ")?"}};
+        {r, "is dq motor-side (not through the gear ratio " + log_text::printed("%.4g", r) + ")?"},
+        {1.0 / r,
+         "is q motor-side (not through the gear ratio " + log_text::printed("%.4g", r) + ")?"}};
     const std::string reading = matching_reading(readings, f, o.reading_tolerance);
     out.problems.push_back(
-        joint_name(j) + ": dq is " + format("%.3g", f) + "x the difference quotient of q: " +
+        joint_name(j) + ": dq is " + log_text::printed("%.3g", f) +
+        "x the difference quotient of q: " +
         (reading.empty() ? std::string("are their units and time right?") : reading));
   }
 }
