@@ -49,7 +49,8 @@ Eigen::MatrixXd transmission() {
 constexpr double kOffset = 0.25;  // encoder zero of motor 2 [rad]; the map removes it
 constexpr int kFlipped = 3;       // motor 3's position and torque are written with sign −1
 
-const char* kMap = R"({"format": "tpf-import", "version": 1, "joints": 6, "rate_hz": 1000,
+const char* kCoupledWristMap =
+    R"({"format": "tpf-import", "version": 1, "joints": 6, "rate_hz": 1000,
   "files": 2, "join": "index",
   "time": {"unit": "rate"},
   "transmission": {"ratio": [32, 32, 45, -48, 45, 32],
@@ -94,7 +95,7 @@ void write_recording(const std::filesystem::path& dir) {
 
 TEST(ImportTransmission, TwoFileMotorSideCoupledWristLogGivesBackTheJointTrajectories) {
   TempDir dir("import_transmission");
-  write_text(dir / "map.json", kMap);
+  write_text(dir / "map.json", kCoupledWristMap);
   write_recording(dir.path());
   const ImportMap map = load_import_map(dir / "map.json");
   EXPECT_TRUE(map.coupled);
@@ -134,7 +135,7 @@ TEST(ImportTransmission, TwoFileMotorSideCoupledWristLogGivesBackTheJointTraject
 
 TEST(ImportTransmission, FilesOfDifferentLengthsJoinedByIndexAreRefused) {
   TempDir dir("import_transmission");
-  write_text(dir / "map.json", kMap);
+  write_text(dir / "map.json", kCoupledWristMap);
   write_recording(dir.path());
   write_text(dir / "short.csv", "trq1,trq2,trq3,trq4,trq5,trq6\n1,2,3,4,5,6\n");
   const ImportMap map = load_import_map(dir / "map.json");
@@ -170,7 +171,7 @@ TEST(ImportTransmission, FilesJoinedByTimeKeepTheSamplesEveryFileHas) {
 
 TEST(ImportTransmission, ACoupledTransmissionsCurrentMustBeWrittenAsTorque) {
   TempDir dir("import_transmission");
-  std::string map = kMap;
+  std::string map = kCoupledWristMap;
   map.replace(map.find("\"tau\": {\"source\": \"trq{j}\", \"unit\": \"mN*m\""),
               std::string("\"tau\": {\"source\": \"trq{j}\", \"unit\": \"mN*m\"").size(),
               "\"i\": {\"source\": \"trq{j}\", \"unit\": \"A\", \"torque_constant\": 0.1");
