@@ -9,24 +9,6 @@
 
 namespace tpf::offline {
 
-namespace {
-
-// Index in kHeldOutRegimes of a regime label, −1 for Invalid.
-int held_out_regime_index(Regime g) {
-  switch (g) {
-    case Regime::Static:
-      return 0;
-    case Regime::StaticToKinetic:
-      return 1;
-    case Regime::Moving:
-      return 2;
-    default:
-      return -1;
-  }
-}
-
-}  // namespace
-
 HeldOutScore score_held_out(const std::vector<EstimatorTrace>& traces, const RegimeOptions& regimes,
                             int min_rows) {
   if (traces.empty()) throw Error::at("held-out traces", 0, "traces", "no held-out trace");
@@ -46,8 +28,11 @@ HeldOutScore score_held_out(const std::vector<EstimatorTrace>& traces, const Reg
       const std::vector<Regime> labels =
           label_regimes(tr.t, tr.dq.col(j), regimes, &nominal, &compensated);
       for (Eigen::Index k = 0; k < tr.rows(); ++k) {
-        const int r = held_out_regime_index(labels[static_cast<std::size_t>(k)]);
-        if (r < 0 || !std::isfinite(nominal[k]) || !std::isfinite(compensated[k])) continue;
+        const Regime regime = labels[static_cast<std::size_t>(k)];
+        if (regime == Regime::Invalid || !std::isfinite(nominal[k]) ||
+            !std::isfinite(compensated[k]))
+          continue;
+        const int r = regime_index(regime);  // kHeldOutRegimes' order
         sum_nominal[r][j] += nominal[k] * nominal[k];
         sum_compensated[r][j] += compensated[k] * compensated[k];
         s.rows[r][j] += 1;

@@ -15,14 +15,6 @@
 #include "tpf/estimation/nominal_model.hpp"
 
 namespace tpf::offline {
-namespace {
-
-int regime_index(Regime r) {
-  return static_cast<int>(r);
-}  // Static 0, StaticToKinetic 1, Moving 2
-
-}  // namespace
-
 template <int N>
 struct EffectDesign<N>::Workspace {
   Regressor<double, N> Y = Regressor<double, N>::Zero();  ///< entries not stored stay zero

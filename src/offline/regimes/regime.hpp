@@ -15,6 +15,12 @@ inline constexpr int kRegimeCount = 4;
 /// "static", "static-to-kinetic", "moving", "invalid".
 std::string_view regime_name(Regime regime);
 
+/// 0, 1, 2 for Static, StaticToKinetic, Moving: the slot of a valid regime in per-regime tables
+/// (the order of regime_name and of a weight file's held-out gains).
+constexpr int regime_index(Regime regime) {
+  return static_cast<int>(regime);
+}
+
 struct RegimeOptions {
   double static_velocity = 1e-4;        ///< rad/s; |dq| below this is static (the original's value)
   double max_transition_s = 0.2;        ///< s; a static-to-kinetic window never lasts longer
