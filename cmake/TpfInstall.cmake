@@ -7,7 +7,9 @@ install(TARGETS tpf_core tpf_warnings EXPORT tpfTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY include/tpf DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY data/ DESTINATION ${CMAKE_INSTALL_DATADIR}/tpf)
+# The twin's robot, pad, parameter and scenario files and the weights: what the tool's defaults
+# name. The measured logs in data/real stay in the source tree (their licences beside them).
+install(DIRECTORY data/ DESTINATION ${CMAKE_INSTALL_DATADIR}/tpf PATTERN real EXCLUDE)
 install(EXPORT tpfTargets NAMESPACE tpf:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/tpf)
 configure_package_config_file(cmake/tpfConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/tpfConfig.cmake
                               INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/tpf)

@@ -5,7 +5,8 @@
 
 namespace tpf::offline {
 
-/// The data/ folder: $TPF_DATA_DIR if set, else the source tree's data/ folder.
+/// The data/ folder, first of: $TPF_DATA_DIR; the installed data beside the running program
+/// (<prefix>/share/tpf for <prefix>/bin/tpf); the source tree's data/ folder (a build tree).
 std::filesystem::path data_dir();
 
 /// data_dir() / name.
