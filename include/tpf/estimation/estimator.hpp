@@ -52,11 +52,11 @@ namespace tpf {
 /// that run one compiled copy for any arm; every member is sized at construction, a sample whose
 /// vectors have another size is skipped as kStatusNonFiniteInput, and the compensator is
 /// ZeroCompensator or PerJointTcnCompensator (the all-joints Tcn is compiled for a fixed N).
-/// With fixed N and P, update() allocates nothing, throws nothing and never blocks; what it could
-/// not do is in the output's status bits. At Eigen::Dynamic it throws nothing either; the
-/// per-cycle scratch is allocated at construction, and the nominal model's effort (step 2) is
-/// evaluated in place (predict_effort_at_pose into the output's vectors). The object is large
-/// with a TCN inside: keep it on the heap.
+/// update() allocates nothing, throws nothing and never blocks; what it could not do is in the
+/// output's status bits. With fixed N and P its scratch vectors live on its stack; with a size
+/// chosen at start-up they are members, sized once at construction, so that update() allocates
+/// nothing there either (tests/estimation/estimator_run_time_size_test.cpp counts Eigen's
+/// mallocs). The object is large with a TCN inside: keep it on the heap.
 template <typename S, int N, int P, typename Compensator = ZeroCompensator<S, N>>
 requires FrictionCompensator<Compensator, S, N>
 class Estimator {
