@@ -230,6 +230,32 @@ void BM_EstimatorStepWithoutCompensator(benchmark::State& state) {
 }
 BENCHMARK(BM_EstimatorStepWithoutCompensator)->Iterations(400000)->Unit(benchmark::kNanosecond);
 
+/// The shipped compensator's estimator at a run-time joint and pad count (Eigen::Dynamic, what
+/// the offline tools run for any arm) on the same log: the cost of sizes chosen at start-up.
+void BM_EstimatorStepRunTimeSize(benchmark::State& state) {
+  constexpr int X = Eigen::Dynamic;
+  using Networks = tpf::PerJointTcnCompensator<double, X, 16, 4, tpf::BFloat16Weights>;
+  const auto nominal = tpf::joint_count_cast<X>(twin_nominal());
+  auto est = std::make_unique<tpf::Estimator<double, X, X, Networks>>(
+      nominal, tpf::load_pads(data("arm4.pads.json"), nominal.model),
+      tpf::joint_count_cast<X>(parameters()));
+  for (int j = 0; j < N; ++j)
+    tpf::load_tcn_weights(data("weights/arm4.tcn.joint" + std::to_string(j + 1) + ".json"),
+                          est->compensator().network(j));
+  std::vector<tpf::EstimatorSample<double, X, X>> rows(samples().size());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const Sample& f = samples()[r];
+    rows[r].resize(N, P);
+    rows[r].t = f.t;
+    rows[r].q = f.q;
+    rows[r].dq = f.dq;
+    rows[r].effort = f.effort;
+    rows[r].pressure = f.pressure;
+  }
+  time_steps(state, *est, rows);
+}
+BENCHMARK(BM_EstimatorStepRunTimeSize)->Iterations(400000)->Unit(benchmark::kNanosecond);
+
 /// The 7-joint Kinova Gen3 without skin (P = 0, no compensator): its robot and friction files,
 /// 20 s of a multi-sine motion (400 Hz, every joint moving) with the nominal model's own effort
 /// plus a slow push on joint 2 (an external torque half of the time).

@@ -14,11 +14,16 @@ namespace tpf {
 /// by backward Euler with each sample's own period h: [v; a]⁺ = (I − hA)⁻¹([v; a] + hB·q̇). Backward
 /// Euler is stable for any h, so a dropped cycle cannot make it diverge. Group delay at low
 /// frequency ≈ 2ζ/ω (+ h/2·… of the discretisation); f_c = 20 Hz, ζ = 0.8 gives ≈ 13 ms.
+/// Allocation-free after construction, which sizes it for `joints` joints at Eigen::Dynamic.
 template <typename S, int N>
 class AccelerationFilter {
  public:
-  explicit AccelerationFilter(S cutoff_hz = S(20), S damping = S(0.8)) noexcept
-      : omega_(S(2) * std::numbers::pi_v<S> * cutoff_hz), zeta_(damping) {}
+  explicit AccelerationFilter(S cutoff_hz = S(20), S damping = S(0.8),
+                              int joints = N) noexcept(N != Eigen::Dynamic)
+      : omega_(S(2) * std::numbers::pi_v<S> * cutoff_hz), zeta_(damping) {
+    if constexpr (N == Eigen::Dynamic) velocity_ = acceleration_ = JointVector<S, N>::Zero(joints);
+    (void)joints;
+  }
 
   /// Steady start at velocity q̇ (acceleration 0).
   void reset(const JointVector<S, N>& dq) noexcept {
@@ -32,7 +37,7 @@ class AccelerationFilter {
     const S w2 = omega_ * omega_;
     const S d = S(1) + S(2) * h * zeta_ * omega_;
     const S inverse_det = S(1) / (d + h * h * w2);
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < velocity_.size(); ++j) {
       const S r1 = velocity_[j];
       const S r2 = acceleration_[j] + h * w2 * dq[j];
       velocity_[j] = (d * r1 + h * r2) * inverse_det;
@@ -46,8 +51,8 @@ class AccelerationFilter {
  private:
   S omega_;
   S zeta_;
-  JointVector<S, N> velocity_ = JointVector<S, N>::Zero();
-  JointVector<S, N> acceleration_ = JointVector<S, N>::Zero();
+  JointVector<S, N> velocity_ = zero_or_empty<JointVector<S, N>>();
+  JointVector<S, N> acceleration_ = zero_or_empty<JointVector<S, N>>();
 };
 
 }  // namespace tpf

@@ -40,7 +40,8 @@ struct NoCompensator {
   }
 };
 
-/// One network of Hidden channels per joint, evaluated in NetScalar (float: twice the SIMD width;
+/// One network of Hidden channels per joint (any joint count, Eigen::Dynamic too), evaluated in
+/// NetScalar (float: twice the SIMD width;
 /// BFloat16Weights: float with the hidden blocks' taps in bfloat16, half their bytes, the tools'
 /// and the examples' kind; docs/tcn.md "Float or double"); the weight files
 /// `<stem>.joint<j>.json`.
@@ -52,19 +53,26 @@ struct PerJointTcn {
   static void load(For<S, N>& c, const CompensatorWeightFiles& w) {
     detail::require_weights(w, CompensatorLayout::PerJoint, Hidden,
                             "per-joint networks of " + std::to_string(Hidden) + " channels");
-    for (int j = 0; j < N; ++j)
-      load_tcn_weights(w.files.at(static_cast<std::size_t>(j)), c.network(j));
+    const int n = c.joint_count();
+    if (static_cast<int>(w.files.size()) != n)
+      throw Error::at(w.source, 0, "weights",
+                      "holds " + std::to_string(w.files.size()) +
+                          " per-joint networks, the arm has " + std::to_string(n) + " joints");
+    for (int j = 0; j < n; ++j)
+      load_tcn_weights(w.files[static_cast<std::size_t>(j)], c.network(j));
   }
 };
 
 /// One network of Hidden channels for all joints (inputs 5N, outputs N), in the estimator's
-/// scalar; one weight file.
+/// scalar; one weight file. A fixed joint count only: the network's shape is compiled for N
+/// (For<S, Eigen::Dynamic> is not a type).
 template <int Hidden, int Levels = kCompensatorLevels>
 struct AllJointsTcn {
   template <typename S, int N>
-  using For = Tcn<S, kCompensatorInputsPerJoint * N, Hidden, Levels, kCompensatorKernel, N>;
+  requires(N != Eigen::Dynamic) using For =
+      Tcn<S, kCompensatorInputsPerJoint * N, Hidden, Levels, kCompensatorKernel, N>;
   template <typename S, int N>
-  static void load(For<S, N>& c, const CompensatorWeightFiles& w) {
+  requires(N != Eigen::Dynamic) static void load(For<S, N>& c, const CompensatorWeightFiles& w) {
     detail::require_weights(w, CompensatorLayout::AllJoints, Hidden,
                             "one network of " + std::to_string(Hidden) + " channels");
     load_tcn_weights(w.files.at(0), c);

@@ -48,17 +48,31 @@ struct ContactForce {
   bool valid = false;              ///< the estimate is meaningful (see estimate_contact_force)
 };
 
+/// The per-joint scratch of estimate_contact_force: locals at a fixed joint count; at
+/// Eigen::Dynamic sized once by resize(n) and kept by the caller, so that the call allocates
+/// nothing.
+template <typename S, int N>
+struct ContactForceWorkspace {
+  Eigen::Matrix<S, 3, N> Jc;   ///< J_c = Rᵀ·J_v
+  Eigen::Matrix<S, 3, N> JcW;  ///< J_c·W
+  JointVector<S, N> w;         ///< W's diagonal, 1/σ_τ²
+
+  void resize(int joints) {
+    Jc.resize(3, joints);
+    JcW.resize(3, joints);
+    w.resize(joints);
+  }
+};
+
 namespace detail {
 
 /// J_c = Rᵀ·J_v: the linear rows of a world Jacobian in the frame whose axes are R's columns,
-/// column by column (rotate_back).
+/// column by column (rotate_back), into Jc (sized like J_world).
 template <typename S, int N>
-Eigen::Matrix<S, 3, N> linear_rows_in_frame(const Jacobian<S, N>& J_world,
-                                            const Matrix3<S>& R) noexcept {
-  Eigen::Matrix<S, 3, N> Jc;
-  for (int j = 0; j < N; ++j)
+void linear_rows_in_frame(const Jacobian<S, N>& J_world, const Matrix3<S>& R,
+                          Eigen::Matrix<S, 3, N>& Jc) noexcept {
+  for (int j = 0; j < J_world.cols(); ++j)
     Jc.col(j) = rotate_back(R, Vector3<S>(J_world(0, j), J_world(1, j), J_world(2, j)));
-  return Jc;
 }
 
 /// a·bᵀ for a product known to be symmetric (b = a or b = a·diag(w)): the lower triangle summed
@@ -71,7 +85,7 @@ Matrix3<S> symmetric_product(const Eigen::Matrix<S, 3, N>& a,
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c <= r; ++c) {
       S sum = a(r, 0) * b(c, 0);
-      for (int j = 1; j < N; ++j)
+      for (int j = 1; j < a.cols(); ++j)
         sum += a(r, j) * b(c, j);
       m(r, c) = m(c, r) = sum;
     }
@@ -105,10 +119,12 @@ template <typename S, int N>
 ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact,
                                        const JointVector<S, N>& tau_ext,
                                        const JointVector<S, N>& tau_sigma_nm, S pad_force,
-                                       const ContactForceSettings<S>& settings = {}) noexcept {
+                                       const ContactForceSettings<S>& settings,
+                                       ContactForceWorkspace<S, N>& work) noexcept {
   using std::max, std::sqrt;
   ContactForce<S> out;
-  const Eigen::Matrix<S, 3, N> Jc = detail::linear_rows_in_frame(J_world, R_contact);
+  const Eigen::Matrix<S, 3, N>& Jc = work.Jc;
+  detail::linear_rows_in_frame(J_world, R_contact, work.Jc);
   const Matrix3<S> info = detail::symmetric_product(Jc, Jc);  // J_c J_cᵀ: the geometry alone
 
   const Vector3<S> lambda = gram_eigenvalues3(Jc, info).cwiseMax(S(0));  // ascending
@@ -121,8 +137,9 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   out.shear_inverse_condition = sqrt(max(shear_lambda_min, S(0)) / lambda_max);
   out.observable_by_arm = out.inverse_condition >= settings.min_inverse_condition;
 
-  const JointVector<S, N> w = tau_sigma_nm.cwiseAbs2().cwiseInverse();
-  const Eigen::Matrix<S, 3, N> JcW = Jc * w.asDiagonal();
+  work.w = tau_sigma_nm.cwiseAbs2().cwiseInverse();
+  work.JcW.noalias() = Jc * work.w.asDiagonal();
+  const Eigen::Matrix<S, 3, N>& JcW = work.JcW;
   Matrix3<S> A = detail::symmetric_product(JcW, Jc);
   const S sigma_n = settings.prior_relative * pad_force + settings.prior_floor_n;
   const S sigma_t = settings.shear_relative * pad_force + settings.prior_floor_n;
@@ -130,7 +147,8 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   A(0, 0) += ridge + S(1) / (sigma_t * sigma_t);
   A(1, 1) += ridge + S(1) / (sigma_t * sigma_t);
   A(2, 2) += S(1) / (sigma_n * sigma_n);
-  Vector3<S> b = JcW * tau_ext;
+  Vector3<S> b;
+  b.noalias() = JcW * tau_ext;
   b[2] += -pad_force / (sigma_n * sigma_n);
   const Cholesky3<S> cholesky(A);
   out.force_contact = cholesky.solve(b);
@@ -141,14 +159,27 @@ ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matr
   return out;
 }
 
+/// The same with its scratch on the stack (allocated at Eigen::Dynamic).
+template <typename S, int N>
+ContactForce<S> estimate_contact_force(
+    const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact, const JointVector<S, N>& tau_ext,
+    const JointVector<S, N>& tau_sigma_nm, S pad_force,
+    const ContactForceSettings<S>& settings = {}) noexcept(N != Eigen::Dynamic) {
+  ContactForceWorkspace<S, N> work;
+  if constexpr (N == Eigen::Dynamic) work.resize(static_cast<int>(J_world.cols()));
+  return estimate_contact_force(J_world, R_contact, tau_ext, tau_sigma_nm, pad_force, settings,
+                                work);
+}
+
 /// The same with one σ_τ = settings.torque_noise_nm for every joint.
 template <typename S, int N>
-ContactForce<S> estimate_contact_force(const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact,
-                                       const JointVector<S, N>& tau_ext, S pad_force,
-                                       const ContactForceSettings<S>& settings = {}) noexcept {
-  return estimate_contact_force(J_world, R_contact, tau_ext,
-                                JointVector<S, N>::Constant(settings.torque_noise_nm).eval(),
-                                pad_force, settings);
+ContactForce<S> estimate_contact_force(
+    const Jacobian<S, N>& J_world, const Matrix3<S>& R_contact, const JointVector<S, N>& tau_ext,
+    S pad_force, const ContactForceSettings<S>& settings = {}) noexcept(N != Eigen::Dynamic) {
+  return estimate_contact_force(
+      J_world, R_contact, tau_ext,
+      JointVector<S, N>::Constant(tau_ext.size(), settings.torque_noise_nm).eval(), pad_force,
+      settings);
 }
 
 }  // namespace tpf

@@ -16,11 +16,13 @@ S dead_band(S x, S width) noexcept {
   return excess > S(0) ? (x > S(0) ? excess : -excess) : S(0);
 }
 
-/// Element-wise dead_band with one width per joint.
+/// Element-wise dead_band with one width per joint (allocates the result at Eigen::Dynamic).
 template <typename S, int N>
-JointVector<S, N> dead_band(const JointVector<S, N>& x, const JointVector<S, N>& width) noexcept {
+JointVector<S, N> dead_band(const JointVector<S, N>& x,
+                            const JointVector<S, N>& width) noexcept(N != Eigen::Dynamic) {
   JointVector<S, N> y;
-  for (int j = 0; j < N; ++j)
+  y.resize(x.size());
+  for (int j = 0; j < x.size(); ++j)
     y[j] = dead_band(x[j], width[j]);
   return y;
 }

@@ -2,14 +2,18 @@
 // contact-aware state machine and the TCN into external joint torques and a contact force.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "tpf/common/all_finite.hpp"
+#include "tpf/common/error.hpp"
 #include "tpf/estimation/acceleration_filter.hpp"
 #include "tpf/estimation/compensator.hpp"
 #include "tpf/estimation/contact_force.hpp"
@@ -44,9 +48,15 @@ namespace tpf {
 /// (none); a controller names it by its kind (compensator_types.hpp) and builds the estimator
 /// with load_estimator. P = 0: an arm without skin (proprioception only). P = Eigen::Dynamic:
 /// the pad count of the layout, for offline tools (the samples' pressure vectors then live on the
-/// heap). With fixed N and P, update() allocates nothing, throws nothing and never blocks; what
-/// it could not do is in the output's status bits. The object is large with a TCN inside: keep
-/// it on the heap.
+/// heap). N = Eigen::Dynamic: the joint count of the nominal model (1 … 32), for offline tools
+/// that run one compiled copy for any arm; every member is sized at construction, a sample whose
+/// vectors have another size is skipped as kStatusNonFiniteInput, and the compensator is
+/// ZeroCompensator or PerJointTcnCompensator (the all-joints Tcn is compiled for a fixed N).
+/// update() allocates nothing, throws nothing and never blocks; what it could not do is in the
+/// output's status bits. With fixed N and P its scratch vectors live on its stack; with a size
+/// chosen at start-up they are members, sized once at construction, so that update() allocates
+/// nothing there either (tests/estimation/estimator_run_time_size_test.cpp counts Eigen's
+/// mallocs). The object is large with a TCN inside: keep it on the heap.
 template <typename S, int N, int P, typename Compensator = ZeroCompensator<S, N>>
 requires FrictionCompensator<Compensator, S, N>
 class Estimator {
@@ -55,58 +65,54 @@ class Estimator {
   using Sample = EstimatorSample<S, N, P>;
   using Output = EstimatorOutput<S, N>;
 
-  /// Start-up: takes its own copies of everything. Throws tpf::Error when the pad layout does not
-  /// have P pads or names a link outside 1..N.
+  /// Start-up: takes its own copies of everything and sizes every member for the nominal model's
+  /// joint count. Throws tpf::Error when the pad layout does not have P pads or names a link
+  /// outside 1..N, when a parameter vector has another joint count than the model, or (at
+  /// Eigen::Dynamic) when the model has more than 32 joints (32-bit joint masks).
   Estimator(NominalModel<S, N> nominal, const std::vector<Pad>& pads,
             const EstimatorParameters<S, N>& parameters, Compensator compensator = {})
-      : nominal_(std::move(nominal)),
+      : nominal_(at_most_32_joints(std::move(nominal))),
         links_(nominal_links(nominal_)),
         data_(nominal_.model),
         parameters_(parameters),
-        skin_(pads, parameters.skin, N),
-        tracker_(parameters.static_friction),
-        acceleration_(parameters.acceleration_cutoff_hz, parameters.acceleration_damping),
-        frozen_joints_(parameters.frozen_limit_samples),
-        stuck_pads_(parameters.stuck_pad_limit_samples),
+        skin_(pads, parameters.skin, nominal_.model.joint_count()),
+        tracker_(parameters.static_friction, nominal_.model.joint_count()),
+        acceleration_(parameters.acceleration_cutoff_hz, parameters.acceleration_damping,
+                      nominal_.model.joint_count()),
+        frozen_joints_(parameters.frozen_limit_samples, nominal_.model.joint_count()),
+        stuck_pads_(parameters.stuck_pad_limit_samples, skin_.count()),
         torque_alarm_(parameters.torque_alarm_samples),
         compensator_(std::move(compensator)) {
+    const int n = nominal_.model.joint_count();
+    parameters_.check_joint_count(n);
+    resize_compensator(compensator_, n);
+    compensated_joints_ = every_joint_mask(n);
+    jacobian_ = Jacobian<S, N>::Zero(6, n);
+    held_residual_ = static_sigma_ = moving_sigma_ = nominal_moving_sigma_ = held_sigma_ =
+        Vector::Zero(n);
+    resize_storage(outside_domain_, static_cast<std::size_t>(n));
+    std::fill(outside_domain_.begin(), outside_domain_.end(), 0);
+    output_.resize(n);
+    if constexpr (kRunTimeSize) scratch_.resize(n, skin_.count());
     update_sigmas();
   }
 
   /// Forgets the past: the next sample starts every filter, the state machine and the TCN.
   void reset() noexcept {
     started_ = false;
-    output_ = Output{};
+    output_.clear();
     tracker_.reset();
   }
 
   /// One cycle (see the class comment). Returns the outputs; on a skipped sample (non-finite or
   /// stale) the previous outputs with this cycle's status bits.
   const Output& update(const Sample& sample) noexcept {
-    if (!finite(sample)) {
-      output_.status = kStatusNonFiniteInput;
-      return output_;
+    if constexpr (kRunTimeSize) {
+      return update(sample, scratch_);
+    } else {
+      Scratch scratch;  // on the stack: fixed sizes
+      return update(sample, scratch);
     }
-    if (started_ && !(sample.t > output_.t)) {
-      output_.status = kStatusStaleTime;
-      return output_;
-    }
-    const bool first = !started_;
-    const InputCheck input = check_input(sample);
-    const Acceleration a = acceleration(sample, input.h);  // 1
-    std::uint32_t status = input.status | a.status | range_status(sample);
-    nominal_residual(sample, a.ddq);                                              // 2
-    status |= update_skin(sample, input);                                         // 3
-    update_state_machine(sample);                                                 // 4
-    compensate(sample, a.ddq, first);                                             // 5
-    const FusedEvidence fused = estimate_external_torque(sample, a.ddq, status);  // 6
-    status |= estimate_wrench(fused);                                             // 7
-    const bool torque_alarm = torque_alarm_.update(fused.outside_band);           // 8
-    output_.contact = skin_.any_contact() || torque_alarm;
-    output_.ddq = a.ddq;
-    output_.t = sample.t;
-    output_.status = status;
-    return output_;
   }
 
   const Output& output() const noexcept { return output_; }
@@ -114,7 +120,15 @@ class Estimator {
   const StaticFrictionTracker<S, N>& tracker() const noexcept { return tracker_; }
   const NominalModel<S, N>& nominal() const noexcept { return nominal_; }
   const EstimatorParameters<S, N>& parameters() const noexcept { return parameters_; }
-  /// Replaces the transition σ of the two model-based dead bands (after calibration).
+  /// The joint count (N where N is fixed, else the nominal model's).
+  int joint_count() const noexcept {
+    if constexpr (N == Eigen::Dynamic)
+      return nominal_.model.joint_count();
+    else
+      return N;
+  }
+  /// Replaces the transition σ of the two model-based dead bands (after calibration; vectors of
+  /// the estimator's joint count).
   void set_transition_sigma(const Vector& nominal_sigma, const Vector& fused_sigma) noexcept {
     parameters_.nominal_sigma = nominal_sigma;
     parameters_.fused_sigma = fused_sigma;
@@ -134,11 +148,85 @@ class Estimator {
   /// e.g. compensated_joints(weights, …) of the held-out gate. Elsewhere the Fused estimate is
   /// the nominal residual with the nominal band, flagged kStatusCompensatorGated every cycle.
   void set_compensated_joints(std::uint32_t mask) noexcept {
-    compensated_joints_ = mask & kEveryJoint<N>;
+    compensated_joints_ = mask & every_joint_mask(joint_count());
   }
   std::uint32_t compensated_joints() const noexcept { return compensated_joints_; }
 
  private:
+  /// Sizes chosen at start-up (joints or pads): the per-cycle scratch is then a member, sized
+  /// once; with both fixed it lives on update()'s stack.
+  static constexpr bool kRunTimeSize = N == Eigen::Dynamic || P == Eigen::Dynamic;
+
+  /// The fused torque evidence of one cycle, before its dead band, and its σ per joint.
+  struct FusedEvidence {
+    Vector residual;  ///< τ_res − τ_TCN, or τ_res outside the compensator's domain
+    Vector sigma;
+    Vector band;                ///< the dead band's half-width per joint
+    bool outside_band = false;  ///< the combined estimate is outside its dead band somewhere
+  };
+
+  /// The vectors one cycle works in.
+  struct Scratch {
+    Eigen::Matrix<S, N, 3> joint_reading;  ///< per joint [q, q̇, effort] (frozen-input check)
+    Eigen::Matrix<S, P, 1> pressure;       ///< pad readings off the rails, or the finite ones
+    Vector effort;  ///< the nominal model's working vector (predict_effort_at_pose)
+    CompensatorInput<S, N> compensator_input;
+    FusedEvidence fused;
+    Vector evidence;  ///< the wrench's torque evidence and its σ
+    Vector evidence_sigma;
+    ContactForceWorkspace<S, N> contact;
+
+    void resize(int joints, int pads) {
+      joint_reading.resize(joints, 3);
+      pressure.resize(pads);
+      compensator_input.resize(kCompensatorInputsPerJoint * joints);
+      for (Vector* v :
+           {&effort, &fused.residual, &fused.sigma, &fused.band, &evidence, &evidence_sigma})
+        v->resize(joints);
+      contact.resize(joints);
+    }
+  };
+  struct NoScratch {};
+
+  /// The nominal model, refused (tpf::Error) when it has more joints than the masks hold.
+  static NominalModel<S, N> at_most_32_joints(NominalModel<S, N>&& nominal) {
+    if constexpr (N == Eigen::Dynamic) {
+      const int n = nominal.model.joint_count();
+      if (n > 32)
+        throw Error("the model '" + nominal.model.name + "' has " + std::to_string(n) +
+                    " joints; the estimator takes at most 32 (32-bit joint masks)");
+    }
+    return std::move(nominal);
+  }
+
+  const Output& update(const Sample& sample, Scratch& scratch) noexcept {
+    if (!finite(sample)) {
+      output_.status = kStatusNonFiniteInput;
+      return output_;
+    }
+    if (started_ && !(sample.t > output_.t)) {
+      output_.status = kStatusStaleTime;
+      return output_;
+    }
+    const bool first = !started_;
+    const InputCheck input = check_input(sample, scratch);
+    const Acceleration a = acceleration(sample, input.h);  // 1
+    const Vector& ddq = *a.ddq;
+    std::uint32_t status = input.status | a.status | range_status(sample);
+    nominal_residual(sample, ddq, scratch);                                      // 2
+    status |= update_skin(sample, input);                                        // 3
+    update_state_machine(sample);                                                // 4
+    compensate(sample, ddq, first, scratch);                                     // 5
+    estimate_external_torque(sample, ddq, status, scratch.fused);                // 6
+    status |= estimate_wrench(scratch);                                          // 7
+    const bool torque_alarm = torque_alarm_.update(scratch.fused.outside_band);  // 8
+    output_.contact = skin_.any_contact() || torque_alarm;
+    output_.ddq = ddq;
+    output_.t = sample.t;
+    output_.status = status;
+    return output_;
+  }
+
   /// What the sample's timing and readings say before any estimate: the step h, time gap, frozen
   /// joints, stuck pads.
   struct InputCheck {
@@ -146,16 +234,16 @@ class Estimator {
     std::uint32_t status = 0;
     std::uint32_t stuck_pads = 0;
   };
-  InputCheck check_input(const Sample& sample) noexcept {
+  InputCheck check_input(const Sample& sample, Scratch& scratch) noexcept {
     InputCheck c{parameters_.sample_period_s};
     if (!started_) {
-      start(sample);
+      start(sample, scratch);
       return c;
     }
     c.h = sample.t - output_.t;
     if (c.h > parameters_.max_gap_factor * parameters_.sample_period_s) c.status |= kStatusTimeGap;
-    if (frozen_joints_.update(joint_reading(sample))) c.status |= kStatusFrozenInput;
-    c.stuck_pads = stuck_pads_.update(off_rail(sample.pressure));
+    if (frozen_joints_.update(joint_reading(sample, scratch))) c.status |= kStatusFrozenInput;
+    c.stuck_pads = stuck_pads_.update(off_rail(sample.pressure, scratch));
     if (c.stuck_pads) c.status |= kStatusPadStuck;
     return c;
   }
@@ -163,31 +251,31 @@ class Estimator {
   /// 1. q̈: the sample's where it has a finite one, else the filtered derivative of q̇ (the filter
   /// always runs, so it is warm when q̈ goes missing).
   struct Acceleration {
-    Vector ddq;
+    const Vector*
+        ddq;  ///< the sample's, or the filter's (both unchanged for the rest of the cycle)
     std::uint32_t status = 0;
   };
   Acceleration acceleration(const Sample& sample, S h) noexcept {
     const Vector& filtered = acceleration_.update(sample.dq, h);
-    if (!sample.has_ddq) return {filtered};
-    if (all_finite(sample.ddq)) return {sample.ddq};
-    return {filtered, kStatusAccelerationEstimated};
+    if (!sample.has_ddq) return {&filtered};
+    if (all_finite(sample.ddq)) return {&sample.ddq};
+    return {&filtered, kStatusAccelerationEstimated};
   }
 
   std::uint32_t range_status(const Sample& sample) const noexcept {
-    for (int j = 0; j < N; ++j)
+    for (int j = 0; j < joint_count(); ++j)
       if (sample.q[j] < nominal_.model.lower[j] - parameters_.position_margin_rad ||
           sample.q[j] > nominal_.model.upper[j] + parameters_.position_margin_rad)
         return kStatusPositionOutOfRange;
     return 0;
   }
-
   /// 2. Nominal model on the joint transforms (data_.liMi at q; the world poses wait for step 7):
   /// τ_res = τ_meas − τ_dyn − τ_fric.
-  void nominal_residual(const Sample& sample, const Vector& ddq) noexcept {
+  void nominal_residual(const Sample& sample, const Vector& ddq, Scratch& scratch) noexcept {
     Output& out = output_;
     joint_transforms(nominal_.model, data_, sample.q);
     predict_effort_at_pose(nominal_, links_, data_, sample.q, sample.dq, ddq, out.effort_rigid,
-                           out.effort_friction);
+                           out.effort_friction, scratch.effort);
     out.residual = sample.effort - out.effort_rigid - out.effort_friction;
   }
 
@@ -218,48 +306,47 @@ class Estimator {
   }
 
   /// 5. Compensator, prewarmed on the first sample with its steady input (q̈ = 0, no baseline).
-  void compensate(const Sample& sample, const Vector& ddq, bool first) noexcept {
+  void compensate(const Sample& sample, const Vector& ddq, bool first, Scratch& scratch) noexcept {
     Output& out = output_;
-    if (first)
-      compensator_.reset(compensator_input<S, N>(sample.q, sample.dq, Vector::Zero().eval(),
-                                                 Vector::Zero().eval(), out.effort_friction));
-    out.compensation = compensator_.step(compensator_input<S, N>(
-        sample.q, sample.dq, ddq, out.static_friction, out.effort_friction));
+    CompensatorInput<S, N>& x = scratch.compensator_input;
+    if (first) {
+      const Eigen::Index n = sample.q.size();
+      x << sample.q, sample.dq, Vector::Zero(n), Vector::Zero(n), out.effort_friction;
+      compensator_.reset(x);
+    }
+    compensator_input(sample.q, sample.dq, ddq, out.static_friction, out.effort_friction, x);
+    out.compensation = compensator_.step(x);
   }
-
-  /// The fused torque evidence of one cycle, before its dead band, and its σ per joint.
-  struct FusedEvidence {
-    Vector residual;  ///< τ_res − τ_TCN, or τ_res outside the compensator's domain
-    Vector sigma;
-    bool outside_band = false;  ///< the combined estimate is outside its dead band somewhere
-  };
 
   /// 6. External torque two ways and combined: StaticModelFree on resting joints, Fused
   /// elsewhere (the nominal residual and band on joints outside the compensator's domain).
-  FusedEvidence estimate_external_torque(const Sample& sample, const Vector& ddq,
-                                         std::uint32_t& status) noexcept {
+  /// Leaves the fused evidence in `fused`.
+  void estimate_external_torque(const Sample& sample, const Vector& ddq, std::uint32_t& status,
+                                FusedEvidence& fused) noexcept {
     Output& out = output_;
-    constexpr std::uint32_t all = kEveryJoint<N>;
-    set_estimate(TorqueEstimator::StaticModelFree,
-                 dead_band(tracker_.static_external(), parameters_.static_dead_band),
-                 tracker_.valid_mask());
-    FusedEvidence fused{out.residual - out.compensation, moving_sigma_};
-    Vector fused_band = parameters_.dead_band_factor * parameters_.fused_sigma;
-    for (int j = 0; j < N; ++j) {
+    const int n = joint_count();
+    const std::uint32_t all = every_joint_mask(n);
+    set_estimate(TorqueEstimator::StaticModelFree, tracker_.static_external(),
+                 parameters_.static_dead_band, tracker_.valid_mask());
+    fused.residual = out.residual - out.compensation;
+    fused.sigma = moving_sigma_;
+    fused.band = parameters_.dead_band_factor * parameters_.fused_sigma;
+    fused.outside_band = false;
+    for (int j = 0; j < n; ++j) {
       const bool outside = outside_compensator_domain(j, sample.dq[j], ddq[j]);
       const bool gated = !(compensated_joints_ & (1u << j));
       if (!outside && !gated) continue;
       fused.residual[j] = out.residual[j];
-      fused_band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
+      fused.band[j] = parameters_.dead_band_factor * parameters_.nominal_sigma[j];
       fused.sigma[j] = nominal_moving_sigma_[j];
       status |=
           (outside ? kStatusOutsideCompensatorDomain : 0u) | (gated ? kStatusCompensatorGated : 0u);
     }
-    set_estimate(TorqueEstimator::Fused, dead_band(fused.residual, fused_band), all);
+    set_estimate(TorqueEstimator::Fused, fused.residual, fused.band, all);
     const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
     const ExternalTorque<S, N>& moving = out.estimate(TorqueEstimator::Fused);
     // Element by element: the values were just stored that way (a vector load of them would wait).
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < n; ++j) {
       const bool use_static = fixed.valid & (1u << j);
       const S residual = use_static ? fixed.residual[j] : moving.residual[j];
       out.external.residual[j] = residual;
@@ -268,7 +355,6 @@ class Estimator {
       fused.outside_band = fused.outside_band || residual != S(0);
     }
     out.external.valid = all;
-    return fused;
   }
 
   /// Whether joint j's compensator input is outside the domain now or was within the network's
@@ -288,7 +374,7 @@ class Estimator {
   /// the pad's reading as the prior. One pad touched: the fused external torque is that of the
   /// fused force, τ = J_vᵀ f̂ (both senses, consistent with a force at the pad); several pads:
   /// four torques cannot separate the forces, so the torque estimate stands.
-  std::uint32_t estimate_wrench(const FusedEvidence& fused) noexcept {
+  std::uint32_t estimate_wrench(Scratch& scratch) noexcept {
     Output& out = output_;
     out.wrench = ContactForce<S>{};
     const int pad = skin_.most_loaded();
@@ -299,10 +385,12 @@ class Estimator {
     point_jacobian(nominal_.model, data_, g.link, point, jacobian_);
     // A joint that stopped in contact took its baseline from the moving estimate it held
     // (HoldLastEstimate), so its evidence also carries that estimate's error: σ² adds up.
+    const FusedEvidence& fused = scratch.fused;
     const ExternalTorque<S, N>& fixed = out.estimate(TorqueEstimator::StaticModelFree);
     const std::uint32_t held = tracker_.frozen_mask() & ~tracker_.onset_mask();
-    Vector evidence, sigma;
-    for (int j = 0; j < N; ++j) {
+    Vector& evidence = scratch.evidence;
+    Vector& sigma = scratch.evidence_sigma;
+    for (int j = 0; j < joint_count(); ++j) {
       const bool at_rest = fixed.valid & (1u << j);
       const S r = at_rest ? tracker_.static_external()[j] : fused.residual[j];
       evidence[j] = -r;
@@ -311,28 +399,38 @@ class Estimator {
                                        : static_sigma_[j];
       sigma[j] = s;
     }
-    out.wrench = estimate_contact_force(jacobian_, pad_contact_frame_in_world(data_, g), evidence,
-                                        sigma, skin_.normal_force(pad), parameters_.wrench);
+    out.wrench =
+        estimate_contact_force(jacobian_, pad_contact_frame_in_world(data_, g), evidence, sigma,
+                               skin_.normal_force(pad), parameters_.wrench, scratch.contact);
     out.wrench.pad = pad;
     out.wrench.point_world = point;
     if (skin_.contact_count() == 1 && all_finite(out.wrench.force_world)) {
-      out.external.torque = jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
+      out.external.torque.noalias() =
+          jacobian_.template topRows<3>().transpose() * out.wrench.force_world;
       out.external.residual = -out.external.torque;
     }
     return out.wrench.valid ? 0u : std::uint32_t(kStatusWrenchUnobservable);
   }
 
-  /// Finite t, q, q̇ and effort (and, with a start-up pad count, one pressure per pad).
+  /// Finite t, q, q̇ and effort (and, with a start-up pad or joint count, vectors of that size).
   bool finite(const Sample& s) const noexcept {
     if constexpr (P == Eigen::Dynamic)
       if (s.pressure.size() != skin_.count()) return false;
+    if constexpr (N == Eigen::Dynamic) {
+      const Eigen::Index n = joint_count();
+      if (s.q.size() != n || s.dq.size() != n || s.effort.size() != n ||
+          (s.has_ddq && s.ddq.size() != n))
+        return false;
+    }
     return std::isfinite(s.t) && all_finite(s.q, s.dq, s.effort);
   }
 
   /// The pad readings for stuck detection: a reading on a rail (≤ 0 or ≥ full scale) is NaN, so
   /// it never counts as a repeat — a push that saturates the sensor is not a stuck pad.
-  Eigen::Matrix<S, P, 1> off_rail(const Eigen::Matrix<S, P, 1>& p) const noexcept {
-    Eigen::Matrix<S, P, 1> r = p;
+  const Eigen::Matrix<S, P, 1>& off_rail(const Eigen::Matrix<S, P, 1>& p,
+                                         Scratch& scratch) const noexcept {
+    Eigen::Matrix<S, P, 1>& r = scratch.pressure;
+    r = p;
     for (Eigen::Index k = 0; k < p.size(); ++k)
       if (!(p[k] > S(0) && p[k] < parameters_.skin.full_scale_kpa))
         r[k] = std::numeric_limits<S>::quiet_NaN();
@@ -340,8 +438,8 @@ class Estimator {
   }
 
   /// A joint's reading as one row: [q, q̇, effort].
-  static Eigen::Matrix<S, N, 3> joint_reading(const Sample& s) noexcept {
-    Eigen::Matrix<S, N, 3> r;
+  static const Eigen::Matrix<S, N, 3>& joint_reading(const Sample& s, Scratch& scratch) noexcept {
+    Eigen::Matrix<S, N, 3>& r = scratch.joint_reading;
     r.col(0) = s.q;
     r.col(1) = s.dq;
     r.col(2) = s.effort;
@@ -349,25 +447,26 @@ class Estimator {
   }
 
   void update_sigmas() noexcept {
-    const Vector floor = Vector::Constant(parameters_.wrench.torque_noise_nm);
-    const Vector noise = parameters_.static_dead_band / S(3);
-    static_sigma_ = (noise.cwiseAbs2() + nominal_.friction.static_friction.cwiseAbs2() / S(3))
+    const S floor = parameters_.wrench.torque_noise_nm;
+    static_sigma_ = ((parameters_.static_dead_band / S(3)).cwiseAbs2() +
+                     nominal_.friction.static_friction.cwiseAbs2() / S(3))
                         .cwiseSqrt()
                         .cwiseMax(floor);
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < joint_count(); ++j) {
       const S fused = parameters_.fused_sigma[j], nominal = parameters_.nominal_sigma[j];
-      nominal_moving_sigma_[j] = nominal > S(0) ? nominal : floor[j];
+      nominal_moving_sigma_[j] = nominal > S(0) ? nominal : floor;
       moving_sigma_[j] = fused > S(0) ? fused : nominal_moving_sigma_[j];
       held_sigma_[j] = std::hypot(static_sigma_[j], moving_sigma_[j]);
     }
   }
 
-  void start(const Sample& sample) noexcept {
+  void start(const Sample& sample, Scratch& scratch) noexcept {
     started_ = true;
-    frozen_joints_.reset(joint_reading(sample));
-    stuck_pads_.reset(off_rail(sample.pressure));
+    frozen_joints_.reset(joint_reading(sample, scratch));
+    stuck_pads_.reset(off_rail(sample.pressure, scratch));
     acceleration_.reset(sample.dq);
-    Eigen::Matrix<S, P, 1> p = sample.pressure;
+    Eigen::Matrix<S, P, 1>& p = scratch.pressure;
+    p = sample.pressure;
     for (Eigen::Index k = 0; k < p.size(); ++k)
       if (!std::isfinite(p[k])) p[k] = S(0);
     skin_.reset(sample.t, p);
@@ -375,14 +474,16 @@ class Estimator {
     tracker_.reset();
     torque_alarm_.reset();
     held_residual_.setZero();
-    outside_domain_.fill(0);
+    std::fill(outside_domain_.begin(), outside_domain_.end(), 0);
   }
 
-  void set_estimate(TorqueEstimator which, const Vector& residual, std::uint32_t valid) noexcept {
+  /// Estimate `which`: dead_band(x_j, width_j) on the joints of `valid`, 0 elsewhere.
+  void set_estimate(TorqueEstimator which, const Vector& x, const Vector& width,
+                    std::uint32_t valid) noexcept {
     ExternalTorque<S, N>& e = output_.estimates[static_cast<int>(which)];
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < joint_count(); ++j) {
       const bool ok = valid & (1u << j);
-      e.residual[j] = ok ? residual[j] : S(0);
+      e.residual[j] = ok ? dead_band(x[j], width[j]) : S(0);
       e.torque[j] = -e.residual[j];
     }
     e.valid = valid;
@@ -399,16 +500,18 @@ class Estimator {
   RepeatedReadingDetector<S, P> stuck_pads_;
   PersistenceTest torque_alarm_;
   Compensator compensator_;
-  std::uint32_t compensated_joints_ = kEveryJoint<N>;
-  Jacobian<S, N> jacobian_ = Jacobian<S, N>::Zero();
-  Vector held_residual_ = Vector::Zero();  ///< last torque-only estimate (StopPolicy)
+  std::uint32_t compensated_joints_ = 0;
+  Jacobian<S, N> jacobian_ = zero_or_empty<Jacobian<S, N>>();
+  Vector held_residual_ = zero_or_empty<Vector>();  ///< last torque-only estimate (StopPolicy)
   /// Per joint: cycles until its compensator input window is back inside the domain.
-  std::array<int, N> outside_domain_{};
-  Vector static_sigma_ = Vector::Zero();
-  Vector moving_sigma_ = Vector::Zero();
-  Vector nominal_moving_sigma_ = Vector::Zero();  ///< σ_nominal (floor when uncalibrated)
-  Vector held_sigma_ = Vector::Zero();  ///< √(static² + moving²): a baseline held at a stop
+  LinkArray<int, N> outside_domain_{};
+  Vector static_sigma_ = zero_or_empty<Vector>();
+  Vector moving_sigma_ = zero_or_empty<Vector>();
+  Vector nominal_moving_sigma_ = zero_or_empty<Vector>();  ///< σ_nominal (floor when uncalibrated)
+  Vector held_sigma_ =
+      zero_or_empty<Vector>();  ///< √(static² + moving²): a baseline held at a stop
   Output output_;
+  [[no_unique_address]] std::conditional_t<kRunTimeSize, Scratch, NoScratch> scratch_;
   bool started_ = false;
 };
 

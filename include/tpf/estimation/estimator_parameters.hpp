@@ -2,6 +2,8 @@
 #pragma once
 
 #include <limits>
+#include <string>
+#include <utility>
 
 #include "tpf/common/types.hpp"
 #include "tpf/estimation/contact_force.hpp"
@@ -10,9 +12,12 @@
 
 namespace tpf {
 
-/// Parameters of Estimator. Torques (σ's, dead bands) in N·m.
+/// Parameters of Estimator. Torques (σ's, dead bands) in N·m. At Eigen::Dynamic the per-joint
+/// vectors are empty until resize(n) gives them n joints' defaults.
 template <typename S, int N>
 struct EstimatorParameters {
+  using Vector = JointVector<S, N>;
+
   S sample_period_s = S(0.0025);  ///< nominal period (400 Hz)
   S max_gap_factor = S(1.5);      ///< a step > factor·period is flagged as a gap
   S position_margin_rad = S(0.05);
@@ -34,21 +39,19 @@ struct EstimatorParameters {
   /// σ of the estimation error in the static-to-kinetic transition on contact-free data [N·m],
   /// from calibrate_transition_sigma: the proprioceptive (nominal) and fused (with TCN)
   /// estimators' dead bands are dead_band_factor·σ.
-  JointVector<S, N> nominal_sigma = JointVector<S, N>::Zero();
-  JointVector<S, N> fused_sigma = JointVector<S, N>::Zero();
+  Vector nominal_sigma = zero_or_empty<Vector>();
+  Vector fused_sigma = zero_or_empty<Vector>();
   S dead_band_factor = S(1.5);
   /// The compensator's domain [rad/s]: the speeds its training data and the calibration of
   /// fused_sigma and torque_alarm_samples covered (e.g. max |q̇_j| of the contact-free
   /// calibration log, speed_envelope). On a joint moving faster the network extrapolates, so its
   /// Fused estimate falls back to the nominal residual τ_res with the nominal band
   /// dead_band_factor·nominal_sigma (kStatusOutsideCompensatorDomain). +inf: no limit.
-  JointVector<S, N> compensator_speed_limit =
-      JointVector<S, N>::Constant(std::numeric_limits<S>::infinity());
+  Vector compensator_speed_limit = unlimited();
   /// The same for |q̈_j| [rad/s²] (the acceleration the compensator is given; e.g. the
   /// calibration log's max, acceleration_envelope). A joint stopped hard (a joint limit, an
   /// impact) drives the network far outside what it was trained on. +inf: no limit.
-  JointVector<S, N> compensator_acceleration_limit =
-      JointVector<S, N>::Constant(std::numeric_limits<S>::infinity());
+  Vector compensator_acceleration_limit = unlimited();
   /// The held-out gate: a joint's network is used only where its weight file's held-out gain
   /// (1 − RMSE with / without it, per regime, written by `tpf train`) is at least this in every
   /// regime scored; elsewhere the joint runs on the nominal residual (kStatusCompensatorGated).
@@ -62,8 +65,71 @@ struct EstimatorParameters {
   int torque_alarm_samples = 1;
   /// Half-width of the static model-free estimate's dead band [N·m]: a few times the
   /// effort noise, e.g. 3·σ_noise·√(1 + 1/n_window) (see static_dead_band_from_noise).
-  JointVector<S, N> static_dead_band = JointVector<S, N>::Zero();
+  Vector static_dead_band = zero_or_empty<Vector>();
+
+  /// The joint count of the per-joint vectors (N where N is fixed).
+  int joint_count() const noexcept { return static_cast<int>(nominal_sigma.size()); }
+
+  /// Throws tpf::Error when a per-joint vector does not hold n joints, naming it and both counts
+  /// (start-up: parameters assembled by hand at Eigen::Dynamic).
+  void check_joint_count(int n) const {
+    const std::pair<const char*, const Vector*> vectors[] = {
+        {"nominal_sigma", &nominal_sigma},
+        {"fused_sigma", &fused_sigma},
+        {"compensator_speed_limit", &compensator_speed_limit},
+        {"compensator_acceleration_limit", &compensator_acceleration_limit},
+        {"static_dead_band", &static_dead_band}};
+    for (const auto& [name, v] : vectors)
+      if (v->size() != n)
+        throw Error(std::string("the estimator parameters' ") + name + " has " +
+                    std::to_string(v->size()) + " joints, the model has " + std::to_string(n));
+  }
+
+  /// The defaults of every per-joint vector for n joints (n = N where N is fixed); the scalar
+  /// settings are kept. Start-up code (allocates at Eigen::Dynamic).
+  void resize(int n) {
+    nominal_sigma = fused_sigma = static_dead_band = Vector::Zero(n);
+    compensator_speed_limit = compensator_acceleration_limit =
+        Vector::Constant(n, std::numeric_limits<S>::infinity());
+  }
+
+ private:
+  /// +inf on every joint (no limit), or empty at Eigen::Dynamic.
+  static Vector unlimited() {
+    if constexpr (N == Eigen::Dynamic)
+      return Vector();
+    else
+      return Vector::Constant(std::numeric_limits<S>::infinity());
+  }
 };
+
+/// The same parameters with the joint count as type `To`: Eigen::Dynamic, or a fixed count that
+/// must equal the parameters' (tpf::Error naming both otherwise). Start-up code.
+template <int To, typename S, int From>
+EstimatorParameters<S, To> joint_count_cast(const EstimatorParameters<S, From>& from) {
+  require_joint_count<To>(from.joint_count(), "the estimator parameters");
+  from.check_joint_count(from.joint_count());
+  EstimatorParameters<S, To> to;
+  to.sample_period_s = from.sample_period_s;
+  to.max_gap_factor = from.max_gap_factor;
+  to.position_margin_rad = from.position_margin_rad;
+  to.acceleration_cutoff_hz = from.acceleration_cutoff_hz;
+  to.acceleration_damping = from.acceleration_damping;
+  to.frozen_limit_samples = from.frozen_limit_samples;
+  to.stuck_pad_limit_samples = from.stuck_pad_limit_samples;
+  to.static_friction = from.static_friction;
+  to.skin = from.skin;
+  to.wrench = from.wrench;
+  to.nominal_sigma = from.nominal_sigma;
+  to.fused_sigma = from.fused_sigma;
+  to.dead_band_factor = from.dead_band_factor;
+  to.compensator_speed_limit = from.compensator_speed_limit;
+  to.compensator_acceleration_limit = from.compensator_acceleration_limit;
+  to.compensator_min_held_out_gain = from.compensator_min_held_out_gain;
+  to.torque_alarm_samples = from.torque_alarm_samples;
+  to.static_dead_band = from.static_dead_band;
+  return to;
+}
 
 /// Static dead band from the effort noise σ [N·m] (e.g. 6 mA current noise with 1 mA steps
 /// → σ ≈ √(6² + 1/12) mA, times K_t/1000): Δτ_res = τ_res − mean of n samples has std σ·√(1 + 1/n),

@@ -59,13 +59,13 @@ LinkParameters<S, N> link_parameters(const DynamicParameters<S, N>& pi) noexcept
 ///            a_k;
 ///   backward f_k += R_{k+1} f_{k+1},  n_k += R_{k+1} n_{k+1} + p_{k+1} × R_{k+1} f_{k+1},
 ///            τ_k = z_k·n_k + I_a,k q̈_k + f_c,k sgn(q̇_k) + f_v,k q̇_k.
-/// Equal to the regressor form for every π because both are the same linear map. Uses data's
-/// Newton–Euler scratch; allocation-free.
+/// Equal to the regressor form for every π because both are the same linear map. Into `tau`
+/// (sized for the model's joints). Uses data's Newton–Euler scratch; allocation-free.
 template <typename S, int N>
-JointVector<S, N> link_parameter_torque(
-    const Model<S, N>& model, const LinkParameters<S, N>& p, Data<S, N>& data,
-    const NoDeduce<JointVector<S, N>>& dq,
-    const NoDeduce<JointVector<S, N>>& ddq) noexcept(N != Eigen::Dynamic) {
+void link_parameter_torque(const Model<S, N>& model, const LinkParameters<S, N>& p,
+                           Data<S, N>& data, const NoDeduce<JointVector<S, N>>& dq,
+                           const NoDeduce<JointVector<S, N>>& ddq,
+                           JointVector<S, N>& tau) noexcept {
   const int n = model.joint_count();
   Vector3<S> w = Vector3<S>::Zero(), dw = Vector3<S>::Zero(), a = -model.gravity;
   for (int k = 1; k <= n; ++k) {
@@ -81,13 +81,22 @@ JointVector<S, N> link_parameter_torque(
     data.force[k] = p.mass[k - 1] * a + dw.cross(h) + w.cross(w.cross(h));
     data.moment[k] = I * dw + w.cross(I * w) + h.cross(a);
   }
-  JointVector<S, N> tau;
-  tau.resize(n);
   detail::newton_euler_backward_pass(model, data, tau);
   for (int j = 0; j < n; ++j) {
     const S sign = dq(j) > S(0) ? S(1) : (dq(j) < S(0) ? S(-1) : S(0));
     tau(j) += p.armature(j) * ddq(j) + p.coulomb(j) * sign + p.viscous(j) * dq(j);
   }
+}
+
+/// The same returning τ (allocated at Eigen::Dynamic).
+template <typename S, int N>
+JointVector<S, N> link_parameter_torque(
+    const Model<S, N>& model, const LinkParameters<S, N>& p, Data<S, N>& data,
+    const NoDeduce<JointVector<S, N>>& dq,
+    const NoDeduce<JointVector<S, N>>& ddq) noexcept(N != Eigen::Dynamic) {
+  JointVector<S, N> tau;
+  tau.resize(model.joint_count());
+  link_parameter_torque(model, p, data, dq, ddq, tau);
   return tau;
 }
 

@@ -143,25 +143,55 @@ NominalLinks<S, N> nominal_links(const NominalModel<S, N>& nominal) noexcept(N !
 /// forward_kinematics of nominal.model at q first; the world poses are not read): models of one
 /// robot evaluated at one sample share one kinematics. The same operations, so the same result;
 /// terms whose parameters are all zero (added effects, neighbour load; see NominalLinks) are not
-/// evaluated. Allocation-free, no exceptions.
+/// evaluated. `scratch`: a vector of the joint count to work in (rigid, friction and scratch
+/// sized for the model's joints). Allocation-free (at Eigen::Dynamic too), no exceptions.
 template <typename S, int N>
 void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
                             Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
                             const NoDeduce<JointVector<S, N>>& dq,
                             const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
-                            JointVector<S, N>& friction) noexcept(N != Eigen::Dynamic) {
-  rigid = link_parameter_torque(nominal.model, links.rigid, data, dq, ddq);
-  if (links.added_effects) rigid += added_effort(nominal, q, dq, ddq);
+                            JointVector<S, N>& friction, JointVector<S, N>& scratch) noexcept {
+  link_parameter_torque(nominal.model, links.rigid, data, dq, ddq, rigid);
+  if (links.added_effects) {  // rigid += added_effort(nominal, q, dq, ddq)
+    scratch.setZero();
+    const EffectInput<S, N> x{q, dq, ddq, nominal.model.gear_ratio};
+    nominal.added.for_each([&](const auto& effect) { effect.add_torque(x, scratch); });
+    rigid += scratch;
+  }
   const int n = nominal.model.joint_count();
-  JointVector<S, N> abs_gravity = JointVector<S, N>::Zero(n);
+  JointVector<S, N>& abs_gravity = scratch;
+  abs_gravity.setZero();
   if (links.load_dependent) {
     // Element by element: data.g was just stored that way (a vector load of it would wait).
     const JointVector<S, N>& gravity = gravity_at_pose(nominal.model, data);
     for (int j = 0; j < n; ++j)
       abs_gravity[j] = std::abs(gravity[j]);
   }
-  friction = links.neighbour_load ? stribeck_friction(nominal.friction, dq, abs_gravity)
-                                  : own_load_stribeck_friction(nominal.friction, dq, abs_gravity);
+  // stribeck_friction(nominal.friction, dq, |G|), or own_load_stribeck_friction without
+  // neighbour load, element by element into `friction`.
+  if (links.neighbour_load) {
+    for (int j = 0; j < n; ++j)
+      friction[j] = stribeck_friction(nominal.friction, j, dq[j], abs_gravity[j]) +
+                    neighbour_load_friction(nominal.friction, j, dq[j], abs_gravity);
+  } else {
+    for (int j = 0; j < n; ++j)
+      friction[j] = stribeck_friction(nominal.friction, j, dq[j], abs_gravity[j]);
+  }
+}
+
+/// The same with its scratch on the stack (allocated at Eigen::Dynamic).
+template <typename S, int N>
+void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLinks<S, N>& links,
+                            Data<S, N>& data, const NoDeduce<JointVector<S, N>>& q,
+                            const NoDeduce<JointVector<S, N>>& dq,
+                            const NoDeduce<JointVector<S, N>>& ddq, JointVector<S, N>& rigid,
+                            JointVector<S, N>& friction) noexcept(N != Eigen::Dynamic) {
+  const int n = nominal.model.joint_count();
+  JointVector<S, N> scratch;
+  scratch.resize(n);
+  rigid.resize(n);
+  friction.resize(n);
+  predict_effort_at_pose(nominal, links, data, q, dq, ddq, rigid, friction, scratch);
 }
 
 /// Predicted effort (joint torque the drive must produce) [N·m], split in two:

@@ -24,10 +24,20 @@ class RepeatedReadingDetector {
  public:
   using Reading = Eigen::Matrix<S, M, C>;
 
-  /// `limit` ≤ 0 disables the detection.
-  explicit RepeatedReadingDetector(int limit = 0) noexcept : limit_(limit) {}
+  /// `limit` ≤ 0 disables the detection. M = Eigen::Dynamic: `channels` sizes it (start-up), so
+  /// that reset() and update() with readings of that many rows allocate nothing.
+  explicit RepeatedReadingDetector(int limit = 0, int channels = M) noexcept(M != Eigen::Dynamic)
+      : limit_(limit) {
+    if constexpr (M == Eigen::Dynamic) {
+      channels = channels < 0 ? 0 : channels;
+      last_ = Reading::Zero(channels, C);
+      runs_.assign(static_cast<std::size_t>(channels), 0);
+    }
+    (void)channels;
+  }
 
-  /// Starts over from `reading` (no run).
+  /// Starts over from `reading` (no run). Allocates at Eigen::Dynamic only for a reading of
+  /// another row count than the last.
   void reset(const Reading& reading) noexcept {
     last_ = reading;
     if constexpr (M == Eigen::Dynamic)

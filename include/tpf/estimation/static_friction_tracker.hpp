@@ -2,7 +2,9 @@
 // the same quantity as the TCN's fourth input. The offline trainer runs exactly this class.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -53,7 +55,8 @@ struct StaticFrictionSettings {
 ///   for each row: tracker.update(t, dq, residual, false, +inf, zero);  // residual = τ_res
 ///                 input = compensator_input(q, dq, ddq, tracker.friction_estimate(),
 ///                                           friction);  // friction: predict_effort's
-/// Allocation-free, no exceptions. History holds `History` samples (64 = 160 ms at 400 Hz).
+/// Allocation-free, no exceptions, after construction (which sizes everything at Eigen::Dynamic).
+/// History holds `History` samples (64 = 160 ms at 400 Hz).
 template <typename S, int N, int History = 64>
 class StaticFrictionTracker {
  public:
@@ -61,9 +64,30 @@ class StaticFrictionTracker {
   using Mask = std::uint32_t;  ///< bit j: joint j
   static_assert(N <= 32, "joint masks are 32 bits wide");
 
-  explicit StaticFrictionTracker(const StaticFrictionSettings<S>& settings = {}) noexcept
+  /// A tracker of `joints` joints (N where N is fixed; 0 … 32 at Eigen::Dynamic, where the
+  /// default is none).
+  explicit StaticFrictionTracker(const StaticFrictionSettings<S>& settings = {},
+                                 int joints = N) noexcept(N != Eigen::Dynamic)
       : settings_(settings) {
+    if constexpr (N == Eigen::Dynamic) {
+      joints = std::max(joints, 0);
+      assert(joints <= 32);
+      baseline_.resize(joints);
+      friction_.resize(joints);
+      external_.resize(joints);
+      for (Entry& e : history_)
+        e.residual = Vector::Zero(joints);
+    }
+    (void)joints;
     reset();
+  }
+
+  /// The joint count (N where N is fixed).
+  int joint_count() const noexcept {
+    if constexpr (N == Eigen::Dynamic)
+      return static_cast<int>(baseline_.size());
+    else
+      return N;
   }
 
   /// Forgets everything: no history, every joint moving, no baseline.
@@ -88,13 +112,14 @@ class StaticFrictionTracker {
   void update(S t, const Vector& dq, const Vector& residual, bool contact, S new_onset,
               const Vector& held_external) noexcept {
     using std::abs;
+    const int n = joint_count();
     Mask now_static = 0;
-    for (int j = 0; j < N; ++j)
+    for (int j = 0; j < n; ++j)
       if (abs(dq[j]) < settings_.static_velocity) now_static |= Mask(1) << j;
     push(t, residual, now_static);
 
     const bool onset = std::isfinite(new_onset);
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < n; ++j) {
       const Mask bit = Mask(1) << j;
       if (!(now_static & bit)) {
         frozen_ &= ~bit;
@@ -127,10 +152,10 @@ class StaticFrictionTracker {
     }
     static_ = now_static;
 
-    constexpr Mask all = N == 32 ? ~Mask(0) : (Mask(1) << N) - 1;
+    const Mask all = n >= 32 ? ~Mask(0) : (Mask(1) << n) - 1;
     state_ = static_ != all ? ContactState::Dynamic
                             : (contact ? ContactState::StaticContact : ContactState::StaticFree);
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < n; ++j) {
       const bool ok = has_baseline_ & (Mask(1) << j);
       friction_[j] = ok ? baseline_[j] : S(0);
       external_[j] = ok ? residual[j] - baseline_[j] : S(0);
@@ -145,7 +170,7 @@ class StaticFrictionTracker {
   /// the next update.
   void refreeze(S onset) noexcept {
     const S end = onset - settings_.baseline_lead_s;
-    for (int j = 0; j < N; ++j)
+    for (int j = 0; j < joint_count(); ++j)
       if (frozen_ & from_onset_ & (Mask(1) << j))
         baseline_[j] = window_mean(j, end - settings_.baseline_window_s, end, baseline_[j]);
   }
@@ -172,7 +197,10 @@ class StaticFrictionTracker {
   };
 
   void push(S t, const Vector& r, Mask s) noexcept {
-    history_[head_] = {t, r, s};
+    Entry& e = history_[head_];  // in place: at Eigen::Dynamic its residual keeps its storage
+    e.t = t;
+    e.residual = r;
+    e.is_static = s;
     head_ = head_ + 1 == History ? 0 : head_ + 1;
     if (count_ < History) ++count_;
   }
@@ -203,9 +231,9 @@ class StaticFrictionTracker {
   Mask has_baseline_ = 0;
   Mask stale_ = 0;       ///< a baseline value exists (for KeepStale)
   Mask from_onset_ = 0;  ///< frozen at a tactile onset
-  Vector baseline_ = Vector::Zero();
-  Vector friction_ = Vector::Zero();
-  Vector external_ = Vector::Zero();
+  Vector baseline_ = zero_or_empty<Vector>();
+  Vector friction_ = zero_or_empty<Vector>();
+  Vector external_ = zero_or_empty<Vector>();
   ContactState state_ = ContactState::Dynamic;
 };
 

@@ -14,11 +14,12 @@ namespace tpf {
 
 /// Per joint σ [N·m] of the nominal residual τ_res and of the compensated residual
 /// τ_res − τ_TCN in the static-to-kinetic transition, and how many samples each rests on.
+/// At Eigen::Dynamic the vectors are sized by calibrate_transition_sigma.
 template <typename S, int N>
 struct TransitionSigma {
-  JointVector<S, N> nominal = JointVector<S, N>::Zero();
-  JointVector<S, N> fused = JointVector<S, N>::Zero();
-  std::array<long, N> samples{};
+  JointVector<S, N> nominal = zero_or_empty<JointVector<S, N>>();
+  JointVector<S, N> fused = zero_or_empty<JointVector<S, N>>();
+  LinkArray<long, N> samples{};
 };
 
 /// Runs `estimator` (reset first) over `samples` of a contact-free log in time order. There the
@@ -37,18 +38,23 @@ auto calibrate_transition_sigma(EstimatorT& estimator, const SampleRange& sample
   using S = std::decay_t<decltype(Output{}.t)>;
   constexpr int N = decltype(Output{}.residual)::RowsAtCompileTime;
   const S threshold = estimator.parameters().static_friction.static_velocity;
+  const int n = estimator.nominal().model.joint_count();
 
   TransitionSigma<S, N> sigma;
-  JointVector<S, N> sum_nominal = JointVector<S, N>::Zero(), sum_fused = sum_nominal;
-  std::array<bool, N> was_static{};
-  std::array<S, N> start{};
-  std::array<bool, N> in_window{};
+  sigma.nominal = sigma.fused = JointVector<S, N>::Zero(n);
+  resize_storage(sigma.samples, static_cast<std::size_t>(n));
+  JointVector<S, N> sum_nominal = JointVector<S, N>::Zero(n), sum_fused = sum_nominal;
+  LinkArray<bool, N> was_static{}, in_window{};
+  LinkArray<S, N> start{};
+  resize_storage(was_static, static_cast<std::size_t>(n));
+  resize_storage(in_window, static_cast<std::size_t>(n));
+  resize_storage(start, static_cast<std::size_t>(n));
   bool first = true;
   estimator.reset();
   for (const auto& sample : samples) {
     const Output& out = estimator.update(sample);
     if (out.status & (kStatusNonFiniteInput | kStatusStaleTime)) continue;
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < n; ++j) {
       const bool is_static = std::abs(sample.dq[j]) < threshold;
       if (!first && was_static[j] && !is_static) {
         in_window[j] = true;
@@ -65,7 +71,7 @@ auto calibrate_transition_sigma(EstimatorT& estimator, const SampleRange& sample
     }
     first = false;
   }
-  for (int j = 0; j < N; ++j) {
+  for (int j = 0; j < n; ++j) {
     if (sigma.samples[j] == 0) {
       throw Error::at(source, 0, "joint " + std::to_string(j + 1),
                       "no static-to-kinetic transition to calibrate the dead band on");

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "tpf/common/atomic_file.hpp"
-#include "tpf/common/joint_counts.hpp"
 #include "tpf/common/json_object.hpp"
 
 namespace tpf {
@@ -98,8 +97,8 @@ ContactForceSettings<double> read_wrench(json::Object o) {
 
 }  // namespace
 
-template <int N>
-EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::path& file) {
+EstimatorParameters<double, Eigen::Dynamic> load_estimator_parameters(
+    const std::filesystem::path& file, int joints) {
   json::Object top = json::Object::read_document(file, kEstimatorFormat, kEstimatorVersion);
   const double version = top.number("version", 0, 1e9);
   if (version < kEstimatorVersion)
@@ -109,11 +108,13 @@ EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::
                  "currents); this tpf reads version 3, every torque in N*m. Convert the file with "
                  "`tpf upgrade --estimator FILE --params PARAMS` (PARAMS: the "
                  "version-1 parameter file it was calibrated with), or calibrate again");
-  top.require_joints(N);
+  if (joints > 0) top.require_joints(joints);
+  const int n = joints > 0 ? joints : top.integer("joints", 1, json::Object::kMaxArrayJoints);
   top.text("source", "");
   top.choice("torque_unit", "N*m", {"N*m"});
 
-  EstimatorParameters<double, N> p;
+  EstimatorParameters<double, Eigen::Dynamic> p;
+  p.resize(n);
   p.sample_period_s = positive(top, "sample_period_s", 1.0);
   p.max_gap_factor = top.number("max_gap_factor", 1.0, 1e6);
   p.position_margin_rad = top.number("position_margin_rad", 0.0, 100.0);
@@ -124,13 +125,13 @@ EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::
   p.static_friction = read_static_friction(required_child(top, "static_friction"));
   p.skin = read_skin(required_child(top, "skin"));
   p.wrench = read_wrench(required_child(top, "wrench"));
-  top.joint_vector<N>("nominal_sigma", p.nominal_sigma, true, Bound::kNonNegative);
-  top.joint_vector<N>("fused_sigma", p.fused_sigma, true, Bound::kNonNegative);
+  top.joint_vector("nominal_sigma", p.nominal_sigma, true, Bound::kNonNegative);
+  top.joint_vector("fused_sigma", p.fused_sigma, true, Bound::kNonNegative);
   p.dead_band_factor = top.number("dead_band_factor", 0.0, 1e3);
   p.torque_alarm_samples = top.integer("torque_alarm_samples", 1, kMaxSamples);
-  top.joint_vector<N>("static_dead_band", p.static_dead_band, true, Bound::kNonNegative);
-  top.joint_limits<N>("compensator_speed_limit", p.compensator_speed_limit);
-  top.joint_limits<N>("compensator_acceleration_limit", p.compensator_acceleration_limit);
+  top.joint_vector("static_dead_band", p.static_dead_band, true, Bound::kNonNegative);
+  top.joint_limits("compensator_speed_limit", p.compensator_speed_limit);
+  top.joint_limits("compensator_acceleration_limit", p.compensator_acceleration_limit);
   // Optional (files calibrated before the gate hold none): the default, 0.
   p.compensator_min_held_out_gain =
       top.number("compensator_min_held_out_gain", p.compensator_min_held_out_gain, -1e3, 1.0);
@@ -138,13 +139,14 @@ EstimatorParameters<double, N> load_estimator_parameters(const std::filesystem::
   return p;
 }
 
-template <int N>
 void save_estimator_parameters(const std::filesystem::path& file,
-                               const EstimatorParameters<double, N>& p, const std::string& source) {
+                               const EstimatorParameters<double, Eigen::Dynamic>& p,
+                               const std::string& source) {
+  p.check_joint_count(p.joint_count());
   OrderedJson j;
   j["format"] = kEstimatorFormat;
   j["version"] = kEstimatorVersion;
-  j["joints"] = N;
+  j["joints"] = p.joint_count();
   if (!source.empty()) j["source"] = source;
   j["torque_unit"] = "N*m";
   j["sample_period_s"] = p.sample_period_s;
@@ -185,13 +187,5 @@ void save_estimator_parameters(const std::filesystem::path& file,
   json::require_finite(j, file);
   write_file_atomically(file, j.dump(2) + "\n");
 }
-
-#define TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE(N)                     \
-  template EstimatorParameters<double, N> load_estimator_parameters<N>( \
-      const std::filesystem::path&);                                    \
-  template void save_estimator_parameters<N>(                           \
-      const std::filesystem::path&, const EstimatorParameters<double, N>&, const std::string&);
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE)
-#undef TPF_INSTANTIATE_ESTIMATOR_PARAMETER_FILE
 
 }  // namespace tpf
