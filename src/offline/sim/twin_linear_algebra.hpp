@@ -5,10 +5,11 @@
 // position and current, into a different log within seconds. The twin's logs must not depend on
 // how its vectors are sized, and Eigen rounds a product or a solve differently at run-time sizes
 // (general matrix-vector kernels and blocked triangular solves, summing term after term) than at
-// a fixed size of at most 8 (complete unrolling, summing in halves or in SIMD lanes). These
-// functions compute at any size what Eigen computes at a fixed size of up to 8; beyond 8 they
-// apply the same rules. tests/sim/twin_linear_algebra_test.cpp compares them bit for bit with
-// Eigen's fixed-size results for 1 to 8 unknowns.
+// a fixed size of at most 8 (complete unrolling, summing in halves or in SIMD lanes). The solves
+// and the Jacobian products here compute at any size what Eigen computes at a fixed size of up
+// to 8, and apply the same rules beyond; A·x sums term after term at every size.
+// tests/sim/twin_linear_algebra_test.cpp compares them bit for bit with Eigen for 1 to 8
+// unknowns.
 //
 // The sums, for n terms t_0 … t_{n−1}:
 //   sequential:  ((t_0 + t_1) + t_2) + …                 Eigen's loops at run-time sizes
