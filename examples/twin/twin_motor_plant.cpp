@@ -110,7 +110,7 @@ void TwinMotorPlant::inner_step(std::span<const MotorGoal> goals) {
   if (c.pad >= 0) {
     const offline::PadFrame frame = w.arm.pad_frame(q, c.pad);
     const Vector3<double> force = frame.rotation * c.force_contact;
-    truth.tau_ext = frame.linear_jacobian.transpose() * force;
+    truth.tau_ext = offline::multiply_transposed(frame.linear_jacobian, force);
     truth.pad = c.pad;
     truth.normal_force_n = -force.dot(frame.rotation.col(2));
     w.pad_force[static_cast<std::size_t>(c.pad)] = truth.normal_force_n;

@@ -66,8 +66,8 @@ void register_simulate_command(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand(
       "simulate",
-      "Run the digital twin (arm of 1-7 joints, drive cascades, friction with memory, sensors, "
-      "pads, contacts) on a scenario and write a simulated log with gt_* ground truth");
+      "Run the digital twin (arm of any joint count, drive cascades, friction with memory, "
+      "sensors, pads, contacts) on a scenario and write a simulated log with gt_* ground truth");
   cmd->add_option("--scenario", options->scenario,
                   "Scenario file, e.g. data/scenarios/excitation.json; it names its robot "
                   "(\"robot\", default data/arm4.robot.json)")

@@ -8,8 +8,8 @@
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/twin_arm.hpp"
 #include "offline/sim/twin_plant.hpp"
-#include "tpf/friction/friction_file.hpp"
 #include "support/constants.hpp"
+#include "tpf/friction/friction_file.hpp"
 
 namespace {
 
@@ -167,6 +167,12 @@ TEST(TwinPlant, KinovaGen3KeepsOrLosesEnergyAsItShould) {
   expect_passive_energy_balance(TPF_TEST_DATA_DIR "/real/kinova-gen3/gen3.robot.json",
                                 twin_vector({0.3, 0.8, -0.4, 1.2, 0.5, -0.7, 0.2}),
                                 twin_vector({0.5, 0.0, -0.5, 0.3, 1.0, 0.0, 1.5}));
+}
+
+TEST(TwinPlant, NineJointArmKeepsOrLosesEnergyAsItShould) {
+  expect_passive_energy_balance(TPF_SIM_TEST_DIR "/arm9/arm9.robot.json",
+                                twin_vector({0.3, 0.8, -0.4, 1.2, 0.5, -0.7, 0.2, 0.9, -1.0}),
+                                twin_vector({0.5, 0.0, -0.5, 0.3, 1.0, 0.0, 1.5, -1.0, 2.0}));
 }
 
 TEST(TwinArm, BenchGravityAndInertiaAreThePendulums) {

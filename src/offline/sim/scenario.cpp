@@ -179,10 +179,9 @@ void read_teaching(json::Object o, TeachingConfig& t) {
 // The scenario the keys of a file start from, for the robot `robot` read from `robot_file`.
 Scenario scenario_for(const std::string& robot_file, const RobotDescription& robot) {
   const int n = static_cast<int>(robot.chain.joints.size());
-  if (n < 1 || n > kTwinMaxJoints)
+  if (n < 1)
     throw Error::at(robot_file, 0, "joints",
-                    "the twin simulates 1 to " + std::to_string(kTwinMaxJoints) +
-                        " revolute joints; this robot has " + std::to_string(n));
+                    "the twin simulates arms of 1 or more revolute joints; this robot has none");
   Scenario s;
   s.robot_file = robot_file;
   s.joints = n;

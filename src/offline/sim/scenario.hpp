@@ -1,7 +1,7 @@
 // A digital-twin scenario: which robot, which physical effects, which sensors, which script.
 // Loaded from a JSON file in data/scenarios/; every key is optional except "kind", unknown keys
 // and impossible values are refused with "file: key.path: reason". docs/twin.md lists the keys.
-// Per-joint vectors have one entry per joint of the scenario's robot (1 to kTwinMaxJoints).
+// Per-joint vectors have one entry per joint of the scenario's robot.
 #pragma once
 
 #include <initializer_list>
@@ -11,13 +11,10 @@
 
 namespace tpf::offline {
 
-/// The twin simulates serial revolute arms of 1 to 7 joints. Its vectors are sized at run time
-/// (the robot file's joint count) with storage for 7 on the stack: no allocation, and the twin is
-/// compiled once; only TwinArm's rigid-body model is instantiated per joint count.
-inline constexpr int kTwinMaxJoints = 7;
-using TwinVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kTwinMaxJoints, 1>;
-using TwinMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
-                                 kTwinMaxJoints, kTwinMaxJoints>;
+/// The twin simulates serial revolute arms of any joint count, read from the robot file: its
+/// vectors and matrices are sized at run time, and the twin is compiled once for every count.
+using TwinVector = Eigen::VectorXd;
+using TwinMatrix = Eigen::MatrixXd;
 
 /// A TwinVector from its values: twin_vector({0.0, 0.3, -0.4, 0.0}).
 inline TwinVector twin_vector(std::initializer_list<double> values) {
@@ -146,7 +143,7 @@ struct Scenario {
   double inner_rate_hz = 2000.0;
   double log_rate_hz = 400.0;
   std::string robot_file;     ///< default data/arm4.robot.json
-  int joints = 0;             ///< of the robot file, 1..kTwinMaxJoints
+  int joints = 0;             ///< of the robot file, at least 1
   std::string pads_file;      ///< default: the robot file's "pads"; "" = no skin, no pad sensors
   std::string friction_file;  ///< default: the robot file's "friction"; "" = effects.friction none
   TwinVector initial_q;       ///< rad, default 0
@@ -161,7 +158,7 @@ struct Scenario {
 
 /// The scenario the keys of a file start from, for `robot_file`: every per-joint vector sized
 /// for its joint count at its default, pads and friction from the robot file. Throws tpf::Error
-/// naming the robot file when it has not 1..kTwinMaxJoints joints.
+/// naming the robot file when it has no joint.
 Scenario default_scenario(const std::string& robot_file);
 
 /// Reads a scenario file. Relative robot/pads/friction paths resolve against the scenario's

@@ -272,7 +272,7 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     TwinVector tau_ext = TwinVector::Zero(joints);
     if (contact_pad >= 0) {
       const PadFrame frame = arm.pad_frame(q, contact_pad);
-      tau_ext = frame.linear_jacobian.transpose() * force;
+      tau_ext = multiply_transposed(frame.linear_jacobian, force);
       std::fill(pad_force.begin(), pad_force.end(), 0.0);
       pad_force[contact_pad] = -force.dot(frame.rotation.col(2));
       pad_area[contact_pad] = area;
@@ -350,7 +350,7 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
         current = delay_line.front();
       }
     }
-    const TwinVector tau_motor = coupling * arm.torque_constant().cwiseProduct(current);
+    const TwinVector tau_motor = multiply(coupling, arm.torque_constant().cwiseProduct(current));
     TwinVector viscous_scale = TwinVector::Ones(joints);
     if (fx.thermal.enabled)
       viscous_scale = (TwinVector::Ones(joints) +

@@ -1,19 +1,13 @@
 #include "offline/sim/twin_arm.hpp"
 
-#include <Eigen/Cholesky>
-#include <utility>
-
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/energy.hpp"
-#include "tpf/dynamics/forward_dynamics.hpp"
 #include "tpf/dynamics/mass_matrix.hpp"
 #include "tpf/dynamics/rnea.hpp"
 #include "tpf/kinematics/contact_frame.hpp"
 #include "tpf/kinematics/forward_kinematics.hpp"
 #include "tpf/kinematics/point_jacobian.hpp"
-#include "tpf/model/data.hpp"
 #include "tpf/model/load_robot.hpp"
-#include "tpf/skin/pad_layout.hpp"
 
 namespace tpf::offline {
 
@@ -36,162 +30,84 @@ Inertia<double> with_point_mass(const Inertia<double>& body, double m_p, const V
 
 }  // namespace
 
-/// What the twin asks of the rigid-body model; FixedArm<N> answers with tpf::core at N joints.
-struct TwinArm::Impl {
-  virtual ~Impl() = default;
-  virtual std::unique_ptr<Impl> clone() const = 0;
-  virtual TwinVector forward_dynamics(const TwinVector& q, const TwinVector& dq,
-                                      const TwinVector& tau) const = 0;
-  virtual TwinMatrix mass_matrix(const TwinVector& q) const = 0;
-  virtual TwinVector gravity(const TwinVector& q) const = 0;
-  virtual double energy(const TwinVector& q, const TwinVector& dq) const = 0;
-  virtual PadFrame pad_frame(const TwinVector& q, const Pad& pad) const = 0;
-  virtual Vector3<double> pad_velocity(const PadFrame& frame, const TwinVector& dq) const = 0;
-  virtual TwinVector solve_spd(const TwinMatrix& a, const TwinVector& b) const = 0;
-
-  int joints = 0;
-  std::string name;
-  std::vector<Pad> pads;
-  TwinVector torque_constant, current_limit_a, velocity_limit, lower, upper;
-};
-
-namespace {
-
-template <int N>
-class FixedArm final : public TwinArm::Impl {
- public:
-  using Vec = JointVector<double, N>;
-
-  FixedArm(const RobotDescription& robot, const Scenario& scenario)
-      : model_(make_model<double, N>(robot)) {
-    const auto& payload = scenario.effects.payload;
-    if (payload.enabled && payload.mass > 0)
-      model_.inertias[N] = with_point_mass(model_.inertias[N], payload.mass, payload.position);
-    model_.update_constants();
-    if (!scenario.effects.gravity) model_.gravity.setZero();
-    joints = N;
-    name = model_.name;
-    if (!scenario.pads_file.empty()) pads = load_pads(scenario.pads_file, model_);
-    torque_constant = model_.torque_constant;
-    current_limit_a = model_.current_limit / 1000.0;
-    velocity_limit = model_.velocity_limit;
-    lower = model_.lower;
-    upper = model_.upper;
-  }
-
-  std::unique_ptr<Impl> clone() const override { return std::make_unique<FixedArm>(*this); }
-
-  TwinVector forward_dynamics(const TwinVector& q, const TwinVector& dq,
-                              const TwinVector& tau) const override {
-    return tpf::forward_dynamics(model_, data_, Vec(q), Vec(dq), Vec(tau));
-  }
-  TwinMatrix mass_matrix(const TwinVector& q) const override {
-    return compute_mass_matrix(model_, data_, Vec(q));
-  }
-  TwinVector gravity(const TwinVector& q) const override {
-    return compute_gravity(model_, data_, Vec(q));
-  }
-  double energy(const TwinVector& q, const TwinVector& dq) const override {
-    return kinetic_energy(model_, data_, Vec(q), Vec(dq)) + potential_energy(model_, data_, Vec(q));
-  }
-  PadFrame pad_frame(const TwinVector& q, const Pad& pad) const override {
-    forward_kinematics(model_, data_, Vec(q));
-    PadFrame f;
-    f.link = pad.link;
-    f.centre = world_point(data_, pad.link, pad.center);
-    f.rotation = contact_frame_in_world(data_, pad.link, pad.normal);
-    f.linear_jacobian = point_jacobian(model_, data_, pad.link, f.centre).template topRows<3>();
-    return f;
-  }
-  Vector3<double> pad_velocity(const PadFrame& frame, const TwinVector& dq) const override {
-    const Eigen::Matrix<double, 3, N> jacobian = frame.linear_jacobian;
-    return jacobian * Vec(dq);
-  }
-  TwinVector solve_spd(const TwinMatrix& a, const TwinVector& b) const override {
-    const Vec x = JointMatrix<double, N>(a).ldlt().solve(Vec(b));  // solved at size N, then copied
-    return x;
-  }
-
- private:
-  Model<double, N> model_;
-  mutable Data<double, N> data_;
-};
-
-template <int N>
-std::unique_ptr<TwinArm::Impl> make_arm(const RobotDescription& robot, const Scenario& scenario) {
-  if constexpr (N > kTwinMaxJoints) {
+TwinArm::TwinArm(const Scenario& scenario) {
+  const RobotDescription robot = load_robot_description(scenario.robot_file);
+  if (robot.chain.joints.empty())
     throw Error::at(robot.source, 0, "joints",
-                    "the twin simulates 1 to " + std::to_string(kTwinMaxJoints) +
-                        " revolute joints; this robot has " +
-                        std::to_string(robot.chain.joints.size()));
-  } else {
-    if (static_cast<int>(robot.chain.joints.size()) == N)
-      return std::make_unique<FixedArm<N>>(robot, scenario);
-    return make_arm<N + 1>(robot, scenario);
-  }
-}
-
-}  // namespace
-
-TwinArm::TwinArm(const Scenario& scenario)
-    : impl_(make_arm<1>(load_robot_description(scenario.robot_file), scenario)) {}
-
-TwinArm::~TwinArm() = default;
-TwinArm::TwinArm(const TwinArm& other) : impl_(other.impl_->clone()) {}
-TwinArm& TwinArm::operator=(const TwinArm& other) {
-  if (this != &other) impl_ = other.impl_->clone();
-  return *this;
+                    "the twin simulates arms of 1 or more joints; this "
+                    "robot has none");
+  model_ = make_model<double, Eigen::Dynamic>(robot);
+  const int n = model_.joint_count();
+  const auto& payload = scenario.effects.payload;
+  if (payload.enabled && payload.mass > 0)
+    model_.inertias[n] = with_point_mass(model_.inertias[n], payload.mass, payload.position);
+  model_.update_constants();
+  if (!scenario.effects.gravity) model_.gravity.setZero();
+  data_ = Data<double, Eigen::Dynamic>(model_);
+  if (!scenario.pads_file.empty()) pads_ = load_pads(scenario.pads_file, model_);
+  current_limit_a_ = model_.current_limit / 1000.0;
 }
 
 TwinVector TwinArm::forward_dynamics(const TwinVector& q, const TwinVector& dq,
                                      const TwinVector& tau) const {
-  return impl_->forward_dynamics(q, dq, tau);
+  // tpf::forward_dynamics's steps, with the twin's Cholesky solve.
+  compute_mass_matrix(model_, data_, q);
+  detail::newton_euler_passes(model_, data_, dq, TwinVector::Zero(model_.joint_count()),
+                              Vector3<double>(-model_.gravity));
+  mass_factor_.compute(data_.M);
+  TwinVector ddq = tau - data_.tau;
+  mass_factor_.solve_in_place(ddq);
+  return ddq;
 }
 TwinMatrix TwinArm::mass_matrix(const TwinVector& q) const {
-  return impl_->mass_matrix(q);
+  return compute_mass_matrix(model_, data_, q);
 }
 TwinVector TwinArm::gravity(const TwinVector& q) const {
-  return impl_->gravity(q);
+  return compute_gravity(model_, data_, q);
 }
 double TwinArm::energy(const TwinVector& q, const TwinVector& dq) const {
-  return impl_->energy(q, dq);
+  return kinetic_energy(model_, data_, q, dq) + potential_energy(model_, data_, q);
 }
 PadFrame TwinArm::pad_frame(const TwinVector& q, int k) const {
-  return impl_->pad_frame(q, impl_->pads.at(static_cast<std::size_t>(k)));
+  const Pad& pad = pads_.at(static_cast<std::size_t>(k));
+  forward_kinematics(model_, data_, q);
+  PadFrame f;
+  f.link = pad.link;
+  f.centre = world_point(data_, pad.link, pad.center);
+  f.rotation = contact_frame_in_world(data_, pad.link, pad.normal);
+  f.linear_jacobian = point_jacobian(model_, data_, pad.link, f.centre).topRows<3>();
+  return f;
 }
 Vector3<double> TwinArm::pad_velocity(const PadFrame& frame, const TwinVector& dq) const {
-  return impl_->pad_velocity(frame, dq);
-}
-TwinVector TwinArm::solve_spd(const TwinMatrix& a, const TwinVector& b) const {
-  return impl_->solve_spd(a, b);
+  return multiply(frame.linear_jacobian, dq);
 }
 
 int TwinArm::pad_count() const {
-  return static_cast<int>(impl_->pads.size());
+  return static_cast<int>(pads_.size());
 }
 int TwinArm::joints() const {
-  return impl_->joints;
+  return model_.joint_count();
 }
 const std::string& TwinArm::name() const {
-  return impl_->name;
+  return model_.name;
 }
 double TwinArm::pad_area_cm2(int k) const {
-  return impl_->pads.at(static_cast<std::size_t>(k)).area * 1e4;
+  return pads_.at(static_cast<std::size_t>(k)).area * 1e4;
 }
 const TwinVector& TwinArm::torque_constant() const {
-  return impl_->torque_constant;
+  return model_.torque_constant;
 }
 const TwinVector& TwinArm::current_limit() const {
-  return impl_->current_limit_a;
+  return current_limit_a_;
 }
 const TwinVector& TwinArm::velocity_limit() const {
-  return impl_->velocity_limit;
+  return model_.velocity_limit;
 }
 const TwinVector& TwinArm::lower() const {
-  return impl_->lower;
+  return model_.lower;
 }
 const TwinVector& TwinArm::upper() const {
-  return impl_->upper;
+  return model_.upper;
 }
 
 }  // namespace tpf::offline

@@ -1,15 +1,19 @@
 // The true rigid-body arm of the twin: the scenario's robot model (with armature), optionally an
 // undeclared payload on the last link, its pads, and the dynamics calls the simulator needs.
-// A thin adapter over tpf::core's model and algorithms, which take the joint count N at compile
-// time: twin_arm.cpp instantiates them once per N = 1..kTwinMaxJoints behind this class, the
-// only place of the twin that knows N at compile time.
+// A thin adapter over tpf::core's model and algorithms at a run-time joint count
+// (N = Eigen::Dynamic): one compiled twin for robots of any joint count. Its solves and 3×N
+// products are the twin's own (twin_linear_algebra.hpp), which round as Eigen does at a fixed
+// joint count.
 #pragma once
 
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "offline/sim/scenario.hpp"
+#include "offline/sim/twin_linear_algebra.hpp"
+#include "tpf/model/data.hpp"
+#include "tpf/model/model.hpp"
+#include "tpf/skin/pad_layout.hpp"
 
 namespace tpf::offline {
 
@@ -20,17 +24,14 @@ struct PadFrame {
   Matrix3<double> rotation =
       Matrix3<double>::Identity();  ///< columns: tangent x, tangent y, normal
   /// ∂centre/∂q, world frame, 3×N.
-  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kTwinMaxJoints> linear_jacobian;
+  TwinJacobian linear_jacobian;
 };
 
 class TwinArm {
  public:
   /// Loads robot and pads; adds the payload when enabled; zeroes gravity when disabled.
-  /// Throws tpf::Error naming the robot file when its joint count is outside 1..kTwinMaxJoints.
+  /// Throws tpf::Error naming the robot file when it has no joint.
   explicit TwinArm(const Scenario& scenario);
-  ~TwinArm();
-  TwinArm(const TwinArm&);
-  TwinArm& operator=(const TwinArm&);
 
   /// q̈ = M⁻¹(τ − C(q,q̇)q̇ − G(q)).
   TwinVector forward_dynamics(const TwinVector& q, const TwinVector& dq,
@@ -45,10 +46,6 @@ class TwinArm {
   PadFrame pad_frame(const TwinVector& q, int k) const;
   /// Velocity of a pad's centre, J_v·q̇ (world frame, m/s).
   Vector3<double> pad_velocity(const PadFrame& frame, const TwinVector& dq) const;
-  /// A⁻¹·b for a symmetric positive definite N×N matrix A (Eigen's LDLT). Like the dynamics it
-  /// runs at the robot's compile-time size: Eigen's LDLT and 3×N products round differently at
-  /// run-time sizes, and the twin's logs must not depend on how its vectors are sized.
-  TwinVector solve_spd(const TwinMatrix& a, const TwinVector& b) const;
   int pad_count() const;
   /// Joint count N of the robot.
   int joints() const;
@@ -63,10 +60,12 @@ class TwinArm {
   const TwinVector& lower() const;
   const TwinVector& upper() const;
 
-  struct Impl;  ///< the rigid-body model at the robot's compile-time joint count (twin_arm.cpp)
-
  private:
-  std::unique_ptr<Impl> impl_;
+  Model<double, Eigen::Dynamic> model_;
+  mutable Data<double, Eigen::Dynamic> data_;  ///< workspace of the dynamics calls
+  mutable TwinCholesky mass_factor_;           ///< of M(q), forward_dynamics
+  std::vector<Pad> pads_;
+  TwinVector current_limit_a_;
 };
 
 }  // namespace tpf::offline

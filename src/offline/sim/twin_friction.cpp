@@ -1,6 +1,5 @@
 #include "offline/sim/twin_friction.hpp"
 
-#include "offline/sim/scenario.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/friction/friction_file.hpp"
 
@@ -8,11 +7,12 @@ namespace tpf::offline {
 
 namespace {
 
-template <int N>
-TwinFriction split(const LuGreParameters<double, N>& p) {
+// One LuGreParameters<double, 1> per joint of a friction file's parameters.
+TwinFriction one_per_joint(const LuGreParameters<double, Eigen::Dynamic>& p) {
+  const int n = static_cast<int>(p.bristle_stiffness.size());
   TwinFriction f;
-  f.joints.resize(N);
-  for (int j = 0; j < N; ++j) {
+  f.joints.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
     JointFriction& o = f[j];
     o.stribeck.coulomb[0] = p.stribeck.coulomb[j];
     o.stribeck.static_friction[0] = p.stribeck.static_friction[j];
@@ -27,22 +27,12 @@ TwinFriction split(const LuGreParameters<double, N>& p) {
   return f;
 }
 
-template <int N>
-TwinFriction load(const std::string& path, int joints) {
-  if constexpr (N > kTwinMaxJoints) {
-    throw Error::at(path, 0, "", "the twin simulates 1 to 7 joints, not " + std::to_string(joints));
-  } else {
-    if (joints == N) return split<N>(load_lugre_parameters<double, N>(path));
-    return load<N + 1>(path, joints);
-  }
-}
-
 }  // namespace
 
 TwinFriction load_twin_friction(const std::string& path, int joints) {
   if (friction_effort_unit(path) != "N*m")
     throw Error::at(path, 0, "effort_unit", "the twin's true friction must be in N*m");
-  return load<1>(path, joints);
+  return one_per_joint(load_lugre_parameters(path, joints));
 }
 
 }  // namespace tpf::offline

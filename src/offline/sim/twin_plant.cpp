@@ -100,13 +100,13 @@ void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) 
                     joint_friction(j, v - e, abs_gravity[j], viscous_scale[j], nullptr)) /
                    (2 * e);
       }
-      // The product first, then the sum: in one expression Eigen would accumulate M·δ into h·F
-      // at run-time sizes, a rounding the fixed-size twin never had (its logs must not move).
-      const TwinVector inertial = M * delta;
-      const TwinVector residual = inertial + h * force;
+      // M·δ by twin_linear_algebra.hpp, then the sum: in one expression Eigen would accumulate
+      // M·δ into h·F, and the twin's logs must not depend on Eigen's kernels.
+      const TwinVector residual = multiply(M, delta) + h * force;
       TwinMatrix J = M;
       J.diagonal() += 0.5 * h * slope.cwiseMax(0.0);
-      const TwinVector step = arm_.solve_spd(J, residual);
+      newton_factor_.compute(J);
+      const TwinVector step = newton_factor_.solve(residual);
       delta -= step;
       if (step.cwiseAbs().maxCoeff() < 1e-13 * (1.0 + v0.cwiseAbs().maxCoeff())) break;
     }

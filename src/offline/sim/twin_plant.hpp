@@ -17,6 +17,7 @@
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/twin_arm.hpp"
 #include "offline/sim/twin_friction.hpp"
+#include "offline/sim/twin_linear_algebra.hpp"
 
 namespace tpf::offline {
 
@@ -56,7 +57,8 @@ class TwinPlant {
   double dt_;
   int n_;  ///< joints
   TwinVector q_, dq_, ddq_, friction_;
-  TwinVector bristles_;  ///< LuGre deflection z per joint, rad
+  TwinVector bristles_;     ///< LuGre deflection z per joint, rad
+  TwinLdlt newton_factor_;  ///< of the friction step's Newton matrix M + ½h·∂F/∂v
 };
 
 }  // namespace tpf::offline
