@@ -17,7 +17,7 @@ using Nominal = NominalModelX;
 using VecX = Eigen::VectorXd;
 
 /// arm()'s 4 joints as a run-time-size vector.
-VecX vec(double a, double b, double c, double d) {
+VecX arm_vector(double a, double b, double c, double d) {
   return Eigen::Vector4d(a, b, c, d);
 }
 
@@ -36,7 +36,7 @@ Nominal bare_model() {
   Nominal nominal;
   nominal.model = joint_count_cast<Eigen::Dynamic>(arm());
   nominal.resize(kJoints);
-  nominal.model.gear_ratio = vec(100.0, 120.0, 80.0, 50.0);
+  nominal.model.gear_ratio = arm_vector(100.0, 120.0, 80.0, 50.0);
   return nominal;
 }
 
@@ -115,27 +115,27 @@ TEST(NominalModel, RippleColumnsTimesCoefficientsAreItsRunTimeTorque) {
 }
 
 TEST(NominalModel, EachAddedEffectIsTheTorqueItsHeaderStates) {
-  const VecX q = vec(0.3, -0.7, 1.1, 0.2), dq = vec(0.5, -1.5, 0.25, 2.0),
-             ddq = vec(-3.0, 1.0, 4.0, -0.5);
+  const VecX q = arm_vector(0.3, -0.7, 1.1, 0.2), dq = arm_vector(0.5, -1.5, 0.25, 2.0),
+             ddq = arm_vector(-3.0, 1.0, 4.0, -0.5);
   Nominal nominal = bare_model();
   auto torque_of = [&](const Nominal& m) { return added_effort(m, q, dq, ddq); };
   Nominal spring = nominal;
   spring.added.get<JointSpring>().stiffness[2] = 3.0;
-  EXPECT_EQ(torque_of(spring), vec(0, 0, 3.0 * 1.1, 0));
+  EXPECT_EQ(torque_of(spring), arm_vector(0, 0, 3.0 * 1.1, 0));
   Nominal offset = nominal;
   offset.added.get<JointOffset>().offset[1] = -0.4;
-  EXPECT_EQ(torque_of(offset), vec(0, -0.4, 0, 0));
+  EXPECT_EQ(torque_of(offset), arm_vector(0, -0.4, 0, 0));
   Nominal coupling = nominal;
   coupling.added.get<MotionCoupling>().velocity(0, 3) = 0.5;
   coupling.added.get<MotionCoupling>().acceleration(0, 2) = 0.25;
   coupling.added.get<MotionCoupling>().acceleration(3, 1) = -2.0;
-  const VecX expected = vec(0.5 * 2.0 + 0.25 * 4.0, 0, 0, -2.0 * 1.0);
+  const VecX expected = arm_vector(0.5 * 2.0 + 0.25 * 4.0, 0, 0, -2.0 * 1.0);
   EXPECT_LT((torque_of(coupling) - expected).norm(), 1e-15);
   Nominal ripple = nominal;
   ripple.added.get<PositionRipple>().add({1, 3.0, true, 0.2, -0.1});
   const double phase = 3.0 * 120.0 * -0.7;  // n·G·q on the motor side
   const double tau = 0.2 * std::sin(phase) - 0.1 * std::cos(phase);
-  EXPECT_LT((torque_of(ripple) - vec(0, tau, 0, 0)).norm(), 1e-12);
+  EXPECT_LT((torque_of(ripple) - arm_vector(0, tau, 0, 0)).norm(), 1e-12);
 }
 
 /// Family's random coefficients written, saved, loaded: the same torque at random states (and the

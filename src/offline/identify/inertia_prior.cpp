@@ -31,12 +31,15 @@ MassMatrixProbe::MassMatrixProbe(const NominalModelX& like) : joints_(like.model
 
 bool MassMatrixProbe::above(const NominalModelX& nominal, double floor) const {
   const int n = joints_;
+  // Sized once for every pose.
+  Eigen::VectorXd m(n * n);
+  Eigen::MatrixXd shifted(n, n);
+  Eigen::LLT<Eigen::MatrixXd> factor(n);
   for (const Eigen::MatrixXd& map : maps_) {
-    const Eigen::VectorXd m = map * nominal.base_values.head(nominal.base_count);
+    m.noalias() = map * nominal.base_values.head(nominal.base_count);
     const Eigen::Map<const Eigen::MatrixXd> M(m.data(), n, n);
-    const Eigen::MatrixXd shifted =
-        0.5 * (M + M.transpose()) - floor * Eigen::MatrixXd::Identity(n, n);
-    if (Eigen::LLT<Eigen::MatrixXd>(shifted).info() != Eigen::Success) return false;
+    shifted = 0.5 * (M + M.transpose()) - floor * Eigen::MatrixXd::Identity(n, n);
+    if (factor.compute(shifted).info() != Eigen::Success) return false;
   }
   return true;
 }
@@ -44,14 +47,16 @@ bool MassMatrixProbe::above(const NominalModelX& nominal, double floor) const {
 double MassMatrixProbe::min_eigenvalue(const NominalModelX& nominal) const {
   double smallest = std::numeric_limits<double>::infinity();
   const int n = joints_;
+  // Sized once for every pose.
+  Eigen::VectorXd m(n * n);
+  Eigen::MatrixXd sym(n, n);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(n);
   for (const Eigen::MatrixXd& map : maps_) {
-    const Eigen::VectorXd m = map * nominal.base_values.head(nominal.base_count);
+    m.noalias() = map * nominal.base_values.head(nominal.base_count);
     const Eigen::Map<const Eigen::MatrixXd> M(m.data(), n, n);
-    const Eigen::MatrixXd sym = 0.5 * (M + M.transpose());
-    smallest = std::min(smallest,
-                        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(sym, Eigen::EigenvaluesOnly)
-                            .eigenvalues()
-                            .minCoeff());
+    sym = 0.5 * (M + M.transpose());
+    smallest =
+        std::min(smallest, solver.compute(sym, Eigen::EigenvaluesOnly).eigenvalues().minCoeff());
   }
   return smallest;
 }
