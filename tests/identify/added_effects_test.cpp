@@ -13,7 +13,6 @@
 namespace tpf::test {
 namespace {
 
-using Nominal = NominalModelX;
 using VecX = Eigen::VectorXd;
 
 /// arm()'s 4 joints as a run-time-size vector.
@@ -32,8 +31,8 @@ offline::CandidateInputs ripple_inputs() {
 
 /// A model with nothing added and no friction: its prediction less the rigid body is the added
 /// effects' torque.
-Nominal bare_model() {
-  Nominal nominal;
+NominalModelX bare_model() {
+  NominalModelX nominal;
   nominal.model = joint_count_cast<Eigen::Dynamic>(arm());
   nominal.resize(kJoints);
   nominal.model.gear_ratio = arm_vector(100.0, 120.0, 80.0, 50.0);
@@ -43,7 +42,7 @@ Nominal bare_model() {
 /// Random coefficients θ_j of family Family for every joint j, written into `nominal` through
 /// Family::write (as diagnose writes a fit); returns them.
 template <typename Family>
-std::vector<std::vector<double>> write_random(Nominal& nominal, std::mt19937_64& rng,
+std::vector<std::vector<double>> write_random(NominalModelX& nominal, std::mt19937_64& rng,
                                               const offline::CandidateInputs& inputs, int columns) {
   StribeckParameters<double, Eigen::Dynamic> linear;
   linear.resize(kJoints);
@@ -71,7 +70,7 @@ void expect_columns_times_coefficients_are_the_torque(int columns) {
   const Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(kJoints, 13 * kJoints);
   const VecX at_rest = VecX::Zero(kJoints);
   for (int trial = 0; trial < 20; ++trial) {
-    Nominal nominal = bare_model();
+    NominalModelX nominal = bare_model();
     const auto theta = write_random<Family>(nominal, rng, inputs, columns);
     const VecX q = random_vector<kJoints>(rng, 3.0), dq = random_vector<kJoints>(rng, 2.0),
                ddq = random_vector<kJoints>(rng, 5.0);
@@ -117,21 +116,21 @@ TEST(NominalModel, RippleColumnsTimesCoefficientsAreItsRunTimeTorque) {
 TEST(NominalModel, EachAddedEffectIsTheTorqueItsHeaderStates) {
   const VecX q = arm_vector(0.3, -0.7, 1.1, 0.2), dq = arm_vector(0.5, -1.5, 0.25, 2.0),
              ddq = arm_vector(-3.0, 1.0, 4.0, -0.5);
-  Nominal nominal = bare_model();
-  auto torque_of = [&](const Nominal& m) { return added_effort(m, q, dq, ddq); };
-  Nominal spring = nominal;
+  NominalModelX nominal = bare_model();
+  auto torque_of = [&](const NominalModelX& m) { return added_effort(m, q, dq, ddq); };
+  NominalModelX spring = nominal;
   spring.added.get<JointSpring>().stiffness[2] = 3.0;
   EXPECT_EQ(torque_of(spring), arm_vector(0, 0, 3.0 * 1.1, 0));
-  Nominal offset = nominal;
+  NominalModelX offset = nominal;
   offset.added.get<JointOffset>().offset[1] = -0.4;
   EXPECT_EQ(torque_of(offset), arm_vector(0, -0.4, 0, 0));
-  Nominal coupling = nominal;
+  NominalModelX coupling = nominal;
   coupling.added.get<MotionCoupling>().velocity(0, 3) = 0.5;
   coupling.added.get<MotionCoupling>().acceleration(0, 2) = 0.25;
   coupling.added.get<MotionCoupling>().acceleration(3, 1) = -2.0;
   const VecX expected = arm_vector(0.5 * 2.0 + 0.25 * 4.0, 0, 0, -2.0 * 1.0);
   EXPECT_LT((torque_of(coupling) - expected).norm(), 1e-15);
-  Nominal ripple = nominal;
+  NominalModelX ripple = nominal;
   ripple.added.get<PositionRipple>().add({1, 3.0, true, 0.2, -0.1});
   const double phase = 3.0 * 120.0 * -0.7;  // n·G·q on the motor side
   const double tau = 0.2 * std::sin(phase) - 0.1 * std::cos(phase);
@@ -143,11 +142,11 @@ TEST(NominalModel, EachAddedEffectIsTheTorqueItsHeaderStates) {
 template <typename Family>
 void expect_round_trip(int columns) {
   std::mt19937_64 rng(11);
-  Nominal nominal = bare_model();
+  NominalModelX nominal = bare_model();
   write_random<Family>(nominal, rng, ripple_inputs(), columns);
   // The file's robot (gear ratios as the robot file has them) and its rigid body: a file
   // without one is refused.
-  const Nominal robot_file =
+  const NominalModelX robot_file =
       nominal_from_model(joint_count_cast<Eigen::Dynamic>(arm()), nominal.friction);
   nominal.model = robot_file.model;
   nominal.base_count = robot_file.base_count;
@@ -156,7 +155,7 @@ void expect_round_trip(int columns) {
   const auto path = std::filesystem::temp_directory_path() /
                     ("tpf_effects_" + std::to_string(::getpid()) + ".json");
   save_nominal_model(path, nominal);
-  const Nominal loaded = load_nominal_model(path, data_path("arm4.robot.json"));
+  const NominalModelX loaded = load_nominal_model(path, data_path("arm4.robot.json"));
   std::filesystem::remove(path);
   for (int s = 0; s < 20; ++s) {
     const VecX q = random_vector<kJoints>(rng, 3.0), dq = random_vector<kJoints>(rng, 2.0),
