@@ -16,7 +16,6 @@
 namespace tpf::offline {
 namespace {
 
-constexpr int kJoints = 4;
 constexpr double kLogSeconds = 600.0;  // 10 min of log; timings scale linearly with rows
 
 const Log& twin_log() {
@@ -26,9 +25,9 @@ const Log& twin_log() {
   return log;
 }
 
-const Model<double, kJoints>& arm() {
-  static const Model<double, kJoints> model =
-      load_robot<double, kJoints>(std::string(TPF_BENCH_DATA_DIR) + "/arm4.robot.json");
+const ModelX& arm() {
+  static const ModelX model =
+      load_robot<double, Eigen::Dynamic>(std::string(TPF_BENCH_DATA_DIR) + "/arm4.robot.json");
   return model;
 }
 
@@ -54,7 +53,7 @@ void time_per_log_hour(benchmark::State& state, Run&& run) {
 
 void BM_Identify(benchmark::State& state) {
   time_per_log_hour(state, [](const Log& log) {
-    auto id = identify<kJoints>(log, arm());
+    auto id = identify(log, arm());
     benchmark::DoNotOptimize(id.nominal.base_values.data());
   });
 }
@@ -66,7 +65,7 @@ BENCHMARK(BM_Identify)
 
 void BM_Diagnose(benchmark::State& state) {
   time_per_log_hour(state, [](const Log& log) {
-    auto d = diagnose<kJoints>(log, arm());
+    auto d = diagnose(log, arm());
     benchmark::DoNotOptimize(d.nominal.base_values.data());
   });
 }
@@ -78,8 +77,8 @@ BENCHMARK(BM_Diagnose)
 
 void BM_IdentifyAndDiagnose(benchmark::State& state) {
   time_per_log_hour(state, [](const Log& log) {
-    auto id = identify<kJoints>(log, arm());
-    auto d = diagnose<kJoints>(log, arm());
+    auto id = identify(log, arm());
+    auto d = diagnose(log, arm());
     benchmark::DoNotOptimize(id.nominal.base_values.data());
     benchmark::DoNotOptimize(d.nominal.base_values.data());
   });

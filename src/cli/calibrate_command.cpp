@@ -15,6 +15,7 @@
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
+#include "tpf/estimation/load_estimator.hpp"
 #include "tpf/model/effort_unit.hpp"
 
 namespace {
@@ -39,7 +40,11 @@ std::string joint_values(const tpf::JointVector<double, N>& v) {
 template <int N>
 void run_calibrate(const CalibrateCommandOptions& o) {
   using namespace tpf::offline;
-  const tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, o.weights);
+  tpf::cli::ModelSetup loaded = tpf::cli::load_model_setup(o.model, o.weights);
+  const tpf::EstimatorSetup<N> setup{tpf::joint_count_cast<N>(loaded.nominal),
+                                     std::move(loaded.pads),
+                                     {},
+                                     std::move(loaded.weights)};
   const Log log = tpf::cli::read_replayed_log(o.log, false);
   const tpf::EstimatorParameters<double, N> p =
       calibrate_estimator<N>(setup, log, o.pad_gain_kpa_per_n);

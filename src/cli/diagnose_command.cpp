@@ -36,14 +36,13 @@ struct DiagnoseArgs {
 
 /// With --identify-out: identify (with the friction options of `a`) on the samples diagnose then
 /// takes over, read and regressed once; prints and writes what `tpf identify` would.
-template <int N>
-tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
-                                                  const tpf::Model<double, N>& model,
-                                                  const tpf::offline::DiagnoseOptions& options,
-                                                  const DiagnoseArgs& a) {
+tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
+                                               const tpf::offline::ModelX& model,
+                                               const tpf::offline::DiagnoseOptions& options,
+                                               const DiagnoseArgs& a) {
   using namespace tpf::offline;
   const auto start = std::chrono::steady_clock::now();
-  IdentificationSetup<N> setup = prepare_diagnosis(log, model, options.samples);
+  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples);
   const tpf::BaseParameters base = setup.base;
   const auto regressors = setup.regressors;
   const auto abs_gravity = setup.abs_gravity;
@@ -53,14 +52,14 @@ tpf::offline::Diagnosis<N> identify_then_diagnose(const tpf::offline::Log& log,
   identify_options.fit_load_friction = !a.no_load_friction;
   identify_options.friction_from_sensor = a.friction_from_sensor;
   identify_options.inertia_prior = a.inertia_prior;
-  Identification<N> id = identify<N>(log, model, std::move(setup), identify_options);
-  tpf::cli::print_and_save_identification<N>(log, id, options.samples, a.identify_out, start,
-                                             tpf::cli::check_log_units<N>(model, id.samples));
+  Identification id = identify(log, model, std::move(setup), identify_options);
+  tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
+                                          tpf::cli::check_log_units(model, id.samples));
   DiagnoseOptions with_identify_prior = options;  // its written model fitted as identify's
   if (a.inertia_prior)
     with_identify_prior.inertia_prior_strength = id.inertia_prior.written_strength;
-  return diagnose<N>(log, model, {std::move(id.samples), base, regressors, abs_gravity},
-                     with_identify_prior);
+  return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity},
+                  with_identify_prior);
 }
 
 /// The inertia prior's line, when diagnose's fits needed one.
@@ -74,8 +73,7 @@ void print_inertia_prior(const tpf::offline::EffectDiagnosis& d) {
 }
 
 /// Everything: the findings, notes, the inertia prior and the held-out table per joint and regime.
-template <int N>
-void print_in_full(const tpf::offline::Diagnosis<N>& d) {
+void print_in_full(const tpf::offline::Diagnosis& d) {
   using namespace tpf::offline;
   for (const auto& f : d.findings)
     std::printf("%s\n", f.c_str());
@@ -89,7 +87,7 @@ void print_in_full(const tpf::offline::Diagnosis<N>& d) {
       d.samples.units.name());
   const Regime regimes[4] = {Regime::Static, Regime::StaticToKinetic, Regime::Moving,
                              Regime::Invalid};
-  for (int j = 0; j < N; ++j)
+  for (int j = 0; j < d.joints(); ++j)
     for (int r = 0; r < 4; ++r) {
       const auto& wb = d.written_before[j];
       const auto& wa = d.written_after[j];
@@ -106,8 +104,7 @@ void print_in_full(const tpf::offline::Diagnosis<N>& d) {
 }
 
 /// The verdict per effect and, per joint, the written model's held-out RMSE before and after.
-template <int N>
-void print_brief(const tpf::offline::Diagnosis<N>& d, const tpf::offline::DiagnoseOptions& o) {
+void print_brief(const tpf::offline::Diagnosis& d, const tpf::offline::DiagnoseOptions& o) {
   using namespace tpf::offline;
   const Table verdict = diagnosis_summary_table(d, o);
   if (verdict.rows.empty())  // nothing to show: the findings say why
@@ -118,7 +115,7 @@ void print_brief(const tpf::offline::Diagnosis<N>& d, const tpf::offline::Diagno
   print_inertia_prior(d);
   std::printf("held-out RMSE [%s] of the written model (--params), declared -> with the effects:\n",
               d.samples.units.name());
-  for (int j = 0; j < N; ++j) {
+  for (int j = 0; j < d.joints(); ++j) {
     std::printf("  joint %d", j + 1);
     for (const Regime r : {Regime::Static, Regime::StaticToKinetic, Regime::Moving}) {
       const double b = d.samples.units.to_effort(j, d.written_before[j][r].rmse);
@@ -131,7 +128,6 @@ void print_brief(const tpf::offline::Diagnosis<N>& d, const tpf::offline::Diagno
   std::printf("(--verbose: the findings in full, notes, every regime of both fits)\n");
 }
 
-template <int N>
 void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   using namespace tpf::offline;
   DiagnoseOptions options;
@@ -140,9 +136,9 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
   options.inertia_prior = a.inertia_prior;
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
-  const auto model = tpf::load_robot<double, N>(a.robot);
-  const auto d = a.identify_out.empty() ? diagnose<N>(log, model, options)
-                                        : identify_then_diagnose<N>(log, model, options, a);
+  const ModelX model = tpf::load_robot<double, Eigen::Dynamic>(a.robot);
+  const Diagnosis d = a.identify_out.empty() ? diagnose(log, model, options)
+                                             : identify_then_diagnose(log, model, options, a);
   if (d.samples.simulated) std::printf("SIMULATED log (digital twin)\n");
   if (a.verbose)
     print_in_full(d);
@@ -159,7 +155,7 @@ void run(const tpf::offline::Log& log, const DiagnoseArgs& a) {
     std::printf("wrote %s\n", a.json.c_str());
   }
   if (!a.params.empty()) {
-    tpf::save_nominal_model<N>(a.params, d.nominal, log.source, "");
+    tpf::save_nominal_model(a.params, d.nominal, log.source, "");
     std::printf("wrote %s%s\n", a.params.c_str(),
                 d.refitted ? ": the written model refitted on every sample, the held-out ones "
                              "included (the tables above are of its fit without them)"
@@ -228,8 +224,8 @@ void register_diagnose_command(CLI::App& app) {
                                {"--identify-out", a->identify_out}});
     reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
-    with_log_joint_count(log.joint_count(), log.source, a->robot,
-                         [&]<int N>() { run<N>(log, *a); });
+    require_log_joint_count(log.joint_count(), log.source, a->robot);
+    run(log, *a);
   });
 }
 

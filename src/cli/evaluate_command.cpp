@@ -18,6 +18,7 @@
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
 #include "tpf/common/atomic_file.hpp"
+#include "tpf/estimation/load_estimator.hpp"
 
 namespace {
 
@@ -56,7 +57,11 @@ void run_evaluate(const EvaluateCommandOptions& o) {
   const auto say = [&](const std::string& line) {
     if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
   };
-  tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, o.weights);
+  tpf::cli::ModelSetup loaded = tpf::cli::load_model_setup(o.model, o.weights);
+  tpf::EstimatorSetup<N> setup{tpf::joint_count_cast<N>(loaded.nominal),
+                               std::move(loaded.pads),
+                               {},
+                               std::move(loaded.weights)};
 
   say("evaluate: reading logs");
   const Log calibration = tpf::cli::read_replayed_log(o.calibration, o.quiet);

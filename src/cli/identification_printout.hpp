@@ -11,14 +11,13 @@
 #include "log_unit_checks.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/log.hpp"
-#include "tpf/model/load_robot.hpp"
 
 namespace tpf::cli {
 
 /// Prints which strength of the inertia prior identify chose and why (a table of the strengths
 /// tried), and keeps them in `fit["inertia_prior"]`.
-template <typename InertiaPrior>
-void print_inertia_prior_choice(const InertiaPrior& prior, nlohmann::json& fit) {
+inline void print_inertia_prior_choice(const offline::Identification::InertiaPrior& prior,
+                                       nlohmann::json& fit) {
   std::printf(
       "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (judged fit), %.4g "
       "(written fit); the rigid body pulled toward the robot file's inertias with strength "
@@ -54,12 +53,12 @@ void print_inertia_prior_choice(const InertiaPrior& prior, nlohmann::json& fit) 
 /// consistency, friction notes) and writes its model to `out` (tpf-params), with the wall time
 /// since `start`. `log_checks` (the log against the robot file, check_log_units) are printed
 /// after the consistency check and written as the fit's "log_checks".
-template <int N>
-void print_and_save_identification(const offline::Log& log, const offline::Identification<N>& id,
-                                   const offline::SampleOptions& sample_options,
-                                   const std::string& out,
-                                   std::chrono::steady_clock::time_point start,
-                                   const offline::LogChecks& log_checks) {
+inline void print_and_save_identification(const offline::Log& log,
+                                          const offline::Identification& id,
+                                          const offline::SampleOptions& sample_options,
+                                          const std::string& out,
+                                          std::chrono::steady_clock::time_point start,
+                                          const offline::LogChecks& log_checks) {
   using offline::Regime;
   const auto& s = id.samples;
   std::printf("%s%s: %ld samples (%s), effort in %s\n", s.simulated ? "SIMULATED log " : "log ",
@@ -68,7 +67,7 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
   std::printf("held-out residual RMSE [%s]     static  static-to-kinetic   moving      all\n",
               s.units.name());
   nlohmann::json fit;
-  for (int j = 0; j < N; ++j) {
+  for (int j = 0; j < s.joints(); ++j) {
     const auto& h = id.heldout[j];
     // Fitted in N·m; printed in the log's unit (mA for a log of currents).
     const auto in_log_unit = [&](double tau) { return s.units.to_effort(j, tau); };
@@ -110,7 +109,7 @@ void print_and_save_identification(const offline::Log& log, const offline::Ident
   fit["consistent"] = id.consistency.consistent();
   fit["problems"] = id.consistency.problems;
   fit["simulated"] = s.simulated;
-  tpf::save_nominal_model<N>(out, id.nominal, log.source, fit.dump());
+  tpf::save_nominal_model(out, id.nominal, log.source, fit.dump());
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("wrote %s (%.1f s)%s\n", out.c_str(), wall,

@@ -29,7 +29,6 @@ struct IdentifyArgs {
   bool no_load_friction = false, quiet = false, friction_from_sensor = false, inertia_prior = true;
 };
 
-template <int N>
 void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   using namespace tpf::offline;
   using tpf::cli::print_and_save_identification;
@@ -41,10 +40,10 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   options.inertia_prior = a.inertia_prior;
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
-  const auto model = tpf::load_robot<double, N>(a.robot);
-  const Identification<N> id = identify<N>(log, model, options);
-  print_and_save_identification<N>(log, id, options.samples, a.out, start,
-                                   tpf::cli::check_log_units<N>(model, id.samples));
+  const ModelX model = tpf::load_robot<double, Eigen::Dynamic>(a.robot);
+  const Identification id = identify(log, model, options);
+  print_and_save_identification(log, id, options.samples, a.out, start,
+                                tpf::cli::check_log_units(model, id.samples));
 }
 
 }  // namespace
@@ -91,8 +90,8 @@ void register_identify_command(CLI::App& app) {
                               {{"--out", a->out}});
     reuse_freed_memory();
     const offline::Log log = read_command_logs(a->logs);
-    with_log_joint_count(log.joint_count(), log.source, a->robot,
-                         [&]<int N>() { run<N>(log, *a); });
+    require_log_joint_count(log.joint_count(), log.source, a->robot);
+    run(log, *a);
   });
 }
 

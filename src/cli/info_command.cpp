@@ -5,9 +5,9 @@
 #include <string>
 
 #include "commands.hpp"
-#include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
 #include "offline/common/data_files.hpp"
+#include "offline/common/run_time_types.hpp"
 #include "option_validators.hpp"
 #include "tpf/core.hpp"
 
@@ -16,11 +16,10 @@ namespace tpf::cli {
 namespace {
 
 /// A pose that loads every joint: 0, 0.6, −1.2, 0.3 rad repeating, inside the joint limits.
-template <int N>
-JointVector<double, N> sample_pose(const Model<double, N>& model) {
+Eigen::VectorXd sample_pose(const offline::ModelX& model) {
   const double pattern[] = {0.0, 0.6, -1.2, 0.3};
-  JointVector<double, N> q;
-  for (int j = 0; j < N; ++j)
+  Eigen::VectorXd q(model.joint_count());
+  for (int j = 0; j < model.joint_count(); ++j)
     q[j] = std::clamp(pattern[j % 4], model.lower[j], model.upper[j]);
   return q;
 }
@@ -35,27 +34,27 @@ std::string joint_list(const Eigen::VectorXd& v, const char* format) {
   return s;
 }
 
-template <int kJoints>
 void print_summary(const std::string& robot_file) {
-  const auto model = load_robot<double, kJoints>(robot_file);
   const RobotDescription description = load_robot_description(robot_file);
+  const offline::ModelX model = make_model<double, Eigen::Dynamic>(description);
+  const int joints = model.joint_count();
   std::printf("robot '%s' from %s: %d revolute joints\n\n", model.name.c_str(), robot_file.c_str(),
-              kJoints);
+              joints);
   std::printf("%-8s %-17s %8s %12s %8s %9s %15s\n", "joint", "motor", "link", "mass [kg]", "ratio",
               "Kt [Nm/A]", "armature [kgm2]");
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < joints; ++j) {
     std::printf("%-8s %-17s %8s %12.4f %8.1f %9.2f %15.4f\n", model.joint_names[j].c_str(),
                 description.drives[j].motor.c_str(), model.link_names[j + 1].c_str(),
                 model.inertias[j + 1].mass, model.gear_ratio(j), model.torque_constant(j),
                 model.armature(j));
   }
-  Data<double, kJoints> data(model);
-  const JointVector<double, kJoints> q = sample_pose(model);
-  const JointVector<double, kJoints> g = compute_gravity(model, data, q);
-  const JointMatrix<double, kJoints> M = compute_mass_matrix(model, data, q);
+  offline::DataX data(model);
+  const Eigen::VectorXd q = sample_pose(model);
+  const Eigen::VectorXd g = compute_gravity(model, data, q);
+  const Eigen::MatrixXd M = compute_mass_matrix(model, data, q);
   forward_kinematics(model, data, q);  // the pads' world poses below
   std::printf("\nat q = [%s] rad:\n", joint_list(q, "%.2f").c_str());
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < joints; ++j) {
     std::printf("  %s: gravity %8.3f N·m = %7.1f mA   M_jj %.4f kg·m² (%.0f %% armature)\n",
                 model.joint_names[j].c_str(), g(j), 1000.0 * g(j) / model.torque_constant(j),
                 M(j, j), 100.0 * model.armature(j) / M(j, j));
@@ -67,10 +66,10 @@ void print_summary(const std::string& robot_file) {
     std::printf("\n%zu skin pads (%s):\n", pads.size(), description.pads_file.c_str());
     for (const Pad& pad : pads) {
       const Vector3<double> p = data.oMi[pad.link].apply(pad.center);
-      const Jacobian<double, kJoints> J = point_jacobian(model, data, pad.link, p);
+      const Jacobian<double, Eigen::Dynamic> J = point_jacobian(model, data, pad.link, p);
       // torque a 10 N push along the inward normal produces at the joints
       const Vector3<double> push = -10.0 * (data.oMi[pad.link].R * pad.normal);
-      const JointVector<double, kJoints> tau = J.template topRows<3>().transpose() * push;
+      const Eigen::VectorXd tau = J.topRows<3>().transpose() * push;
       std::printf("  %-16s on %s, area %4.1f cm², 10 N push -> tau = [%s] N·m\n", pad.name.c_str(),
                   model.link_names[pad.link].c_str(), pad.area * 1e4,
                   joint_list(tau, "%6.2f").c_str());
@@ -81,8 +80,7 @@ void print_summary(const std::string& robot_file) {
 }  // namespace
 
 void print_robot_summary(const std::string& robot_file) {
-  with_joint_count(robot_joint_count(robot_file), robot_file,
-                   [&]<int N>() { print_summary<N>(robot_file); });
+  print_summary(robot_file);
 }
 
 void register_info_command(CLI::App& app) {

@@ -36,11 +36,10 @@ inline int robot_joint_count(const std::string& robot_file) {
   return static_cast<int>(load_robot_description(robot_file).chain.joints.size());
 }
 
-/// with_joint_count on a log's joint count, once the robot file is checked to have as many
-/// joints: otherwise a tpf::Error names both ("ex.csv has 2 joints, arm.robot.json has 1").
-template <typename Work>
-void with_log_joint_count(int log_joints, const std::string& log_source,
-                          const std::string& robot_file, Work&& work) {
+/// Checks that the robot file has the log's joint count: otherwise a tpf::Error names both
+/// ("ex.csv has 2 joints, arm.robot.json has 1"). Any count that agrees is accepted.
+inline void require_log_joint_count(int log_joints, const std::string& log_source,
+                                    const std::string& robot_file) {
   const int robot_joints = robot_joint_count(robot_file);
   if (robot_joints != log_joints)
     throw Error::at(log_source, 0, "",
@@ -48,6 +47,14 @@ void with_log_joint_count(int log_joints, const std::string& log_source,
                         std::to_string(log_joints) + "), the robot file " + robot_file + " has " +
                         std::to_string(robot_joints) +
                         ": give the robot file of the arm that made the log (--robot)");
+}
+
+/// with_joint_count on a log's joint count, once require_log_joint_count has checked the robot
+/// file against it.
+template <typename Work>
+void with_log_joint_count(int log_joints, const std::string& log_source,
+                          const std::string& robot_file, Work&& work) {
+  require_log_joint_count(log_joints, log_source, robot_file);
   with_joint_count(log_joints, log_source, std::forward<Work>(work));
 }
 

@@ -7,17 +7,16 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "offline/common/run_time_types.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/unit_check.hpp"
 #include "tpf/dynamics/rnea.hpp"
-#include "tpf/model/model.hpp"
 
 namespace tpf::cli {
 
 /// The checks of `samples` with the robot file's `model` (its gravity torque at every sample).
-template <int N>
-offline::LogChecks check_log_units(const Model<double, N>& model,
-                                   const offline::JointSamples& samples) {
+inline offline::LogChecks check_log_units(const offline::ModelX& model,
+                                          const offline::JointSamples& samples) {
   offline::UnitCheckInput in;
   in.t = samples.t;
   in.q = samples.q;
@@ -26,9 +25,10 @@ offline::LogChecks check_log_units(const Model<double, N>& model,
   in.effort = samples.effort;
   in.gravity.setConstant(samples.size(), samples.joints(),
                          std::numeric_limits<double>::quiet_NaN());
-  Data<double, N> data;
+  offline::DataX data(model);
+  Eigen::VectorXd q(model.joint_count());  // sized once, assigned per sample
   for (Eigen::Index r = 0; r < samples.size(); ++r) {
-    const JointVector<double, N> q = samples.q.row(r).transpose();
+    q = samples.q.row(r).transpose();
     if (q.allFinite()) in.gravity.row(r) = compute_gravity(model, data, q).transpose();
   }
   in.gear_ratio = model.gear_ratio;

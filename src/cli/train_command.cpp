@@ -21,6 +21,7 @@
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
+#include "tpf/estimation/load_estimator.hpp"
 
 namespace {
 
@@ -90,7 +91,11 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(
     const TrainCommandOptions& o, const std::vector<tpf::offline::Log>& logs,
     const tpf::CompensatorWeightFiles& weights = {}) {
   using namespace tpf::offline;
-  tpf::EstimatorSetup<N> setup = tpf::cli::load_model_setup<N>(o.model, "", false);
+  tpf::cli::ModelSetup loaded = tpf::cli::load_model_setup(o.model, "", false);
+  tpf::EstimatorSetup<N> setup{tpf::joint_count_cast<N>(loaded.nominal),
+                               std::move(loaded.pads),
+                               {},
+                               std::move(loaded.weights)};
   setup.weights = weights;
   std::vector<EstimatorTrace> traces;
   for (const Log& log : logs) {

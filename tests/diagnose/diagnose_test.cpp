@@ -22,9 +22,9 @@ offline::Scenario clean_scenario() {
   return scenario;
 }
 
-Diagnosis<kJoints> run(const offline::Scenario& scenario, std::uint64_t seed) {
+Diagnosis run(const offline::Scenario& scenario, std::uint64_t seed) {
   const offline::Log log = offline::simulate_to_log(scenario, seed, 120.0);
-  auto d = offline::diagnose<kJoints>(log, arm());
+  auto d = offline::diagnose(log, joint_count_cast<Eigen::Dynamic>(arm()));
   for (const auto& t : d.trials)
     if (t.round == 1 || t.selected)
       std::printf("  round %d %-60s %7.2f %% BIC %9.0f %s\n", t.round, t.title.c_str(),
@@ -38,7 +38,7 @@ Diagnosis<kJoints> run(const offline::Scenario& scenario, std::uint64_t seed) {
   return d;
 }
 
-std::vector<std::string> selected_keys(const Diagnosis<kJoints>& d) {
+std::vector<std::string> selected_keys(const Diagnosis& d) {
   std::vector<std::string> keys;
   for (int g : d.selected)
     keys.push_back(d.groups[g].key);

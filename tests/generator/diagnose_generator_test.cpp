@@ -36,15 +36,22 @@ const Model<double, 2>& planar_model() {
   return model;
 }
 
+/// The same arm at the tools' run-time joint count.
+const Model<double, Eigen::Dynamic>& planar_model_x() {
+  static const Model<double, Eigen::Dynamic> model =
+      load_robot<double, Eigen::Dynamic>(planar_robot_file());
+  return model;
+}
+
 // What one claim names: its group's key and joint and, when ambiguous, the alternatives'.
-std::set<std::string> claim_names(const Diagnosis<2>& d, const offline::Claim& c) {
+std::set<std::string> claim_names(const Diagnosis& d, const offline::Claim& c) {
   std::set<std::string> names;
   for (int g : c.groups)
     names.insert(d.groups[g].key + "@" + std::to_string(d.groups[g].joint + 1));
   return names;
 }
 
-std::string describe(const Diagnosis<2>& d) {
+std::string describe(const Diagnosis& d) {
   std::string text;
   for (const offline::Claim& c : d.claims) {
     text += c.ambiguous() ? "ambiguous{" : "named{";
@@ -55,9 +62,9 @@ std::string describe(const Diagnosis<2>& d) {
   return text.empty() ? "nothing" : text;
 }
 
-Diagnosis<2> run(const PlanarArmPlant& plant, const char* label) {
+Diagnosis run(const PlanarArmPlant& plant, const char* label) {
   const offline::Log log = generate_planar_log(plant);
-  auto d = offline::diagnose<2>(log, planar_model());
+  auto d = offline::diagnose(log, planar_model_x());
   std::printf("  [%s] %s\n", label, describe(d).c_str());
   for (const auto& t : d.trials)
     if (t.improvement > 0.03 || t.selected || std::getenv("TPF_GENERATOR_TRIALS"))
@@ -85,7 +92,7 @@ Diagnosis<2> run(const PlanarArmPlant& plant, const char* label) {
 // The planted effect `key` (on `joint`, 1-based; 0 = every joint, a global claim) is named or
 // is one of an ambiguous claim's names; every claim names only something in `allowed`.
 enum class Outcome { Named, Ambiguous, Missed };
-Outcome outcome(const Diagnosis<2>& d, const std::string& key, int joint) {
+Outcome outcome(const Diagnosis& d, const std::string& key, int joint) {
   Outcome best = Outcome::Missed;
   for (const offline::Claim& c : d.claims) {
     const auto names = claim_names(d, c);
@@ -96,7 +103,7 @@ Outcome outcome(const Diagnosis<2>& d, const std::string& key, int joint) {
   return best;
 }
 
-void expect_only(const Diagnosis<2>& d, const std::set<std::string>& allowed) {
+void expect_only(const Diagnosis& d, const std::set<std::string>& allowed) {
   for (const offline::Claim& c : d.claims)
     for (const std::string& name : claim_names(d, c)) {
       const std::string key = name.substr(0, name.find('@'));
@@ -115,7 +122,7 @@ void expect_only(const Diagnosis<2>& d, const std::set<std::string>& allowed) {
 
 // The CAD check claims no payload the generator did not plant: no claim, or "ambiguous between
 // the payload and" a selected effect that is one of `planted`.
-void expect_no_unplanted_payload(const Diagnosis<2>& d, const std::set<std::string>& planted) {
+void expect_no_unplanted_payload(const Diagnosis& d, const std::set<std::string>& planted) {
   const offline::CadPayloadCheck& c = d.cad_payload;
   EXPECT_FALSE(c.claimed) << "payload " << c.mass << " ± " << c.mass_standard_error << " kg, "
                           << 100 * c.improvement << " % beyond the selected effects";
@@ -126,11 +133,11 @@ void expect_no_unplanted_payload(const Diagnosis<2>& d, const std::set<std::stri
   }
 }
 
-NominalModel<double, 2> through_a_file(const NominalModel<double, 2>& model) {
+NominalModelX through_a_file(const NominalModelX& model) {
   const auto path = std::filesystem::temp_directory_path() /
                     ("tpf_generator_params_" + std::to_string(::getpid()) + ".json");
-  save_nominal_model<2>(path, model, "generator");
-  const NominalModel<double, 2> loaded = load_nominal_model<2>(path, planar_robot_file());
+  save_nominal_model(path, model, "generator");
+  const NominalModelX loaded = load_nominal_model(path, planar_robot_file());
   std::filesystem::remove(path);
   return loaded;
 }
@@ -149,9 +156,9 @@ double largest_difference(const offline::JointSamples& s, const Eigen::MatrixXd&
 // diagnose fitted (its columns × θ) on the moving samples (where the regressor's sgn, by
 // threshold, and the run time's agree). The file it writes holds that model refitted on every
 // row: the same effects, its own round trip to 1e-9.
-void expect_written_model_runs(const Diagnosis<2>& d) {
+void expect_written_model_runs(const Diagnosis& d) {
   const offline::JointSamples& s = d.samples;
-  const NominalModel<double, 2> loaded = through_a_file(d.judged);
+  const NominalModelX loaded = through_a_file(d.judged);
   EXPECT_LT(largest_difference(s, offline::nominal_residual(loaded, s), d.residual_written), 1e-9);
   EXPECT_LT(largest_difference(s, offline::nominal_residual(through_a_file(d.nominal), s),
                                offline::nominal_residual(d.nominal, s)),
@@ -164,17 +171,17 @@ void expect_written_model_runs(const Diagnosis<2>& d) {
     // Not a term of its own in the written model: a payload is folded into the base parameters,
     // load-dependent friction refitted with the Stribeck curves.
     if (g.written_to == offline::WrittenTo::kRigidBody || g.key == "load_friction") continue;
-    NominalModel<double, 2> without = loaded;
+    NominalModelX without = loaded;
     offline::remove_group(g, without);
     const int j = g.joint;
     ++checked;
-    Data<double, 2> data;
+    Data<double, Eigen::Dynamic> data(loaded.model);
     double term_error = 0;
     for (Eigen::Index k = 0; k < s.size(); k += 7) {
       if (!s.valid[k] || std::abs(s.dq(k, j)) < 1e-4) continue;
-      const V2 q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose(),
-               ddq = s.ddq.row(k).transpose();
-      V2 r1, f1, r0, f0;
+      const Eigen::VectorXd q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose(),
+                            ddq = s.ddq.row(k).transpose();
+      Eigen::VectorXd r1, f1, r0, f0;
       predict_effort(loaded, data, q, dq, ddq, r1, f1);
       predict_effort(without, data, q, dq, ddq, r0, f0);
       term_error = std::max(term_error, std::abs((r1 + f1 - r0 - f0)[j] - d.effect_terms[e](k, j)));
@@ -360,8 +367,7 @@ offline::Log three_file_log(const std::array<double, 3>& offsets) {
   return several_file_log(plants, "file");
 }
 
-const offline::CandidateTrial* first_trial(const Diagnosis<2>& d, const std::string& key,
-                                           int joint) {
+const offline::CandidateTrial* first_trial(const Diagnosis& d, const std::string& key, int joint) {
   for (const offline::CandidateTrial& t : d.trials)
     if (t.key == key && t.joint == joint - 1) return &t;
   return nullptr;
@@ -372,7 +378,7 @@ TEST(Generator, AnOffsetMissingFromOneFileIsNotClaimed) {
   // offset is confident and helps on the held-out file 3, but file 2 held out in turn gets worse.
   // Not a property of the arm: nothing is claimed, and the findings say why.
   const offline::Log log = three_file_log({0.4, 0.0, 0.4});
-  const auto d = offline::diagnose<2>(log, planar_model());
+  const auto d = offline::diagnose(log, planar_model_x());
   std::printf("  [offset missing from one file] %s\n", describe(d).c_str());
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
@@ -402,7 +408,7 @@ TEST(Generator, AnOffsetMissingFromOneFileIsNotClaimed) {
 
 TEST(Generator, AnOffsetInEveryFileIsClaimedAcrossFiles) {
   const offline::Log log = three_file_log({0.3, 0.3, 0.3});
-  const auto d = offline::diagnose<2>(log, planar_model());
+  const auto d = offline::diagnose(log, planar_model_x());
   std::printf("  [offset in every file] %s\n", describe(d).c_str());
   EXPECT_NE(outcome(d, "offset", 2), Outcome::Missed) << describe(d);
   expect_only(d, {"offset@2", "asymmetric_friction@2"});
@@ -431,7 +437,7 @@ std::vector<PlanarArmPlant> repeated_run_plants(const std::array<double, 3>& sti
 }
 
 // The rows of the log's files in `files` (0-based) are diagnose's held-out samples, and only they.
-void expect_heldout_files(const offline::Log& log, const Diagnosis<2>& d,
+void expect_heldout_files(const offline::Log& log, const Diagnosis& d,
                           const std::set<std::size_t>& files) {
   for (std::size_t f = 0; f < log.file_count(); ++f) {
     const auto [begin, end] = log.file_rows(f);
@@ -449,7 +455,7 @@ TEST(Generator, AnEffectOfTwoRepeatedRunsIsNotClaimed) {
   // scored on a fit that saw its own motion; held out together, the spring fitted on the other
   // file does not lower their error, and fitted on them it does not transfer to file 1.
   const offline::Log log = several_file_log(repeated_run_plants({0.0, 1.5, 1.5}), "repeat");
-  const auto d = offline::diagnose<2>(log, planar_model());
+  const auto d = offline::diagnose(log, planar_model_x());
   std::printf("  [spring in two repeated runs only] %s\n", describe(d).c_str());
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
@@ -465,7 +471,7 @@ TEST(Generator, FilesThatAllRepeatOneMotionAreNotHeldOutByFile) {
   std::vector<PlanarArmPlant> plants = repeated_run_plants({0.0, 1.5, 1.5});
   plants.erase(plants.begin());
   const offline::Log log = several_file_log(plants, "alike");
-  const auto d = offline::diagnose<2>(log, planar_model());
+  const auto d = offline::diagnose(log, planar_model_x());
   std::printf("  [one motion twice] %s\n    %s\n", describe(d).c_str(), d.heldout_split.c_str());
   EXPECT_EQ(d.samples.heldout_file, 0);
   EXPECT_NE(d.heldout_split.find("Not held out by file"), std::string::npos) << d.heldout_split;
@@ -483,7 +489,7 @@ TEST(Generator, ASpringOfEveryFileIsClaimedAndTestedOutsideTheRange) {
   // motions, and each motion leaves the other's range of q2 (centres 0.9 and 0.1 rad), where the
   // extrapolated k·q must lower the error too.
   const offline::Log log = several_file_log(repeated_run_plants({1.5, 1.5, 1.5}), "spring");
-  const auto d = offline::diagnose<2>(log, planar_model());
+  const auto d = offline::diagnose(log, planar_model_x());
   std::printf("  [spring in every file] %s\n", describe(d).c_str());
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
@@ -648,7 +654,7 @@ TEST(Generator, DirectionAsymmetricViscousFriction) {
 // on joint 2 is [q̈_2; q̈_1] (in the rigid body's span) minus [q̈_2; 0], the same column as −C·q̈_2
 // on joint 1. The planted joint is named, or the claim is ambiguous and lists it; never a
 // confident name of joint 1 alone.
-void expect_acceleration_coupling_of_joint_2(const Diagnosis<2>& d,
+void expect_acceleration_coupling_of_joint_2(const Diagnosis& d,
                                              const std::set<std::string>& planted) {
   EXPECT_NE(outcome(d, "coupling", 2), Outcome::Missed) << describe(d);
   expect_only(d, planted);

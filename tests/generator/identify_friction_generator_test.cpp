@@ -38,13 +38,13 @@ struct HeldOutRms {
 // Per joint: held-out RMS of the friction target effort − rigid prediction (= identify's residual
 // + its written friction) against the written curve and against c·sgn(q̇) + b·q̇ fitted by least
 // squares on the training samples; non-static samples, as identify fits and compares them.
-template <int N>
-std::vector<HeldOutRms> curve_against_linear(const offline::Identification<N>& id,
-                                             const Model<double, N>& model) {
+std::vector<HeldOutRms> curve_against_linear(const offline::Identification& id,
+                                             const Model<double, Eigen::Dynamic>& model) {
   const offline::JointSamples& s = id.samples;
   const Eigen::MatrixXd load = offline::gravity_load(model, s);
-  std::vector<HeldOutRms> out(N);
-  for (int j = 0; j < N; ++j) {
+  const int joints = model.joint_count();
+  std::vector<HeldOutRms> out(static_cast<std::size_t>(joints));
+  for (int j = 0; j < joints; ++j) {
     std::vector<Eigen::Index> training, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
       if (s.valid[k] && s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid &&
@@ -52,7 +52,7 @@ std::vector<HeldOutRms> curve_against_linear(const offline::Identification<N>& i
         (s.heldout[k] ? heldout : training).push_back(k);
     if (training.size() < 50 || heldout.empty()) continue;
     auto written = [&](Eigen::Index k) {
-      const JointVector<double, N> dq = s.dq.row(k).transpose(), g = load.row(k).transpose();
+      const Eigen::VectorXd dq = s.dq.row(k).transpose(), g = load.row(k).transpose();
       return stribeck_friction(id.nominal.friction, dq, g)[j];
     };
     auto target = [&](Eigen::Index k) { return id.residual(k, j) + written(k); };
@@ -93,15 +93,14 @@ std::vector<HeldOutRms> curve_against_linear(const offline::Identification<N>& i
   return out;
 }
 
-template <int N>
-void expect_curve_no_worse(const offline::Log& log, const Model<double, N>& model,
+void expect_curve_no_worse(const offline::Log& log, const Model<double, Eigen::Dynamic>& model,
                            const std::string& label) {
-  const auto id = offline::identify<N>(log, model);
+  const offline::Identification id = offline::identify(log, model);
   const auto rms = curve_against_linear(id, model);
   for (const std::string& note : id.friction_notes)
     std::printf("  [%s] %s\n", label.c_str(), note.c_str());
   int compared = 0;
-  for (int j = 0; j < N; ++j) {
+  for (int j = 0; j < model.joint_count(); ++j) {
     if (rms[j].samples == 0) continue;
     ++compared;
     std::printf(
@@ -125,7 +124,7 @@ void expect_curve_no_worse(const offline::Log& log, const Model<double, N>& mode
 }
 
 TEST(IdentifyFriction, CurveIsNoWorseThanLinearOnTheGeneratorsLogs) {
-  const Model<double, 2> model = load_robot<double, 2>(planar_robot_file());
+  const auto model = load_robot<double, Eigen::Dynamic>(planar_robot_file());
   struct Case {
     const char* label;
     PlanarArmPlant plant;
@@ -152,22 +151,21 @@ TEST(IdentifyFriction, CurveIsNoWorseThanLinearOnTheGeneratorsLogs) {
   cases[5].plant.random_stops = false;
   cases[5].plant.viscous = {0.8, 0.5};
   for (const Case& c : cases)
-    expect_curve_no_worse<2>(generate_planar_log(c.plant), model, c.label);
+    expect_curve_no_worse(generate_planar_log(c.plant), model, c.label);
 }
 
 TEST(IdentifyFriction, CurveIsNoWorseThanLinearOnTheKinovaLogs) {
-  const Model<double, 7> model = kinova_model();
-  expect_curve_no_worse<7>(offline::read_logs(kinova_fitting_files()), model,
-                           "Kinova fitting files");
-  expect_curve_no_worse<7>(offline::read_logs(kinova_testing_files()), model,
-                           "Kinova testing files");
+  const auto model = joint_count_cast<Eigen::Dynamic>(kinova_model());
+  expect_curve_no_worse(offline::read_logs(kinova_fitting_files()), model, "Kinova fitting files");
+  expect_curve_no_worse(offline::read_logs(kinova_testing_files()), model, "Kinova testing files");
 }
 
 // The Gen3's joint 1 turns about the vertical: its gravity torque is zero up to rounding, so a
 // load column α·|G| there could only fit noise (it gave α_v ≈ 2.5e3). Held at zero and said; the
 // joints that carry gravity keep theirs.
 TEST(IdentifyFriction, NoLoadFrictionOnAVerticalAxis) {
-  const auto id = offline::identify<7>(offline::read_logs(kinova_fitting_files()), kinova_model());
+  const offline::Identification id = offline::identify(
+      offline::read_logs(kinova_fitting_files()), joint_count_cast<Eigen::Dynamic>(kinova_model()));
   const auto& f = id.nominal.friction;
   EXPECT_EQ(f.load_coulomb[0], 0.0);
   EXPECT_EQ(f.load_viscous[0], 0.0);

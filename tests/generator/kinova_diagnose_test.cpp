@@ -20,8 +20,9 @@ namespace {
 TEST(DiagnoseKinova, ClaimsOnlyWhatLowersTheErrorOfTheModelItWrites) {
   offline::DiagnoseOptions options;
   options.inertia_prior = false;
-  const auto d =
-      offline::diagnose<7>(offline::read_logs(kinova_fitting_files()), kinova_model(), options);
+  const offline::Diagnosis d =
+      offline::diagnose(offline::read_logs(kinova_fitting_files()),
+                        joint_count_cast<Eigen::Dynamic>(kinova_model()), options);
   for (const offline::Claim& c : d.claims) {
     if (!c.scored_joints.empty()) continue;
     EXPECT_GE(c.improvements[0], options.min_improvement) << d.groups[c.groups[0]].title;

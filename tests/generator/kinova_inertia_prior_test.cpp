@@ -26,14 +26,19 @@
 namespace tpf::test {
 namespace {
 
+/// The Gen3's robot file at the tools' run-time joint count.
+Model<double, Eigen::Dynamic> gen3_model() {
+  return joint_count_cast<Eigen::Dynamic>(kinova_model());
+}
+
 /// RMS per joint [N·m] of effort − model on the scoring files' valid samples.
-Eigen::VectorXd scoring_rms(const NominalModel<double, 7>& nominal) {
+Eigen::VectorXd scoring_rms(const NominalModelX& nominal) {
   const offline::Log log = offline::read_logs(kinova_testing_files());
   offline::SampleOptions options;
   options.hold_out = false;
   const offline::JointSamples s =
       offline::extract_joint_samples(log, nominal.model.torque_constant, options);
-  const Eigen::MatrixXd residual = offline::nominal_residual<7>(nominal, s);
+  const Eigen::MatrixXd residual = offline::nominal_residual(nominal, s);
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(7), count = sum;
   for (Eigen::Index k = 0; k < s.size(); ++k)
     for (int j = 0; j < 7; ++j)
@@ -45,9 +50,9 @@ TEST(InertiaPriorKinova, MakesTheMassMatrixPhysicalAndPredictsTheHeldOutFilesBet
   const offline::Log fit = offline::read_logs(kinova_fitting_files());
   offline::IdentifyOptions options;
   EXPECT_TRUE(options.inertia_prior);  // the default
-  const auto with = offline::identify<7>(fit, kinova_model(), options);
+  const offline::Identification with = offline::identify(fit, gen3_model(), options);
   options.inertia_prior = false;
-  const auto plain = offline::identify<7>(fit, kinova_model(), options);
+  const offline::Identification plain = offline::identify(fit, gen3_model(), options);
   EXPECT_LT(plain.consistency.min_mass_eigenvalue, -1.0);  // measured −2.07 kg·m²
   // The plain fit's check points at the prior; with it the model passes the check.
   const auto points_at_prior = [](const std::string& problem) {
@@ -100,15 +105,15 @@ TEST(InertiaPriorKinova, DiagnoseWritesItsModelWithIdentifysStrength) {
   // its written model too, has it, and that model predicts the scoring files no worse than
   // identify's.
   const offline::Log log = offline::read_logs(kinova_fitting_files());
-  const auto id = offline::identify<7>(log, kinova_model());
+  const offline::Identification id = offline::identify(log, gen3_model());
   ASSERT_GT(id.inertia_prior.written_strength, 0.0);
   offline::DiagnoseOptions options;
   options.inertia_prior_strength = id.inertia_prior.written_strength;
-  const auto d = offline::diagnose<7>(log, kinova_model(), options);
+  const offline::Diagnosis d = offline::diagnose(log, gen3_model(), options);
   EXPECT_EQ(d.inertia_prior_strength, id.inertia_prior.written_strength);
   EXPECT_NE(d.inertia_prior_choice.find("identify's"), std::string::npos);
   EXPECT_EQ(d.heldout_method, "by file: RecordTrajectory_quadratic.csv.gz");
-  EXPECT_GT(offline::min_mass_eigenvalue<7>(d.nominal), 0.0);
+  EXPECT_GT(offline::min_mass_eigenvalue(d.nominal), 0.0);
   const Eigen::VectorXd identified = scoring_rms(id.nominal), diagnosed = scoring_rms(d.nominal);
   for (int j = 0; j < 7; ++j)
     std::printf(
@@ -122,12 +127,12 @@ TEST(InertiaPriorKinova, WhereNoStrengthLiftsMOfQTheLowestHeldOutErrorIsKept) {
   // strongest prior would pull the fit to the robot file and still not make M(q) reach it, so
   // the strength of lowest held-out error is kept, not the strongest.
   const offline::Log log = offline::read_logs(kinova_fitting_files());
-  const Model<double, 7> model = kinova_model();
-  offline::IdentificationSetup<7> setup = offline::prepare_identification(log, model, {});
+  const Model<double, Eigen::Dynamic> model = gen3_model();
+  offline::IdentificationSetup setup = offline::prepare_identification(log, model, {});
   const offline::JointSamples& s = setup.samples;
-  const auto regressors = std::make_shared<const offline::SampleRegressors<7>>(
-      model, offline::EffectDesign<7>::regressor_columns(setup.base.independent, false), s);
-  const offline::EffectDesign<7> design(model, setup.base, s, regressors, {}, 1e-4);
+  const auto regressors = std::make_shared<const offline::SampleRegressors>(
+      model, offline::EffectDesign::regressor_columns(7, setup.base.independent, false), s);
+  const offline::EffectDesign design(model, setup.base, s, regressors, {}, 1e-4);
   const offline::DesignGrams grams = design.accumulate(s);
   std::vector<int> columns;
   for (const offline::FeatureGroup& g : design.groups())
@@ -139,10 +144,10 @@ TEST(InertiaPriorKinova, WhereNoStrengthLiftsMOfQTheLowestHeldOutErrorIsKept) {
   selection.regimes = {false, true, true};
   selection.joint_weights =
       offline::moving_residual_weights(grams, offline::fit_columns(grams, columns, selection));
-  offline::RobotFileInertiaPrior<7> prior =
+  offline::RobotFileInertiaPrior prior =
       offline::robot_file_inertia_prior(model, design, setup.base);
   prior.floor *= 100;
-  const offline::PriorFit<7> fit =
+  const offline::PriorFit fit =
       offline::choose_inertia_prior(model, design, setup.base, grams, columns, selection, &prior);
   ASSERT_FALSE(fit.candidates.empty());
   const offline::PriorCandidate* best = &fit.candidates.front();

@@ -24,9 +24,9 @@ offline::Log elbow_still_log(double elbow_amplitude) {
 }
 
 TEST(StillJoint, IdentifyFitsTheJointsThatMove) {
-  const Model<double, 2> model = load_robot<double, 2>(planar_robot_file());
-  const auto moving = offline::identify<2>(elbow_still_log(1.4), model);
-  const auto still = offline::identify<2>(elbow_still_log(0.0), model);
+  const auto model = load_robot<double, Eigen::Dynamic>(planar_robot_file());
+  const auto moving = offline::identify(elbow_still_log(1.4), model);
+  const auto still = offline::identify(elbow_still_log(0.0), model);
   ASSERT_TRUE(still.joint_weights.allFinite()) << still.joint_weights.transpose();
   EXPECT_TRUE(still.nominal.base_values.allFinite());
   EXPECT_GT(still.nominal.base_values.norm(), 0.0);
@@ -40,8 +40,8 @@ TEST(StillJoint, IdentifyFitsTheJointsThatMove) {
 }
 
 TEST(StillJoint, DiagnoseFitsTheJointsThatMove) {
-  const Model<double, 2> model = load_robot<double, 2>(planar_robot_file());
-  const auto d = offline::diagnose<2>(elbow_still_log(0.0), model);
+  const auto model = load_robot<double, Eigen::Dynamic>(planar_robot_file());
+  const auto d = offline::diagnose(elbow_still_log(0.0), model);
   EXPECT_LT(d.before[0][2].rmse(), 0.2);
   EXPECT_TRUE(std::isfinite(d.after[0][2].rmse()));
 }

@@ -22,7 +22,9 @@ offline::Log twin_log(double duration, std::uint64_t seed) {
 
 TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
   const offline::Log log = twin_log(150.0, 11);
-  const auto id = offline::identify<kJoints>(log, arm());
+  const offline::Identification id =
+      offline::identify(log, joint_count_cast<Eigen::Dynamic>(arm()));
+  const NominalModel<double, kJoints> identified = joint_count_cast<kJoints>(id.nominal);
   const auto& s = id.samples;
   EXPECT_EQ(s.units.unit, EffortUnit::Milliampere);
   // The fit is in N·m; this test compares in mA, as the log and its gt_fric hold it.
@@ -39,7 +41,7 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
     const Vec q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
     const Vec ddq = s.ddq.row(k).transpose();
     Vec r1, f1, r2, f2;
-    predict_effort(id.nominal, d1, q, dq, ddq, r1, f1);
+    predict_effort(identified, d1, q, dq, ddq, r1, f1);
     predict_effort(truth, d2, q, dq, ddq, r2, f2);
     r1 = r1.cwiseProduct(ma), f1 = f1.cwiseProduct(ma), r2 = r2.cwiseProduct(ma);
     for (int j = 0; j < kJoints; ++j) {
@@ -71,9 +73,10 @@ TEST(Identify, RecoversTheTwinsRigidBodyAndFrictionOnHeldOutData) {
 TEST(Identify, TheInertiaPriorLeavesAWellExcitedFitAlone) {
   const offline::Log log = twin_log(30.0, 12);
   offline::IdentifyOptions options;
-  const auto with = offline::identify<kJoints>(log, arm(), options);
+  const auto model = joint_count_cast<Eigen::Dynamic>(arm());
+  const offline::Identification with = offline::identify(log, model, options);
   options.inertia_prior = false;
-  const auto plain = offline::identify<kJoints>(log, arm(), options);
+  const offline::Identification plain = offline::identify(log, model, options);
   EXPECT_EQ(with.inertia_prior.judged_strength, 0.0);
   EXPECT_EQ(with.inertia_prior.written_strength, 0.0);
   EXPECT_GT(with.inertia_prior.written_min_eigenvalue, 0.0);

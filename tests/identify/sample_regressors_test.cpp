@@ -23,15 +23,17 @@ TEST(SampleRegressors, StoredEntriesAreComputeRegressorsOwn) {
   s.ddq = Eigen::MatrixXd::NullaryExpr(n, kJoints, [&] { return u(rng); });
   s.valid.assign(n, 1);
   s.valid[7] = 0;  // an invalid sample is skipped
-  const std::vector<int> base = rigid_body_base_parameters(arm()).independent;
-  const offline::SampleRegressors<kJoints> regressors(
-      arm(), offline::EffectDesign<kJoints>::regressor_columns(base, true), s);
+  const Model<double, Eigen::Dynamic> model = joint_count_cast<Eigen::Dynamic>(arm());
+  const std::vector<int> base = rigid_body_base_parameters(model).independent;
+  const offline::SampleRegressors regressors(
+      model, offline::EffectDesign::regressor_columns(kJoints, base, true), s);
   ASSERT_EQ(regressors.size(), n);
   EXPECT_TRUE(regressors.holds(10 * (kJoints - 1)));
   EXPECT_FALSE(regressors.holds(11 * kJoints));  // a friction column no family reads
 
   ArmData data;
-  Regressor<double, kJoints> expected, loaded = Regressor<double, kJoints>::Zero();
+  Regressor<double, kJoints> expected;
+  Eigen::MatrixXd loaded = Eigen::MatrixXd::Zero(kJoints, 13 * kJoints);
   for (Eigen::Index k = 0; k < n; ++k) {
     if (!s.valid[k]) continue;
     compute_regressor(arm(), data, s.q.row(k).transpose(), s.dq.row(k).transpose(),

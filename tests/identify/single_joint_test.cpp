@@ -51,7 +51,8 @@ TEST(SingleJoint, TorqueLogRecoversThePendulumAndItsFriction) {
   truth.viscous << 0.2;
   truth.load_coulomb << 0.02;
   const auto model = load_robot<double, 1>(kRobot);
-  const auto id = offline::identify<1>(pendulum_log(truth), model);
+  const offline::Identification id =
+      offline::identify(pendulum_log(truth), load_robot<double, Eigen::Dynamic>(kRobot));
   EXPECT_EQ(id.samples.units.unit, EffortUnit::NewtonMetre);
   EXPECT_TRUE(id.consistency.consistent());
   const auto& f = id.nominal.friction;
@@ -62,21 +63,22 @@ TEST(SingleJoint, TorqueLogRecoversThePendulumAndItsFriction) {
   // Held-out residual at the noise level (0.01 N·m).
   EXPECT_LT(id.heldout[0][offline::Regime::Moving].rmse, 0.015);
   // The rigid part equals the true RNEA (mass·g·l and inertia incl. armature).
+  const NominalModel<double, 1> identified = joint_count_cast<1>(id.nominal);
   Data<double, 1> d1, d2;
   for (double q : {-1.0, 0.0, 0.7}) {
     V1 rigid, fric;
-    predict_effort(id.nominal, d1, V1(q), V1(0.3), V1(-2.0), rigid, fric);
+    predict_effort(identified, d1, V1(q), V1(0.3), V1(-2.0), rigid, fric);
     EXPECT_NEAR(rigid[0], rnea(model, d2, V1(q), V1(0.3), V1(-2.0))[0], 0.01);
   }
 }
 
 TEST(SingleJoint, MissingEffortShortAndTruncatedLogsAreRefusedWithTheFileName) {
-  const auto model = load_robot<double, 1>(kRobot);
+  const auto model = load_robot<double, Eigen::Dynamic>(kRobot);
   offline::Log log = pendulum_log({});
   offline::Log no_effort = log;
   no_effort.columns[4] = "other";
   try {
-    offline::identify<1>(no_effort, model);
+    offline::identify(no_effort, model);
     FAIL() << "no effort column accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("pendulum.csv"), std::string::npos) << e.what();
@@ -84,7 +86,7 @@ TEST(SingleJoint, MissingEffortShortAndTruncatedLogsAreRefusedWithTheFileName) {
   offline::Log short_log = log;
   short_log.values.conservativeResize(50, Eigen::NoChange);
   try {
-    offline::identify<1>(short_log, model);
+    offline::identify(short_log, model);
     FAIL() << "a 50-sample log accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("pendulum.csv: fewer than 100"), std::string::npos)

@@ -54,13 +54,14 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
   const Model<double, N> model = load_robot<double, N>(data(robot));
   // The twin's drive holds the rigid body the robot file declares; where the log is too short
   // to excite every inertia, the inertia prior (on by default) keeps M(q) positive definite.
-  const Identification<N> identified = identify(training, model, {});
+  const Model<double, Eigen::Dynamic> any_model = joint_count_cast<Eigen::Dynamic>(model);
+  const Identification identified = identify(training, any_model, {});
   EXPECT_TRUE(identified.consistency.consistent())
       << robot << ": "
       << (identified.consistency.problems.empty() ? "" : identified.consistency.problems[0]);
-  const Diagnosis<N> diagnosis = diagnose(training, model, {});
+  const Diagnosis diagnosis = diagnose(training, any_model, {});
   EstimatorSetup<N> setup;
-  setup.nominal = diagnosis.nominal;
+  setup.nominal = joint_count_cast<N>(diagnosis.nominal);
 
   // train a small compensator on the training log
   setup.parameters = estimator_parameters_from_noise<N>(

@@ -39,8 +39,8 @@ const Log& excitation_log() {
 
 EstimatorSetup<kArm4Joints> twin_setup() {
   EstimatorSetup<kArm4Joints> s;
-  s.nominal = declared_nominal_model<kArm4Joints>(data_path("arm4.robot.json"),
-                                                  data_path("arm4.friction.json"));
+  s.nominal = joint_count_cast<kArm4Joints>(
+      declared_nominal_model(data_path("arm4.robot.json"), data_path("arm4.friction.json")));
   s.pads = load_pads(data_path("arm4.pads.json"), s.nominal.model);
   s.parameters = estimator_parameters_from_noise<kArm4Joints>(
       estimate_sensor_noise(excitation_log(), s.nominal.model.torque_constant));

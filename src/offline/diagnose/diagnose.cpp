@@ -17,7 +17,6 @@
 #include "offline/identify/parallel_jobs.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/validate/measured_facts.hpp"
-#include "tpf/common/joint_counts.hpp"
 #include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
@@ -51,26 +50,24 @@ struct DeclaredFit {
 
 /// The strength of the prior for every fit of diagnose (DeclaredFit), its M(q) without it and
 /// why, into `fit`.
-template <int N>
-void declared_prior_strength(const Model<double, N>& model, const BaseParameters& base,
-                             const EffectDesign<N>& declared, const JointSamples& s,
+void declared_prior_strength(const ModelX& model, const BaseParameters& base,
+                             const EffectDesign& declared, const JointSamples& s,
                              const DesignGrams& grams, const FitSelection& selection,
-                             const RobotFileInertiaPrior<N>& prior, double given,
-                             DeclaredFit& fit) {
+                             const RobotFileInertiaPrior& prior, double given, DeclaredFit& fit) {
   const std::vector<int> columns = declared.declared_columns();
   FitSelection every = selection;
   every.heldout_rows = true;
   if (std::isfinite(given)) {
-    const PriorFit<N> with = fit_with_inertia_prior_strength(model, declared, base, grams, columns,
-                                                             every, &prior, given);
+    const PriorFit with = fit_with_inertia_prior_strength(model, declared, base, grams, columns,
+                                                          every, &prior, given);
     fit.prior_strength = given;
     fit.min_mass_eigenvalue_without_prior = with.min_eigenvalue_without;
     fit.prior_choice = "identify's (chosen on its held-out rows)";
     return;
   }
-  const PriorFit<N> judged =
+  const PriorFit judged =
       choose_inertia_prior(model, declared, base, grams, columns, selection, &prior);
-  const PriorFit<N> written =
+  const PriorFit written =
       holds_rows_out(s)
           ? refit_with_inertia_prior(model, declared, base, grams, columns, every, &prior, judged)
           : judged;
@@ -80,10 +77,9 @@ void declared_prior_strength(const Model<double, N>& model, const BaseParameters
   fit.prior_choice = judged.choice;
 }
 
-template <int N>
-DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& base,
-                         const EffectDesign<N>& declared, const JointSamples& s,
-                         FitSelection selection, const RobotFileInertiaPrior<N>* prior,
+DeclaredFit fit_declared(const ModelX& model, const BaseParameters& base,
+                         const EffectDesign& declared, const JointSamples& s,
+                         FitSelection selection, const RobotFileInertiaPrior* prior,
                          double given_strength) {
   const DesignGrams grams = declared.accumulate(s, 4);
   Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
@@ -101,7 +97,7 @@ DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& ba
       declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
   fit.residual = std::move(predictions[0]);  // in place: effort − prediction
   fit.residual = s.effort - fit.residual;
-  fit.viscous.resize(N);
+  fit.viscous.resize(declared.joints());
   for (const FeatureGroup& g : declared.groups())
     if (g.key == JointFrictionColumns::key)
       fit.viscous[g.joint] = std::max(theta[g.columns[JointFrictionColumns::kViscous]], 0.0);
@@ -109,8 +105,7 @@ DeclaredFit fit_declared(const Model<double, N>& model, const BaseParameters& ba
   return fit;
 }
 
-template <int N>
-CandidateInputs candidate_inputs(const Model<double, N>& model, const IdentificationSetup<N>& setup,
+CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup& setup,
                                  const JointSamples& s, const ResidualAnalysis& analysis,
                                  const DeclaredFit& fit) {
   CandidateInputs inputs;
@@ -120,7 +115,7 @@ CandidateInputs candidate_inputs(const Model<double, N>& model, const Identifica
   inputs.prediction_rate = analysis.prediction_rate;
   inputs.abs_gravity = setup.abs_gravity ? *setup.abs_gravity : gravity_load(model, s);
   inputs.reference_temperature =
-      s.temperature.cols() == N
+      s.temperature.cols() == s.joints()
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
           : 25.0;
   inputs.viscous = fit.viscous;
@@ -227,8 +222,7 @@ std::string heldout_method(const Log& log, const FileSplit& split, const JointSa
 /// The folds a candidate's gain must transfer to (each group of files but the selection's held
 /// out in turn, fitted on the rest), and every held-out group (the selection's first) scored only
 /// outside the range of q its fit saw.
-template <int N>
-void held_out_folds(const Log& log, const FileSplit& split, const EffectDesign<N>& design,
+void held_out_folds(const Log& log, const FileSplit& split, const EffectDesign& design,
                     const JointSamples& s, std::vector<TransferFold>& transfer,
                     std::vector<OutsideFold>& outside) {
   if (split.groups.size() < 2) return;
@@ -244,7 +238,7 @@ void held_out_folds(const Log& log, const FileSplit& split, const EffectDesign<N
     for (std::size_t k = 0; k < fit_rows.size(); ++k)
       fit_rows[k] = !fold.heldout[k];
     const std::vector<std::pair<double, double>> range = position_range(fold, fit_rows);
-    for (int j = 0; j < N; ++j)
+    for (int j = 0; j < fold.joints(); ++j)
       for (Eigen::Index k = 0; k < fold.size(); ++k)
         if (fold.heldout[static_cast<std::size_t>(k)] && fold.q(k, j) >= range[j].first &&
             fold.q(k, j) <= range[j].second)
@@ -273,8 +267,7 @@ struct EffectPredictions {
   Eigen::MatrixXd final_non_friction;  ///< non_friction of the model refitted on every row
 };
 
-template <int N>
-EffectPredictions predict_effects(const EffectDesign<N>& design, const EffectDiagnosis& d,
+EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagnosis& d,
                                   const EffectSelection& sel, bool refitted) {
   std::vector<Eigen::VectorXd> thetas{sel.theta_selected, sel.theta_before};
   for (std::size_t e = 0; e < d.selected.size(); ++e) {
@@ -305,15 +298,15 @@ EffectPredictions predict_effects(const EffectDesign<N>& design, const EffectDia
 /// folded into it), friction levels, and the effects the run time evaluates (each group written
 /// by its effect type). Returns the linear friction the curves start from; `load_selected` when
 /// load-dependent friction is in it.
-template <int N>
-StribeckParameters<double, N> write_effects(const std::vector<FeatureGroup>& groups,
-                                            const Eigen::VectorXd& theta,
-                                            const BaseParameters& base,
-                                            const CandidateInputs& inputs,
-                                            NominalModel<double, N>& nominal, bool& load_selected) {
-  Eigen::VectorXd payload = Eigen::VectorXd::Zero(11 * N);
-  StribeckParameters<double, N> linear;
-  WrittenModel<N> written{nominal, linear, payload, base, inputs, false};
+StribeckParametersX write_effects(const std::vector<FeatureGroup>& groups,
+                                  const Eigen::VectorXd& theta, const BaseParameters& base,
+                                  const CandidateInputs& inputs, NominalModelX& nominal,
+                                  bool& load_selected) {
+  const int joints = nominal.model.joint_count();
+  Eigen::VectorXd payload = Eigen::VectorXd::Zero(11 * joints);
+  StribeckParametersX linear;
+  linear.resize(joints);
+  WrittenModel written{nominal, linear, payload, base, inputs, false};
   for (const FeatureGroup& g : groups)
     write_group(g, theta, written);
   const Eigen::VectorXd payload_base = base.project(payload);
@@ -325,17 +318,15 @@ StribeckParameters<double, N> write_effects(const std::vector<FeatureGroup>& gro
 
 /// The declared model as identify fits it: the declared rigid body and friction curves, nothing
 /// added.
-template <int N>
-NominalModel<double, N> declared_nominal(const Model<double, N>& model,
-                                         const EffectDesign<N>& design,
-                                         const Eigen::VectorXd& theta_declared,
-                                         const BaseParameters& base, const JointSamples& s,
-                                         const Eigen::MatrixXd& declared_rigid_prediction,
-                                         const CandidateInputs& inputs) {
-  const LinearNominal<N> fit = linear_nominal(model, design, base, theta_declared);
-  NominalModel<double, N> declared = fit.nominal;
-  declared.friction = fit_friction_curves<N>(s, declared_rigid_prediction, inputs.abs_gravity,
-                                             fit.linear, false, 20000)
+NominalModelX declared_nominal(const ModelX& model, const EffectDesign& design,
+                               const Eigen::VectorXd& theta_declared, const BaseParameters& base,
+                               const JointSamples& s,
+                               const Eigen::MatrixXd& declared_rigid_prediction,
+                               const CandidateInputs& inputs) {
+  const LinearNominal fit = linear_nominal(model, design, base, theta_declared);
+  NominalModelX declared = fit.nominal;
+  declared.friction = fit_friction_curves(s, declared_rigid_prediction, inputs.abs_gravity,
+                                          fit.linear, false, 20000)
                           .parameters;
   return declared;
 }
@@ -344,29 +335,30 @@ NominalModel<double, N> declared_nominal(const Model<double, N>& model,
 /// `non_friction` its prediction outside the friction), each joint's friction curve or linear
 /// fit as chosen on the held-out rows (`judged`): what the parameter file gets once the
 /// selection and the curves are judged.
-template <int N>
-NominalModel<double, N> refitted_on_every_row(
-    const std::vector<FeatureGroup>& groups, const Eigen::VectorXd& theta_final,
-    const Eigen::MatrixXd& non_friction, const BaseParameters& base, const CandidateInputs& inputs,
-    const JointSamples& s, const Model<double, N>& model, const FrictionCurves<N>& judged) {
-  NominalModel<double, N> final_model;
+NominalModelX refitted_on_every_row(const std::vector<FeatureGroup>& groups,
+                                    const Eigen::VectorXd& theta_final,
+                                    const Eigen::MatrixXd& non_friction, const BaseParameters& base,
+                                    const CandidateInputs& inputs, const JointSamples& s,
+                                    const ModelX& model, const FrictionCurves& judged) {
+  NominalModelX final_model;
   final_model.model = model;
+  final_model.resize(model.joint_count());
   final_model.base_count = base.size();
   bool load_selected = false;
-  const StribeckParameters<double, N> linear =
+  const StribeckParametersX linear =
       write_effects(groups, theta_final, base, inputs, final_model, load_selected);
-  final_model.friction = refit_friction_curves<N>(s, non_friction, inputs.abs_gravity, linear,
-                                                  load_selected, 20000, judged);
+  final_model.friction = refit_friction_curves(s, non_friction, inputs.abs_gravity, linear,
+                                               load_selected, 20000, judged);
   return final_model;
 }
 
 /// The robot file's (CAD) base parameters in the rigid body's columns, zero elsewhere.
-template <int N>
-Eigen::VectorXd cad_rigid_body(const Model<double, N>& model, const BaseParameters& base,
+Eigen::VectorXd cad_rigid_body(const ModelX& model, const BaseParameters& base,
                                const std::vector<FeatureGroup>& groups, Eigen::Index features) {
-  const Eigen::VectorXd values = base.project(
-      dynamic_parameters(model, JointVector<double, N>::Zero(), JointVector<double, N>::Zero())
-          .head(11 * N));
+  const int n = model.joint_count();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd values =
+      base.project(dynamic_parameters(model, zero, zero).head(11 * n).eval());
   Eigen::VectorXd cad = Eigen::VectorXd::Zero(features);
   for (const FeatureGroup& g : groups)
     if (g.key == RigidBodyColumns::key)
@@ -376,39 +368,35 @@ Eigen::VectorXd cad_rigid_body(const Model<double, N>& model, const BaseParamete
 }
 
 /// Y(q, q̇, q̈) of every sample in the columns diagnose reads (a superset of identify's).
-template <int N>
-std::shared_ptr<const SampleRegressors<N>> diagnosis_regressors(const Model<double, N>& model,
-                                                                const BaseParameters& base,
-                                                                const JointSamples& s) {
-  return std::make_shared<const SampleRegressors<N>>(
-      model, EffectDesign<N>::regressor_columns(base.independent, true), s);
+std::shared_ptr<const SampleRegressors> diagnosis_regressors(const ModelX& model,
+                                                             const BaseParameters& base,
+                                                             const JointSamples& s) {
+  return std::make_shared<const SampleRegressors>(
+      model, EffectDesign::regressor_columns(model.joint_count(), base.independent, true), s);
 }
 
 }  // namespace
 
-template <int N>
-IdentificationSetup<N> prepare_diagnosis(const Log& log, const Model<double, N>& model,
-                                         const SampleOptions& options) {
-  IdentificationSetup<N> setup = prepare_identification(log, model, options);
+IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
+                                      const SampleOptions& options) {
+  IdentificationSetup setup = prepare_identification(log, model, options);
   setup.regressors = diagnosis_regressors(model, setup.base, setup.samples);
   setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(gravity_load(model, setup.samples));
   return setup;
 }
 
-template <int N>
-Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
-                      const DiagnoseOptions& options) {
-  IdentificationSetup<N> setup = prepare_identification(log, model, options.samples);
+Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options) {
+  IdentificationSetup setup = prepare_identification(log, model, options.samples);
   return diagnose(log, model, std::move(setup), options);
 }
 
-template <int N>
-Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, IdentificationSetup<N> setup,
-                      const DiagnoseOptions& options) {
+Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
+                   const DiagnoseOptions& options) {
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
-  Diagnosis<N> out;
+  const int joints = model.joint_count();
+  Diagnosis out;
   out.samples = std::move(setup.samples);
   const FileSplit split = split_by_file(log, out.samples, options);
   out.heldout_split = split_sentence(log, split, out.samples, options);
@@ -425,10 +413,10 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   say("diagnose: pass 1/4: declared model");
   const auto regressors =
       setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
-  const EffectDesign<N> declared(model, setup.base, s, regressors, {}, threshold);
-  const RobotFileInertiaPrior<N> declared_prior =
+  const EffectDesign declared(model, setup.base, s, regressors, {}, threshold);
+  const RobotFileInertiaPrior declared_prior =
       options.inertia_prior ? robot_file_inertia_prior(model, declared, setup.base)
-                            : RobotFileInertiaPrior<N>{};
+                            : RobotFileInertiaPrior{};
   const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
                                        options.inertia_prior ? &declared_prior : nullptr,
                                        options.inertia_prior_strength);
@@ -451,13 +439,13 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   out.motion_noise = analysis.motion_noise;
   out.model_band_hz = options.samples.acceleration_cutoff_hz;
   out.notes = analysis.notes;
-  if (s.temperature.cols() != N)
+  if (s.temperature.cols() != joints)
     out.notes.push_back("temperature-dependent friction not checked: the log has no temp<j>");
-  if (N == 1) out.notes.push_back("coupling between joints not checked: one joint");
+  if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const EffectDesign<N> design(model, setup.base, s, regressors,
-                               candidate_inputs(model, setup, s, analysis, fit), threshold);
+  const EffectDesign design(model, setup.base, s, regressors,
+                            candidate_inputs(model, setup, s, analysis, fit), threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
   if (fit.prior_strength > 0) {  // the declared fit's strength for every fit from here on
@@ -485,20 +473,21 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   out.residual_before = std::move(p.declared);
   out.residual_before = s.effort - out.residual_before;
   out.effect_terms = std::move(p.terms);
-  NominalModel<double, N>& nominal = out.nominal;
+  NominalModelX& nominal = out.nominal;
   nominal.model = model;
+  nominal.resize(joints);
   nominal.base_count = setup.base.size();
   bool load_selected = false;
-  const StribeckParameters<double, N> linear =
+  const StribeckParametersX linear =
       write_effects(out.groups, sel.theta_written, setup.base, inputs, nominal, load_selected);
   // The written models on the held-out samples: the extended one (what --params holds) and the
   // declared model as identify fits it: independent fits at once, then both residuals in one
   // pass (one forward kinematics per sample).
-  FrictionCurves<N> curves;
+  FrictionCurves curves;
   parallel_jobs(2, [&](int job) {
     if (job == 0)
-      curves = fit_friction_curves<N>(s, p.non_friction, inputs.abs_gravity, linear, load_selected,
-                                      20000);
+      curves =
+          fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, load_selected, 20000);
     else
       out.declared = declared_nominal(model, design, sel.theta_declared, setup.base, s,
                                       p.declared_rigid, inputs);
@@ -506,7 +495,7 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   nominal.friction = curves.parameters;
   for (const std::string& note : curves.notes)
     out.notes.push_back("friction curve: " + note);
-  std::vector<Eigen::MatrixXd> residuals = nominal_residuals<N>({&nominal, &out.declared}, s);
+  std::vector<Eigen::MatrixXd> residuals = nominal_residuals({&nominal, &out.declared}, s);
   out.residual_written = std::move(residuals[0]);
   parallel_jobs(2, [&](int job) {
     (job == 0 ? out.written_after : out.written_before) =
@@ -524,14 +513,5 @@ Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, Identificat
   out.findings = diagnosis_findings(out, options);
   return out;
 }
-
-#define TPF_INSTANTIATE_DIAGNOSE(N)                                                               \
-  template Diagnosis<N> diagnose<N>(const Log&, const Model<double, N>&, const DiagnoseOptions&); \
-  template Diagnosis<N> diagnose<N>(const Log&, const Model<double, N>&, IdentificationSetup<N>,  \
-                                    const DiagnoseOptions&);                                      \
-  template IdentificationSetup<N> prepare_diagnosis<N>(const Log&, const Model<double, N>&,       \
-                                                       const SampleOptions&);
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_DIAGNOSE)
-#undef TPF_INSTANTIATE_DIAGNOSE
 
 }  // namespace tpf::offline

@@ -148,8 +148,8 @@ struct CadPayloadCheck {
   bool ambiguous() const { return !ambiguous_with.empty(); }
 };
 
-/// What a diagnosis found, for an arm of any joint count (the samples' joint count): the passes
-/// that need no fixed size (residual analysis, effect selection, findings, report) work on this.
+/// What a diagnosis found, for an arm of any joint count (the samples' joint count): what the
+/// passes after the fit (residual analysis, effect selection, findings, report) work on.
 struct EffectDiagnosis {
   JointSamples samples;
   std::vector<FeatureGroup> groups;  ///< the whole library (declared + candidates)
@@ -187,38 +187,33 @@ struct EffectDiagnosis {
   int joints() const { return static_cast<int>(noise_floor.size()); }
 };
 
-/// The diagnosis of an N-joint arm: what was found and the nominal model it writes.
-template <int N>
+/// The diagnosis of an arm: what was found and the nominal model it writes.
 struct Diagnosis : EffectDiagnosis {
   /// The declared model plus the selected effects, refitted on every row once judged
   /// (`refitted`; the held-out tables are of its fit on the training rows).
-  NominalModel<double, N> nominal;
+  NominalModelX nominal;
   bool refitted = false;
   /// The same model fitted on the training rows: what residual_written, written_after and
   /// effect_terms are of (equal to `nominal` when nothing is held out).
-  NominalModel<double, N> judged;
+  NominalModelX judged;
   /// The declared model as identify fits it (rigid body and friction curves, nothing added):
   /// what `written_before` scores; beside `nominal` it shows what a folded payload does.
-  NominalModel<double, N> declared;
+  NominalModelX declared;
 };
 
-/// Runs the diagnosis of `log` for the arm of `model` (robot file). Never hands ground truth
-/// (gt_* columns) to the fit.
-template <int N>
-Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model,
-                      const DiagnoseOptions& options = {});
+/// Runs the diagnosis of `log` for the arm of `model` (robot file, any joint count; the log must
+/// have as many joints). Never hands ground truth (gt_* columns) to the fit.
+Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options = {});
 
 /// The same from samples already prepared by prepare_diagnosis (with `options.samples`): for a
 /// caller that first identifies on them (identify takes the same setup and gives the samples
 /// back in Identification::samples), so that the log is read and its regressors computed once.
-template <int N>
-Diagnosis<N> diagnose(const Log& log, const Model<double, N>& model, IdentificationSetup<N> setup,
-                      const DiagnoseOptions& options);
+Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
+                   const DiagnoseOptions& options);
 
 /// prepare_identification with the regressors diagnose reads (a superset of identify's) and the
 /// gravity load both read.
-template <int N>
-IdentificationSetup<N> prepare_diagnosis(const Log& log, const Model<double, N>& model,
-                                         const SampleOptions& options);
+IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
+                                      const SampleOptions& options);
 
 }  // namespace tpf::offline

@@ -3,8 +3,8 @@
 // fit and the run-time torque share one definition.
 #pragma once
 
-#include <array>
 #include <string_view>
+#include <vector>
 
 #include "offline/effects/feature_group.hpp"
 #include "offline/effects/sample_row.hpp"
@@ -16,22 +16,21 @@ namespace tpf::offline {
 /// offered for and its names.
 template <template <typename, int> class Effect>
 struct AddedEffectColumns {
-  static constexpr std::string_view key = Effect<double, 1>::key;
+  using Type = Effect<double, Eigen::Dynamic>;
+  static constexpr std::string_view key = Type::key;
   static constexpr WrittenTo written_to = WrittenTo::kAddedEffects;
   static constexpr bool kSharedGroupFirst = false;
 
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
-    Effect<double, N>::basis(row.motion, joint, out);
+  static void fill(const SampleRow& row, int joint, double* out) {
+    Type::basis(row.motion, joint, out);
   }
-  template <int N>
-  static void write(const double* coefficients, int joint, WrittenModel<N>& out) {
-    out.nominal.added.template get<Effect>().set_coefficients(joint, coefficients);
+  static void write(const double* coefficients, int joint, WrittenModel& out) {
+    out.nominal.added.get<Effect>().set_coefficients(joint, coefficients);
   }
-  template <int N>
-  static void remove(int joint, NominalModel<double, N>& nominal) {
-    const std::array<double, Effect<double, N>::kColumns> zero{};
-    nominal.added.template get<Effect>().set_coefficients(joint, zero.data());
+  static void remove(int joint, NominalModelX& nominal) {
+    Type& effect = nominal.added.get<Effect>();
+    const std::vector<double> zero(static_cast<std::size_t>(effect.columns()), 0.0);
+    effect.set_coefficients(joint, zero.data());
   }
 };
 

@@ -23,18 +23,15 @@ struct AsymmetricFrictionColumns {
     return {"direction-asymmetric friction (Coulomb, viscous), " + joint_title(joint),
             {"asym_c" + n, "asym_v" + n}};
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
     out[0] = std::abs(row.direction[joint]);
     out[1] = std::abs(row.motion.dq[joint]);
   }
-  template <int N>
-  static void write(const double* coefficients, int joint, WrittenModel<N>& out) {
+  static void write(const double* coefficients, int joint, WrittenModel& out) {
     out.linear.coulomb_asymmetry[joint] = coefficients[0];
     out.linear.viscous_asymmetry[joint] = coefficients[1];
   }
-  template <int N>
-  static void remove(int joint, NominalModel<double, N>& nominal) {
+  static void remove(int joint, NominalModelX& nominal) {
     nominal.friction.coulomb_asymmetry[joint] = nominal.friction.viscous_asymmetry[joint] = 0;
   }
 };

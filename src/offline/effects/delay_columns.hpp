@@ -23,8 +23,7 @@ struct DelayColumns : OfflineOnlyColumns {
     return {"delay between effort and motion, " + joint_title(joint),
             {"lead_s" + joint_suffix(joint)}};
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
     const double rate = row.inputs.prediction_rate(row.k, joint);
     out[0] = std::isfinite(rate) ? rate : 0.0;
   }

@@ -2,9 +2,9 @@
 // of candidate effects, each one type (see its header) with
 //   key, written_to, kSharedGroupFirst,
 //   offered(DesignContext, joint) / group(DesignContext, joint)   (joint −1: every joint at once),
-//   fill<N>(SampleRow, joint, out)       its columns of one joint row of a sample,
-//   write<N>(coefficients, joint, WrittenModel)  into the parameter file's model,
-//   remove<N>(joint, NominalModel)       its part of a written model set to zero.
+//   fill(SampleRow, joint, out)          its columns of one joint row of a sample,
+//   write(coefficients, joint, WrittenModel)  into the parameter file's model,
+//   remove(joint, NominalModelX)         its part of a written model set to zero.
 // Adding an effect = one header + one entry in CandidateColumns (and, when the run time evaluates
 // it, its type in tpf/effects/added_effects.hpp).
 #pragma once
@@ -60,22 +60,18 @@ void for_family_with_key(const std::string& key, F&& f) {
 }
 
 /// Writes the coefficients `theta` holds for group g into `out`.
-template <int N>
-void write_group(const FeatureGroup& g, const Eigen::VectorXd& theta, WrittenModel<N>& out) {
+inline void write_group(const FeatureGroup& g, const Eigen::VectorXd& theta, WrittenModel& out) {
   std::vector<double> coefficients;
   for (int c : g.columns)
     coefficients.push_back(theta[c]);
-  for_family_with_key(g.key, [&]<typename Family>() {
-    Family::template write<N>(coefficients.data(), g.joint, out);
-  });
+  for_family_with_key(g.key,
+                      [&]<typename Family>() { Family::write(coefficients.data(), g.joint, out); });
 }
 
 /// Sets group g's part of a written model to zero (no-op for what cannot be taken out: the rigid
 /// body, the declared friction, a payload folded into the base, what was not written).
-template <int N>
-void remove_group(const FeatureGroup& g, NominalModel<double, N>& nominal) {
-  for_family_with_key(g.key,
-                      [&]<typename Family>() { Family::template remove<N>(g.joint, nominal); });
+inline void remove_group(const FeatureGroup& g, NominalModelX& nominal) {
+  for_family_with_key(g.key, [&]<typename Family>() { Family::remove(g.joint, nominal); });
 }
 
 }  // namespace tpf::offline

@@ -26,22 +26,19 @@ struct JointFrictionColumns {
             {"fc" + n, "fv" + n, "rest" + n},
             kHeldAtRest};
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
     out[kCoulomb] = row.direction[joint];
     out[kViscous] = row.motion.dq[joint];
     out[kHeldAtRest] = row.held[joint];
   }
   /// The sliding levels the Stribeck curves start from (negative fits clipped to 0).
-  template <int N>
-  static void write(const double* coefficients, int joint, WrittenModel<N>& out) {
+  static void write(const double* coefficients, int joint, WrittenModel& out) {
     out.linear.coulomb[joint] = out.linear.static_friction[joint] =
         std::max(coefficients[kCoulomb], 0.0);
     out.linear.viscous[joint] = std::max(coefficients[kViscous], 0.0);
   }
   /// The friction is declared: never removed.
-  template <int N>
-  static void remove(int, NominalModel<double, N>&) {}
+  static void remove(int, NominalModelX&) {}
 };
 
 }  // namespace tpf::offline

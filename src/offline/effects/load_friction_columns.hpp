@@ -25,21 +25,18 @@ struct LoadFrictionColumns {
             {"alpha_c" + n, "alpha_v" + n, "alpha_rest" + n},
             kHeldAtRest};
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
     const double load = row.inputs.abs_gravity(row.k, joint);
     out[0] = load * row.direction[joint];
     out[1] = load * row.motion.dq[joint];
     out[kHeldAtRest] = load * row.held[joint];
   }
-  template <int N>
-  static void write(const double* coefficients, int joint, WrittenModel<N>& out) {
+  static void write(const double* coefficients, int joint, WrittenModel& out) {
     out.linear.load_coulomb[joint] = std::max(coefficients[0], 0.0);
     out.linear.load_viscous[joint] = std::max(coefficients[1], 0.0);
     out.load_selected = out.load_selected || coefficients[0] != 0.0 || coefficients[1] != 0.0;
   }
-  template <int N>
-  static void remove(int joint, NominalModel<double, N>& nominal) {
+  static void remove(int joint, NominalModelX& nominal) {
     nominal.friction.load_coulomb[joint] = nominal.friction.load_viscous[joint] = 0;
   }
 };

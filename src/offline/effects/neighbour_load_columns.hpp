@@ -28,24 +28,23 @@ struct NeighbourLoadColumns {
       }
     return spec;
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
-    for (int k = 0; k < N; ++k)
+  static void fill(const SampleRow& row, int joint, double* out) {
+    const int joints = row.joints();
+    for (int k = 0; k < joints; ++k)
       if (k != joint) {
         *out++ = row.inputs.abs_gravity(row.k, k) * row.direction[joint];
         *out++ = row.inputs.abs_gravity(row.k, k) * row.motion.dq[joint];
       }
   }
-  template <int N>
-  static void write(const double* coefficients, int joint, WrittenModel<N>& out) {
-    for (int k = 0; k < N; ++k)
+  static void write(const double* coefficients, int joint, WrittenModel& out) {
+    const int joints = out.joints();
+    for (int k = 0; k < joints; ++k)
       if (k != joint) {
         out.linear.neighbour_load_coulomb(joint, k) = *coefficients++;
         out.linear.neighbour_load_viscous(joint, k) = *coefficients++;
       }
   }
-  template <int N>
-  static void remove(int joint, NominalModel<double, N>& nominal) {
+  static void remove(int joint, NominalModelX& nominal) {
     nominal.friction.neighbour_load_coulomb.row(joint).setZero();
     nominal.friction.neighbour_load_viscous.row(joint).setZero();
   }

@@ -11,10 +11,8 @@ struct OfflineOnlyColumns {
   static constexpr WrittenTo written_to = WrittenTo::kNothing;
   static constexpr bool kSharedGroupFirst = false;
 
-  template <int N>
-  static void write(const double*, int, WrittenModel<N>&) {}
-  template <int N>
-  static void remove(int, NominalModel<double, N>&) {}
+  static void write(const double*, int, WrittenModel&) {}
+  static void remove(int, NominalModelX&) {}
 };
 
 }  // namespace tpf::offline

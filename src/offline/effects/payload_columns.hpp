@@ -26,19 +26,18 @@ struct PayloadColumns {
                                   regressor_column_name(c.joints, 10 * (c.joints - 1) + p));
     return spec;
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
+    const int last_link = 10 * (row.joints() - 1);
     for (int p = 0; p < kColumns; ++p)
-      *out++ = row.regressor(joint, 10 * (N - 1) + p);
+      *out++ = row.regressor(joint, last_link + p);
   }
-  template <int N>
-  static void write(const double* coefficients, int, WrittenModel<N>& out) {
+  static void write(const double* coefficients, int, WrittenModel& out) {
+    const int last_link = 10 * (out.joints() - 1);
     for (int p = 0; p < kColumns; ++p)
-      out.payload[10 * (N - 1) + p] = coefficients[p];
+      out.payload[last_link + p] = coefficients[p];
   }
   /// Folded into the base parameters: it cannot be taken out again.
-  template <int N>
-  static void remove(int, NominalModel<double, N>&) {}
+  static void remove(int, NominalModelX&) {}
 };
 
 }  // namespace tpf::offline

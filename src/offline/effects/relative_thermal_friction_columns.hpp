@@ -22,8 +22,7 @@ struct RelativeThermalFrictionColumns : OfflineOnlyColumns {
         "friction per °C)",
         {"beta_v"}};
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
     out[0] = (row.samples.temperature(row.k, joint) - row.inputs.reference_temperature) *
              row.motion.dq[joint] * row.inputs.viscous[joint];
   }

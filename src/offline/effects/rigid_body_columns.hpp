@@ -24,22 +24,19 @@ struct RigidBodyColumns {
       spec.column_names.push_back(regressor_column_name(c.joints, column));
     return spec;
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
     for (int column : row.base_columns)
       *out++ = row.regressor(joint, column);
   }
   /// The base parameters (a payload is added to them afterwards, see WrittenModel::payload).
-  template <int N>
-  static void write(const double* coefficients, int, WrittenModel<N>& out) {
+  static void write(const double* coefficients, int, WrittenModel& out) {
     for (int i = 0; i < out.base.size(); ++i) {
       out.nominal.base_columns[i] = out.base.independent[i];
       out.nominal.base_values[i] = coefficients[i];
     }
   }
   /// The rigid body is declared: never removed.
-  template <int N>
-  static void remove(int, NominalModel<double, N>&) {}
+  static void remove(int, NominalModelX&) {}
 };
 
 }  // namespace tpf::offline

@@ -46,19 +46,16 @@ struct RippleColumns {
                                  double a_cos = 0) {
     return {joint, cycles(inputs, joint), MotorSide, a_sin, a_cos};
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
-    PositionRipple<double, N>::basis(row.motion, term(row.inputs, joint), out);
+  static void fill(const SampleRow& row, int joint, double* out) {
+    PositionRipple<double, Eigen::Dynamic>::basis(row.motion, term(row.inputs, joint), out);
   }
-  template <int N>
-  static void write(const double* coefficients, int joint, WrittenModel<N>& out) {
+  static void write(const double* coefficients, int joint, WrittenModel& out) {
     if (coefficients[0] == 0.0 && coefficients[1] == 0.0) return;
-    out.nominal.added.template get<PositionRipple>().add(
+    out.nominal.added.get<PositionRipple>().add(
         term(out.inputs, joint, coefficients[0], coefficients[1]));
   }
-  template <int N>
-  static void remove(int joint, NominalModel<double, N>& nominal) {
-    nominal.added.template get<PositionRipple>().clear(joint, MotorSide);
+  static void remove(int joint, NominalModelX& nominal) {
+    nominal.added.get<PositionRipple>().clear(joint, MotorSide);
   }
 };
 

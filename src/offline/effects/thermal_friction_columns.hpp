@@ -17,8 +17,7 @@ struct ThermalFrictionColumns : OfflineOnlyColumns {
     return {"temperature-dependent friction, " + joint_title(joint),
             {"beta_v" + joint_suffix(joint)}};
   }
-  template <int N>
-  static void fill(const SampleRow<N>& row, int joint, double* out) {
+  static void fill(const SampleRow& row, int joint, double* out) {
     out[0] = (row.samples.temperature(row.k, joint) - row.inputs.reference_temperature) *
              row.motion.dq[joint];
   }

@@ -15,23 +15,30 @@
 #include "tpf/estimation/nominal_model.hpp"
 
 namespace tpf::offline {
-template <int N>
-struct EffectDesign<N>::Workspace {
-  Regressor<double, N> Y = Regressor<double, N>::Zero();  ///< entries not stored stay zero
+/// A thread's scratch of fill(), sized once for the design's joint count: nothing in it is
+/// allocated per sample.
+struct EffectDesign::Workspace {
+  explicit Workspace(int joints)
+      : Y(Eigen::MatrixXd::Zero(joints, 13 * joints)),
+        q(joints),
+        dq(joints),
+        ddq(joints),
+        direction(joints),
+        held(joints) {}
+  Eigen::MatrixXd Y;  ///< N × 13N; entries not stored stay zero
+  Eigen::VectorXd q, dq, ddq, direction, held;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> local;  ///< N × max local
 };
 
-template <int N>
-void EffectDesign<N>::add_group(FeatureGroup group, FillColumns fill) {
+void EffectDesign::add_group(FeatureGroup group, FillColumns fill) {
   for (std::size_t c = 0; c < group.column_names.size(); ++c)
     group.columns.push_back(features_++);
   groups_.push_back(std::move(group));
   fills_.push_back(fill);
 }
 
-template <int N>
 template <typename Families>
-void EffectDesign<N>::add_families(const DesignContext& context) {
+void EffectDesign::add_families(const DesignContext& context) {
   const bool declared = std::is_same_v<Families, DeclaredColumns>;
   auto offer = [&]<typename Family>(int joint) {
     if (!Family::offered(context, joint)) return;
@@ -48,45 +55,45 @@ void EffectDesign<N>::add_families(const DesignContext& context) {
                {},
                std::move(spec.column_names),
                extrapolates},
-              &Family::template fill<N>);
+              &Family::fill);
   };
   for_each_family<Families>([&]<typename Family>() {
     if (Family::kSharedGroupFirst) offer.template operator()<Family>(-1);
   });
-  for (int j = 0; j < N; ++j)
+  for (int j = 0; j < joints_; ++j)
     for_each_family<Families>([&]<typename Family>() { offer.template operator()<Family>(j); });
   for_each_family<Families>([&]<typename Family>() {
     if (!Family::kSharedGroupFirst) offer.template operator()<Family>(-1);
   });
 }
 
-template <int N>
-EffectDesign<N>::EffectDesign(const Model<double, N>& model, const BaseParameters& base,
-                              const JointSamples& samples,
-                              std::shared_ptr<const SampleRegressors<N>> regressors,
-                              CandidateInputs candidates, double static_velocity)
+EffectDesign::EffectDesign(const ModelX& model, const BaseParameters& base,
+                           const JointSamples& samples,
+                           std::shared_ptr<const SampleRegressors> regressors,
+                           CandidateInputs candidates, double static_velocity)
     : model_(model),
+      joints_(model.joint_count()),
       regressors_(std::move(regressors)),
       base_columns_(base.independent),
       candidates_(std::move(candidates)),
       static_velocity_(static_velocity),
-      has_temperature_(samples.temperature.cols() == N) {
-  const DesignContext context{N, base_columns_, candidates_, has_temperature_};
+      has_temperature_(samples.temperature.cols() == joints_) {
+  const DesignContext context{joints_, base_columns_, candidates_, has_temperature_};
   check_samples(samples);
   add_families<DeclaredColumns>(context);
   if (candidates_.enabled) {
-    if (candidates_.abs_gravity.rows() != samples.size() || candidates_.abs_gravity.cols() != N)
+    if (candidates_.abs_gravity.rows() != samples.size() ||
+        candidates_.abs_gravity.cols() != joints_)
       throw Error::at(samples.source, 0, "", "candidate library: |G(q)| per sample is missing");
     add_families<CandidateColumns>(context);
   }
   index_joint_groups();
 }
 
-template <int N>
-void EffectDesign<N>::index_joint_groups() {
-  local_.assign(N, {});
-  joint_groups_.assign(N, {});
-  for (int j = 0; j < N; ++j) {
+void EffectDesign::index_joint_groups() {
+  local_.assign(static_cast<std::size_t>(joints_), {});
+  joint_groups_.assign(static_cast<std::size_t>(joints_), {});
+  for (int j = 0; j < joints_; ++j) {
     for (std::size_t g = 0; g < groups_.size(); ++g)
       if (groups_[g].joint == -1 || groups_[g].joint == j) {
         joint_groups_[j].push_back(
@@ -97,19 +104,17 @@ void EffectDesign<N>::index_joint_groups() {
   }
 }
 
-template <int N>
-std::vector<int> EffectDesign<N>::regressor_columns(const std::vector<int>& base_columns,
-                                                    bool candidates) {
+std::vector<int> EffectDesign::regressor_columns(int joints, const std::vector<int>& base_columns,
+                                                 bool candidates) {
   std::vector<int> columns = base_columns;
   if (candidates)
     for (int p = 0; p < PayloadColumns::kColumns; ++p)
-      columns.push_back(10 * (N - 1) + p);
+      columns.push_back(10 * (joints - 1) + p);
   return columns;
 }
 
-template <int N>
-void EffectDesign<N>::check_samples(const JointSamples& samples) const {
-  const std::vector<int> needed = regressor_columns(base_columns_, candidates_.enabled);
+void EffectDesign::check_samples(const JointSamples& samples) const {
+  const std::vector<int> needed = regressor_columns(joints_, base_columns_, candidates_.enabled);
   if (!regressors_ || regressors_->size() != samples.size() ||
       !std::all_of(needed.begin(), needed.end(),
                    [&](int column) { return regressors_->holds(column); }))
@@ -117,30 +122,33 @@ void EffectDesign<N>::check_samples(const JointSamples& samples) const {
                     "effect design: the regressors are not those of these samples");
 }
 
-template <int N>
-std::vector<int> EffectDesign<N>::declared_columns() const {
+std::vector<int> EffectDesign::declared_columns() const {
   std::vector<int> columns;
   for (const FeatureGroup& g : groups_)
     if (g.declared) columns.insert(columns.end(), g.columns.begin(), g.columns.end());
   return columns;
 }
 
-template <int N>
-void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws,
-                           const std::vector<char>& filled) const {
-  const JointVector<double, N> q = s.q.row(k).transpose();
-  const JointVector<double, N> dq = s.dq.row(k).transpose();
-  const JointVector<double, N> ddq = s.ddq.row(k).transpose();
+void EffectDesign::fill(const JointSamples& s, Eigen::Index k, Workspace& ws,
+                        const std::vector<char>& filled) const {
+  ws.q = s.q.row(k).transpose();
+  ws.dq = s.dq.row(k).transpose();
+  ws.ddq = s.ddq.row(k).transpose();
   regressors_->load(k, ws.Y);
-  JointVector<double, N> direction, held;
-  for (int j = 0; j < N; ++j) {
-    const bool moving = std::abs(dq[j]) >= static_velocity_;
-    direction[j] = moving ? (dq[j] > 0 ? 1.0 : -1.0) : 0.0;
-    held[j] = moving ? 0.0 : s.held_sign(k, j);
+  for (int j = 0; j < joints_; ++j) {
+    const bool moving = std::abs(ws.dq[j]) >= static_velocity_;
+    ws.direction[j] = moving ? (ws.dq[j] > 0 ? 1.0 : -1.0) : 0.0;
+    ws.held[j] = moving ? 0.0 : s.held_sign(k, j);
   }
-  const SampleRow<N> row{
-      {q, dq, ddq, model_.gear_ratio}, ws.Y, direction, held, base_columns_, candidates_, s, k};
-  for (int j = 0; j < N; ++j) {
+  const SampleRow row{{ws.q, ws.dq, ws.ddq, model_.gear_ratio},
+                      ws.Y,
+                      ws.direction,
+                      ws.held,
+                      base_columns_,
+                      candidates_,
+                      s,
+                      k};
+  for (int j = 0; j < joints_; ++j) {
     double* out = &ws.local(j, 0);  // row-major workspace: this joint's local features
     for (const JointGroup& g : joint_groups_[j]) {
       if (filled.empty() || filled[static_cast<std::size_t>(g.group)]) g.fill(row, j, out);
@@ -149,8 +157,7 @@ void EffectDesign<N>::fill(const JointSamples& s, Eigen::Index k, Workspace& ws,
   }
 }
 
-template <int N>
-std::vector<char> EffectDesign<N>::groups_in_use(const std::vector<Eigen::VectorXd>& thetas) const {
+std::vector<char> EffectDesign::groups_in_use(const std::vector<Eigen::VectorXd>& thetas) const {
   std::vector<char> used(groups_.size(), 0);
   for (std::size_t g = 0; g < groups_.size(); ++g)
     for (const Eigen::VectorXd& theta : thetas)
@@ -159,19 +166,18 @@ std::vector<char> EffectDesign<N>::groups_in_use(const std::vector<Eigen::Vector
   return used;
 }
 
-template <int N>
-DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const {
+DesignGrams EffectDesign::accumulate(const JointSamples& s, int stride) const {
   check_samples(s);
   stride = std::max(stride, 1);
   constexpr int kBlock = 256;
   const Eigen::Index n = s.size();
   auto work = [&](Eigen::Index begin, Eigen::Index end, DesignGrams& out) {
-    Workspace ws;
-    ws.local.resize(N, max_local_);
+    Workspace ws(joints_);
+    ws.local.resize(joints_, max_local_);
     // Local Gram and block of rows [features, y, 1] per (joint, regime, split).
     std::vector<Eigen::MatrixXd> gram;
     std::vector<GramRowBlock> buffer;
-    for (int j = 0; j < N; ++j)
+    for (int j = 0; j < joints_; ++j)
       for (int b = 0; b < 6; ++b) {
         const int width = static_cast<int>(local_[j].size()) + 2;
         gram.push_back(Eigen::MatrixXd::Zero(width, width));
@@ -181,7 +187,7 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
     for (Eigen::Index k = begin; k < end; k += stride) {
       if (!s.valid[k]) continue;
       fill(s, k, ws);
-      for (int j = 0; j < N; ++j) {
+      for (int j = 0; j < joints_; ++j) {
         const Regime r = s.regimes[j][k];
         if (r == Regime::Invalid) continue;
         const int slot = j * 6 + regime_index(r) * 2 + (s.heldout[k] ? 1 : 0);
@@ -190,8 +196,8 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
         if (buffer[slot].full()) flush(slot);
       }
     }
-    out = DesignGrams(N, features_);
-    for (int j = 0; j < N; ++j)
+    out = DesignGrams(joints_, features_);
+    for (int j = 0; j < joints_; ++j)
       for (int b = 0; b < 6; ++b) {
         const int slot = j * 6 + b;
         flush(slot);
@@ -205,7 +211,7 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
             g(map[a], map[c]) += local(a, c);
       }
   };
-  DesignGrams first(N, features_), second(N, features_);
+  DesignGrams first(joints_, features_), second(joints_, features_);
   if (n == 0) return first;
   parallel_halves(n, [&](Eigen::Index begin, Eigen::Index end) {
     work(begin, end, end == n ? second : first);
@@ -214,8 +220,7 @@ DesignGrams EffectDesign<N>::accumulate(const JointSamples& s, int stride) const
   return first;
 }
 
-template <int N>
-std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
+std::vector<Eigen::MatrixXd> EffectDesign::predict_each(
     const JointSamples& s, const std::vector<Eigen::VectorXd>& thetas) const {
   check_samples(s);
   const Eigen::Index n = s.size();
@@ -223,10 +228,10 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   std::vector<Eigen::MatrixXd> predictions;  // each n × N, filled below (not copied from one)
   predictions.reserve(static_cast<std::size_t>(m));
   for (int i = 0; i < m; ++i)
-    predictions.emplace_back(n, N);
+    predictions.emplace_back(n, joints_);
   // Per joint: local features × parameter sets.
   std::vector<ThetaProducts> local_theta;
-  for (int j = 0; j < N; ++j) {
+  for (int j = 0; j < joints_; ++j) {
     Eigen::MatrixXd local(static_cast<Eigen::Index>(local_[j].size()), m);
     for (int i = 0; i < m; ++i)
       for (std::size_t a = 0; a < local_[j].size(); ++a)
@@ -237,8 +242,8 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   // computed (they stay zero in the workspace), the products keep their order.
   const std::vector<char> used = groups_in_use(thetas);
   parallel_halves(n, [&](Eigen::Index begin, Eigen::Index end) {
-    Workspace ws;
-    ws.local.setZero(N, max_local_);
+    Workspace ws(joints_);
+    ws.local.setZero(joints_, max_local_);
     std::vector<double> values(static_cast<std::size_t>(m));
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
@@ -247,7 +252,7 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
         continue;
       }
       fill(s, k, ws, used);
-      for (int j = 0; j < N; ++j) {
+      for (int j = 0; j < joints_; ++j) {
         local_theta[j].apply(&ws.local(j, 0), values.data());  // row-major: joint j's features
         for (int i = 0; i < m; ++i)
           predictions[i](k, j) = values[static_cast<std::size_t>(i)];
@@ -257,18 +262,8 @@ std::vector<Eigen::MatrixXd> EffectDesign<N>::predict_each(
   return predictions;
 }
 
-template <int N>
-Eigen::MatrixXd EffectDesign<N>::predict(const JointSamples& s,
-                                         const Eigen::VectorXd& theta) const {
+Eigen::MatrixXd EffectDesign::predict(const JointSamples& s, const Eigen::VectorXd& theta) const {
   return std::move(predict_each(s, {theta}).front());
 }
-
-template class EffectDesign<1>;
-template class EffectDesign<2>;
-template class EffectDesign<3>;
-template class EffectDesign<4>;
-template class EffectDesign<5>;
-template class EffectDesign<6>;
-template class EffectDesign<7>;
 
 }  // namespace tpf::offline

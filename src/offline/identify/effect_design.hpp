@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "offline/common/run_time_types.hpp"
 #include "offline/effects/candidate_inputs.hpp"
 #include "offline/effects/design_context.hpp"
 #include "offline/effects/feature_group.hpp"
@@ -17,11 +18,11 @@
 #include "offline/identify/joint_samples.hpp"
 #include "offline/identify/sample_regressors.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
-#include "tpf/model/model.hpp"
 
 namespace tpf::offline {
 
-/// Features of every joint row of the samples (effort in N·m), for an N-joint model: the rigid
+/// Features of every joint row of the samples (effort in N·m), for a model of any joint count N:
+/// the rigid
 /// columns' coefficients are SI base parameters, every other coefficient is in N·m per feature.
 /// Row j of sample k (moving = |q̇_j| ≥ threshold, s = sgn(q̇_j) when moving else 0, h = held sign
 /// at rest else 0, |G| = |G_j(q)| of the robot file's model [N·m]):
@@ -38,19 +39,21 @@ namespace tpf::offline {
 ///   coupling: q̇_k, q̈_k for every k ≠ j
 /// Each family's columns are its effect type's fill(); those of an added effect are the basis
 /// functions of its run-time torque (tpf/effects/), so a fit and the run time agree.
-template <int N>
 class EffectDesign {
  public:
   /// `regressors`: Y of `samples` (built with base.independent), shared with the caller's other
   /// designs; every pass of this design must be over samples with the same motion rows.
-  EffectDesign(const Model<double, N>& model, const BaseParameters& base,
-               const JointSamples& samples, std::shared_ptr<const SampleRegressors<N>> regressors,
-               CandidateInputs candidates, double static_velocity);
+  EffectDesign(const ModelX& model, const BaseParameters& base, const JointSamples& samples,
+               std::shared_ptr<const SampleRegressors> regressors, CandidateInputs candidates,
+               double static_velocity);
 
-  /// The columns of Y the families read: the base columns, and the last link's (a payload) when
-  /// the candidates are offered. The SampleRegressors of a design must hold them.
-  static std::vector<int> regressor_columns(const std::vector<int>& base_columns, bool candidates);
+  /// The columns of Y the families read for a `joints`-joint arm: the base columns, and the last
+  /// link's (a payload) when the candidates are offered. The SampleRegressors of a design must
+  /// hold them.
+  static std::vector<int> regressor_columns(int joints, const std::vector<int>& base_columns,
+                                            bool candidates);
 
+  int joints() const { return joints_; }
   int features() const { return features_; }
   /// The candidate inputs the design was built with.
   const CandidateInputs& candidates() const { return candidates_; }
@@ -70,7 +73,7 @@ class EffectDesign {
  private:
   struct Workspace;
   /// Fills of one family: its columns of joint row `joint` of a sample.
-  using FillColumns = void (*)(const SampleRow<N>&, int joint, double* out);
+  using FillColumns = void (*)(const SampleRow&, int joint, double* out);
   /// Fills the local features of every joint row of sample k into `ws.local` (N × max local):
   /// those of the groups `filled` marks (one entry per group; empty: every group). The features
   /// of the other groups are left as they are (zero in a workspace zeroed once).
@@ -87,8 +90,9 @@ class EffectDesign {
   /// Throws tpf::Error when `samples` are not the ones the regressors were computed for.
   void check_samples(const JointSamples& samples) const;
 
-  Model<double, N> model_;
-  std::shared_ptr<const SampleRegressors<N>> regressors_;
+  ModelX model_;
+  int joints_;
+  std::shared_ptr<const SampleRegressors> regressors_;
   std::vector<int> base_columns_;
   CandidateInputs candidates_;
   double static_velocity_;

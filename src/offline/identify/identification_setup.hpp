@@ -4,35 +4,32 @@
 
 #include <memory>
 
+#include "offline/common/run_time_types.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/identify/sample_regressors.hpp"
 #include "offline/log/log.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
-#include "tpf/estimation/nominal_model.hpp"
 
 namespace tpf::offline {
 
-template <int N>
 struct IdentificationSetup {
   JointSamples samples;  ///< effort in N·m
   BaseParameters base;   ///< rigid-body base parameters of the robot file's model
   /// Y of `samples`, computed once for a caller that runs identify and then diagnose on one log
   /// (prepare_diagnosis); empty: each computes the columns it reads.
-  std::shared_ptr<const SampleRegressors<N>> regressors;
+  std::shared_ptr<const SampleRegressors> regressors;
   /// gravity_load of `samples`, computed once for both in the same way (prepare_diagnosis);
   /// empty: each computes it.
   std::shared_ptr<const Eigen::MatrixXd> abs_gravity;
 };
 
-/// extract_joint_samples(log) with the model's torque constants (the log must have exactly N
-/// joints: tpf::Error naming the log otherwise), rigid_body_base_parameters(model).
-template <int N>
-IdentificationSetup<N> prepare_identification(const Log& log, const Model<double, N>& model,
-                                              const SampleOptions& options);
+/// extract_joint_samples(log) with the model's torque constants (the log must have the model's
+/// joint count: tpf::Error naming the log otherwise), rigid_body_base_parameters(model).
+IdentificationSetup prepare_identification(const Log& log, const ModelX& model,
+                                           const SampleOptions& options);
 
 /// |G_j(q_k)| [N·m] per sample k and joint j with the robot file's inertias: the load that
 /// load-dependent friction scales with. NaN where the sample is invalid. Two threads.
-template <int N>
-Eigen::MatrixXd gravity_load(const Model<double, N>& model, const JointSamples& samples);
+Eigen::MatrixXd gravity_load(const ModelX& model, const JointSamples& samples);
 
 }  // namespace tpf::offline

@@ -35,31 +35,33 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& s, const Eigen::
   return stats;
 }
 
-template <int N>
-std::vector<Eigen::MatrixXd> nominal_residuals(
-    const std::vector<const NominalModel<double, N>*>& nominals, const JointSamples& s) {
+std::vector<Eigen::MatrixXd> nominal_residuals(const std::vector<const NominalModelX*>& nominals,
+                                               const JointSamples& s) {
   const Eigen::Index n = s.size();
+  const int joints = s.joints();
   std::vector<Eigen::MatrixXd> residuals;
-  std::vector<NominalLinks<double, N>> links;  // once per model, not per sample
-  for (const NominalModel<double, N>* nominal : nominals) {
-    residuals.emplace_back(n, N);
+  std::vector<NominalLinks<double, Eigen::Dynamic>> links;  // once per model, not per sample
+  for (const NominalModelX* nominal : nominals) {
+    residuals.emplace_back(n, joints);
     links.push_back(nominal_links(*nominal));
   }
   if (nominals.empty()) return residuals;
   auto work = [&](Eigen::Index begin, Eigen::Index end) {
-    Data<double, N> data;
-    JointVector<double, N> rigid, friction;
+    DataX data(nominals.front()->model);
+    // Sized once, assigned per sample.
+    Eigen::VectorXd q(joints), dq(joints), ddq(joints), rigid(joints), friction(joints);
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
         for (Eigen::MatrixXd& residual : residuals)
           residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
         continue;
       }
-      const JointVector<double, N> q = s.q.row(k).transpose(), dq = s.dq.row(k).transpose();
+      q = s.q.row(k).transpose();
+      dq = s.dq.row(k).transpose();
+      ddq = s.ddq.row(k).transpose();
       forward_kinematics(nominals.front()->model, data, q);
       for (std::size_t m = 0; m < nominals.size(); ++m) {
-        predict_effort_at_pose(*nominals[m], links[m], data, q, dq, s.ddq.row(k).transpose(), rigid,
-                               friction);
+        predict_effort_at_pose(*nominals[m], links[m], data, q, dq, ddq, rigid, friction);
         residuals[m].row(k) = s.effort.row(k) - (rigid + friction).transpose();
       }
     }
@@ -68,37 +70,35 @@ std::vector<Eigen::MatrixXd> nominal_residuals(
   return residuals;
 }
 
-template <int N>
-Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal, const JointSamples& s) {
-  return std::move(nominal_residuals<N>({&nominal}, s).front());
+Eigen::MatrixXd nominal_residual(const NominalModelX& nominal, const JointSamples& s) {
+  return std::move(nominal_residuals({&nominal}, s).front());
 }
 
-template <int N>
-std::vector<JointVector<double, N>> mass_check_poses(const Model<double, N>& model) {
+std::vector<Eigen::VectorXd> mass_check_poses(const ModelX& model) {
   std::mt19937_64 rng(7);
   auto uniform = [&rng](double lo, double hi) {
     return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
   };
-  std::vector<JointVector<double, N>> poses(200);
-  for (JointVector<double, N>& q : poses)
-    for (int j = 0; j < N; ++j)
+  const int joints = model.joint_count();
+  std::vector<Eigen::VectorXd> poses(200, Eigen::VectorXd(joints));
+  for (Eigen::VectorXd& q : poses)
+    for (int j = 0; j < joints; ++j)
       q[j] =
           model.has_position_limits(j) ? uniform(model.lower[j], model.upper[j]) : uniform(-3, 3);
   return poses;
 }
 
-template <int N>
-double min_mass_eigenvalue(const NominalModel<double, N>& nominal) {
-  Data<double, N> data;
-  Regressor<double, N> Y;
+double min_mass_eigenvalue(const NominalModelX& nominal) {
+  const int joints = nominal.model.joint_count();
+  DataX data(nominal.model);
+  Eigen::MatrixXd Y;
   double min_eigen = std::numeric_limits<double>::infinity();
-  for (const JointVector<double, N>& q : mass_check_poses(nominal.model)) {
-    const JointVector<double, N> zero = JointVector<double, N>::Zero();
-    const JointVector<double, N> g = rigid_body_torque(nominal, data, Y, q, zero, zero);
-    JointMatrix<double, N> M;
-    for (int i = 0; i < N; ++i)
-      M.col(i) = rigid_body_torque(nominal, data, Y, q, zero, JointVector<double, N>::Unit(i)) - g;
-    // At run-time size: one eigensolver for every joint count (a check, not a hot path).
+  for (const Eigen::VectorXd& q : mass_check_poses(nominal.model)) {
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(joints);
+    const Eigen::VectorXd g = rigid_body_torque(nominal, data, Y, q, zero, zero);
+    Eigen::MatrixXd M(joints, joints);
+    for (int i = 0; i < joints; ++i)
+      M.col(i) = rigid_body_torque(nominal, data, Y, q, zero, Eigen::VectorXd::Unit(joints, i)) - g;
     const Eigen::MatrixXd sym = 0.5 * (M + M.transpose());
     min_eigen = std::min(min_eigen,
                          Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(sym, Eigen::EigenvaluesOnly)
@@ -108,8 +108,7 @@ double min_mass_eigenvalue(const NominalModel<double, N>& nominal) {
   return min_eigen;
 }
 
-template <int N>
-ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
+ConsistencyCheck check_consistency(const NominalModelX& nominal) {
   ConsistencyCheck check;
   const double min_eigen = min_mass_eigenvalue(nominal);
   check.min_mass_eigenvalue = min_eigen;
@@ -122,8 +121,8 @@ ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal) {
         "inertial torque is not physical; log a longer excitation that accelerates every joint, "
         "and judge the model on held-out data (tpf validate)");
   check.checks.push_back("friction: τ_c, τ_s, b, α ≥ 0, q̇_s > 0");
-  const StribeckParameters<double, N>& f = nominal.friction;
-  for (int j = 0; j < N; ++j) {
+  const StribeckParametersX& f = nominal.friction;
+  for (int j = 0; j < nominal.model.joint_count(); ++j) {
     const std::string joint = "joint " + std::to_string(j + 1);
     if (!(f.coulomb[j] >= 0) || !(f.static_friction[j] >= 0) || !(f.viscous[j] >= 0))
       check.problems.push_back(joint + ": negative Coulomb, static or viscous friction");
@@ -176,26 +175,25 @@ double linear_residual_rms(const Eigen::MatrixXd& x, const JointStribeck& linear
 }
 
 // Joint j's curve in fit_stribeck's terms.
-template <int N>
-JointStribeck joint_stribeck(const StribeckParameters<double, N>& p, int j) {
+JointStribeck joint_stribeck(const StribeckParametersX& p, int j) {
   return {p.coulomb[j], p.static_friction[j], p.stribeck_velocity[j], p.stribeck_exponent[j],
           p.viscous[j], p.load_coulomb[j],    p.load_viscous[j]};
 }
 
 // fit_friction_curves, and with `judged` refit_friction_curves (every row; each joint's choice
 // and curve from `judged`).
-template <int N>
-FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& rigid_prediction,
-                                  const Eigen::MatrixXd& abs_gravity,
-                                  const StribeckParameters<double, N>& linear, bool fit_load,
-                                  int samples_per_joint, const FrictionCurves<N>* judged) {
-  FrictionCurves<N> out;
+FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rigid_prediction,
+                               const Eigen::MatrixXd& abs_gravity,
+                               const StribeckParametersX& linear, bool fit_load,
+                               int samples_per_joint, const FrictionCurves* judged) {
+  const int joints = s.joints();
+  FrictionCurves out;
   out.parameters = linear;
-  out.linear_written.assign(N, 0);
-  out.heldout_rms_curve = Eigen::VectorXd::Constant(N, std::nan(""));
+  out.linear_written.assign(static_cast<std::size_t>(joints), 0);
+  out.heldout_rms_curve = Eigen::VectorXd::Constant(joints, std::nan(""));
   out.heldout_rms_linear = out.heldout_rms_curve;
-  StribeckParameters<double, N> clamped = linear;  // what the linear fit can write
-  for (int j = 0; j < N; ++j) {
+  StribeckParametersX clamped = linear;  // what the linear fit can write
+  for (int j = 0; j < joints; ++j) {
     clamped.coulomb[j] = clamped.static_friction[j] = std::max(linear.coulomb[j], 0.0);
     clamped.viscous[j] = std::max(linear.viscous[j], 0.0);
     clamped.load_coulomb[j] = std::max(linear.load_coulomb[j], 0.0);
@@ -203,7 +201,7 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
     clamped.coulomb_asymmetry[j] =
         std::clamp(linear.coulomb_asymmetry[j], -clamped.coulomb[j], clamped.coulomb[j]);
   }
-  std::vector<std::vector<std::string>> notes(N);
+  std::vector<std::vector<std::string>> notes(static_cast<std::size_t>(joints));
   // A joint whose gravity torque stays negligible (a vertical axis) has no load column to fit:
   // α·|G| there would fit noise in |G| with an absurd α.
   const double arm_gravity = abs_gravity.array().isFinite().select(abs_gravity, 0.0).maxCoeff();
@@ -214,8 +212,9 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
           std::isfinite(rigid_prediction(k, j)))
         (s.heldout[k] && !judged ? heldout : rows).push_back(k);
     // Friction target without the held terms (asymmetry, neighbour load), and the linear curve.
+    Eigen::VectorXd abs_g(joints);  // sized once, assigned per sample
     auto target_at = [&](Eigen::Index k) {
-      const JointVector<double, N> abs_g = abs_gravity.row(k).transpose();
+      abs_g = abs_gravity.row(k).transpose();
       const double dq = s.dq(k, j);
       const double held = clamped.coulomb_asymmetry[j] * (dq != 0.0) +
                           clamped.viscous_asymmetry[j] * std::abs(dq) +
@@ -246,7 +245,7 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
     };
     const Eigen::MatrixXd all = gather(1);
     const JointStribeck start = fit_linear_friction(all.col(0), all.col(1), all.col(2), false);
-    StribeckParameters<double, N> linear_fit = clamped;
+    StribeckParametersX linear_fit = clamped;
     linear_fit.coulomb[j] = linear_fit.static_friction[j] = start.coulomb;
     linear_fit.viscous[j] = start.viscous;
     linear_fit.load_coulomb[j] = start.load_coulomb;
@@ -276,7 +275,7 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
                                  joint_stribeck(judged->parameters, j), fit_load_here, scale)
                : fit_stribeck(strided.col(0), strided.col(1), strided.col(2), start, fit_load_here,
                               scale);
-    StribeckParameters<double, N> curve = clamped;
+    StribeckParametersX curve = clamped;
     curve.coulomb[j] = fit.curve.coulomb;
     curve.static_friction[j] = fit.curve.static_friction;
     curve.stribeck_velocity[j] = fit.curve.stribeck_velocity;
@@ -287,7 +286,7 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
     // Held-out comparison with the linear fit on the same samples.
     double sse_curve = 0, sse_linear = 0;
     // The symmetric part of a curve (the asymmetry is held, the same in both).
-    auto symmetric = [&](const StribeckParameters<double, N>& p, Eigen::Index k) {
+    auto symmetric = [&](const StribeckParametersX& p, Eigen::Index k) {
       const double v = s.dq(k, j);
       return stribeck_friction(p, j, v, abs_gravity(k, j)) - p.coulomb_asymmetry[j] * (v != 0.0) -
              p.viscous_asymmetry[j] * std::abs(v);
@@ -328,7 +327,7 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
   };
   // Joints are independent problems of unequal cost: each thread takes the next joint (same
   // result as serial).
-  parallel_jobs(N, fit_joint);
+  parallel_jobs(joints, fit_joint);
   for (const auto& n : notes)
     out.notes.insert(out.notes.end(), n.begin(), n.end());
   return out;
@@ -336,33 +335,30 @@ FrictionCurves<N> friction_curves(const JointSamples& s, const Eigen::MatrixXd& 
 
 }  // namespace
 
-template <int N>
-FrictionCurves<N> fit_friction_curves(const JointSamples& s,
-                                      const Eigen::MatrixXd& rigid_prediction,
-                                      const Eigen::MatrixXd& abs_gravity,
-                                      const StribeckParameters<double, N>& linear, bool fit_load,
-                                      int samples_per_joint) {
-  return friction_curves<N>(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
-                            nullptr);
+FrictionCurves fit_friction_curves(const JointSamples& s, const Eigen::MatrixXd& rigid_prediction,
+                                   const Eigen::MatrixXd& abs_gravity,
+                                   const StribeckParametersX& linear, bool fit_load,
+                                   int samples_per_joint) {
+  return friction_curves(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
+                         nullptr);
 }
 
-template <int N>
-StribeckParameters<double, N> refit_friction_curves(const JointSamples& s,
-                                                    const Eigen::MatrixXd& rigid_prediction,
-                                                    const Eigen::MatrixXd& abs_gravity,
-                                                    const StribeckParameters<double, N>& linear,
-                                                    bool fit_load, int samples_per_joint,
-                                                    const FrictionCurves<N>& judged) {
-  return friction_curves<N>(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
-                            &judged)
+StribeckParametersX refit_friction_curves(const JointSamples& s,
+                                          const Eigen::MatrixXd& rigid_prediction,
+                                          const Eigen::MatrixXd& abs_gravity,
+                                          const StribeckParametersX& linear, bool fit_load,
+                                          int samples_per_joint, const FrictionCurves& judged) {
+  return friction_curves(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
+                         &judged)
       .parameters;
 }
 
-template <int N>
-LinearNominal<N> linear_nominal(const Model<double, N>& model, const EffectDesign<N>& design,
-                                const BaseParameters& base, const Eigen::VectorXd& theta) {
-  LinearNominal<N> out;
+LinearNominal linear_nominal(const ModelX& model, const EffectDesign& design,
+                             const BaseParameters& base, const Eigen::VectorXd& theta) {
+  LinearNominal out;
   out.nominal.model = model;
+  out.nominal.resize(model.joint_count());
+  out.linear.resize(model.joint_count());
   out.nominal.base_count = base.size();
   out.rigid_theta = Eigen::VectorXd::Zero(design.features());
   using Friction = JointFrictionColumns;
@@ -388,20 +384,20 @@ namespace {
 // friction_from_sensor effort − (τ_sensor + I_a·q̈) where the joint's sensor varies (its linear
 // start then from the same target, kept in `from_sensor`): `rigid` itself, not a copy, or
 // `from_sensor`.
-template <int N>
 const Eigen::MatrixXd& friction_reference(const Log& log, const JointSamples& s,
                                           const Eigen::MatrixXd& rigid,
-                                          const IdentifyOptions& options, LinearNominal<N>& fit,
+                                          const IdentifyOptions& options, LinearNominal& fit,
                                           std::vector<std::string>& notes,
                                           Eigen::MatrixXd& from_sensor) {
   if (!options.friction_from_sensor) return rigid;
+  const int n = s.joints();
   // I_a of each joint: the base value of column "Ia<j>" where it is a base column of its own.
-  Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
+  Eigen::VectorXd armature = Eigen::VectorXd::Zero(n);
   for (int i = 0; i < fit.nominal.base_count; ++i)
-    if (fit.nominal.base_columns[i] >= 10 * N && fit.nominal.base_columns[i] < 11 * N)
-      armature[fit.nominal.base_columns[i] - 10 * N] = fit.nominal.base_values[i];
+    if (fit.nominal.base_columns[i] >= 10 * n && fit.nominal.base_columns[i] < 11 * n)
+      armature[fit.nominal.base_columns[i] - 10 * n] = fit.nominal.base_values[i];
   SensorFrictionReference sensor = sensor_friction_reference(log, s, armature, rigid);
-  for (int j = 0; j < N; ++j)
+  for (int j = 0; j < n; ++j)
     if (sensor.from_sensor[j] && std::isfinite(sensor.coulomb[j])) {
       fit.linear.coulomb[j] = fit.linear.static_friction[j] = sensor.coulomb[j];
       fit.linear.viscous[j] = sensor.viscous[j];
@@ -413,30 +409,29 @@ const Eigen::MatrixXd& friction_reference(const Log& log, const JointSamples& s,
 
 }  // namespace
 
-template <int N>
-Identification<N> identify(const Log& log, const Model<double, N>& model,
-                           const IdentifyOptions& options) {
+Identification identify(const Log& log, const ModelX& model, const IdentifyOptions& options) {
   return identify(log, model, prepare_identification(log, model, options.samples), options);
 }
 
-template <int N>
-Identification<N> identify(const Log& log, const Model<double, N>& model,
-                           IdentificationSetup<N> setup, const IdentifyOptions& options) {
+Identification identify(const Log& log, const ModelX& model, IdentificationSetup setup,
+                        const IdentifyOptions& options) {
   auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
-  Identification<N> out;
+  const int joints = model.joint_count();
+  Identification out;
   out.samples = std::move(setup.samples);
   const JointSamples& s = out.samples;
   const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
   const auto regressors =
-      setup.regressors ? setup.regressors
-                       : std::make_shared<const SampleRegressors<N>>(
-                             model, EffectDesign<N>::regressor_columns(base.independent, false), s);
-  const EffectDesign<N> design(model, base, s, regressors, {},
-                               options.samples.regimes.static_velocity);
+      setup.regressors
+          ? setup.regressors
+          : std::make_shared<const SampleRegressors>(
+                model, EffectDesign::regressor_columns(joints, base.independent, false), s);
+  const EffectDesign design(model, base, s, regressors, {},
+                            options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);
   FitSelection selection;
   selection.regimes = {false, true, true};  // moving samples only
@@ -455,15 +450,15 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   out.refitted = holds_rows_out(s);
   FitSelection every = selection;
   every.heldout_rows = true;
-  const RobotFileInertiaPrior<N> prior = options.inertia_prior
-                                             ? robot_file_inertia_prior(model, design, base)
-                                             : RobotFileInertiaPrior<N>{};
-  const RobotFileInertiaPrior<N>* inertia_prior = options.inertia_prior ? &prior : nullptr;
-  PriorFit<N> judged =
+  const RobotFileInertiaPrior prior = options.inertia_prior
+                                          ? robot_file_inertia_prior(model, design, base)
+                                          : RobotFileInertiaPrior{};
+  const RobotFileInertiaPrior* inertia_prior = options.inertia_prior ? &prior : nullptr;
+  PriorFit judged =
       choose_inertia_prior(model, design, base, grams, columns, selection, inertia_prior);
-  PriorFit<N> written = out.refitted ? refit_with_inertia_prior(model, design, base, grams, columns,
-                                                                every, inertia_prior, judged)
-                                     : judged;
+  PriorFit written = out.refitted ? refit_with_inertia_prior(model, design, base, grams, columns,
+                                                             every, inertia_prior, judged)
+                                  : judged;
   out.inertia_prior = {options.inertia_prior,
                        judged.strength,
                        written.strength,
@@ -472,8 +467,8 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
                        prior.floor,
                        judged.candidates,
                        judged.choice};
-  LinearNominal<N> fit = std::move(judged.fit);
-  LinearNominal<N> final_fit = std::move(written.fit);
+  LinearNominal fit = std::move(judged.fit);
+  LinearNominal final_fit = std::move(written.fit);
   std::vector<Eigen::MatrixXd> rigids = design.predict_each(
       s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
                       : std::vector<Eigen::VectorXd>{fit.rigid_theta});
@@ -484,13 +479,13 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
   Eigen::MatrixXd sensor_reference;
   const Eigen::MatrixXd& reference =
       friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);
-  const FrictionCurves<N> curves =
-      fit_friction_curves<N>(s, reference, load, fit.linear, options.fit_load_friction,
-                             options.friction_samples_per_joint);
+  const FrictionCurves curves =
+      fit_friction_curves(s, reference, load, fit.linear, options.fit_load_friction,
+                          options.friction_samples_per_joint);
   out.friction_notes.insert(out.friction_notes.end(), curves.notes.begin(), curves.notes.end());
-  NominalModel<double, N> nominal = fit.nominal;
+  NominalModelX nominal = fit.nominal;
   nominal.friction = curves.parameters;
-  const StribeckParameters<double, N>& linear = fit.linear;
+  const StribeckParametersX& linear = fit.linear;
   out.nominal = nominal;
   if (out.refitted) {
     std::vector<std::string> unused;
@@ -498,24 +493,30 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     const Eigen::MatrixXd& final_reference = friction_reference(
         log, s, rigids.back(), options, final_fit, unused, final_sensor_reference);
     out.nominal = final_fit.nominal;
-    out.nominal.friction = refit_friction_curves<N>(s, final_reference, load, final_fit.linear,
-                                                    options.fit_load_friction,
-                                                    options.friction_samples_per_joint, curves);
+    out.nominal.friction =
+        refit_friction_curves(s, final_reference, load, final_fit.linear, options.fit_load_friction,
+                              options.friction_samples_per_joint, curves);
   }
 
   say("identify: pass 3/3: validation on held-out blocks");
   // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has
   // no added effects), without a third regressor pass.
-  out.residual.resize(s.size(), N);
+  out.residual.resize(s.size(), joints);
   parallel_halves(s.size(), [&](Eigen::Index begin, Eigen::Index end) {
+    Eigen::VectorXd abs_g(joints);  // sized once, assigned per sample
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) {
         out.residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
         continue;
       }
-      const JointVector<double, N> dq = s.dq.row(k).transpose(), abs_g = load.row(k).transpose();
-      const JointVector<double, N> friction = stribeck_friction(nominal.friction, dq, abs_g);
-      out.residual.row(k) = s.effort.row(k) - rigid.row(k) - friction.transpose();
+      abs_g = load.row(k).transpose();
+      // stribeck_friction of every joint, term by term without a vector per sample.
+      for (int j = 0; j < joints; ++j) {
+        const double dq = s.dq(k, j);
+        const double friction = stribeck_friction(nominal.friction, j, dq, abs_g[j]) +
+                                neighbour_load_friction(nominal.friction, j, dq, abs_g);
+        out.residual(k, j) = s.effort(k, j) - rigid(k, j) - friction;
+      }
     }
   });
   parallel_jobs(2, [&](int split) {
@@ -532,7 +533,7 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
         "every acceleration of the log is zero (its ddq<j> columns?): the inertias are not "
         "excited, so M(q) cannot be identified; drop the ddq<j> columns to let the tools derive "
         "them from dq<j>, or log a motion that accelerates");
-  for (int j = 0; j < N; ++j)
+  for (int j = 0; j < joints; ++j)
     if (linear.coulomb[j] < 0 || linear.viscous[j] < 0) {
       char text[320];
       std::snprintf(text, sizeof text,
@@ -546,34 +547,5 @@ Identification<N> identify(const Log& log, const Model<double, N>& model,
     }
   return out;
 }
-
-#define TPF_INSTANTIATE_IDENTIFY(N)                                                            \
-  template Identification<N> identify<N>(const Log&, const Model<double, N>&,                  \
-                                         const IdentifyOptions&);                              \
-  template Identification<N> identify<N>(const Log&, const Model<double, N>&,                  \
-                                         IdentificationSetup<N>, const IdentifyOptions&);      \
-  template ConsistencyCheck check_consistency<N>(const NominalModel<double, N>&);              \
-  template std::vector<JointVector<double, N>> mass_check_poses<N>(const Model<double, N>&);   \
-  template double min_mass_eigenvalue<N>(const NominalModel<double, N>&);                      \
-  template Eigen::MatrixXd nominal_residual<N>(const NominalModel<double, N>&,                 \
-                                               const JointSamples&);                           \
-  template std::vector<Eigen::MatrixXd> nominal_residuals<N>(                                  \
-      const std::vector<const NominalModel<double, N>*>&, const JointSamples&);                \
-  template FrictionCurves<N> fit_friction_curves<N>(                                           \
-      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,                     \
-      const StribeckParameters<double, N>&, bool, int);                                        \
-  template StribeckParameters<double, N> refit_friction_curves<N>(                             \
-      const JointSamples&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,                     \
-      const StribeckParameters<double, N>&, bool, int, const FrictionCurves<N>&);              \
-  template LinearNominal<N> linear_nominal<N>(const Model<double, N>&, const EffectDesign<N>&, \
-                                              const BaseParameters&, const Eigen::VectorXd&);
-TPF_INSTANTIATE_IDENTIFY(1)
-TPF_INSTANTIATE_IDENTIFY(2)
-TPF_INSTANTIATE_IDENTIFY(3)
-TPF_INSTANTIATE_IDENTIFY(4)
-TPF_INSTANTIATE_IDENTIFY(5)
-TPF_INSTANTIATE_IDENTIFY(6)
-TPF_INSTANTIATE_IDENTIFY(7)
-#undef TPF_INSTANTIATE_IDENTIFY
 
 }  // namespace tpf::offline

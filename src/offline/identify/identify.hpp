@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "offline/common/run_time_types.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime_stats.hpp"
-#include "tpf/estimation/nominal_model.hpp"
 
 namespace tpf::offline {
 
@@ -56,11 +56,10 @@ struct PriorCandidate {
   bool positive_definite = false;  ///< min_eigenvalue above the prior's floor
 };
 
-template <int N>
 struct Identification {
   /// What the parameter file gets: fitted on the training rows, judged on the held-out ones,
   /// then refitted on every row (`refitted`) where rows were held out.
-  NominalModel<double, N> nominal;
+  NominalModelX nominal;
   bool refitted = false;
   JointSamples samples;
   /// effort − prediction of the model fitted on the training rows, per sample and joint (NaN
@@ -85,15 +84,15 @@ struct Identification {
 };
 
 /// The friction curves of every joint and how they compare with the linear fit they start from.
-template <int N>
 struct FrictionCurves {
-  StribeckParameters<double, N> parameters;
+  StribeckParametersX parameters;
   Eigen::VectorXd heldout_rms_curve, heldout_rms_linear;  ///< per joint, friction target
   std::vector<std::string> notes;    ///< per joint: parameters at a bound, linear kept, …
   std::vector<char> linear_written;  ///< per joint: the linear fit is written, not the curve
 };
 
-/// Identifies the model of the N-joint arm described by `model` (the robot file) from `log`:
+/// Identifies the model of the arm described by `model` (the robot file, any joint count N; the
+/// log must have as many joints) from `log`:
 /// 1. weighted linear least squares of Y_b·π_b (SI base parameters, incl. armature) + τ_c·sgn(q̇)
 ///    + b·q̇ on the moving training samples (|q̇| ≥ threshold), weights per joint 1/σ_j² from
 ///    the residual std of an unweighted first fit (iterated once);
@@ -103,42 +102,33 @@ struct FrictionCurves {
 /// With options.friction_from_sensor, step 2 (and its linear start) uses the torque sensor; with
 /// options.inertia_prior, step 1 is choose_inertia_prior (inertia_prior.hpp) for the judged fit
 /// and refit_with_inertia_prior for the written one.
-template <int N>
-Identification<N> identify(const Log& log, const Model<double, N>& model,
-                           const IdentifyOptions& options = {});
+Identification identify(const Log& log, const ModelX& model, const IdentifyOptions& options = {});
 
 /// The same from samples already prepared (prepare_identification(log, model, options.samples)
 /// or prepare_diagnosis): their regressors are used where they are given. The samples end in
 /// Identification::samples.
-template <int N>
-Identification<N> identify(const Log& log, const Model<double, N>& model,
-                           IdentificationSetup<N> setup, const IdentifyOptions& options);
+Identification identify(const Log& log, const ModelX& model, IdentificationSetup setup,
+                        const IdentifyOptions& options);
 
 /// M(q) ≻ 0 at 200 seeded poses (rigid body + armature from the base parameters), friction
 /// coefficients non-negative, q̇_s > 0.
-template <int N>
-ConsistencyCheck check_consistency(const NominalModel<double, N>& nominal);
+ConsistencyCheck check_consistency(const NominalModelX& nominal);
 
 /// check_consistency's 200 seeded poses of `model`'s joints (uniform within their limits, else
 /// in ±3 rad).
-template <int N>
-std::vector<JointVector<double, N>> mass_check_poses(const Model<double, N>& model);
+std::vector<Eigen::VectorXd> mass_check_poses(const ModelX& model);
 
 /// The smallest eigenvalue of M(q) [kg·m²] (rigid body + armature from the base parameters) over
 /// check_consistency's 200 seeded poses.
-template <int N>
-double min_mass_eigenvalue(const NominalModel<double, N>& nominal);
+double min_mass_eigenvalue(const NominalModelX& nominal);
 
 /// effort − (rigid + friction) of `nominal` on every sample (NaN where invalid).
-template <int N>
-Eigen::MatrixXd nominal_residual(const NominalModel<double, N>& nominal,
-                                 const JointSamples& samples);
+Eigen::MatrixXd nominal_residual(const NominalModelX& nominal, const JointSamples& samples);
 
 /// nominal_residual of each of `nominals`, models of one robot (equal `model`), in one pass: one
 /// forward kinematics per sample for all of them.
-template <int N>
-std::vector<Eigen::MatrixXd> nominal_residuals(
-    const std::vector<const NominalModel<double, N>*>& nominals, const JointSamples& samples);
+std::vector<Eigen::MatrixXd> nominal_residuals(const std::vector<const NominalModelX*>& nominals,
+                                               const JointSamples& samples);
 
 /// Per-joint regime statistics of `residual` over the held-out (or training) samples only.
 std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
@@ -152,38 +142,32 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
 /// must do at least as well as `linear` (its Coulomb and viscous clamped at ≥ 0): where it does
 /// not, the linear fit is kept and a note says so; parameters that end at a bound are noted.
 /// Samples where rigid_prediction is NaN are left out.
-template <int N>
-FrictionCurves<N> fit_friction_curves(const JointSamples& samples,
-                                      const Eigen::MatrixXd& rigid_prediction,
-                                      const Eigen::MatrixXd& abs_gravity,
-                                      const StribeckParameters<double, N>& linear, bool fit_load,
-                                      int samples_per_joint);
+FrictionCurves fit_friction_curves(const JointSamples& samples,
+                                   const Eigen::MatrixXd& rigid_prediction,
+                                   const Eigen::MatrixXd& abs_gravity,
+                                   const StribeckParametersX& linear, bool fit_load,
+                                   int samples_per_joint);
 
-template <int N>
 class EffectDesign;
 
 /// A linear fit θ of `design`'s columns as a nominal model without curves: its rigid base
 /// parameters, and the linear friction (Coulomb + viscous) the curves start from.
-template <int N>
 struct LinearNominal {
-  NominalModel<double, N> nominal;
-  Eigen::VectorXd rigid_theta;           ///< θ's rigid-body columns, zero elsewhere
-  StribeckParameters<double, N> linear;  ///< the linear friction the curves start from
+  NominalModelX nominal;
+  Eigen::VectorXd rigid_theta;  ///< θ's rigid-body columns, zero elsewhere
+  StribeckParametersX linear;   ///< the linear friction the curves start from
 };
 
-template <int N>
-LinearNominal<N> linear_nominal(const Model<double, N>& model, const EffectDesign<N>& design,
-                                const BaseParameters& base, const Eigen::VectorXd& theta);
+LinearNominal linear_nominal(const ModelX& model, const EffectDesign& design,
+                             const BaseParameters& base, const Eigen::VectorXd& theta);
 
 /// The final fit of curves already judged (`judged`, from fit_friction_curves on the training
 /// rows): every row, the held-out ones included; each joint keeps its linear fit or its curve as
 /// chosen there, the curve refined from the judged one.
-template <int N>
-StribeckParameters<double, N> refit_friction_curves(const JointSamples& samples,
-                                                    const Eigen::MatrixXd& rigid_prediction,
-                                                    const Eigen::MatrixXd& abs_gravity,
-                                                    const StribeckParameters<double, N>& linear,
-                                                    bool fit_load, int samples_per_joint,
-                                                    const FrictionCurves<N>& judged);
+StribeckParametersX refit_friction_curves(const JointSamples& samples,
+                                          const Eigen::MatrixXd& rigid_prediction,
+                                          const Eigen::MatrixXd& abs_gravity,
+                                          const StribeckParametersX& linear, bool fit_load,
+                                          int samples_per_joint, const FrictionCurves& judged);
 
 }  // namespace tpf::offline

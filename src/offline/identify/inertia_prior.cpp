@@ -9,60 +9,64 @@
 
 #include "offline/effects/effect_columns.hpp"
 #include "offline/report/text_format.hpp"
-#include "tpf/common/joint_counts.hpp"
 #include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
 
-template <int N>
-MassMatrixProbe<N>::MassMatrixProbe(const NominalModel<double, N>& like) {
-  Data<double, N> data;
-  Regressor<double, N> Y0, Yi;
-  const JointVector<double, N> zero = JointVector<double, N>::Zero();
-  for (const JointVector<double, N>& q : mass_check_poses(like.model)) {
+MassMatrixProbe::MassMatrixProbe(const NominalModelX& like) : joints_(like.model.joint_count()) {
+  const int n = joints_;
+  DataX data(like.model);
+  Eigen::MatrixXd Y0, Yi;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  for (const Eigen::VectorXd& q : mass_check_poses(like.model)) {
     compute_regressor(like.model, data, q, zero, zero, Y0);
-    Eigen::MatrixXd& map = maps_.emplace_back(N * N, like.base_count);
-    for (int i = 0; i < N; ++i) {
-      compute_regressor(like.model, data, q, zero, JointVector<double, N>::Unit(i), Yi);
+    Eigen::MatrixXd& map = maps_.emplace_back(n * n, like.base_count);
+    for (int i = 0; i < n; ++i) {
+      compute_regressor(like.model, data, q, zero, Eigen::VectorXd::Unit(n, i), Yi);
       for (int c = 0; c < like.base_count; ++c)
-        map.col(c).segment(N * i, N) = Yi.col(like.base_columns[c]) - Y0.col(like.base_columns[c]);
+        map.col(c).segment(n * i, n) = Yi.col(like.base_columns[c]) - Y0.col(like.base_columns[c]);
     }
   }
 }
 
-template <int N>
-bool MassMatrixProbe<N>::above(const NominalModel<double, N>& nominal, double floor) const {
+bool MassMatrixProbe::above(const NominalModelX& nominal, double floor) const {
+  const int n = joints_;
+  // Sized once for every pose.
+  Eigen::VectorXd m(n * n);
+  Eigen::MatrixXd shifted(n, n);
+  Eigen::LLT<Eigen::MatrixXd> factor(n);
   for (const Eigen::MatrixXd& map : maps_) {
-    const Eigen::Matrix<double, N * N, 1> m = map * nominal.base_values.head(nominal.base_count);
-    const Eigen::Map<const JointMatrix<double, N>> M(m.data());
-    const JointMatrix<double, N> shifted =
-        0.5 * (M + M.transpose()) - floor * JointMatrix<double, N>::Identity();
-    if (Eigen::LLT<JointMatrix<double, N>>(shifted).info() != Eigen::Success) return false;
+    m.noalias() = map * nominal.base_values.head(nominal.base_count);
+    const Eigen::Map<const Eigen::MatrixXd> M(m.data(), n, n);
+    shifted = 0.5 * (M + M.transpose()) - floor * Eigen::MatrixXd::Identity(n, n);
+    if (factor.compute(shifted).info() != Eigen::Success) return false;
   }
   return true;
 }
 
-template <int N>
-double MassMatrixProbe<N>::min_eigenvalue(const NominalModel<double, N>& nominal) const {
+double MassMatrixProbe::min_eigenvalue(const NominalModelX& nominal) const {
   double smallest = std::numeric_limits<double>::infinity();
+  const int n = joints_;
+  // Sized once for every pose.
+  Eigen::VectorXd m(n * n);
+  Eigen::MatrixXd sym(n, n);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(n);
   for (const Eigen::MatrixXd& map : maps_) {
-    const Eigen::Matrix<double, N * N, 1> m = map * nominal.base_values.head(nominal.base_count);
-    const Eigen::Map<const JointMatrix<double, N>> M(m.data());
-    const JointMatrix<double, N> sym = 0.5 * (M + M.transpose());
-    smallest = std::min(
-        smallest, Eigen::SelfAdjointEigenSolver<JointMatrix<double, N>>(sym, Eigen::EigenvaluesOnly)
-                      .eigenvalues()
-                      .minCoeff());
+    m.noalias() = map * nominal.base_values.head(nominal.base_count);
+    const Eigen::Map<const Eigen::MatrixXd> M(m.data(), n, n);
+    sym = 0.5 * (M + M.transpose());
+    smallest =
+        std::min(smallest, solver.compute(sym, Eigen::EigenvaluesOnly).eigenvalues().minCoeff());
   }
   return smallest;
 }
 
-template <int N>
-ColumnPrior robot_file_prior(const Model<double, N>& model, const EffectDesign<N>& design,
+ColumnPrior robot_file_prior(const ModelX& model, const EffectDesign& design,
                              const BaseParameters& base) {
-  const JointVector<double, N> zero = JointVector<double, N>::Zero();
+  const int n = model.joint_count();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   const Eigen::VectorXd values =
-      base.project(dynamic_parameters(model, zero, zero).head(11 * N).eval());
+      base.project(dynamic_parameters(model, zero, zero).head(11 * n).eval());
   ColumnPrior prior;
   prior.mean = Eigen::VectorXd::Zero(design.features());
   for (const FeatureGroup& g : design.groups())
@@ -74,15 +78,13 @@ ColumnPrior robot_file_prior(const Model<double, N>& model, const EffectDesign<N
   return prior;
 }
 
-template <int N>
-RobotFileInertiaPrior<N> robot_file_inertia_prior(const Model<double, N>& model,
-                                                  const EffectDesign<N>& design,
-                                                  const BaseParameters& base) {
-  RobotFileInertiaPrior<N> out;
+RobotFileInertiaPrior robot_file_inertia_prior(const ModelX& model, const EffectDesign& design,
+                                               const BaseParameters& base) {
+  RobotFileInertiaPrior out;
   out.prior = robot_file_prior(model, design, base);
-  const NominalModel<double, N> own = linear_nominal(model, design, base, out.prior.mean).nominal;
+  const NominalModelX own = linear_nominal(model, design, base, out.prior.mean).nominal;
   out.floor = 0.1 * min_mass_eigenvalue(own);
-  if (out.floor > 0) out.probe = MassMatrixProbe<N>(own);
+  if (out.floor > 0) out.probe = MassMatrixProbe(own);
   return out;
 }
 
@@ -108,29 +110,27 @@ double weighted_heldout_error(const DesignGrams& grams, const Eigen::VectorXd& t
 }
 
 /// The fits of one design and row selection at any strength of one prior.
-template <int N>
 struct PriorFits {
-  const Model<double, N>& model;
-  const EffectDesign<N>& design;
+  const ModelX& model;
+  const EffectDesign& design;
   const BaseParameters& base;
   const DesignGrams& grams;
   const std::vector<int>& columns;
   FitSelection selection;
 
-  Eigen::VectorXd theta(const RobotFileInertiaPrior<N>* prior, double strength) {
+  Eigen::VectorXd theta(const RobotFileInertiaPrior* prior, double strength) {
     if (prior) selection.prior = prior->prior;
     selection.prior.strength = strength;
     return fit_columns(grams, columns, selection);
   }
-  LinearNominal<N> nominal(const Eigen::VectorXd& theta) const {
+  LinearNominal nominal(const Eigen::VectorXd& theta) const {
     return linear_nominal(model, design, base, theta);
   }
 };
 
 /// The smallest strength in [1e-8, 100] whose fit's M(q) is above the floor (bisection on its
 /// logarithm, 20 halvings), NaN when even 100 does not lift it.
-template <int N>
-double smallest_lifting_strength(PriorFits<N>& fits, const RobotFileInertiaPrior<N>& prior) {
+double smallest_lifting_strength(PriorFits& fits, const RobotFileInertiaPrior& prior) {
   double weak = -8, strong = 2;  // log10 of the strength: below the floor at `weak`
   if (!prior.probe.above(fits.nominal(fits.theta(&prior, std::pow(10.0, strong))).nominal,
                          prior.floor))
@@ -189,13 +189,12 @@ std::pair<std::size_t, std::string> chosen_candidate(const std::vector<PriorCand
 
 }  // namespace
 
-template <int N>
-PriorFit<N> choose_inertia_prior(const Model<double, N>& model, const EffectDesign<N>& design,
-                                 const BaseParameters& base, const DesignGrams& grams,
-                                 const std::vector<int>& columns, FitSelection selection,
-                                 const RobotFileInertiaPrior<N>* prior) {
-  PriorFits<N> fits{model, design, base, grams, columns, selection};
-  PriorFit<N> out;
+PriorFit choose_inertia_prior(const ModelX& model, const EffectDesign& design,
+                              const BaseParameters& base, const DesignGrams& grams,
+                              const std::vector<int>& columns, FitSelection selection,
+                              const RobotFileInertiaPrior* prior) {
+  PriorFits fits{model, design, base, grams, columns, selection};
+  PriorFit out;
   out.fit = fits.nominal(fits.theta(prior, 0));
   if (!prior) return out;
   out.min_eigenvalue_without = min_mass_eigenvalue(out.fit.nominal);
@@ -205,10 +204,10 @@ PriorFit<N> choose_inertia_prior(const Model<double, N>& model, const EffectDesi
   const double lifting = smallest_lifting_strength(fits, *prior);
   if (std::isfinite(lifting)) strengths.push_back(lifting);
   std::sort(strengths.begin(), strengths.end());
-  std::vector<LinearNominal<N>> trials;
+  std::vector<LinearNominal> trials;
   for (double strength : strengths) {
     const Eigen::VectorXd theta = fits.theta(prior, strength);
-    LinearNominal<N>& trial = trials.emplace_back(fits.nominal(theta));
+    LinearNominal& trial = trials.emplace_back(fits.nominal(theta));
     const double min_eigenvalue = prior->probe.min_eigenvalue(trial.nominal);
     out.candidates.push_back({strength, weighted_heldout_error(grams, theta, selection),
                               min_eigenvalue, min_eigenvalue > prior->floor});
@@ -220,14 +219,12 @@ PriorFit<N> choose_inertia_prior(const Model<double, N>& model, const EffectDesi
   return out;
 }
 
-template <int N>
-PriorFit<N> refit_with_inertia_prior(const Model<double, N>& model, const EffectDesign<N>& design,
-                                     const BaseParameters& base, const DesignGrams& grams,
-                                     const std::vector<int>& columns, FitSelection selection,
-                                     const RobotFileInertiaPrior<N>* prior,
-                                     const PriorFit<N>& judged) {
-  PriorFits<N> fits{model, design, base, grams, columns, selection};
-  PriorFit<N> out;
+PriorFit refit_with_inertia_prior(const ModelX& model, const EffectDesign& design,
+                                  const BaseParameters& base, const DesignGrams& grams,
+                                  const std::vector<int>& columns, FitSelection selection,
+                                  const RobotFileInertiaPrior* prior, const PriorFit& judged) {
+  PriorFits fits{model, design, base, grams, columns, selection};
+  PriorFit out;
   out.fit = fits.nominal(fits.theta(prior, 0));
   if (!prior) return out;
   out.min_eigenvalue_without = min_mass_eigenvalue(out.fit.nominal);
@@ -262,15 +259,12 @@ PriorFit<N> refit_with_inertia_prior(const Model<double, N>& model, const Effect
   return out;
 }
 
-template <int N>
-PriorFit<N> fit_with_inertia_prior_strength(const Model<double, N>& model,
-                                            const EffectDesign<N>& design,
-                                            const BaseParameters& base, const DesignGrams& grams,
-                                            const std::vector<int>& columns, FitSelection selection,
-                                            const RobotFileInertiaPrior<N>* prior,
-                                            double strength) {
-  PriorFits<N> fits{model, design, base, grams, columns, selection};
-  PriorFit<N> out;
+PriorFit fit_with_inertia_prior_strength(const ModelX& model, const EffectDesign& design,
+                                         const BaseParameters& base, const DesignGrams& grams,
+                                         const std::vector<int>& columns, FitSelection selection,
+                                         const RobotFileInertiaPrior* prior, double strength) {
+  PriorFits fits{model, design, base, grams, columns, selection};
+  PriorFit out;
   out.fit = fits.nominal(fits.theta(prior, 0));
   if (!prior) return out;
   out.min_eigenvalue_without = min_mass_eigenvalue(out.fit.nominal);
@@ -278,23 +272,5 @@ PriorFit<N> fit_with_inertia_prior_strength(const Model<double, N>& model,
   out.strength = strength;
   return out;
 }
-
-#define TPF_INSTANTIATE_INERTIA_PRIOR(N)                                                           \
-  template ColumnPrior robot_file_prior<N>(const Model<double, N>&, const EffectDesign<N>&,        \
-                                           const BaseParameters&);                                 \
-  template class MassMatrixProbe<N>;                                                               \
-  template RobotFileInertiaPrior<N> robot_file_inertia_prior<N>(                                   \
-      const Model<double, N>&, const EffectDesign<N>&, const BaseParameters&);                     \
-  template PriorFit<N> choose_inertia_prior<N>(                                                    \
-      const Model<double, N>&, const EffectDesign<N>&, const BaseParameters&, const DesignGrams&,  \
-      const std::vector<int>&, FitSelection, const RobotFileInertiaPrior<N>*);                     \
-  template PriorFit<N> refit_with_inertia_prior<N>(                                                \
-      const Model<double, N>&, const EffectDesign<N>&, const BaseParameters&, const DesignGrams&,  \
-      const std::vector<int>&, FitSelection, const RobotFileInertiaPrior<N>*, const PriorFit<N>&); \
-  template PriorFit<N> fit_with_inertia_prior_strength<N>(                                         \
-      const Model<double, N>&, const EffectDesign<N>&, const BaseParameters&, const DesignGrams&,  \
-      const std::vector<int>&, FitSelection, const RobotFileInertiaPrior<N>*, double);
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_INERTIA_PRIOR)
-#undef TPF_INSTANTIATE_INERTIA_PRIOR
 
 }  // namespace tpf::offline

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "offline/identify/parallel_halves.hpp"
+#include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -16,24 +17,27 @@ bool structurally_nonzero(int joints, int row, int column) {
 
 }  // namespace
 
-template <int N>
-SampleRegressors<N>::SampleRegressors(const Model<double, N>& model, std::vector<int> columns,
-                                      const JointSamples& s)
+SampleRegressors::SampleRegressors(const ModelX& model, std::vector<int> columns,
+                                   const JointSamples& s)
     : columns_(std::move(columns)) {
+  const int joints = model.joint_count();
   std::sort(columns_.begin(), columns_.end());
   columns_.erase(std::unique(columns_.begin(), columns_.end()), columns_.end());
   for (int column : columns_)
-    for (int row = 0; row < N; ++row)
-      if (structurally_nonzero(N, row, column)) entries_.push_back({row, column});
+    for (int row = 0; row < joints; ++row)
+      if (structurally_nonzero(joints, row, column)) entries_.push_back({row, column});
 
   values_.resize(static_cast<Eigen::Index>(entries_.size()), s.size());
   parallel_halves(s.size(), [&](Eigen::Index begin, Eigen::Index end) {
-    Data<double, N> data;
-    Regressor<double, N> Y;
+    DataX data(model);
+    Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(joints, 13 * joints);
+    Eigen::VectorXd q(joints), dq(joints), ddq(joints);  // sized once: assigned per sample
     for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) continue;
-      compute_regressor(model, data, s.q.row(k).transpose(), s.dq.row(k).transpose(),
-                        s.ddq.row(k).transpose(), Y);
+      q = s.q.row(k).transpose();
+      dq = s.dq.row(k).transpose();
+      ddq = s.ddq.row(k).transpose();
+      compute_regressor(model, data, q, dq, ddq, Y);
       double* out = values_.col(k).data();
       for (const Entry& e : entries_)
         *out++ = Y(e.row, e.column);
@@ -41,24 +45,14 @@ SampleRegressors<N>::SampleRegressors(const Model<double, N>& model, std::vector
   });
 }
 
-template <int N>
-bool SampleRegressors<N>::holds(int column) const {
+bool SampleRegressors::holds(int column) const {
   return std::binary_search(columns_.begin(), columns_.end(), column);
 }
 
-template <int N>
-void SampleRegressors<N>::load(Eigen::Index k, Regressor<double, N>& Y) const {
+void SampleRegressors::load(Eigen::Index k, Eigen::MatrixXd& Y) const {
   const double* in = values_.col(k).data();
   for (const Entry& e : entries_)
     Y(e.row, e.column) = *in++;
 }
-
-template class SampleRegressors<1>;
-template class SampleRegressors<2>;
-template class SampleRegressors<3>;
-template class SampleRegressors<4>;
-template class SampleRegressors<5>;
-template class SampleRegressors<6>;
-template class SampleRegressors<7>;
 
 }  // namespace tpf::offline

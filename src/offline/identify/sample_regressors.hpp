@@ -6,9 +6,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "offline/common/run_time_types.hpp"
 #include "offline/identify/joint_samples.hpp"
-#include "tpf/dynamics/regressor.hpp"
-#include "tpf/model/model.hpp"
 
 namespace tpf::offline {
 
@@ -16,19 +15,17 @@ namespace tpf::offline {
 /// regressor_columns) of every valid sample, as compute_regressor gives them (the same doubles).
 /// Only entries that can be non-zero are stored: row j of link k's columns is zero for k < j (a
 /// link moves no joint after it), an armature column only acts on its own joint.
-template <int N>
 class SampleRegressors {
  public:
   /// One compute_regressor per valid sample (two threads).
-  SampleRegressors(const Model<double, N>& model, std::vector<int> columns,
-                   const JointSamples& samples);
+  SampleRegressors(const ModelX& model, std::vector<int> columns, const JointSamples& samples);
 
   Eigen::Index size() const { return values_.cols(); }
   /// Whether column `column` of Y is stored (its entries that can be non-zero).
   bool holds(int column) const;
-  /// Writes the stored entries of sample k into Y; the others are left as they are (zero in a Y
-  /// that was zeroed once). Precondition: sample k is valid.
-  void load(Eigen::Index k, Regressor<double, N>& Y) const;
+  /// Writes the stored entries of sample k into Y (N × 13N); the others are left as they are
+  /// (zero in a Y that was zeroed once). Precondition: sample k is valid.
+  void load(Eigen::Index k, Eigen::MatrixXd& Y) const;
 
  private:
   struct Entry {

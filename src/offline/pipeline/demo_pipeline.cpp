@@ -104,22 +104,20 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   // 2. Identify the declared model on the training log.
   say("[2/6] identify: declared model (base parameters, armature, Stribeck + load friction) on "
       "the training log");
-  const auto model = load_robot<double, kDemoJoints>(data_file("arm4.robot.json"));
+  const ModelX model = load_robot<double, Eigen::Dynamic>(data_file("arm4.robot.json"));
   IdentifyOptions identify_options;
   identify_options.progress = say;
-  const Identification<kDemoJoints> identified = identify(training_log, model, identify_options);
-  save_nominal_model<kDemoJoints>(o.out / "identified.params.json", identified.nominal,
-                                  training_log.source);
+  const Identification identified = identify(training_log, model, identify_options);
+  save_nominal_model(o.out / "identified.params.json", identified.nominal, training_log.source);
 
   // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
   say("[3/6] diagnose: candidate effects on the training log's held-out blocks");
   DiagnoseOptions diagnose_options;
   diagnose_options.progress = say;
-  const Diagnosis<kDemoJoints> diagnosis = diagnose(training_log, model, diagnose_options);
+  const Diagnosis diagnosis = diagnose(training_log, model, diagnose_options);
   for (const std::string& f : diagnosis.findings)
     say("diagnose: " + f);
-  save_nominal_model<kDemoJoints>(o.out / "nominal.params.json", diagnosis.nominal,
-                                  training_log.source);
+  save_nominal_model(o.out / "nominal.params.json", diagnosis.nominal, training_log.source);
   write_diagnosis_report(diagnosis, o.out / "diagnose.html", diagnose_options);
   AtomicFile diagnosis_file(o.out / "diagnosis.json");
   diagnosis_file.write(diagnosis_json(diagnosis));
@@ -127,7 +125,7 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   result.findings = diagnosis.findings;
   result.diagnosis_summary = diagnosis_summary_table(diagnosis, diagnose_options);
   EstimatorSetup<kDemoJoints> setup;
-  setup.nominal = diagnosis.nominal;
+  setup.nominal = joint_count_cast<kDemoJoints>(diagnosis.nominal);
   setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
   const int pads = static_cast<int>(setup.pads.size());
 

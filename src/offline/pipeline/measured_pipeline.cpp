@@ -28,6 +28,11 @@ namespace {
 
 using Gen3Model = NominalModel<double, kMeasuredJoints>;
 
+/// An identified or diagnosed model (run-time joint count) as the Gen3's.
+Gen3Model gen3_model(const NominalModelX& nominal) {
+  return joint_count_cast<kMeasuredJoints>(nominal);
+}
+
 Log read_measured_files(const MeasuredOptions& o, const std::vector<std::string>& names) {
   std::vector<std::filesystem::path> paths;
   for (const std::string& n : names)
@@ -46,7 +51,7 @@ JointSamples samples_without_holdout(const Log& log, const Model<double, kMeasur
   return extract_joint_samples(log, model.torque_constant, options);
 }
 
-Identification<kMeasuredJoints> identify_on_every_sample(
+Identification identify_on_every_sample(
     const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
     bool friction_from_sensor, const std::function<void(const std::string&)>& say,
     bool fit_load_friction = IdentifyOptions{}.fit_load_friction,
@@ -58,7 +63,7 @@ Identification<kMeasuredJoints> identify_on_every_sample(
   options.friction_from_sensor = friction_from_sensor;
   options.fit_load_friction = fit_load_friction;
   options.progress = say;
-  return identify(log, model, options);
+  return identify(log, joint_count_cast<Eigen::Dynamic>(model), options);
 }
 
 /// The columns of a split: maker, Kt only, then each estimate, RMSE over every regime.
@@ -79,16 +84,16 @@ std::vector<MeasuredColumn> measured_split_columns(const Validation& v) {
 
 /// Whether diagnose's claim e is written as a term of its own (a payload is folded into the
 /// rigid body: it cannot be taken out again, so it is not added in turn).
-bool separable_written_effect(const Diagnosis<kMeasuredJoints>& d, std::size_t e) {
+bool separable_written_effect(const Diagnosis& d, std::size_t e) {
   return d.claims[e].written &&
          d.groups[static_cast<std::size_t>(d.selected[e])].written_to != WrittenTo::kRigidBody;
 }
 
 /// Diagnose's written model with only its first `keep` separable written effects (the later ones
 /// removed), and the titles of those effects in selection order.
-Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std::size_t keep,
+Gen3Model with_first_diagnosed_effects(const Diagnosis& d, std::size_t keep,
                                        std::vector<std::string>* titles = nullptr) {
-  Gen3Model m = d.nominal;
+  NominalModelX m = d.nominal;
   std::size_t written = 0;
   for (std::size_t e = 0; e < d.claims.size(); ++e) {
     if (!separable_written_effect(d, e)) continue;
@@ -96,11 +101,11 @@ Gen3Model with_first_diagnosed_effects(const Diagnosis<kMeasuredJoints>& d, std:
     if (titles) titles->push_back(g.title);
     if (written++ >= keep) remove_group(g, m);
   }
-  return m;
+  return gen3_model(m);
 }
 
 /// The titles of the written claims that cannot be taken out (folded into the rigid body).
-std::vector<std::string> folded_effects(const Diagnosis<kMeasuredJoints>& d) {
+std::vector<std::string> folded_effects(const Diagnosis& d) {
   std::vector<std::string> folded;
   for (std::size_t e = 0; e < d.claims.size(); ++e)
     if (d.claims[e].written && !separable_written_effect(d, e))
@@ -128,7 +133,7 @@ bool same_values_or_nan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return ((a.array() == b.array()) || (a.array().isNaN() && b.array().isNaN())).all();
 }
 
-std::size_t written_effect_count(const Diagnosis<kMeasuredJoints>& d) {
+std::size_t written_effect_count(const Diagnosis& d) {
   std::size_t n = 0;
   for (std::size_t e = 0; e < d.claims.size(); ++e)
     n += separable_written_effect(d, e);
@@ -232,16 +237,16 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
                                            MeasuredResult& result, Gen3Model& identified,
                                            Gen3Model& sensor_model, const Say& say) {
   say("measured: identify on " + joined_file_names(o.fitting));
-  identified =
-      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false, say).nominal;
+  identified = gen3_model(
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false, say).nominal);
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", identified,
                                       d.fit.source + " (MEASURED)");
   std::vector<EffortEstimate> estimates{
       nominal_estimate<kMeasuredJoints>(identified, d.score_samples, result.notes)};
   estimates.back().name = "after identification";
   say("measured: identify again, the friction fitted against the torque sensor");
-  sensor_model =
-      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true, say).nominal;
+  sensor_model = gen3_model(
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true, say).nominal);
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json", sensor_model,
                                       d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
@@ -262,12 +267,12 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
                     std::vector<EffortEstimate>& estimates, const Say& say) {
   say("measured: diagnose on " + joined_file_names(o.fitting) + " (held out: " + o.fitting.back() +
       ")");
-  const Diagnosis<kMeasuredJoints> diagnosis = diagnose(d.fit, d.model, {});
+  const Diagnosis diagnosis = diagnose(d.fit, joint_count_cast<Eigen::Dynamic>(d.model), {});
   result.diagnosis_findings = diagnosis.findings;
   result.diagnosis_notes = diagnosis.notes;
   result.diagnosis_heldout = o.fitting.back();
-  save_nominal_model<kMeasuredJoints>(o.out / "gen3.diagnosed.params.json", diagnosis.nominal,
-                                      d.fit.source + " (MEASURED)");
+  save_nominal_model(o.out / "gen3.diagnosed.params.json", diagnosis.nominal,
+                     d.fit.source + " (MEASURED)");
   std::vector<std::string> titles, unseen, ignored;
   with_first_diagnosed_effects(diagnosis, 0, &titles);
   result.diagnosis_effort.push_back(
@@ -278,9 +283,9 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
   if (!folded.empty())
     result.diagnosis_effort.push_back(
         {"diagnose's declared model (as identify fits it, nothing added)",
-         effort_rmse_per_joint(
-             d.score_samples,
-             nominal_estimate<kMeasuredJoints>(diagnosis.declared, d.score_samples, ignored))});
+         effort_rmse_per_joint(d.score_samples,
+                               nominal_estimate<kMeasuredJoints>(gen3_model(diagnosis.declared),
+                                                                 d.score_samples, ignored))});
   for (std::size_t keep = 0; keep <= written_effect_count(diagnosis); ++keep) {
     EffortEstimate e = nominal_estimate<kMeasuredJoints>(
         with_first_diagnosed_effects(diagnosis, keep), d.score_samples, ignored);
@@ -336,13 +341,14 @@ void plain_fit_stage(const MeasuredOptions& o, const MeasuredData& d,
                      std::vector<EffortEstimate>& estimates, const Say& say) {
   say("measured: identify again without the inertia prior (--no-inertia-prior), the plain fit");
   const bool from_sensor = false, fit_load_friction = true, inertia_prior = false;
-  const Identification<kMeasuredJoints> id =
+  const Identification id =
       identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, from_sensor, say,
                                fit_load_friction, inertia_prior);
-  save_nominal_model<kMeasuredJoints>(o.out / "gen3.no-inertia-prior.params.json", id.nominal,
-                                      d.fit.source + " (MEASURED)");
+  save_nominal_model(o.out / "gen3.no-inertia-prior.params.json", id.nominal,
+                     d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
-  estimates.push_back(nominal_estimate<kMeasuredJoints>(id.nominal, d.score_samples, ignored));
+  estimates.push_back(
+      nominal_estimate<kMeasuredJoints>(gen3_model(id.nominal), d.score_samples, ignored));
   estimates.back().name = kWithoutInertiaPriorColumn;
 }
 
@@ -399,9 +405,9 @@ MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
   std::vector<std::string> notes;
   std::vector<EffortEstimate> estimates;
   for (bool from_sensor : {false, true}) {
-    const Gen3Model model =
+    const Gen3Model model = gen3_model(
         identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor, say)
-            .nominal;
+            .nominal);
     estimates.push_back(nominal_estimate<kMeasuredJoints>(model, d.fit_samples, notes));
     estimates.back().name = from_sensor ? "friction against the sensor" : "after identification";
     if (from_sensor) sensor_model = model;
@@ -480,8 +486,9 @@ void bound_stage(const MeasuredOptions& o, const MeasuredData& d, const Gen3Mode
   const Say quiet;
   const auto without_load = [&](const Log& log, const JointSamples& on) {
     return nominal_estimate<kMeasuredJoints>(
-        identify_on_every_sample(log, d.model, o.friction_samples_per_joint, true, quiet, false)
-            .nominal,
+        gen3_model(
+            identify_on_every_sample(log, d.model, o.friction_samples_per_joint, true, quiet, false)
+                .nominal),
         on, ignored);
   };
   result.bound.fitted_on = joined_file_names(o.fitting);
@@ -552,8 +559,9 @@ MeasuredResult run_measured(const MeasuredOptions& o,
     result.reverse =
         reverse_stage(o, d, result.reverse_low_pass_time_constants, scored_sensor_model, say);
   else
-    scored_sensor_model =
-        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, true, say).nominal;
+    scored_sensor_model = gen3_model(
+        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, true, say)
+            .nominal);
   say("measured: what bounds the held-out error (oracles, bands, coverage; both splits)");
   bound_stage(o, d, sensor_model, scored_sensor_model, result);
   result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}});
