@@ -23,7 +23,8 @@ Eigen::MatrixXd gravity_load(const ModelX& model, const JointSamples& s) {
     Eigen::VectorXd q(joints);  // sized once: assigned per sample
     for (Eigen::Index k = begin; k < end; ++k)
       if (s.valid[k]) {
-        q = s.q.row(k).transpose();
+        for (int j = 0; j < joints; ++j)
+          q[j] = s.q(k, j);  // element-wise: no resize path (GCC 12 warns on Eigen's)
         load.row(k) = compute_gravity(model, data, q).cwiseAbs().transpose();
       } else {
         load.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());

@@ -509,7 +509,8 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
         out.residual.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
         continue;
       }
-      abs_g = load.row(k).transpose();
+      for (int j = 0; j < joints; ++j)
+        abs_g[j] = load(k, j);  // element-wise: no resize path (GCC 12 warns on Eigen's)
       // stribeck_friction of every joint, term by term without a vector per sample.
       for (int j = 0; j < joints; ++j) {
         const double dq = s.dq(k, j);
