@@ -12,7 +12,7 @@ namespace detail {
 /// compute_mass_matrix on the joint transforms in data.liMi; joint types tested only when
 /// kPrismatic.
 template <bool kPrismatic, typename S, int N>
-void composite_rigid_bodies(const Model<S, N>& model, Data<S, N>& data) noexcept {
+[[gnu::flatten]] void composite_rigid_bodies(const Model<S, N>& model, Data<S, N>& data) noexcept {
   const ModelConstants<S, N>& c = model.constants;
   const int last = model.joint_count();
   data.composite_first_moment[last] = c.first_moment[last];
@@ -80,7 +80,7 @@ const JointMatrix<S, N>& compute_mass_matrix(const Model<S, N>& model, Data<S, N
                                              const NoDeduce<JointVector<S, N>>& q) noexcept {
   joint_transforms(model, data, q);
   if (model.constants.has_prismatic)
-    detail::composite_rigid_bodies<true>(model, data);
+    detail::out_of_line([&] { detail::composite_rigid_bodies<true>(model, data); });
   else
     detail::composite_rigid_bodies<false>(model, data);
   return data.M;

@@ -14,15 +14,11 @@ namespace detail {
 /// n_k += R_{k+1} n_{k+1} + p_{k+1} × R_{k+1} f_{k+1}, then τ_k = z_k·n_k (revolute) or z_k·f_k
 /// (prismatic; the type tested only when kPrismatic).
 template <bool kPrismatic, typename S, int N>
-void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
-                                JointVector<S, N>& tau) noexcept {
-  const auto joint_effort = [&](int k, const Vector3<S>& f, const Vector3<S>& n) {
-    const bool prismatic = kPrismatic && model.joint_types[k - 1] == JointType::prismatic;
-    return model.axes[k - 1].dot(prismatic ? f : n);
-  };
+[[gnu::flatten]] void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
+                                                 JointVector<S, N>& tau) noexcept {
   const int last = model.joint_count();
   Vector3<S> f = data.force[last], n = data.moment[last];
-  tau(last - 1) = joint_effort(last, f, n);
+  tau(last - 1) = model.axes[last - 1].dot(n);
   for (int k = last - 1; k >= 1; --k) {
     const Matrix3<S>& R = data.liMi[k + 1].R;
     const Vector3<S> f_child = R * f;
@@ -30,7 +26,12 @@ void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
     f = data.force[k] + f_child;
     data.force[k] = f;
     data.moment[k] = n;
-    tau(k - 1) = joint_effort(k, f, n);
+    tau(k - 1) = model.axes[k - 1].dot(n);
+  }
+  if constexpr (kPrismatic) {
+    for (int k = 1; k <= last; ++k)
+      if (model.joint_types[k - 1] == JointType::prismatic)
+        tau(k - 1) = model.axes[k - 1].dot(data.force[k]);
   }
 }
 
@@ -40,7 +41,7 @@ template <typename S, int N>
 void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
                                 JointVector<S, N>& tau) noexcept {
   if (model.constants.has_prismatic)
-    newton_euler_backward_pass<true>(model, data, tau);
+    out_of_line([&] { newton_euler_backward_pass<true>(model, data, tau); });
   else
     newton_euler_backward_pass<false>(model, data, tau);
 }
@@ -51,10 +52,10 @@ void newton_euler_backward_pass(const Model<S, N>& model, Data<S, N>& data,
 /// about its origin are the model's constants. A prismatic joint (tested only when kPrismatic)
 /// keeps ω and ω̇ and adds z q̈ + 2ω × z q̇ to the origin's acceleration.
 template <bool kPrismatic, typename S, int N>
-void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
-                         const NoDeduce<JointVector<S, N>>& dq,
-                         const NoDeduce<JointVector<S, N>>& ddq,
-                         const NoDeduce<Vector3<S>>& a0) noexcept {
+[[gnu::flatten]] void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
+                                          const NoDeduce<JointVector<S, N>>& dq,
+                                          const NoDeduce<JointVector<S, N>>& ddq,
+                                          const NoDeduce<Vector3<S>>& a0) noexcept {
   const ModelConstants<S, N>& c = model.constants;
   // The recursion runs on locals (registers), not through data's arrays: storing ω, ω̇, a and
   // reading them back a link later put a store-to-load round trip on the critical path.
@@ -69,12 +70,18 @@ void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
     const Vector3<S>& z = model.axes[k - 1];
     const Vector3<S> joint_rate = z * dq(k - 1);
     const Vector3<S> origin_acc = a + dw.cross(p) + w.cross(w.cross(p));
-    if (kPrismatic && model.joint_types[k - 1] == JointType::prismatic) {
-      w = R.transpose() * w;
-      dw = R.transpose() * dw;
-      a = R.transpose() * origin_acc + z * ddq(k - 1) + S(2) * w.cross(joint_rate);
+    const Vector3<S> w_parent = R.transpose() * w;
+    if constexpr (kPrismatic) {
+      if (model.joint_types[k - 1] == JointType::prismatic) {
+        dw = R.transpose() * dw;
+        w = w_parent;
+        a = R.transpose() * origin_acc + z * ddq(k - 1) + S(2) * w.cross(joint_rate);
+      } else {
+        dw = R.transpose() * dw + z * ddq(k - 1) + w_parent.cross(joint_rate);
+        w = w_parent + joint_rate;
+        a = R.transpose() * origin_acc;
+      }
     } else {
-      const Vector3<S> w_parent = R.transpose() * w;
       dw = R.transpose() * dw + z * ddq(k - 1) + w_parent.cross(joint_rate);
       w = w_parent + joint_rate;
       a = R.transpose() * origin_acc;
@@ -99,14 +106,14 @@ void newton_euler_passes(const Model<S, N>& model, Data<S, N>& data,
                          const NoDeduce<JointVector<S, N>>& ddq,
                          const NoDeduce<Vector3<S>>& a0) noexcept {
   if (model.constants.has_prismatic)
-    newton_euler_passes<true>(model, data, dq, ddq, a0);
+    out_of_line([&] { newton_euler_passes<true>(model, data, dq, ddq, a0); });
   else
     newton_euler_passes<false>(model, data, dq, ddq, a0);
 }
 
 /// gravity_at_pose for the joint types: a prismatic joint k carries G_k = m_{k..N} z_k · a_k.
 template <bool kPrismatic, typename S, int N>
-void gravity_passes(const Model<S, N>& model, Data<S, N>& data) noexcept {
+[[gnu::flatten]] void gravity_passes(const Model<S, N>& model, Data<S, N>& data) noexcept {
   const ModelConstants<S, N>& c = model.constants;
   const auto joint_effort = [&](int k, const Vector3<S>& H, const Vector3<S>& a) {
     if (kPrismatic && model.joint_types[k - 1] == JointType::prismatic)
@@ -186,7 +193,7 @@ const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
 template <typename S, int N>
 const JointVector<S, N>& gravity_at_pose(const Model<S, N>& model, Data<S, N>& data) noexcept {
   if (model.constants.has_prismatic)
-    detail::gravity_passes<true>(model, data);
+    detail::out_of_line([&] { detail::gravity_passes<true>(model, data); });
   else
     detail::gravity_passes<false>(model, data);
   return data.g;

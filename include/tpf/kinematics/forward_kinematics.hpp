@@ -42,19 +42,6 @@ inline void joint_transform(const Model<S, N>& model, Data<S, N>& data, int k, S
   data.liMi[k].p = model.joint_placements[k - 1].p;
 }
 
-/// data.liMi[k] for links 1..last; the revolute-only loop when the model has no prismatic joint.
-template <typename S, int N>
-inline void joint_transforms_to(const Model<S, N>& model, Data<S, N>& data,
-                                const JointVector<S, N>& q, int last) noexcept {
-  if (model.constants.has_prismatic) {
-    for (int k = 1; k <= last; ++k)
-      joint_transform<true>(model, data, k, q(k - 1));
-  } else {
-    for (int k = 1; k <= last; ++k)
-      joint_transform<false>(model, data, k, q(k - 1));
-  }
-}
-
 /// data.axis_world[k] = oMi[k].R · axis_k: a column of the rotation when the axis is a coordinate
 /// axis (the same numbers as the product, whose other terms are exact zeros).
 template <typename S, int N>
@@ -77,7 +64,16 @@ template <typename S, int N>
 void joint_transforms(const Model<S, N>& model, Data<S, N>& data,
                       const NoDeduce<JointVector<S, N>>& q) noexcept {
   assert(model.constants_current() && "Model::update_constants() after editing the model");
-  detail::joint_transforms_to(model, data, q, model.joint_count());
+  const int n = model.joint_count();
+  if (model.constants.has_prismatic) {
+    detail::out_of_line([&] {
+      for (int k = 1; k <= n; ++k)
+        detail::joint_transform<true>(model, data, k, q(k - 1));
+    });
+    return;
+  }
+  for (int k = 1; k <= n; ++k)
+    detail::joint_transform<false>(model, data, k, q(k - 1));
 }
 
 /// Link poses from the joint transforms already in data.liMi (joint_transforms at q first), from
@@ -108,7 +104,15 @@ void forward_kinematics(const Model<S, N>& model, Data<S, N>& data,
                         const NoDeduce<JointVector<S, N>>& q, int last_link = kAllLinks) noexcept {
   assert(model.constants_current() && "Model::update_constants() after editing the model");
   const int last = detail::resolve_last_link(last_link, model.joint_count());
-  detail::joint_transforms_to(model, data, q, last);
+  if (model.constants.has_prismatic) {
+    detail::out_of_line([&] {
+      for (int k = 1; k <= last; ++k)
+        detail::joint_transform<true>(model, data, k, q(k - 1));
+    });
+  } else {
+    for (int k = 1; k <= last; ++k)
+      detail::joint_transform<false>(model, data, k, q(k - 1));
+  }
   link_poses(model, data, last);
 }
 

@@ -17,15 +17,17 @@ void point_jacobian(const Model<S, N>& model, const Data<S, N>& data, int link,
                     const NoDeduce<Vector3<S>>& p, Jacobian<S, N>& J) {
   J.setZero(6, model.joint_count());
   if (model.constants.has_prismatic) {
-    for (int i = 1; i <= link; ++i) {
-      const Vector3<S>& z = data.axis_world[i];
-      if (model.joint_types[i - 1] == JointType::prismatic) {
-        J.template block<3, 1>(0, i - 1) = z;
-      } else {
-        J.template block<3, 1>(0, i - 1) = z.cross(p - data.oMi[i].p);
-        J.template block<3, 1>(3, i - 1) = z;
+    detail::out_of_line([&] {
+      for (int i = 1; i <= link; ++i) {
+        const Vector3<S>& z = data.axis_world[i];
+        if (model.joint_types[i - 1] == JointType::prismatic) {
+          J.template block<3, 1>(0, i - 1) = z;
+        } else {
+          J.template block<3, 1>(0, i - 1) = z.cross(p - data.oMi[i].p);
+          J.template block<3, 1>(3, i - 1) = z;
+        }
       }
-    }
+    });
     return;
   }
   for (int i = 1; i <= link; ++i) {

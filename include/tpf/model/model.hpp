@@ -239,4 +239,16 @@ struct Model {
   }
 };
 
+namespace detail {
+
+/// Runs f() as a call that is never inlined: the prismatic variant of a per-cycle algorithm, so
+/// that it does not grow the revolute variant's caller. Together with [[gnu::flatten]] on both
+/// variants' recursions this keeps the revolute code as fast as it was alone (without them, GCC
+/// inlined less of it: RNEA 118 → 210 ns, CRBA 114 → 161 ns on the 4-DoF arm).
+template <typename F>
+[[gnu::noinline]] void out_of_line(const F& f) {
+  f();
+}
+
+}  // namespace detail
 }  // namespace tpf
