@@ -76,10 +76,10 @@ std::string arm_urdf_with(const std::string& from, const std::string& to) {
   return urdf.replace(at, from.size(), to);
 }
 
-TEST(CliBadFiles, PrismaticJointInTheRobotsUrdfStopsTheSimulationBeforeAnyOutput) {
-  CliSandbox box("prismatic");
-  write_robot(box, arm_urdf_with("name=\"joint3\" type=\"revolute\"",
-                                 "name=\"joint3\" type=\"prismatic\""));
+TEST(CliBadFiles, PlanarJointInTheRobotsUrdfStopsTheSimulationBeforeAnyOutput) {
+  CliSandbox box("planar");
+  write_robot(
+      box, arm_urdf_with("name=\"joint3\" type=\"revolute\"", "name=\"joint3\" type=\"planar\""));
   box.write("s.json", scenario_json(1, ", \"robot\": \"robot.json\""));
   expect_refused(box, box.tpf("simulate --quiet --scenario s.json --out out.csv"), "bad.urdf",
                  "joint 'joint3'");

@@ -40,9 +40,10 @@ DynamicParameters<S, N> dynamic_parameters(const Model<S, N>& model,
 /// motor must overcome, so measured torque = Y π). Each link's wrench at its origin is linear in
 /// its 10 parameters, [f; n] = [F; M] π_k (3 × 10 each, in link k's frame), with
 ///   f = m a + ω̇ × h + ω × (ω × h),   n = I ω̇ + ω × (I ω) + h × a.
-/// Joint j ≤ k carries that wrench's moment about its own origin, z_j · (n + r × f) with r from
-/// joint j's origin to link k's, so
-///   Y(j, π_k) = u_jᵀ M + v_jᵀ F,   u_j = z_j and v_j = z_j × r, both in link k's frame,
+/// A revolute joint j ≤ k carries that wrench's moment about its own origin, z_j · (n + r × f)
+/// with r from joint j's origin to link k's, a prismatic one its force z_j · f, so
+///   Y(j, π_k) = u_jᵀ M + v_jᵀ F,   u_j = z_j and v_j = z_j × r (prismatic: u_j = 0, v_j = z_j),
+///   both in link k's frame,
 /// carried up the chain link by link (v ← Rᵀ(v + u × p), u ← Rᵀ u): O(N²) 3-vectors instead of
 /// moving every link's 3 × 10 wrench matrices down to each joint. Fills data.oMi as
 /// forward_kinematics does. Allocation-free at a fixed N (Y is resized at Eigen::Dynamic).
@@ -61,19 +62,27 @@ void compute_regressor(const Model<S, N>& model, Data<S, N>& data,
     const Matrix3<S>& R = data.liMi[k].R;
     const Vector3<S>& p = data.liMi[k].p;
     const Vector3<S>& z = model.axes[k - 1];
-    const Vector3<S> a_k = R.transpose() * (a + dw.cross(p) + w.cross(w.cross(p)));
+    const bool prismatic = model.is_prismatic(k - 1);
+    Vector3<S> a_k = R.transpose() * (a + dw.cross(p) + w.cross(w.cross(p)));
     const Vector3<S> w_parent = R.transpose() * w;
-    const Vector3<S> w_k = w_parent + z * dq(k - 1);
-    const Vector3<S> dw_k = R.transpose() * dw + z * ddq(k - 1) + w_parent.cross(z * dq(k - 1));
-    w = w_k;
-    dw = dw_k;
+    if (prismatic) {
+      a_k += z * ddq(k - 1) + S(2) * w_parent.cross(z * dq(k - 1));
+      w = w_parent;
+      dw = R.transpose() * dw;
+    } else {
+      const Vector3<S> w_k = w_parent + z * dq(k - 1);
+      const Vector3<S> dw_k = R.transpose() * dw + z * ddq(k - 1) + w_parent.cross(z * dq(k - 1));
+      w = w_k;
+      dw = dw_k;
+    }
     a = a_k;
     for (int j = 0; j + 1 < k; ++j) {
       v[j] = R.transpose() * (v[j] + u[j].cross(p));
       u[j] = R.transpose() * u[j];
     }
-    u[k - 1] = z;
-    v[k - 1].setZero();
+    // A prismatic joint carries the force along its axis: u = 0, v = z.
+    u[k - 1] = prismatic ? Vector3<S>::Zero() : z;
+    v[k - 1] = prismatic ? z : Vector3<S>::Zero();
 
     // F = [a | skew(ω̇) + skew(ω)² | 0],  M = [0 | −skew(a) | L(ω̇) + skew(ω) L(ω)], with
     // I x = L(x) [Ixx Ixy Ixz Iyy Iyz Izz]ᵀ.

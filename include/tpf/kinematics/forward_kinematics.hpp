@@ -21,10 +21,19 @@ inline int resolve_last_link(int last_link, int joint_count) noexcept {
 }
 
 /// data.liMi[k] = placement_k · Rot(axis_k, q_k), the rotation by Rodrigues' formula on the
-/// model's constants: placement.R + sin q·placement.R[z]× + (1 − cos q)·placement.R[z]×².
-template <typename S, int N>
+/// model's constants: placement.R + sin q·placement.R[z]× + (1 − cos q)·placement.R[z]×²; for a
+/// prismatic joint (tested only when kPrismatic: the model has one), placement_k · Trans(axis_k
+/// q_k): R = placement.R, p = placement.p + q·placement.R·axis.
+template <bool kPrismatic, typename S, int N>
 inline void joint_transform(const Model<S, N>& model, Data<S, N>& data, int k, S q) noexcept {
   const ModelConstants<S, N>& c = model.constants;
+  if constexpr (kPrismatic) {
+    if (model.joint_types[k - 1] == JointType::prismatic) {
+      data.liMi[k].R = model.joint_placements[k - 1].R;
+      data.liMi[k].p = model.joint_placements[k - 1].p + q * c.translation_axis[k - 1];
+      return;
+    }
+  }
   S sine, cosine;
   sin_cos(q, sine, cosine);
   const S versine = S(1) - cosine;
@@ -48,16 +57,23 @@ inline void world_axis(const Model<S, N>& model, Data<S, N>& data, int k) noexce
 
 }  // namespace detail
 
-/// The joint transforms alone, data.liMi[k] = placement_k · Rot(axis_k, q_k) (link k in link k−1)
-/// for joint positions q [rad]: all the dynamics needs. Leaves data.oMi and data.axis_world as they
-/// were. Allocation-free.
+/// The joint transforms alone, data.liMi[k] = placement_k · Rot(axis_k, q_k) (link k in link k−1;
+/// Trans(axis_k q_k) for a prismatic joint) for joint positions q [rad or m]: all the dynamics
+/// needs. Leaves data.oMi and data.axis_world as they were. Allocation-free.
 template <typename S, int N>
 void joint_transforms(const Model<S, N>& model, Data<S, N>& data,
                       const NoDeduce<JointVector<S, N>>& q) noexcept {
   assert(model.constants_current() && "Model::update_constants() after editing the model");
   const int n = model.joint_count();
+  if (model.constants.has_prismatic) {
+    detail::out_of_line([&] {
+      for (int k = 1; k <= n; ++k)
+        detail::joint_transform<true>(model, data, k, q(k - 1));
+    });
+    return;
+  }
   for (int k = 1; k <= n; ++k)
-    detail::joint_transform(model, data, k, q(k - 1));
+    detail::joint_transform<false>(model, data, k, q(k - 1));
 }
 
 /// Link poses from the joint transforms already in data.liMi (joint_transforms at q first), from
@@ -79,7 +95,7 @@ void link_poses(const Model<S, N>& model, Data<S, N>& data, int last_link = kAll
   }
 }
 
-/// Link poses for joint positions q [rad], from the base to link `last_link` (every link by
+/// Link poses for joint positions q [rad or m], from the base to link `last_link` (every link by
 /// default; a Jacobian at a point of link k needs links 1..k): data.liMi[k] (as joint_transforms)
 /// and, as link_poses, data.oMi[k] and data.axis_world[k]. Links beyond `last_link` keep what they
 /// held. Allocation-free.
@@ -88,8 +104,15 @@ void forward_kinematics(const Model<S, N>& model, Data<S, N>& data,
                         const NoDeduce<JointVector<S, N>>& q, int last_link = kAllLinks) noexcept {
   assert(model.constants_current() && "Model::update_constants() after editing the model");
   const int last = detail::resolve_last_link(last_link, model.joint_count());
-  for (int k = 1; k <= last; ++k)
-    detail::joint_transform(model, data, k, q(k - 1));
+  if (model.constants.has_prismatic) {
+    detail::out_of_line([&] {
+      for (int k = 1; k <= last; ++k)
+        detail::joint_transform<true>(model, data, k, q(k - 1));
+    });
+  } else {
+    for (int k = 1; k <= last; ++k)
+      detail::joint_transform<false>(model, data, k, q(k - 1));
+  }
   link_poses(model, data, last);
 }
 

@@ -7,14 +7,29 @@
 namespace tpf {
 
 /// Jacobian J (6×N, rows [linear; angular], world frame) of the point p (world coordinates) fixed
-/// to link `link` (1..N): for every joint i ≤ link, J_v,i = z_i × (p − p_i) and J_ω,i = z_i, with
-/// z_i and p_i the world axis and origin of joint i; columns of joints beyond `link` are zero.
+/// to link `link` (1..N): for every joint i ≤ link, J_v,i = z_i × (p − p_i) and J_ω,i = z_i for a
+/// revolute joint, J_v,i = z_i and J_ω,i = 0 for a prismatic one, with z_i and p_i the world axis
+/// and origin of joint i; columns of joints beyond `link` are zero.
 /// [v; ω] = J q̇, and a force f with moment m at p maps to joint torques τ = Jᵀ [f; m].
 /// Needs forward_kinematics first. Allocation-free.
 template <typename S, int N>
 void point_jacobian(const Model<S, N>& model, const Data<S, N>& data, int link,
                     const NoDeduce<Vector3<S>>& p, Jacobian<S, N>& J) {
   J.setZero(6, model.joint_count());
+  if (model.constants.has_prismatic) {
+    detail::out_of_line([&] {
+      for (int i = 1; i <= link; ++i) {
+        const Vector3<S>& z = data.axis_world[i];
+        if (model.joint_types[i - 1] == JointType::prismatic) {
+          J.template block<3, 1>(0, i - 1) = z;
+        } else {
+          J.template block<3, 1>(0, i - 1) = z.cross(p - data.oMi[i].p);
+          J.template block<3, 1>(3, i - 1) = z;
+        }
+      }
+    });
+    return;
+  }
   for (int i = 1; i <= link; ++i) {
     const Vector3<S>& z = data.axis_world[i];
     J.template block<3, 1>(0, i - 1) = z.cross(p - data.oMi[i].p);

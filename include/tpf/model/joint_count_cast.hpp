@@ -23,6 +23,7 @@ Model<S, To> joint_count_cast(const Model<S, From>& from) {
     to.joint_names[k] = from.joint_names[k];
     to.joint_placements[k] = from.joint_placements[k];
     to.axes[k] = from.axes[k];
+    to.joint_types[k] = from.joint_types[k];
   }
   for (int k = 0; k <= n; ++k) {
     to.link_names[k] = from.link_names[k];

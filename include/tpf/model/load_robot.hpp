@@ -18,7 +18,7 @@ Model<S, N> make_model(const ChainDescription& chain) {
   const int n = static_cast<int>(chain.joints.size());
   if (n < 1 || (N != Eigen::Dynamic && n != N)) {
     throw Error::at(chain.source, 0, "",
-                    "the chain has " + std::to_string(n) + " revolute joints" +
+                    "the chain has " + std::to_string(n) + " joints" +
                         (N != Eigen::Dynamic ? ", this program is built for " + std::to_string(N)
                                              : std::string(", a model needs at least one")));
   }
@@ -33,6 +33,7 @@ Model<S, N> make_model(const ChainDescription& chain) {
     model.link_names[k + 1] = j.child_link;
     model.joint_placements[k] = j.placement.template cast<S>();
     model.axes[k] = j.axis.template cast<S>();
+    model.joint_types[k] = j.type;
     model.inertias[k + 1] = chain.inertias[k + 1].template cast<S>();
     model.lower(k) = S(j.lower);
     model.upper(k) = S(j.upper);

@@ -1,5 +1,6 @@
-// The immutable description of a serial arm of N revolute joints (Pinocchio's Model): N fixed at
-// compile time in a controller, or Eigen::Dynamic (sized by resize or make_model) in the tools.
+// The immutable description of a serial arm of N revolute or prismatic joints (Pinocchio's Model):
+// N fixed at compile time in a controller, or Eigen::Dynamic (sized by resize or make_model) in the
+// tools.
 #pragma once
 
 #include <array>
@@ -11,6 +12,10 @@
 #include "tpf/model/inertia.hpp"
 
 namespace tpf {
+
+/// How a joint moves its child link: a rotation about its axis (q in rad, q̇ in rad/s, effort in
+/// N·m) or a translation along it (q in m, q̇ in m/s, effort in N).
+enum class JointType : unsigned char { revolute, prismatic };
 
 /// What the per-cycle algorithms need of a Model that does not depend on q: computed once by
 /// Model::update_constants() from the placements, axes and inertias (and the copy of those it was
@@ -27,10 +32,17 @@ struct ModelConstants {
   /// ±(i + 1) when joint k's axis is ±e_i (its world axis is then ± a column of the link's
   /// rotation, no product), 0 for any other axis.
   LinkArray<int, N> axis_coordinate{};
+  /// placement.R·axis: a prismatic joint k's direction of travel in link k−1's frame, so that
+  /// liMi[k].p = placement.p + q·translation_axis[k] (zero for a revolute joint).
+  LinkArray<Vector3<S>, N> translation_axis;
+  /// Whether any joint is prismatic. The per-cycle algorithms branch on it once per call: an arm
+  /// of revolute joints runs code without any per-joint test of the type.
+  bool has_prismatic = false;
 
   LinkArray<Transform<S>, N> placements_used;  ///< the sources of the constants above
   LinkArray<Vector3<S>, N> axes_used;
   LinkArray<Inertia<S>, N, 1> inertias_used;
+  LinkArray<JointType, N> types_used{};
 
   /// Sizes the per-link arrays for n joints (Eigen::Dynamic; a fixed N is already sized).
   void resize(int n) {
@@ -41,15 +53,20 @@ struct ModelConstants {
     resize_storage(inertia_about_origin, joints + 1);
     resize_storage(subtree_mass, joints + 2);
     resize_storage(axis_coordinate, joints);
+    resize_storage(translation_axis, joints);
   }
 };
 
-/// A serial chain of N revolute joints with its inertias and drive data. Immutable after loading;
-/// every per-cycle function takes it by const reference together with a Data workspace.
+/// A serial chain of N revolute or prismatic joints with its inertias and drive data. Immutable
+/// after loading; every per-cycle function takes it by const reference together with a Data
+/// workspace.
 ///
 /// Frames: link 0 is the base (world frame). Link k (1..N) moves with joint k. The frame of joint k
 /// sits at joint_placements[k-1] in link k−1's frame; link k's frame is that frame rotated by q_k
-/// about axes[k-1]. Joint indices in vectors are 0-based (q(0) is joint 1).
+/// about axes[k-1] (a revolute joint) or moved by q_k along it (a prismatic joint). Per-joint
+/// quantities are in the joint's own units: rad, rad/s, N·m and kg·m² for a revolute joint; m,
+/// m/s, N and kg (armature: a reflected mass) for a prismatic one. Joint indices in vectors are
+/// 0-based (q(0) is joint 1).
 ///
 /// With N = Eigen::Dynamic the same model is sized at run time (resize(n), or make_model from a
 /// robot file): one compiled copy of every algorithm serves any joint count.
@@ -65,19 +82,20 @@ struct Model {
   LinkArray<std::string, N, 1> link_names;  ///< [0] is the base link.
 
   LinkArray<Transform<S>, N> joint_placements;  ///< joint k frame in link k−1 frame, at q = 0.
-  LinkArray<Vector3<S>, N> axes;                ///< unit rotation axis in the joint frame.
-  LinkArray<Inertia<S>, N, 1> inertias;         ///< per link, in its own frame ([0]: base, unused).
+  LinkArray<Vector3<S>, N> axes;          ///< unit rotation or translation axis in the joint frame.
+  LinkArray<JointType, N> joint_types{};  ///< revolute unless set (then update_constants).
+  LinkArray<Inertia<S>, N, 1> inertias;   ///< per link, in its own frame ([0]: base, unused).
 
   using Vector = JointVector<S, N>;
-  Vector armature = zero_or_empty<Vector>();  ///< reflected rotor inertia [kg·m²].
+  Vector armature = zero_or_empty<Vector>();  ///< reflected rotor inertia [kg·m²] or mass [kg].
   Vector gear_ratio = ones_or_empty();
-  Vector torque_constant = ones_or_empty();        ///< [N·m/A], output side.
+  Vector torque_constant = ones_or_empty();        ///< [N·m/A] or [N/A], output side.
   Vector current_limit = zero_or_empty<Vector>();  ///< [mA].
-  /// Position limits [rad]; ±∞ for a continuous joint (see has_position_limits).
+  /// Position limits [rad] or [m]; ±∞ for a continuous joint (see has_position_limits).
   Vector lower = zero_or_empty<Vector>();
   Vector upper = zero_or_empty<Vector>();
-  Vector velocity_limit = zero_or_empty<Vector>();  ///< [rad/s].
-  Vector effort_limit = zero_or_empty<Vector>();    ///< [N·m].
+  Vector velocity_limit = zero_or_empty<Vector>();  ///< [rad/s] or [m/s].
+  Vector effort_limit = zero_or_empty<Vector>();    ///< [N·m] or [N].
 
   Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  ///< in the world frame [m/s²].
 
@@ -102,6 +120,9 @@ struct Model {
     resize_storage(link_names, joints_n + 1);
     resize_storage(joint_placements, joints_n);
     resize_storage(axes, joints_n);
+    resize_storage(joint_types, joints_n);
+    for (JointType& type : joint_types)
+      type = JointType::revolute;
     resize_storage(inertias, joints_n + 1);
     for (Vector* v : {&armature, &current_limit, &lower, &upper, &velocity_limit, &effort_limit})
       *v = Vector::Zero(n);
@@ -116,6 +137,7 @@ struct Model {
     ModelConstants<S, N>& c = constants;
     const int n = joint_count();
     c.resize(n);
+    c.has_prismatic = false;
     for (int k = 0; k < n; ++k) {
       const Matrix3<S> K = skew(axes[k]);
       c.rotation_sine[k] = joint_placements[k].R * K;
@@ -124,6 +146,11 @@ struct Model {
       for (int i = 0; i < 3; ++i)
         if (axes[k] == Vector3<S>::Unit(i) || axes[k] == -Vector3<S>::Unit(i))
           c.axis_coordinate[k] = axes[k][i] > S(0) ? i + 1 : -(i + 1);
+      c.translation_axis[k] = Vector3<S>::Zero();
+      if (joint_types[k] == JointType::prismatic) {
+        c.translation_axis[k] = joint_placements[k].R * axes[k];
+        c.has_prismatic = true;
+      }
     }
     c.subtree_mass[n + 1] = S(0);
     for (int k = n; k >= 0; --k) {
@@ -134,6 +161,7 @@ struct Model {
     c.placements_used = joint_placements;
     c.axes_used = axes;
     c.inertias_used = inertias;
+    c.types_used = joint_types;
   }
 
   /// Whether `constants` were computed from the current placements, axes and inertias.
@@ -145,7 +173,8 @@ struct Model {
       return false;
     for (int k = 0; k < n; ++k)
       if (c.placements_used[k].R != joint_placements[k].R ||
-          c.placements_used[k].p != joint_placements[k].p || c.axes_used[k] != axes[k])
+          c.placements_used[k].p != joint_placements[k].p || c.axes_used[k] != axes[k] ||
+          c.types_used[k] != joint_types[k])
         return false;
     for (int k = 0; k <= n; ++k)
       if (c.inertias_used[k].mass != inertias[k].mass ||
@@ -154,6 +183,9 @@ struct Model {
         return false;
     return true;
   }
+
+  /// Whether joint j (0-based) is prismatic.
+  bool is_prismatic(int j) const { return joint_types[j] == JointType::prismatic; }
 
   /// Index (1..N) of the link called `link_name`, or −1.
   int link_index(const std::string& link_name) const {
@@ -178,6 +210,7 @@ struct Model {
     m.name = name;
     m.joint_names = joint_names;
     m.link_names = link_names;
+    m.joint_types = joint_types;
     for (int k = 0; k < n; ++k) {
       m.joint_placements[k] = joint_placements[k].template cast<T>();
       m.axes[k] = axes[k].template cast<T>();
@@ -206,4 +239,16 @@ struct Model {
   }
 };
 
+namespace detail {
+
+/// Runs f() as a call that is never inlined: the prismatic variant of a per-cycle algorithm, so
+/// that it does not grow the revolute variant's caller. Together with [[gnu::flatten]] on both
+/// variants' recursions this keeps the revolute code as fast as it was alone (without them, GCC
+/// inlined less of it: RNEA 118 → 210 ns, CRBA 114 → 161 ns on the 4-DoF arm).
+template <typename F>
+[[gnu::noinline]] void out_of_line(const F& f) {
+  f();
+}
+
+}  // namespace detail
 }  // namespace tpf

@@ -9,27 +9,33 @@
 
 #include "tpf/common/types.hpp"
 #include "tpf/model/inertia.hpp"
+#include "tpf/model/model.hpp"
 
 namespace tpf {
 
-/// One revolute joint of a serial chain, with fixed joints already folded in.
+/// One revolute or prismatic joint of a chain, with fixed joints already folded in.
 struct ChainJoint {
   std::string name;
   std::string child_link;
-  Transform<double> placement;  ///< joint frame in the previous moving link's frame.
-  Vector3<double> axis;         ///< unit, joint frame.
-  double lower = 0, upper = 0;
-  /// [rad/s], [N·m]; +∞ for a joint without <limit> (a continuous joint needs none).
+  JointType type = JointType::revolute;  ///< a continuous joint is revolute without limits.
+  Transform<double> placement;           ///< joint frame in the previous moving link's frame.
+  Vector3<double> axis;                  ///< unit, joint frame.
+  double lower = 0, upper = 0;           ///< [rad] or [m].
+  /// [rad/s] and [N·m], or [m/s] and [N] for a prismatic joint; +∞ for a joint without <limit> (a
+  /// continuous joint needs none).
   double velocity_limit = std::numeric_limits<double>::infinity();
   double effort_limit = std::numeric_limits<double>::infinity();
 };
 
-/// A serial chain of revolute joints read from a URDF. Fixed joints are merged: a fixed child's
-/// inertia is added to the moving link it hangs from, and fixed offsets go into the next placement.
+/// A chain of revolute and prismatic joints read from a URDF. Fixed joints are merged: a fixed
+/// child's inertia is added to the moving link it hangs from, and fixed offsets go into the next
+/// placement. Branches off the chain (cut from a tree by ChainEnds) are folded in the same way, at
+/// the zero position of their own movable joints.
 struct ChainDescription {
   std::string source;  ///< the file it came from, for messages.
   std::string robot_name;
-  std::string base_link;
+  std::string base_link;  ///< the chain's root link: the model's base and world frame.
+  std::string tip_link;   ///< the last link of the chain.
   std::vector<ChainJoint> joints;
   std::vector<Inertia<double>> inertias;  ///< [0] base, then one per joint's child link.
 };
@@ -38,10 +44,13 @@ struct ChainDescription {
 struct DriveDescription {
   std::string joint;
   std::string motor;
+  /// Motor radians per output radian; per metre of travel for a prismatic joint [rad/m] (a ball
+  /// screw of lead ℓ after a gearbox of ratio r: r·2π/ℓ).
   double gear_ratio = 1;
   double rotor_inertia = 0;    ///< [kg·m²] motor side.
-  double torque_constant = 1;  ///< [N·m/A] output side.
+  double torque_constant = 1;  ///< [N·m/A] output side ([N/A] for a prismatic joint).
   double current_limit = 0;    ///< [mA].
+  /// The rotor reflected to the output: [kg·m²], or a mass [kg] for a prismatic joint.
   double armature() const { return rotor_inertia * gear_ratio * gear_ratio; }
 };
 
@@ -55,16 +64,32 @@ struct RobotDescription {
   std::filesystem::path friction_file;  ///< the twin's true friction; empty if none is named.
 };
 
-/// Reads a URDF and extracts the serial chain of revolute (or continuous) joints from its root.
-/// Refuses, naming the file and the joint or link: malformed XML, a branching tree, prismatic,
-/// floating or planar joints, a zero axis, a negative mass or an inertia that is not positive
-/// semi-definite, a body moved by a joint in which no link has an <inertial> (an <inertial> with
-/// mass 0 is allowed; a link without one fixed to a link with one is massless). An inertia that
-/// breaks the triangle inequality is loaded with a warning (makers' files do: the Gen3's).
-ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file);
+/// The ends of the chain to cut from a URDF: empty names take the URDF's root link and the end of
+/// the serial chain below the root.
+struct ChainEnds {
+  std::string root;    ///< the chain's base link (the world frame); empty: the URDF's root.
+  std::string tip;     ///< the chain's last link; empty: where the serial chain below root ends.
+  std::string source;  ///< the file that names them (a robot file), for messages.
+};
+
+/// Reads a URDF and extracts the chain of revolute, continuous and prismatic joints from the root
+/// link to the tip link (`ends`). Without a tip the robot below the root must be serial; with one
+/// the chain is the path from the root to the tip, and every link off that path (the branches of
+/// a tree, and what hangs below the tip) is folded into the chain link it hangs from as fixed
+/// mass, its own movable joints at their zero position. Links above the root are the base.
+/// Refuses, naming the file and the joint or link: malformed XML, a branching tree without a tip,
+/// a root or tip that is no link of the file or a tip not below the root, floating or planar
+/// joints on the chain, a prismatic joint without a travel range, a zero axis, a negative mass or
+/// an inertia that is not positive semi-definite, a body moved by a joint in which no link has an
+/// <inertial> (an <inertial> with mass 0 is allowed; a link without one fixed to a link with one is
+/// massless). An inertia that breaks the triangle inequality is loaded with a warning (makers'
+/// files do: the Gen3's).
+ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file,
+                                 const ChainEnds& ends = {});
 
 /// Reads a robot file (JSON, format "tpf-robot" version 1) and the URDF it names (relative paths
-/// are taken from the robot file's folder). Every drive must name a joint of the chain, in order.
+/// are taken from the robot file's folder), cut at its optional "root_link" and "tip_link". Every
+/// drive must name a joint of the chain, in order.
 RobotDescription load_robot_description(const std::filesystem::path& robot_file);
 
 }  // namespace tpf

@@ -15,7 +15,9 @@ RobotDescription load_robot_description(const std::filesystem::path& robot_file)
   RobotDescription robot;
   robot.source = robot_file.string();
   const std::filesystem::path folder = robot_file.parent_path();
-  robot.chain = load_urdf_chain(folder / top.text("urdf"));
+  const std::string urdf = top.text("urdf");
+  ChainEnds ends{top.text("root_link", ""), top.text("tip_link", ""), robot.source};
+  robot.chain = load_urdf_chain(folder / urdf, ends);
   robot.chain.robot_name = top.text("name", robot.chain.robot_name);
   if (top.has("gravity")) robot.gravity = top.vector3("gravity");
   if (top.has("pads")) robot.pads_file = folder / top.text("pads");

@@ -1,4 +1,5 @@
-// Extracts the serial chain of revolute joints from a URDF, with urdfdom.
+// Extracts a chain of revolute and prismatic joints from a URDF, with urdfdom: the serial robot,
+// or the path between two named links of a tree with the other branches folded in as fixed mass.
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
@@ -158,19 +159,19 @@ bool subtree_moves(const urdf::Link& link) {
   return false;
 }
 
-/// Folds a subtree made only of fixed joints into `body` (expressed in the frame `pose` of `body`).
-/// Returns whether any of its links declares an <inertial>.
-bool fold_fixed_subtree(const LinkSite& site, const Transform<double>& pose, bool moves,
-                        Inertia<double>& body) {
+/// Folds the subtree below `site.link` (included), whose frame sits at `pose` in `body`'s frame,
+/// into `body`: fixed joints as they are, movable ones at their zero position (the joint frame at
+/// its <origin>). Returns whether any of its links declares an <inertial>.
+bool fold_subtree(const LinkSite& site, const Transform<double>& pose, bool moves,
+                  Inertia<double>& body) {
   const urdf::Link& link = site.link;
   body = combine(body, link_inertia(site, moves), pose);
   bool declared = link.inertial != nullptr;
   for (const auto& j : link.child_joints) {
     const auto child = std::find_if(link.child_links.begin(), link.child_links.end(),
                                     [&](const auto& l) { return l->name == j->child_link_name; });
-    declared |=
-        fold_fixed_subtree({site.file, site.text, **child},
-                           pose * to_transform(j->parent_to_joint_origin_transform), moves, body);
+    declared |= fold_subtree({site.file, site.text, **child},
+                             pose * to_transform(j->parent_to_joint_origin_transform), moves, body);
   }
   return declared;
 }
@@ -227,20 +228,26 @@ void require_tree(const urdf::ModelInterface& model, const std::string& file) {
                           "' (the URDF has a loop); tpf needs a tree");
 }
 
-/// A revolute or continuous URDF joint as a chain joint, placed at `placement`.
+/// A revolute, continuous or prismatic URDF joint as a chain joint, placed at `placement`.
 ChainJoint chain_joint(const urdf::Joint& j, const urdf::Link& child,
                        const Transform<double>& placement, const std::string& file) {
   ChainJoint cj;
   cj.name = j.name;
   cj.child_link = child.name;
   cj.placement = placement;
+  cj.type = j.type == urdf::Joint::PRISMATIC ? JointType::prismatic : JointType::revolute;
   cj.axis = {j.axis.x, j.axis.y, j.axis.z};
   if (cj.axis.norm() < 1e-9) throw Error::at(file, 0, "joint '" + j.name + "'", "axis is zero");
   cj.axis.normalize();
+  const bool no_range = !j.limits || (j.limits->lower == 0.0 && j.limits->upper == 0.0);
+  if (cj.type == JointType::prismatic && no_range) {
+    throw Error::at(file, 0, "joint '" + j.name + "'",
+                    "is prismatic without a travel range; give it <limit lower=\"...\" "
+                    "upper=\"...\"> in m (and velocity in m/s, effort in N)");
+  }
   // A revolute joint whose <limit> gives neither lower nor upper (urdfdom reads both as 0, as in
   // Kinova's description) turns without end stops, like a continuous one.
-  if (j.type == urdf::Joint::CONTINUOUS || !j.limits ||
-      (j.limits->lower == 0.0 && j.limits->upper == 0.0)) {
+  if (j.type == urdf::Joint::CONTINUOUS || no_range) {
     cj.lower = -std::numeric_limits<double>::infinity();
     cj.upper = std::numeric_limits<double>::infinity();
   } else {
@@ -258,9 +265,76 @@ ChainJoint chain_joint(const urdf::Joint& j, const urdf::Link& child,
   return cj;
 }
 
+/// The child link a joint of `link` leads to.
+const urdf::Link& child_of(const urdf::Link& link, const urdf::Joint& j) {
+  return **std::find_if(link.child_links.begin(), link.child_links.end(),
+                        [&](const auto& l) { return l->name == j.child_link_name; });
+}
+
+/// Looks up a link the robot file names as an end of the chain.
+const urdf::Link& named_link(const urdf::ModelInterface& model, const std::string& name,
+                             const char* key, const ChainEnds& ends, const std::string& file) {
+  const urdf::LinkConstSharedPtr link = model.getLink(name);
+  if (!link)
+    throw Error::at(file, 0, "",
+                    "has no link '" + name + "' (" + key + " of " +
+                        (ends.source.empty() ? std::string("the chain") : ends.source) +
+                        "); name a link of this URDF");
+  return *link;
+}
+
+/// The links from `root` to `tip` (both included), from the tip's parents up.
+std::vector<const urdf::Link*> path_between(const urdf::Link& root, const urdf::Link& tip,
+                                            const ChainEnds& ends, const std::string& file,
+                                            const std::string& text) {
+  std::vector<const urdf::Link*> path;
+  for (const urdf::Link* link = &tip; link != nullptr; link = link->getParent().get()) {
+    path.push_back(link);
+    if (link == &root) {
+      std::reverse(path.begin(), path.end());
+      if (path.size() < 2)
+        throw Error::at(file, link_line(text, tip.name), "link '" + tip.name + "'",
+                        "is both root_link and tip_link" +
+                            (ends.source.empty() ? std::string() : " in " + ends.source) +
+                            "; the tip must lie below the root");
+      return path;
+    }
+  }
+  throw Error::at(file, link_line(text, tip.name), "link '" + tip.name + "'",
+                  "(tip_link) does not lie below root_link '" + root.name + "'" +
+                      (ends.source.empty() ? std::string() : " in " + ends.source) +
+                      "; name a root link the tip hangs from (the path from the root to the tip "
+                      "is the chain)");
+}
+
+/// The links from `root` down the one branch that moves, to where nothing moves any more: the
+/// chain of a serial robot. Refuses a link with two children that lead to moving joints.
+std::vector<const urdf::Link*> serial_path(const urdf::Link& root, const std::string& file,
+                                           const std::string& text) {
+  std::vector<const urdf::Link*> path = {&root};
+  for (;;) {
+    const urdf::Link& link = *path.back();
+    const urdf::Joint* next = nullptr;
+    for (const auto& j : link.child_joints) {
+      if (j->type == urdf::Joint::FIXED && !subtree_moves(child_of(link, *j))) continue;
+      if (next != nullptr) {
+        throw Error::at(file, link_line(text, link.name), "link '" + link.name + "'",
+                        "the robot branches here (joints '" + next->name + "' and '" + j->name +
+                            "' both lead to moving joints); tpf needs a serial chain: name its "
+                            "ends in the robot file (\"root_link\" and \"tip_link\") to cut the "
+                            "chain from root to tip out of the tree, the other branches folded "
+                            "in as fixed mass");
+      }
+      next = j.get();
+    }
+    if (next == nullptr) return path;
+    path.push_back(&child_of(link, *next));
+  }
+}
+
 }  // namespace
 
-ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
+ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file, const ChainEnds& ends) {
   const std::string file = urdf_file.string();
   std::ifstream in(urdf_file);
   if (!in) throw Error::at(file, 0, "", "cannot open the URDF file");
@@ -284,37 +358,37 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
     throw Error::at(file, 0, "", "not a valid URDF (" + handler.messages + ")");
   require_tree(*urdf, file);
 
+  const urdf::Link& root =
+      ends.root.empty() ? *urdf->getRoot() : named_link(*urdf, ends.root, "root_link", ends, file);
+  const std::vector<const urdf::Link*> path =
+      ends.tip.empty() ? serial_path(root, file, content)
+                       : path_between(root, named_link(*urdf, ends.tip, "tip_link", ends, file),
+                                      ends, file, content);
+
   ChainDescription chain;
   chain.source = file;
   chain.robot_name = urdf->getName();
-  const urdf::Link* link = urdf->getRoot().get();
-  chain.base_link = link->name;
-  chain.inertias.push_back(link_inertia({file, content, *link}, false));
+  chain.base_link = root.name;
+  chain.tip_link = path.back()->name;
+  chain.inertias.push_back(link_inertia({file, content, root}, false));
   Inertia<double>* body = &chain.inertias.back();
   MovingBody moving;         // the base first: no inertial required
   Transform<double> offset;  // fixed joints since the last moving link
 
-  while (link != nullptr) {
-    const urdf::Link* next = nullptr;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const urdf::Link& link = *path[i];
+    const urdf::Link* next = i + 1 < path.size() ? path[i + 1] : nullptr;
     const urdf::Joint* next_joint = nullptr;
-    for (const auto& j : link->child_joints) {
-      const auto child = std::find_if(link->child_links.begin(), link->child_links.end(),
-                                      [&](const auto& l) { return l->name == j->child_link_name; });
-      const urdf::Link& c = **child;
-      const bool moves = j->type != urdf::Joint::FIXED || subtree_moves(c);
-      if (!moves) {
-        moving.declared |= fold_fixed_subtree(
-            {file, content, c}, offset * to_transform(j->parent_to_joint_origin_transform),
-            moving.link != nullptr, *body);
+    // Every branch off the chain: fixed mass of the chain link it hangs from.
+    for (const auto& j : link.child_joints) {
+      const urdf::Link& c = child_of(link, *j);
+      if (&c == next) {
+        next_joint = j.get();
         continue;
       }
-      if (next != nullptr) {
-        throw Error::at(file, 0, "link '" + link->name + "'",
-                        "the robot branches here (joints '" + next_joint->name + "' and '" +
-                            j->name + "' both lead to moving joints); tpf needs a serial chain");
-      }
-      next = &c;
-      next_joint = j.get();
+      moving.declared |= fold_subtree({file, content, c},
+                                      offset * to_transform(j->parent_to_joint_origin_transform),
+                                      moving.link != nullptr, *body);
     }
     if (next == nullptr) break;
 
@@ -324,15 +398,16 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
       offset = placement;  // a fixed joint between moving links: its child's mass joins `body`
       *body = combine(*body, link_inertia({file, content, *next}, moving.link != nullptr), offset);
       moving.declared |= next->inertial != nullptr;
-      link = next;
       continue;
     }
-    if (j.type != urdf::Joint::REVOLUTE && j.type != urdf::Joint::CONTINUOUS) {
+    if (j.type != urdf::Joint::REVOLUTE && j.type != urdf::Joint::CONTINUOUS &&
+        j.type != urdf::Joint::PRISMATIC) {
       static const char* names[] = {"unknown",  "revolute", "continuous", "prismatic",
                                     "floating", "planar",   "fixed"};
       throw Error::at(file, 0, "joint '" + j.name + "'",
                       std::string("is ") + names[j.type] +
-                          "; tpf supports revolute and continuous joints only");
+                          "; tpf supports revolute, continuous and prismatic joints only (make "
+                          "it fixed, or end the chain before it with \"tip_link\")");
     }
     require_declared_mass(moving, file, content);
     chain.joints.push_back(chain_joint(j, *next, placement, file));
@@ -340,10 +415,12 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file) {
     body = &chain.inertias.back();
     moving = {next, j.name, next->inertial != nullptr};
     offset = Transform<double>{};
-    link = next;
   }
   require_declared_mass(moving, file, content);
-  if (chain.joints.empty()) throw Error::at(file, 0, "", "the URDF has no revolute joint");
+  if (chain.joints.empty())
+    throw Error::at(file, 0, "",
+                    "the chain from link '" + chain.base_link + "' to link '" + chain.tip_link +
+                        "' has no revolute, continuous or prismatic joint");
   return chain;
 }
 
