@@ -11,6 +11,7 @@
 #include "support/mobile_arm.hpp"
 #include "support/random_arm.hpp"
 #include "support/temp_dir.hpp"
+#include "tpf/estimation/link_parameters.hpp"
 
 namespace tpf::test {
 namespace {
@@ -194,6 +195,28 @@ TEST(Prismatic, RegressorTimesParametersIsRnea) {
     for (int j = 0; j < 6; ++j)
       expected(j) += coulomb(j) * (dq(j) > 0 ? 1.0 : -1.0) + viscous(j) * dq(j);
     EXPECT_LT((Y * pi - expected).cwiseAbs().maxCoeff(), 1e-10) << "trial " << trial;
+  }
+}
+
+TEST(Prismatic, LinkParameterTorqueOfTheEstimatorIsRneaAndGravity) {
+  const PrismaticModel model = prismatic_arm();
+  PrismaticData data(model), reference(model);
+  std::mt19937_64 rng(11);
+  const Eigen::VectorXd coulomb = Eigen::VectorXd::Constant(6, 4.0);
+  const Eigen::VectorXd viscous = Eigen::VectorXd::Constant(6, 20.0);
+  const LinkParameters<double, Eigen::Dynamic> links =
+      link_parameters<double, Eigen::Dynamic>(dynamic_parameters(model, coulomb, viscous));
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = uniform(rng, 6, 2.0), dq = uniform(rng, 6, 1.5),
+                          ddq = uniform(rng, 6, 3.0);
+    forward_kinematics(model, data, q);
+    const Eigen::VectorXd tau = link_parameter_torque(model, links, data, dq, ddq);
+    Eigen::VectorXd expected = rnea(model, reference, q, dq, ddq);
+    for (int j = 0; j < 6; ++j)
+      expected(j) += coulomb(j) * (dq(j) > 0 ? 1.0 : -1.0) + viscous(j) * dq(j);
+    EXPECT_LT((tau - expected).cwiseAbs().maxCoeff(), 1e-10) << "trial " << trial;
+    const Eigen::VectorXd g = link_parameter_gravity(model, links, data);
+    EXPECT_LT((g - compute_gravity(model, reference, q)).cwiseAbs().maxCoeff(), 1e-10);
   }
 }
 

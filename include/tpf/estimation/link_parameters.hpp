@@ -58,7 +58,8 @@ LinkParameters<S, N> link_parameters(const DynamicParameters<S, N>& pi) noexcept
 ///            f_k = m_k a_k + ω̇_k × h_k + ω_k × (ω_k × h_k),  n_k = I_k ω̇_k + ω_k × I_k ω_k + h_k ×
 ///            a_k;
 ///   backward f_k += R_{k+1} f_{k+1},  n_k += R_{k+1} n_{k+1} + p_{k+1} × R_{k+1} f_{k+1},
-///            τ_k = z_k·n_k + I_a,k q̈_k + f_c,k sgn(q̇_k) + f_v,k q̇_k.
+///            τ_k = z_k·n_k + I_a,k q̈_k + f_c,k sgn(q̇_k) + f_v,k q̇_k;
+/// a prismatic joint keeps ω, ω̇, adds z_k q̈_k + 2ω_k × z_k q̇_k to a_k and takes τ_k = z_k·f_k.
 /// Equal to the regressor form for every π because both are the same linear map. Into `tau`
 /// (sized for the model's joints). Uses data's Newton–Euler scratch; allocation-free.
 template <typename S, int N>
@@ -67,6 +68,7 @@ void link_parameter_torque(const Model<S, N>& model, const LinkParameters<S, N>&
                            const NoDeduce<JointVector<S, N>>& ddq,
                            JointVector<S, N>& tau) noexcept {
   const int n = model.joint_count();
+  const bool prismatic = model.constants.has_prismatic;
   Vector3<S> w = Vector3<S>::Zero(), dw = Vector3<S>::Zero(), a = -model.gravity;
   for (int k = 1; k <= n; ++k) {
     const Matrix3<S>& R = data.liMi[k].R;
@@ -74,8 +76,14 @@ void link_parameter_torque(const Model<S, N>& model, const LinkParameters<S, N>&
     const Vector3<S>& z = model.axes[k - 1];
     a = R.transpose() * (a + dw.cross(r) + w.cross(w.cross(r)));
     const Vector3<S> w_parent = R.transpose() * w;
-    dw = R.transpose() * dw + z * ddq(k - 1) + w_parent.cross(z * dq(k - 1));
-    w = w_parent + z * dq(k - 1);
+    if (prismatic && model.joint_types[k - 1] == JointType::prismatic) {
+      dw = R.transpose() * dw;
+      w = w_parent;
+      a += z * ddq(k - 1) + S(2) * w.cross(z * dq(k - 1));
+    } else {
+      dw = R.transpose() * dw + z * ddq(k - 1) + w_parent.cross(z * dq(k - 1));
+      w = w_parent + z * dq(k - 1);
+    }
     const Vector3<S>& h = p.first_moment[k - 1];
     const Matrix3<S>& I = p.inertia[k - 1];
     data.force[k] = p.mass[k - 1] * a + dw.cross(h) + w.cross(w.cross(h));
