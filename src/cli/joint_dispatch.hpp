@@ -5,9 +5,9 @@
 #include <string>
 #include <utility>
 
+#include "robot_joint_count.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/common/joint_counts.hpp"
-#include "tpf/model/robot_description.hpp"
 
 namespace tpf::cli {
 
@@ -31,23 +31,12 @@ void with_joint_count(int joints, const std::string& source, Work&& work) {
   first_match(std::make_integer_sequence<int, kMaxJoints>{});
 }
 
-/// The joint count of the robot file's chain (what the commands dispatch on).
-inline int robot_joint_count(const std::string& robot_file) {
-  return static_cast<int>(load_robot_description(robot_file).chain.joints.size());
-}
-
 /// with_joint_count on a log's joint count, once the robot file is checked to have as many
-/// joints: otherwise a tpf::Error names both ("ex.csv has 2 joints, arm.robot.json has 1").
+/// joints (require_log_joint_count).
 template <typename Work>
 void with_log_joint_count(int log_joints, const std::string& log_source,
                           const std::string& robot_file, Work&& work) {
-  const int robot_joints = robot_joint_count(robot_file);
-  if (robot_joints != log_joints)
-    throw Error::at(log_source, 0, "",
-                    "the log has " + std::to_string(log_joints) + " joints (q1 … q" +
-                        std::to_string(log_joints) + "), the robot file " + robot_file + " has " +
-                        std::to_string(robot_joints) +
-                        ": give the robot file of the arm that made the log (--robot)");
+  require_log_joint_count(log_joints, log_source, robot_file);
   with_joint_count(log_joints, log_source, std::forward<Work>(work));
 }
 

@@ -54,18 +54,21 @@ inline std::string describe_pads(std::size_t pads, const std::string& file) {
   return pads == 0 ? std::string("no skin") : std::to_string(pads) + " pads (" + file + ")";
 }
 
-/// An N-joint estimator set-up from the model files, without estimator parameters (the tools
-/// derive or calibrate them): nominal model, pad layout (pad_layout_file; `with_pads` false: no
-/// skin), compensator weights (`weights` empty: none).
-template <int N>
-EstimatorSetup<N> load_model_setup(const ModelFiles& files, const std::string& weights,
-                                   bool with_pads = true) {
+/// The estimator set-up of the robot file's arm (its joint count) from the model files, with
+/// the default estimator parameters of that count (the tools derive or calibrate them): nominal
+/// model, pad layout (pad_layout_file; `with_pads` false: no skin), compensator weights
+/// (`weights` empty: none).
+inline EstimatorSetup<Eigen::Dynamic> load_model_setup(const ModelFiles& files,
+                                                       const std::string& weights,
+                                                       bool with_pads = true) {
   const RobotDescription robot = load_robot_description(files.robot);
-  EstimatorSetup<N> setup;
-  setup.nominal = load_nominal_model<N>(files.params, robot);
+  EstimatorSetup<Eigen::Dynamic> setup;
+  setup.nominal = load_nominal_model(files.params, robot);
+  const int joints = setup.nominal.model.joint_count();
+  setup.parameters.resize(joints);
   const std::string pads = with_pads ? pad_layout_file(files, robot) : std::string();
   if (!pads.empty()) setup.pads = load_pads(pads, setup.nominal.model);
-  setup.weights = find_compensator_weights(weights, N);
+  setup.weights = find_compensator_weights(weights, joints);
   return setup;
 }
 

@@ -28,6 +28,12 @@ namespace {
 
 using Gen3Model = NominalModel<double, kMeasuredJoints>;
 
+/// nominal_estimate of the Gen3's model (run-time sized for the validation code).
+EffortEstimate gen3_nominal_estimate(const Gen3Model& nominal, const JointSamples& samples,
+                                     std::vector<std::string>& notes) {
+  return nominal_estimate(joint_count_cast<Eigen::Dynamic>(nominal), samples, notes);
+}
+
 Log read_measured_files(const MeasuredOptions& o, const std::vector<std::string>& names) {
   std::vector<std::filesystem::path> paths;
   for (const std::string& n : names)
@@ -139,16 +145,18 @@ std::size_t written_effect_count(const Diagnosis<kMeasuredJoints>& d) {
 /// the current residual τ_res of the run-time estimator, or, where `sensor_target` (samples ×
 /// joints, N·m) has a value on the joint, on K_t·i − d − τ_sensor (the drive loss the model
 /// misses, as the sensor measures it; NaN rows are cut out of the training windows).
-EstimatorSetup<kMeasuredJoints> train_measured_compensator(
-    const MeasuredOptions& o, const Log& fit, const Gen3Model& nominal,
-    const Eigen::MatrixXd& sensor_target, const std::string& weight_file,
-    CompensatorTraining& training, const std::function<void(const std::string&)>& say) {
-  EstimatorSetup<kMeasuredJoints> setup;
-  setup.nominal = nominal;
-  setup.parameters = estimator_parameters_from_noise<kMeasuredJoints>(
-      estimate_sensor_noise(fit, nominal.model.torque_constant));
+ReplaySetup train_measured_compensator(const MeasuredOptions& o, const Log& fit,
+                                       const Gen3Model& nominal,
+                                       const Eigen::MatrixXd& sensor_target,
+                                       const std::string& weight_file,
+                                       CompensatorTraining& training,
+                                       const std::function<void(const std::string&)>& say) {
+  ReplaySetup setup;
+  setup.nominal = joint_count_cast<Eigen::Dynamic>(nominal);
+  setup.parameters =
+      estimator_parameters_from_noise(estimate_sensor_noise(fit, nominal.model.torque_constant));
   std::vector<EstimatorTrace> traces{
-      replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, nominal.model, 0))};
+      replay_estimator(setup, estimator_samples(fit, setup.nominal.model, 0))};
   for (int j = 0; j < static_cast<int>(sensor_target.cols()); ++j)
     if (sensor_target.col(j).array().isFinite().any())
       traces[0].residual.col(j) = sensor_target.col(j);
@@ -237,7 +245,7 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", identified,
                                       d.fit.source + " (MEASURED)");
   std::vector<EffortEstimate> estimates{
-      nominal_estimate<kMeasuredJoints>(identified, d.score_samples, result.notes)};
+      gen3_nominal_estimate(identified, d.score_samples, result.notes)};
   estimates.back().name = "after identification";
   say("measured: identify again, the friction fitted against the torque sensor");
   sensor_model =
@@ -245,10 +253,9 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json", sensor_model,
                                       d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
-  estimates.push_back(nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, ignored));
+  estimates.push_back(gen3_nominal_estimate(sensor_model, d.score_samples, ignored));
   estimates.back().name = "friction against the sensor";
-  const EffortEstimate on_fit =
-      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored);
+  const EffortEstimate on_fit = gen3_nominal_estimate(sensor_model, d.fit_samples, ignored);
   result.low_pass_time_constants = choose_low_pass_time_constants(d.fit, d.fit_samples, on_fit);
   estimates.push_back(
       low_passed_estimate(estimates[1], d.score, d.score_samples, result.low_pass_time_constants));
@@ -278,12 +285,11 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
   if (!folded.empty())
     result.diagnosis_effort.push_back(
         {"diagnose's declared model (as identify fits it, nothing added)",
-         effort_rmse_per_joint(
-             d.score_samples,
-             nominal_estimate<kMeasuredJoints>(diagnosis.declared, d.score_samples, ignored))});
+         effort_rmse_per_joint(d.score_samples, gen3_nominal_estimate(diagnosis.declared,
+                                                                      d.score_samples, ignored))});
   for (std::size_t keep = 0; keep <= written_effect_count(diagnosis); ++keep) {
-    EffortEstimate e = nominal_estimate<kMeasuredJoints>(
-        with_first_diagnosed_effects(diagnosis, keep), d.score_samples, ignored);
+    EffortEstimate e = gen3_nominal_estimate(with_first_diagnosed_effects(diagnosis, keep),
+                                             d.score_samples, ignored);
     const std::string name = keep > 0 ? "+ " + titles[keep - 1]
                              : folded.empty()
                                  ? "diagnose's model without its effects"
@@ -312,20 +318,19 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
                        std::vector<EffortEstimate>& estimates, const Say& say) {
   say("measured: train one network per joint on " + joined_file_names(o.fitting) + " (" +
       std::to_string(o.training_epochs) + " epochs at most), on the current residual");
-  const EstimatorSetup<kMeasuredJoints> setup =
+  const ReplaySetup setup =
       train_measured_compensator(o, d.fit, identified, {}, "gen3.tcn.json", result.training, say);
-  estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, d.score, estimates[0]));
+  estimates.push_back(compensated_estimate(setup, d.score, estimates[0]));
   estimates.back().name = "with the compensator";
   say("measured: the same networks over the sensor-fitted friction, trained against the "
       "torque sensor (K_t·i − d − τ_sensor)");
   std::vector<std::string> ignored;
-  const SensorSide fit_side{
-      &d.fit, &d.fit_samples,
-      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored).drive_loss};
-  const EstimatorSetup<kMeasuredJoints> sensor_setup =
+  const SensorSide fit_side{&d.fit, &d.fit_samples,
+                            gen3_nominal_estimate(sensor_model, d.fit_samples, ignored).drive_loss};
+  const ReplaySetup sensor_setup =
       train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side),
                                  "gen3.tcn-sensor.json", result.sensor_training, say);
-  estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, d.score, estimates[1]));
+  estimates.push_back(compensated_estimate(sensor_setup, d.score, estimates[1]));
   estimates.back().name = "friction against the sensor + compensator trained against it";
 }
 
@@ -342,7 +347,7 @@ void plain_fit_stage(const MeasuredOptions& o, const MeasuredData& d,
   save_nominal_model<kMeasuredJoints>(o.out / "gen3.no-inertia-prior.params.json", id.nominal,
                                       d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
-  estimates.push_back(nominal_estimate<kMeasuredJoints>(id.nominal, d.score_samples, ignored));
+  estimates.push_back(gen3_nominal_estimate(id.nominal, d.score_samples, ignored));
   estimates.back().name = kWithoutInertiaPriorColumn;
 }
 
@@ -357,12 +362,11 @@ std::vector<double> oracle_compensator_rmse(const MeasuredOptions& o, const Meas
       " themselves (a bound for the compensator target)");
   const SensorSide side{&d.score, &d.score_samples, sensor_estimate.drive_loss};
   CompensatorTraining training;
-  const EstimatorSetup<kMeasuredJoints> setup =
+  const ReplaySetup setup =
       train_measured_compensator(o, d.score, sensor_model, sensor_residual(side),
                                  "gen3.tcn-sensor-oracle.json", training, say);
-  const Validation v =
-      score_estimates(d.score, d.score_samples,
-                      {compensated_estimate<kMeasuredJoints>(setup, d.score, sensor_estimate)});
+  const Validation v = score_estimates(d.score, d.score_samples,
+                                       {compensated_estimate(setup, d.score, sensor_estimate)});
   std::vector<double> rmse;
   for (const SensorScore& s : v.sensor)
     rmse.push_back(s.samples > 0 ? s.estimates[0].valid.rmse
@@ -402,14 +406,13 @@ MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
     const Gen3Model model =
         identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor, say)
             .nominal;
-    estimates.push_back(nominal_estimate<kMeasuredJoints>(model, d.fit_samples, notes));
+    estimates.push_back(gen3_nominal_estimate(model, d.fit_samples, notes));
     estimates.back().name = from_sensor ? "friction against the sensor" : "after identification";
     if (from_sensor) sensor_model = model;
   }
   // The low-pass chosen on this split's fitting files (the scoring files of the forward one).
   time_constants = choose_low_pass_time_constants(
-      d.score, d.score_samples,
-      nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, notes));
+      d.score, d.score_samples, gen3_nominal_estimate(sensor_model, d.score_samples, notes));
   estimates.push_back(low_passed_estimate(estimates[1], d.fit, d.fit_samples, time_constants));
   estimates.back().name = "+ current low-pass";
   MeasuredSplit split;
@@ -466,20 +469,17 @@ MeasuredFloor measured_floor(const MeasuredData& d, const MeasuredSplit& split,
 void bound_stage(const MeasuredOptions& o, const MeasuredData& d, const Gen3Model& fitted,
                  const Gen3Model& scored_fitted, MeasuredResult& result) {
   std::vector<std::string> ignored;
-  const EffortEstimate on_fit = nominal_estimate<kMeasuredJoints>(fitted, d.fit_samples, ignored);
-  const EffortEstimate on_score =
-      nominal_estimate<kMeasuredJoints>(fitted, d.score_samples, ignored);
-  const EffortEstimate own_score =
-      nominal_estimate<kMeasuredJoints>(scored_fitted, d.score_samples, ignored);
-  const EffortEstimate own_fit =
-      nominal_estimate<kMeasuredJoints>(scored_fitted, d.fit_samples, ignored);
+  const EffortEstimate on_fit = gen3_nominal_estimate(fitted, d.fit_samples, ignored);
+  const EffortEstimate on_score = gen3_nominal_estimate(fitted, d.score_samples, ignored);
+  const EffortEstimate own_score = gen3_nominal_estimate(scored_fitted, d.score_samples, ignored);
+  const EffortEstimate own_fit = gen3_nominal_estimate(scored_fitted, d.fit_samples, ignored);
   const MeasuredBoundSide fit{&d.fit, &d.fit_samples}, score{&d.score, &d.score_samples};
   result.bound = measured_bound(fit, score, on_fit, on_score, own_score, o.target_reduction,
                                 o.band_low_hz, o.floor_cutoff_hz);
   // The load terms of the friction (α_c, α_v on |G_j(q)|, the load the run time has) left out.
   const Say quiet;
   const auto without_load = [&](const Log& log, const JointSamples& on) {
-    return nominal_estimate<kMeasuredJoints>(
+    return gen3_nominal_estimate(
         identify_on_every_sample(log, d.model, o.friction_samples_per_joint, true, quiet, false)
             .nominal,
         on, ignored);
@@ -541,9 +541,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   // What the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");
   std::vector<std::string> ignored;
-  const SensorSide fit_side{
-      &d.fit, &d.fit_samples,
-      nominal_estimate<kMeasuredJoints>(identified, d.fit_samples, ignored).drive_loss};
+  const SensorSide fit_side{&d.fit, &d.fit_samples,
+                            gen3_nominal_estimate(identified, d.fit_samples, ignored).drive_loss};
   const SensorSide held_side{&d.score, &d.score_samples, estimates.front().drive_loss};
   result.candidates = sensor_candidates(fit_side, held_side, Eigen::VectorXd(d.model.gear_ratio));
   result.traces = plot_traces(d, estimates, o.run_training);
