@@ -15,21 +15,23 @@
 namespace tpf::test {
 namespace {
 
-const std::string kArm9 = kShippedData + "/../tests/sim/arm9/";
+/// The 9-joint test arm's files: tests/sim/arm9/<name>.
+std::string arm9(const std::string& name) {
+  return kShippedData + "/../tests/sim/arm9/" + name;
+}
 
 TEST(CliNineJointTools, CalibrateEvaluateAndValidateANineJointArm) {
   CliSandbox box("nine_joint_tools");
   // The true model of the twin's arm: the robot file's rigid body, the friction file's curve.
-  save_nominal_model(
-      box / "arm9.params.json",
-      nominal_from_model(load_robot<double, Eigen::Dynamic>(kArm9 + "arm9.robot.json"),
-                         load_stribeck_parameters(kArm9 + "arm9.friction.json", 9)),
-      "true model of tests/sim/arm9");
+  save_nominal_model(box / "arm9.params.json",
+                     nominal_from_model(load_robot<double, Eigen::Dynamic>(arm9("arm9.robot.json")),
+                                        load_stribeck_parameters(arm9("arm9.friction.json"), 9)),
+                     "true model of tests/sim/arm9");
   box.write("contacts.json",
             "{\"kind\": \"static-contacts\", \"name\": \"arm9 pushes\", "
             "\"robot\": \"" +
-                kArm9 + "arm9.robot.json\"}");
-  const std::string excitation = " --scenario " + kArm9 + "arm9-excitation.json";
+                arm9("arm9.robot.json") + "\"}");
+  const std::string excitation = " --scenario " + arm9("arm9-excitation.json");
   for (const std::string run :
        {"simulate" + excitation + " --seed 31 --duration 30 --out calibration.csv",
         "simulate" + excitation + " --seed 32 --duration 15 --out held-out.csv",
@@ -38,7 +40,7 @@ TEST(CliNineJointTools, CalibrateEvaluateAndValidateANineJointArm) {
     const CliResult r = box.tpf(run);
     ASSERT_EQ(r.exit_code, 0) << run << "\n" << r.err;
   }
-  const std::string model = " --params arm9.params.json --robot " + kArm9 + "arm9.robot.json";
+  const std::string model = " --params arm9.params.json --robot " + arm9("arm9.robot.json");
 
   const CliResult calibrate =
       box.tpf("calibrate --log calibration.csv" + model + " --out arm9.estimator.json");
