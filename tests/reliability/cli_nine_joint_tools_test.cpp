@@ -32,7 +32,7 @@ TEST(CliNineJointTools, CalibrateEvaluateAndValidateANineJointArm) {
             "\"robot\": \"" +
                 arm9("arm9.robot.json") + "\"}");
   const std::string excitation = " --scenario " + arm9("arm9-excitation.json");
-  for (const std::string run :
+  for (const std::string& run :
        {"simulate" + excitation + " --seed 31 --duration 30 --out calibration.csv",
         "simulate" + excitation + " --seed 32 --duration 15 --out held-out.csv",
         std::string(

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <type_traits>
 #include <variant>
 
 #include "offline/replay/all_joints_network.hpp"
@@ -34,10 +35,23 @@ class AnyCompensator {
   void load(const CompensatorWeightFiles& weights);
 
   const Output& step(const Input& x) noexcept {
-    return std::visit([&](auto& c) -> const Output& { return step_of(c, x); }, network_);
+    return std::visit(
+        [&](auto& c) -> const Output& {
+          if constexpr (std::is_same_v<std::decay_t<decltype(c)>, None>) {
+            return zero_;
+          } else {
+            output_ = c->step(x);
+            return output_;
+          }
+        },
+        network_);
   }
   void reset(const Input& x) noexcept {
-    std::visit([&](auto& c) { reset_of(c, x); }, network_);
+    std::visit(
+        [&](auto& c) {
+          if constexpr (!std::is_same_v<std::decay_t<decltype(c)>, None>) c->reset(x);
+        },
+        network_);
   }
   /// Cycles of input history the output depends on (the network's receptive field, 1 for none).
   int receptive_field() const noexcept;
@@ -49,18 +63,6 @@ class AnyCompensator {
   using LargePerJoint = PerJointTcn<float, kPerJointHiddenLarge>::For<double, Eigen::Dynamic>;
   using Networks = std::variant<None, std::unique_ptr<AllJointsNetwork>,
                                 std::unique_ptr<SmallPerJoint>, std::unique_ptr<LargePerJoint>>;
-
-  const Output& step_of(None&, const Input&) noexcept { return zero_; }
-  template <typename C>
-  const Output& step_of(std::unique_ptr<C>& c, const Input& x) noexcept {
-    output_ = c->step(x);
-    return output_;
-  }
-  void reset_of(None&, const Input&) noexcept {}
-  template <typename C>
-  void reset_of(std::unique_ptr<C>& c, const Input& x) noexcept {
-    c->reset(x);
-  }
 
   int joints_ = 0;
   Networks network_;
