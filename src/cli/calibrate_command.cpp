@@ -7,7 +7,6 @@
 
 #include "commands.hpp"
 #include "compensator_gate_printout.hpp"
-#include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
 #include "offline/calibrate/estimator_calibration.hpp"
 #include "offline/log/read_log.hpp"
@@ -26,8 +25,7 @@ struct CalibrateCommandOptions {
   double pad_gain_kpa_per_n = 1.5;
 };
 
-template <int N>
-std::string joint_values(const tpf::JointVector<double, N>& v) {
+std::string joint_values(const Eigen::VectorXd& v) {
   std::string s;
   char item[32];
   for (int j = 0; j < v.size(); ++j) {
@@ -37,39 +35,33 @@ std::string joint_values(const tpf::JointVector<double, N>& v) {
   return s;
 }
 
-template <int N>
 void run_calibrate(const CalibrateCommandOptions& o) {
   using namespace tpf::offline;
-  tpf::cli::ModelSetup loaded = tpf::cli::load_model_setup(o.model, o.weights);
-  const tpf::EstimatorSetup<N> setup{tpf::joint_count_cast<N>(loaded.nominal),
-                                     std::move(loaded.pads),
-                                     {},
-                                     std::move(loaded.weights)};
+  const ReplaySetup setup = tpf::cli::load_model_setup(o.model, o.weights);
+  const int joints = setup.nominal.model.joint_count();
   const Log log = tpf::cli::read_replayed_log(o.log, false);
-  const tpf::EstimatorParameters<double, N> p =
-      calibrate_estimator<N>(setup, log, o.pad_gain_kpa_per_n);
+  const ReplayParameters p = calibrate_estimator(setup, log, o.pad_gain_kpa_per_n);
 
   const auto origin = log.meta.get("source");
   const bool simulated = origin && origin->find("simulated") != std::string::npos;
   std::string source = o.log + (simulated ? " (SIMULATED log)" : "") + ", nominal model " +
                        o.model.params + ", compensator " + (o.weights.empty() ? "none" : o.weights);
-  tpf::save_estimator_parameters<N>(o.out, p, source);
+  tpf::save_estimator_parameters(o.out, p, source);
   // Calibrated in N·m; printed in the log's unit (mA for a log of currents).
   const tpf::DriveUnits units =
       tpf::drive_units(setup.nominal.model, tpf::effort_unit_of_column(log.effort_prefix()));
   const std::string unit = units.name();
-  const auto in_log_unit = [&](const tpf::JointVector<double, N>& tau) {
-    return tpf::JointVector<double, N>(
-        units.to_effort(Eigen::MatrixXd(tau.transpose())).transpose());
+  const auto in_log_unit = [&](const Eigen::VectorXd& tau) {
+    return Eigen::VectorXd(units.to_effort(Eigen::MatrixXd(tau.transpose())).transpose());
   };
   std::printf("calibrate: %s%s, %d joints, %s, %s\n", o.log.c_str(),
-              simulated ? " (SIMULATED)" : "", N,
+              simulated ? " (SIMULATED)" : "", joints,
               tpf::cli::describe_pads(
                   setup.pads.size(),
                   tpf::cli::pad_layout_file(o.model, tpf::load_robot_description(o.model.robot)))
                   .c_str(),
               describe(setup.weights).c_str());
-  tpf::cli::print_compensated_joints("calibrate", setup.weights, N,
+  tpf::cli::print_compensated_joints("calibrate", setup.weights, joints,
                                      p.compensator_min_held_out_gain);
   std::printf("  static dead band [%s]: %s\n", unit.c_str(),
               joint_values(in_log_unit(p.static_dead_band)).c_str());
@@ -128,8 +120,7 @@ void register_calibrate_command(CLI::App& app) {
                               joined(joined({{"--log", o->log}}, model_inputs(o->model)),
                                      weight_files("--weights", o->weights)),
                               {{"--out", o->out}});
-    with_joint_count(robot_joint_count(o->model.robot), o->model.robot,
-                     [&]<int N>() { run_calibrate<N>(*o); });
+    run_calibrate(*o);
   });
 }
 

@@ -11,7 +11,7 @@
 #include "commands.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
-#include "joint_dispatch.hpp"
+#include "robot_joint_count.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/log/read_logs.hpp"

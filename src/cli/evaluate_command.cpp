@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
@@ -51,17 +50,12 @@ void refuse_colliding_outputs(const EvaluateCommandOptions& o) {
       {{"--out", (out / "evaluate.html").string()}, {"--out", (out / "evaluation.json").string()}});
 }
 
-template <int N>
 void run_evaluate(const EvaluateCommandOptions& o) {
   using namespace tpf::offline;
   const auto say = [&](const std::string& line) {
     if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
   };
-  tpf::cli::ModelSetup loaded = tpf::cli::load_model_setup(o.model, o.weights);
-  tpf::EstimatorSetup<N> setup{tpf::joint_count_cast<N>(loaded.nominal),
-                               std::move(loaded.pads),
-                               {},
-                               std::move(loaded.weights)};
+  ReplaySetup setup = tpf::cli::load_model_setup(o.model, o.weights);
 
   say("evaluate: reading logs");
   const Log calibration = tpf::cli::read_replayed_log(o.calibration, o.quiet);
@@ -72,7 +66,7 @@ void run_evaluate(const EvaluateCommandOptions& o) {
       o.contacts.empty() ? Log{} : tpf::cli::read_replayed_log(o.contacts, o.quiet);
   const Log teaching =
       o.teaching.empty() ? Log{} : tpf::cli::read_replayed_log(o.teaching, o.quiet);
-  setup.parameters = estimator_parameters_from_noise<N>(
+  setup.parameters = estimator_parameters_from_noise(
       estimate_sensor_noise(calibration, setup.nominal.model.torque_constant));
 
   EvaluationLogs logs;
@@ -147,8 +141,7 @@ void register_evaluate_command(CLI::App& app) {
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   cmd->callback([o] {
     refuse_colliding_outputs(*o);
-    with_joint_count(robot_joint_count(o->model.robot), o->model.robot,
-                     [&]<int N>() { run_evaluate<N>(*o); });
+    run_evaluate(*o);
   });
 }
 

@@ -9,7 +9,7 @@
 #include "commands.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
-#include "joint_dispatch.hpp"
+#include "robot_joint_count.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"

@@ -11,7 +11,7 @@
 #include "offline/common/run_time_types.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
-#include "tpf/estimation/compensator_weight_files.hpp"
+#include "tpf/estimation/load_estimator.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/model/robot_description.hpp"
 #include "tpf/skin/pad_layout.hpp"
@@ -58,25 +58,21 @@ inline std::string describe_pads(std::size_t pads, const std::string& file) {
   return pads == 0 ? std::string("no skin") : std::to_string(pads) + " pads (" + file + ")";
 }
 
-/// What the model files hold, at the arm's own joint count (any).
-struct ModelSetup {
-  NominalModelX nominal;
-  std::vector<Pad> pads;
-  CompensatorWeightFiles weights;
-};
-
-/// The model files of an estimator set-up, without estimator parameters (the tools derive or
-/// calibrate them): nominal model, pad layout (pad_layout_file; `with_pads` false: no skin),
-/// compensator weights (`weights` empty: none). A program of N joints converts the nominal model
-/// (joint_count_cast<N>, which names both counts when they differ).
-inline ModelSetup load_model_setup(const ModelFiles& files, const std::string& weights,
-                                   bool with_pads = true) {
+/// The estimator set-up of the robot file's arm (its joint count) from the model files, with
+/// the default estimator parameters of that count (the tools derive or calibrate them): nominal
+/// model, pad layout (pad_layout_file; `with_pads` false: no skin), compensator weights
+/// (`weights` empty: none).
+inline EstimatorSetup<Eigen::Dynamic> load_model_setup(const ModelFiles& files,
+                                                       const std::string& weights,
+                                                       bool with_pads = true) {
   const RobotDescription robot = load_robot_description(files.robot);
-  ModelSetup setup;
+  EstimatorSetup<Eigen::Dynamic> setup;
   setup.nominal = load_nominal_model(files.params, robot);
+  const int joints = setup.nominal.model.joint_count();
+  setup.parameters.resize(joints);
   const std::string pads = with_pads ? pad_layout_file(files, robot) : std::string();
   if (!pads.empty()) setup.pads = load_pads(pads, setup.nominal.model);
-  setup.weights = find_compensator_weights(weights, setup.nominal.model.joint_count());
+  setup.weights = find_compensator_weights(weights, joints);
   return setup;
 }
 

@@ -4,7 +4,6 @@
 #include <system_error>
 
 #include "tpf/common/error.hpp"
-#include "tpf/common/joint_counts.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 
 namespace tpf::cli {
@@ -84,10 +83,12 @@ void refuse_overwriting_inputs(const std::string& command, const PathOptions& in
 PathOptions weight_files(const std::string& option, const std::string& path) {
   if (path.empty()) return {};
   PathOptions files{{option, path}};
-  for (int j = 0; j < kMaxJoints; ++j) {
+  // Per-joint files are joint1, joint2, … up to the arm's joint count: up to the first missing.
+  for (int j = 0;; ++j) {
     const std::filesystem::path joint = joint_weight_path(path, j);
     std::error_code error;
-    if (std::filesystem::exists(joint, error)) files.push_back({option, joint.string()});
+    if (!std::filesystem::exists(joint, error)) break;
+    files.push_back({option, joint.string()});
   }
   return files;
 }

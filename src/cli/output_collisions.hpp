@@ -31,7 +31,7 @@ void refuse_overwriting_inputs(const std::string& command, const PathOptions& in
                                const PathOptions& outputs);
 
 /// The files a compensator weights path given to `option` stands for: the path itself and the
-/// <stem>.joint<j>.json files beside it that exist.
+/// <stem>.joint<j>.json files beside it that exist, joint1 onwards up to the first missing.
 PathOptions weight_files(const std::string& option, const std::string& path);
 
 /// The files a compensator of `joints` joints is written to from `path` (train's --out,

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "joint_dispatch.hpp"
 #include "model_file_options.hpp"
 #include "offline/compensator_training/held_out_score.hpp"
 #include "offline/compensator_training/train_compensator.hpp"
@@ -21,7 +20,7 @@
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
-#include "tpf/estimation/load_estimator.hpp"
+#include "robot_joint_count.hpp"
 
 namespace {
 
@@ -86,47 +85,43 @@ SplitLogs split_logs(const TrainCommandOptions& o) {
 
 /// The estimator's trace over each log (no skin: the network reads no pad; the compensator of
 /// `weights`, none by default), with parameters from the log's own noise.
-template <int N>
 std::vector<tpf::offline::EstimatorTrace> trace_logs(
     const TrainCommandOptions& o, const std::vector<tpf::offline::Log>& logs,
     const tpf::CompensatorWeightFiles& weights = {}) {
   using namespace tpf::offline;
-  tpf::cli::ModelSetup loaded = tpf::cli::load_model_setup(o.model, "", false);
-  tpf::EstimatorSetup<N> setup{tpf::joint_count_cast<N>(loaded.nominal),
-                               std::move(loaded.pads),
-                               {},
-                               std::move(loaded.weights)};
+  ReplaySetup setup = tpf::cli::load_model_setup(o.model, "", false);
+  const int joints = setup.nominal.model.joint_count();
   setup.weights = weights;
   std::vector<EstimatorTrace> traces;
   for (const Log& log : logs) {
     // Where the torque sensor is flat or missing, as identify and diagnose say it: the sensor is
     // never an input of the networks.
-    for (const std::string& line : torque_sensor_problems(log, N))
+    for (const std::string& line : torque_sensor_problems(log, joints))
       std::printf("%s\n", line.c_str());
     std::vector<int> never_rests;
-    setup.parameters = estimator_parameters_from_noise<N>(
+    setup.parameters = estimator_parameters_from_noise(
         estimate_sensor_noise(log, setup.nominal.model.torque_constant, &never_rests));
     for (int j : never_rests)
       std::printf(
           "train: %s: joint %d never rests (fewer than 10 consecutive rows with |dq| < 1e-4 "
           "rad/s): its network is trained and scored without the rest regime\n",
           log.source.c_str(), j + 1);
-    traces.push_back(replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0)));
+    traces.push_back(replay_estimator(setup, estimator_samples(log, setup.nominal.model, 0)));
   }
   return traces;
 }
 
 /// Scores the written networks on the held-out logs, writes the gains into the weight files
 /// and prints them with the gate's verdict (the estimator's default threshold).
-template <int N>
 void score_and_rewrite(const TrainCommandOptions& o, const std::vector<tpf::offline::Log>& held_out,
                        tpf::offline::CompensatorTraining& result) {
   using namespace tpf::offline;
-  const auto weights = tpf::find_compensator_weights(o.out, N);
-  const HeldOutScore score = score_held_out(trace_logs<N>(o, held_out, weights));
+  const auto weights =
+      tpf::find_compensator_weights(o.out, tpf::cli::robot_joint_count(o.model.robot));
+  const HeldOutScore score = score_held_out(trace_logs(o, held_out, weights));
   set_held_out_gains(result, score);
   write_compensator(result, o.out);
-  const double min_gain = tpf::EstimatorParameters<double, N>{}.compensator_min_held_out_gain;
+  const double min_gain = ReplayParameters{}.compensator_min_held_out_gain;
   std::printf(
       "train: held out, RMSE nominal -> with the network (change); the gate keeps a network whose "
       "gain is >= %.1f %% in every regime scored:\n",
@@ -149,9 +144,7 @@ void refuse_colliding_outputs(const TrainCommandOptions& o) {
 void run_train(TrainCommandOptions o) {
   using namespace tpf::offline;
   const SplitLogs split = split_logs(o);
-  std::vector<EstimatorTrace> traces;
-  tpf::cli::with_joint_count(tpf::cli::robot_joint_count(o.model.robot), o.model.robot,
-                             [&]<int N>() { traces = trace_logs<N>(o, split.training); });
+  const std::vector<EstimatorTrace> traces = trace_logs(o, split.training);
   CompensatorTrainingOptions options;
   options.tcn = o.tcn;
   options.tcn.checkpoint_path = o.checkpoint;
@@ -177,8 +170,7 @@ void run_train(TrainCommandOptions o) {
   }
   std::printf("train: %zu training / %zu held-out windows, %.1f s\n", result.training_windows,
               result.validation_windows, result.seconds);
-  tpf::cli::with_joint_count(tpf::cli::robot_joint_count(o.model.robot), o.model.robot,
-                             [&]<int N>() { score_and_rewrite<N>(o, split.held_out, result); });
+  score_and_rewrite(o, split.held_out, result);
 }
 
 }  // namespace

@@ -8,12 +8,12 @@
 
 #include "commands.hpp"
 #include "compensator_gate_printout.hpp"
-#include "joint_dispatch.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/validate/validation.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
+#include "robot_joint_count.hpp"
 #include "tpf/common/atomic_file.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
@@ -26,24 +26,27 @@ struct ValidateArgs {
   double static_velocity = 1e-4;
 };
 
-template <int N>
-void run(const tpf::offline::Log& log, const ValidateArgs& a) {
+void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
   using namespace tpf::offline;
-  const auto nominal = tpf::load_nominal_model<N>(a.params, a.robot);
+  const tpf::NominalModelX nominal = tpf::load_nominal_model(a.params, a.robot);
+  const int joints = nominal.model.joint_count();
   SampleOptions options;
   options.regimes.static_velocity = a.static_velocity;
   const JointSamples samples = extract_joint_samples(log, nominal.model.torque_constant, options);
   std::vector<std::string> notes;
   // One column per estimate; the compensator (--weights) becomes one more here.
-  std::vector<EffortEstimate> estimates{nominal_estimate<N>(nominal, samples, notes)};
+  std::vector<EffortEstimate> estimates{nominal_estimate(nominal, samples, notes)};
   if (!a.weights.empty()) {
-    tpf::EstimatorSetup<N> setup;
+    tpf::EstimatorSetup<Eigen::Dynamic> setup;
     setup.nominal = nominal;
-    if (!a.estimator.empty()) setup.parameters = tpf::load_estimator_parameters<N>(a.estimator);
-    setup.weights = tpf::find_compensator_weights(a.weights, N);
-    tpf::cli::print_compensated_joints("validate", setup.weights, N,
+    if (a.estimator.empty())
+      setup.parameters.resize(joints);
+    else
+      setup.parameters = tpf::load_estimator_parameters(a.estimator, joints);
+    setup.weights = tpf::find_compensator_weights(a.weights, joints);
+    tpf::cli::print_compensated_joints("validate", setup.weights, joints,
                                        setup.parameters.compensator_min_held_out_gain);
-    estimates.push_back(compensated_estimate<N>(setup, log, estimates.front()));
+    estimates.push_back(compensated_estimate(setup, log, estimates.front()));
   }
   Validation v = score_estimates(log, samples, estimates);
   v.notes = notes;
@@ -108,8 +111,8 @@ void register_validate_command(CLI::App& app) {
     const offline::Log log = offline::read_logs(a->logs, &notes);
     for (const std::string& n : notes)
       std::printf("note: %s\n", n.c_str());
-    with_log_joint_count(log.joint_count(), log.source, a->robot,
-                         [&]<int N>() { run<N>(log, *a); });
+    require_log_joint_count(log.joint_count(), log.source, a->robot);
+    run_validate(log, *a);
   });
 }
 

@@ -41,7 +41,7 @@ inline const offline::Log& twin_log(const std::string& scenario, unsigned seed, 
 /// Rows of a log as estimator samples of the fixed-size twin estimator (estimator_samples: effort
 /// = i<j> in mA converted to N·m with the arm's K_t, no q̈: the estimator derives it).
 inline std::vector<ArmSample> samples_from_log(const offline::Log& log) {
-  const auto rows = offline::estimator_samples<kJoints>(log, arm(), kPads);
+  const auto rows = offline::estimator_samples(log, joint_count_cast<Eigen::Dynamic>(arm()), kPads);
   std::vector<ArmSample> samples(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
     samples[r].t = rows[r].t;

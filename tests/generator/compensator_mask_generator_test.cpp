@@ -32,10 +32,11 @@ const offline::EstimatorTrace& planar_trace() {
     plant.seed = 5;
     plant.duration_s = 60.0;
     const offline::Log log = generate_planar_log(plant);
-    EstimatorSetup<2> setup;
-    setup.nominal.model = load_robot<double, 2>(planar_robot_file());
+    EstimatorSetup<2> planar;
+    planar.nominal.model = load_robot<double, 2>(planar_robot_file());
+    const offline::ReplaySetup setup = joint_count_cast<Eigen::Dynamic>(planar);
     return offline::replay_estimator(setup,
-                                     offline::estimator_samples<2>(log, setup.nominal.model, 0));
+                                     offline::estimator_samples(log, setup.nominal.model, 0));
   }();
   return trace;
 }

@@ -60,14 +60,14 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
       << robot << ": "
       << (identified.consistency.problems.empty() ? "" : identified.consistency.problems[0]);
   const Diagnosis diagnosis = diagnose(training, any_model, {});
-  EstimatorSetup<N> setup;
-  setup.nominal = joint_count_cast<N>(diagnosis.nominal);
+  ReplaySetup setup;
+  setup.nominal = diagnosis.nominal;
 
   // train a small compensator on the training log
-  setup.parameters = estimator_parameters_from_noise<N>(
+  setup.parameters = estimator_parameters_from_noise(
       estimate_sensor_noise(training, setup.nominal.model.torque_constant));
   const std::vector<EstimatorTrace> traces{
-      replay_estimator(setup, estimator_samples<N>(training, setup.nominal.model, 0))};
+      replay_estimator(setup, estimator_samples(training, setup.nominal.model, 0))};
   CompensatorTrainingOptions training_options;
   training_options.per_joint = true;
   training_options.tcn.max_epochs = 2;
@@ -80,11 +80,11 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
   setup.weights = find_compensator_weights(dir / "tcn.json", N);
 
   // calibrate, then evaluate on the held-out log
-  setup.parameters = calibrate_estimator<N>(setup, calibration);
+  setup.parameters = calibrate_estimator(setup, calibration);
   EvaluationLogs logs;
   logs.calibration = &calibration;
   logs.excitation = {&held_out};
-  const Evaluation ev = evaluate<N>(setup, logs);
+  const Evaluation ev = evaluate(setup, logs);
   EXPECT_EQ(ev.joints, N);
   EXPECT_FALSE(ev.has_skin);
   EXPECT_EQ(ev.table.size(), static_cast<std::size_t>(3 * (N + 1)));  // (N + all) × 3 regimes
@@ -101,8 +101,8 @@ void run_loop(const std::string& robot, const std::string& scenario, double seco
   EXPECT_NE(evaluation_json(ev).find("\"tactile_n\": \"no skin\""), std::string::npos);
 
   // What calibrate wrote loads into the run-time estimator of this arm (no skin).
-  save_nominal_model<N>(dir / "model.params.json", setup.nominal, "loop test");
-  save_estimator_parameters<N>(dir / "model.estimator.json", setup.parameters, "loop test");
+  save_nominal_model(dir / "model.params.json", setup.nominal, "loop test");
+  save_estimator_parameters(dir / "model.estimator.json", setup.parameters, "loop test");
   EXPECT_NO_THROW((load_estimator<N, 0, PerJointTcn<BFloat16Weights, 16>>(
       {(dir / "model.params.json").string(), data(robot), "",
        (dir / "model.estimator.json").string(), (dir / "tcn.json").string()})));

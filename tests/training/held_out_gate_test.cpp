@@ -25,21 +25,20 @@ namespace {
 
 using test::kJoints;
 
-EstimatorSetup<kJoints> shipped_setup() {
+ReplaySetup shipped_setup() {
   const std::string data = TPF_TEST_DATA_DIR;
-  return load_estimator_setup<kJoints>({data + "/arm4.params.json", data + "/arm4.robot.json", "",
-                                        data + "/arm4.estimator.json",
-                                        data + "/weights/arm4.tcn.json"});
+  return load_estimator_setup({data + "/arm4.params.json", data + "/arm4.robot.json", "",
+                               data + "/arm4.estimator.json", data + "/weights/arm4.tcn.json"},
+                              kJoints);
 }
 
-HeldOutScore score(const EstimatorSetup<kJoints>& setup) {
+HeldOutScore score(const ReplaySetup& setup) {
   const Log& log = test::twin_log("excitation", 11, 40);
-  return score_held_out(
-      {replay_estimator(setup, estimator_samples<kJoints>(log, setup.nominal.model, 0))});
+  return score_held_out({replay_estimator(setup, estimator_samples(log, setup.nominal.model, 0))});
 }
 
 // The score as weight files carry it, and the gate's verdict on it.
-std::uint32_t gate(const EstimatorSetup<kJoints>& setup, const HeldOutScore& s) {
+std::uint32_t gate(const ReplaySetup& setup, const HeldOutScore& s) {
   CompensatorTraining training;
   training.layout = CompensatorLayout::PerJoint;
   for (const std::string& f : setup.weights.files)
@@ -69,7 +68,7 @@ TEST(HeldOutGate, TheArmsOwnNetworksAreKeptWhereTheyHelp) {
 }
 
 TEST(HeldOutGate, NetworksOfOtherDrivesDoWorseAndAreGatedOff) {
-  EstimatorSetup<kJoints> setup = shipped_setup();
+  ReplaySetup setup = shipped_setup();
   std::rotate(setup.weights.files.begin(), setup.weights.files.begin() + 1,
               setup.weights.files.end());
   const HeldOutScore s = score(setup), own = own_score();

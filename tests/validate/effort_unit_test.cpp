@@ -100,11 +100,14 @@ TEST(EffortUnit, ALogInMilliamperesAndTheSameLogInNewtonMetresGiveTheSameEstimat
   EstimatorParameters<double, kJoints> p;
   p.nominal_sigma = p.fused_sigma = Vec::Constant(0.3);  // N·m
   p.static_dead_band = Vec::Constant(0.05);
-  using E = Estimator<double, kJoints, Eigen::Dynamic>;
-  auto from_ma = std::make_unique<E>(nominal, std::vector<Pad>{}, p);
-  auto from_nm = std::make_unique<E>(nominal, std::vector<Pad>{}, p);
-  const auto a = offline::estimator_samples<kJoints>(swinging_log(false), arm(), 0);
-  const auto b = offline::estimator_samples<kJoints>(swinging_log(true), arm(), 0);
+  // The offline tools' estimator: joint and pad counts at run time.
+  using E = Estimator<double, Eigen::Dynamic, Eigen::Dynamic>;
+  const NominalModelX any_arm = joint_count_cast<Eigen::Dynamic>(nominal);
+  const auto any_p = joint_count_cast<Eigen::Dynamic>(p);
+  auto from_ma = std::make_unique<E>(any_arm, std::vector<Pad>{}, any_p);
+  auto from_nm = std::make_unique<E>(any_arm, std::vector<Pad>{}, any_p);
+  const auto a = offline::estimator_samples(swinging_log(false), any_arm.model, 0);
+  const auto b = offline::estimator_samples(swinging_log(true), any_arm.model, 0);
   ASSERT_EQ(a.size(), b.size());
   double worst = 0.0, largest = 0.0;
   for (std::size_t k = 0; k < a.size(); ++k) {

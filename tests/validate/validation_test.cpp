@@ -97,14 +97,13 @@ TEST(Validate, ScoresAHeldOutLogExactly) {
   friction.viscous << kViscous / 500;
   const auto truth = nominal_from_model<1>(model, friction);
   save_nominal_model<1>(dir / "p.json", truth);
-  const auto nominal = load_nominal_model<1>(dir / "p.json", robot);
+  const NominalModelX nominal = load_nominal_model(dir / "p.json", robot, 1);
   write_log(dir / "a.csv", turntable_log(false));
   write_log(dir / "b.csv.gz", turntable_log(true));
   const Log log = read_logs(std::vector<std::filesystem::path>{dir / "a.csv", dir / "b.csv.gz"});
   const JointSamples samples = extract_joint_samples(log, model.torque_constant);
   std::vector<std::string> notes;
-  const Validation v =
-      score_estimates(log, samples, {nominal_estimate<1>(nominal, samples, notes)});
+  const Validation v = score_estimates(log, samples, {nominal_estimate(nominal, samples, notes)});
 
   // Effort: ±30 mA on every sample, whatever the regime, in both files.
   const RegimeStats& s = v.effort[0][0];

@@ -12,11 +12,9 @@ namespace tpf::offline {
 ///  1. sensor noise σ (estimate_sensor_noise) → static dead band, pad hysteresis levels and pad
 ///     force gain for `pad_gain_kpa_per_n` (estimator_parameters_from_noise);
 ///  2.–4. calibrate_with_compensator.
-/// Throws tpf::Error naming the log when a joint never rests or never starts moving. Compiled for
-/// N = 1 … kMaxJoints.
-template <int N>
-EstimatorParameters<double, N> calibrate_estimator(EstimatorSetup<N> setup, const Log& log,
-                                                   double pad_gain_kpa_per_n = 1.5);
+/// Throws tpf::Error naming the log when a joint never rests or never starts moving.
+ReplayParameters calibrate_estimator(ReplaySetup setup, const Log& log,
+                                     double pad_gain_kpa_per_n = 1.5);
 
 /// The steps that run the estimator with its compensator over the contact-free `log`, on
 /// setup.parameters in place (the noise-derived parameters already set):
@@ -26,7 +24,7 @@ EstimatorParameters<double, N> calibrate_estimator(EstimatorSetup<N> setup, cons
 ///     (calibrate_sigma): the moving dead bands 1.5·σ — returned;
 ///  4. persistence of the torque-only contact alarm: no false alarm anywhere on the log
 ///     (calibrate_torque_alarm).
-template <int N>
-TransitionSigma<double, N> calibrate_with_compensator(EstimatorSetup<N>& setup, const Log& log);
+TransitionSigma<double, Eigen::Dynamic> calibrate_with_compensator(ReplaySetup& setup,
+                                                                   const Log& log);
 
 }  // namespace tpf::offline

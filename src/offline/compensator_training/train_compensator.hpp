@@ -29,7 +29,7 @@ int compensator_input_channel(std::string_view name);
 
 struct CompensatorTrainingOptions {
   /// Trainer options; the architecture is set from the layout (inputs, outputs, hidden, levels =
-  /// the networks the tools are compiled for, replay_estimator.hpp). max_seconds is the whole
+  /// the networks the tools evaluate, any_compensator.hpp). max_seconds is the whole
   /// safety net.
   TcnTrainOptions tcn;
   bool per_joint = false;  ///< one network per joint instead of one for all joints

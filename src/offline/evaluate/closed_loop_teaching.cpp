@@ -5,47 +5,46 @@
 #include "offline/evaluate/contact_detection.hpp"
 #include "offline/sim/simulate.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/joint_counts.hpp"
 #include "tpf/estimation/proprioceptive_estimate.hpp"
 #include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
 namespace {
 
-/// Column indices of a simulated log row (currents i<j> in mA) for an N-joint estimator sample
-/// with `pads` pads; the current becomes torque with the model's K_t.
-template <int N>
+/// Column indices of a simulated log row (currents i<j> in mA) for an estimator sample of
+/// `joints` joints and `pads` pads; the current becomes torque with the model's K_t.
 struct RowLayout {
   int t = 0;
-  std::array<int, N> q{}, dq{}, i{};
-  std::vector<int> p;
-  RowLayout(const std::vector<std::string>& columns, int pads) {
+  std::vector<int> q, dq, i, p;
+  RowLayout(const std::vector<std::string>& columns, int joints, int pads) {
     const auto at = [&](const std::string& name) {
       for (std::size_t c = 0; c < columns.size(); ++c)
         if (columns[c] == name) return static_cast<int>(c);
       throw Error::at("simulated row", 0, name, "column missing");
     };
     t = at("t");
-    for (int j = 0; j < N; ++j) {
-      q[j] = at(indexed_name("q", j + 1));
-      dq[j] = at(indexed_name("dq", j + 1));
-      i[j] = at(indexed_name("i", j + 1));
+    for (int j = 0; j < joints; ++j) {
+      q.push_back(at(indexed_name("q", j + 1)));
+      dq.push_back(at(indexed_name("dq", j + 1)));
+      i.push_back(at(indexed_name("i", j + 1)));
     }
     for (int k = 0; k < pads; ++k)
       p.push_back(at(indexed_name("p", k + 1)));
   }
-  ReplaySample<N> sample(std::span<const double> row, const Model<double, N>& model) const {
-    ReplaySample<N> s;
-    s.t = row[t];
-    for (int j = 0; j < N; ++j) {
-      s.q[j] = row[q[j]];
-      s.dq[j] = row[dq[j]];
-      s.effort[j] = row[i[j]];
+  ReplaySample sample(std::span<const double> row,
+                      const Model<double, Eigen::Dynamic>& model) const {
+    ReplaySample s;
+    s.resize(static_cast<int>(q.size()), static_cast<int>(p.size()));
+    s.t = row[static_cast<std::size_t>(t)];
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      const auto e = static_cast<Eigen::Index>(j);
+      s.q[e] = row[static_cast<std::size_t>(q[j])];
+      s.dq[e] = row[static_cast<std::size_t>(dq[j])];
+      s.effort[e] = row[static_cast<std::size_t>(i[j])];
     }
     s.effort = torque_from_current(model, s.effort);
-    s.pressure.resize(static_cast<Eigen::Index>(p.size()));
     for (std::size_t k = 0; k < p.size(); ++k)
-      s.pressure[static_cast<Eigen::Index>(k)] = row[p[k]];
+      s.pressure[static_cast<Eigen::Index>(k)] = row[static_cast<std::size_t>(p[k])];
     return s;
   }
 };
@@ -114,21 +113,20 @@ void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& es
   loop.mean_undershoot_percent = loop.undershoots ? under / loop.undershoots : 0.0;
 }
 
-template <int N>
-std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
-                                                 const Scenario& scenario, std::uint64_t seed,
-                                                 double duration_s) {
+std::array<TeachingLoop, 2> closed_loop_teaching(const ReplaySetup& setup, const Scenario& scenario,
+                                                 std::uint64_t seed, double duration_s) {
   if (scenario.kind != Scenario::Kind::kTeaching)
     throw Error::at(scenario.file, 0, "kind", "closed-loop teaching needs a teaching scenario");
   std::array<TeachingLoop, 2> loops;
   loops[0].name = "nominal, no compensator (proprioceptive)";
   loops[1].name = "fusion with the compensator";
   const int pads = static_cast<int>(setup.pads.size());
-  const RowLayout<N> layout(simulation_columns(scenario), pads);
+  const int joints = setup.nominal.model.joint_count();
+  const RowLayout layout(simulation_columns(scenario), joints, pads);
   for (int mode = 0; mode < 2; ++mode) {
     TeachingLoop& loop = loops[static_cast<std::size_t>(mode)];
     std::vector<TwinVector> estimates;
-    SteppedEstimator<N> estimator(setup);
+    SteppedEstimator estimator(setup);
     const auto source = [&](std::span<const double> row) -> TwinVector {
       const auto& out = estimator.update(layout.sample(row, setup.nominal.model));
       const TwinVector tau =
@@ -139,18 +137,12 @@ std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
     loop.log = simulate_to_log(scenario, seed, duration_s, source);
     loop.log.source =
         "closed-loop teaching, " + loop.name + " (simulated, seed " + std::to_string(seed) + ")";
-    Eigen::MatrixXd estimate(loop.log.rows(), N);
+    Eigen::MatrixXd estimate(loop.log.rows(), joints);
     for (Eigen::Index k = 0; k < estimate.rows(); ++k)
       estimate.row(k) = estimates[static_cast<std::size_t>(k)].transpose();
     score_teaching_loop(scenario.teaching, estimate, loop);
   }
   return loops;
 }
-
-#define TPF_INSTANTIATE_CLOSED_LOOP_TEACHING(N)                 \
-  template std::array<TeachingLoop, 2> closed_loop_teaching<N>( \
-      const EstimatorSetup<N>&, const Scenario&, std::uint64_t, double);
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_CLOSED_LOOP_TEACHING)
-#undef TPF_INSTANTIATE_CLOSED_LOOP_TEACHING
 
 }  // namespace tpf::offline

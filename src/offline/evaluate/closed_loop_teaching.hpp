@@ -42,10 +42,8 @@ void score_teaching_loop(const TeachingConfig& config, const Eigen::MatrixXd& es
 /// Runs `scenario` (kind teaching) twice with the estimator of `setup` in the loop: once following
 /// the proprioceptive estimate (nominal model, dead band 1.5σ_nominal) and once the fused one
 /// (static model-free at rest, nominal + TCN moving). Same seed: the same hand.
-/// Compiled for N = 1 … kMaxJoints (the twin refuses a teaching scenario on a robot without pads).
-template <int N>
-std::array<TeachingLoop, 2> closed_loop_teaching(const EstimatorSetup<N>& setup,
-                                                 const Scenario& scenario, std::uint64_t seed,
-                                                 double duration_s);
+/// The twin refuses a teaching scenario on a robot without pads.
+std::array<TeachingLoop, 2> closed_loop_teaching(const ReplaySetup& setup, const Scenario& scenario,
+                                                 std::uint64_t seed, double duration_s);
 
 }  // namespace tpf::offline

@@ -6,7 +6,6 @@
 #include "offline/calibrate/estimator_calibration.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/joint_counts.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -115,12 +114,13 @@ const char* modality_name(Modality m) {
   return "?";
 }
 
+namespace {
+
 /// What calibration set, per joint, for the report: σ's and bands in the effort unit of `u`.
-template <int N>
-Calibration calibration_of(const EstimatorParameters<double, N>& p, const DriveUnits& u) {
-  const auto in_unit = [&](const JointVector<double, N>& tau) {
-    Vec e(N);
-    for (int j = 0; j < N; ++j)
+Calibration calibration_of(const ReplayParameters& p, const DriveUnits& u) {
+  const auto in_unit = [&](const ReplayVector& tau) {
+    Vec e(tau.size());
+    for (int j = 0; j < tau.size(); ++j)
       e[j] = u.to_effort(j, tau[j]);
     return e;
   };
@@ -137,8 +137,9 @@ Calibration calibration_of(const EstimatorParameters<double, N>& p, const DriveU
   return c;
 }
 
-template <int N>
-Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
+}  // namespace
+
+Evaluation evaluate(ReplaySetup& setup, const EvaluationLogs& logs,
                     const std::function<void(const std::string&)>& progress) {
   const auto say = [&](const std::string& line) {
     if (progress) progress(line);
@@ -146,7 +147,7 @@ Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
   if (!logs.calibration || logs.excitation.empty())
     throw Error::at("evaluate", 0, "logs", "a calibration log and an excitation log are needed");
   Evaluation ev;
-  ev.joints = N;
+  ev.joints = setup.nominal.model.joint_count();
   ev.has_skin = !setup.pads.empty();
   ev.units = drive_units(setup.nominal.model,
                          effort_unit_of_column(logs.excitation.front()->effort_prefix()));
@@ -159,8 +160,7 @@ Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
   std::vector<ResidualRecording> recordings;
   for (const Log* log : logs.excitation) {
     say("evaluate: estimator over " + log->source);
-    EstimatorTrace tr =
-        replay_estimator(setup, estimator_samples<N>(*log, setup.nominal.model, pads));
+    EstimatorTrace tr = replay_estimator(setup, estimator_samples(*log, setup.nominal.model, pads));
     // Table I in the logs' unit (mA for logs of currents), as the original reports it.
     recordings.push_back({tr.t, tr.dq, ev.units.to_effort(tr.residual),
                           ev.units.to_effort(tr.residual - tr.compensation)});
@@ -176,14 +176,14 @@ Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
                       "a static-contacts log scores the skin, and this arm has no pad layout");
     say("evaluate: estimator over " + logs.contacts->source);
     ev.contacts_trace =
-        replay_estimator(setup, estimator_samples<N>(*logs.contacts, setup.nominal.model, pads));
+        replay_estimator(setup, estimator_samples(*logs.contacts, setup.nominal.model, pads));
     contact_metrics(*logs.contacts, ev.contacts_trace, ev);
     ev.has_contacts = true;
   }
   if (logs.teaching) {
     say("evaluate: estimator over " + logs.teaching->source);
     ev.teaching_trace =
-        replay_estimator(setup, estimator_samples<N>(*logs.teaching, setup.nominal.model, pads));
+        replay_estimator(setup, estimator_samples(*logs.teaching, setup.nominal.model, pads));
     teaching_metrics(*logs.teaching, ev.teaching_trace, ev);
     ev.has_teaching = true;
   }
@@ -195,12 +195,6 @@ Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
   }
   return ev;
 }
-
-#define TPF_INSTANTIATE_EVALUATE(N)                                          \
-  template Evaluation evaluate<N>(EstimatorSetup<N>&, const EvaluationLogs&, \
-                                  const std::function<void(const std::string&)>&);
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_EVALUATE)
-#undef TPF_INSTANTIATE_EVALUATE
 
 std::string evaluation_json(const Evaluation& ev) {
   using nlohmann::json;

@@ -86,9 +86,8 @@ struct Evaluation {
 /// Runs the estimator of `setup` over every log and computes all metrics; its parameters are
 /// calibrated here on logs.calibration and left in setup.parameters (save_estimator_parameters
 /// writes them for the run-time loop). `progress` receives one line per stage. Throws tpf::Error
-/// on bad logs. Compiled for N = 1 … kMaxJoints.
-template <int N>
-Evaluation evaluate(EstimatorSetup<N>& setup, const EvaluationLogs& logs,
+/// on bad logs.
+Evaluation evaluate(ReplaySetup& setup, const EvaluationLogs& logs,
                     const std::function<void(const std::string&)>& progress = {});
 
 /// The evaluation as JSON text (every number of the report).

@@ -124,18 +124,18 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   diagnosis_file.commit();
   result.findings = diagnosis.findings;
   result.diagnosis_summary = diagnosis_summary_table(diagnosis, diagnose_options);
-  EstimatorSetup<kDemoJoints> setup;
-  setup.nominal = joint_count_cast<kDemoJoints>(diagnosis.nominal);
+  ReplaySetup setup;
+  setup.nominal = diagnosis.nominal;
   setup.pads = load_pads(data_file("arm4.pads.json"), setup.nominal.model);
   const int pads = static_cast<int>(setup.pads.size());
 
   // 4. Train.
   say("[4/6] train: estimator features on the training log, then the TCN (" +
       std::to_string(o.training_epochs) + " epochs per network at most)");
-  setup.parameters = estimator_parameters_from_noise<kDemoJoints>(
+  setup.parameters = estimator_parameters_from_noise(
       estimate_sensor_noise(training_log, setup.nominal.model.torque_constant));
-  const std::vector<EstimatorTrace> traces{replay_estimator(
-      setup, estimator_samples<kDemoJoints>(training_log, setup.nominal.model, pads))};
+  const std::vector<EstimatorTrace> traces{
+      replay_estimator(setup, estimator_samples(training_log, setup.nominal.model, pads))};
   CompensatorTrainingOptions training;
   training.per_joint = o.per_joint;
   training.joint_hidden = o.joint_hidden;
@@ -173,12 +173,12 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   logs.teaching_scenario = &teaching;
   logs.teaching_seed = o.teaching_seed;
   logs.teaching_duration_s = o.teaching_s;
-  setup.parameters = estimator_parameters_from_noise<kDemoJoints>(
+  setup.parameters = estimator_parameters_from_noise(
       estimate_sensor_noise(jobs[3].log, setup.nominal.model.torque_constant));
   result.evaluation = evaluate(setup, logs, say);
   // The run-time loop's estimator parameters as calibrated here (tpf_arm_loop --estimator).
-  save_estimator_parameters<kDemoJoints>(o.out / "arm4.estimator.json", setup.parameters,
-                                         jobs[3].log.source + " (SIMULATED log)");
+  save_estimator_parameters(o.out / "arm4.estimator.json", setup.parameters,
+                            jobs[3].log.source + " (SIMULATED log)");
   std::vector<std::string> notes{
       "nominal model: identified and diagnosed on the training log (nominal.params.json)",
       "arm: every log is simulated on one arm, with the physical effects of " +

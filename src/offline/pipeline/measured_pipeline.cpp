@@ -26,11 +26,12 @@ namespace tpf::offline {
 constexpr int kMeasuredJoints = 7;
 namespace {
 
-using Gen3Model = NominalModel<double, kMeasuredJoints>;
+using Gen3Model = NominalModelX;  ///< of the Gen3's 7 joints
 
-/// An identified or diagnosed model (run-time joint count) as the Gen3's.
-Gen3Model gen3_model(const NominalModelX& nominal) {
-  return joint_count_cast<kMeasuredJoints>(nominal);
+/// nominal_estimate of the Gen3's model.
+EffortEstimate gen3_nominal_estimate(const Gen3Model& nominal, const JointSamples& samples,
+                                     std::vector<std::string>& notes) {
+  return nominal_estimate(nominal, samples, notes);
 }
 
 Log read_measured_files(const MeasuredOptions& o, const std::vector<std::string>& names) {
@@ -45,15 +46,15 @@ std::string joined_file_names(const std::vector<std::string>& names) {
 }
 
 /// Samples with nothing held out: the held-out data are other files.
-JointSamples samples_without_holdout(const Log& log, const Model<double, kMeasuredJoints>& model) {
+JointSamples samples_without_holdout(const Log& log, const ModelX& model) {
   SampleOptions options;
   options.hold_out = false;
   return extract_joint_samples(log, model.torque_constant, options);
 }
 
 Identification identify_on_every_sample(
-    const Log& log, const Model<double, kMeasuredJoints>& model, int friction_samples,
-    bool friction_from_sensor, const std::function<void(const std::string&)>& say,
+    const Log& log, const ModelX& model, int friction_samples, bool friction_from_sensor,
+    const std::function<void(const std::string&)>& say,
     bool fit_load_friction = IdentifyOptions{}.fit_load_friction,
     bool inertia_prior = IdentifyOptions{}.inertia_prior) {
   IdentifyOptions options;
@@ -63,7 +64,7 @@ Identification identify_on_every_sample(
   options.friction_from_sensor = friction_from_sensor;
   options.fit_load_friction = fit_load_friction;
   options.progress = say;
-  return identify(log, joint_count_cast<Eigen::Dynamic>(model), options);
+  return identify(log, model, options);
 }
 
 /// The columns of a split: maker, Kt only, then each estimate, RMSE over every regime.
@@ -101,7 +102,7 @@ Gen3Model with_first_diagnosed_effects(const Diagnosis& d, std::size_t keep,
     if (titles) titles->push_back(g.title);
     if (written++ >= keep) remove_group(g, m);
   }
-  return gen3_model(m);
+  return m;
 }
 
 /// The titles of the written claims that cannot be taken out (folded into the rigid body).
@@ -144,16 +145,18 @@ std::size_t written_effect_count(const Diagnosis& d) {
 /// the current residual τ_res of the run-time estimator, or, where `sensor_target` (samples ×
 /// joints, N·m) has a value on the joint, on K_t·i − d − τ_sensor (the drive loss the model
 /// misses, as the sensor measures it; NaN rows are cut out of the training windows).
-EstimatorSetup<kMeasuredJoints> train_measured_compensator(
-    const MeasuredOptions& o, const Log& fit, const Gen3Model& nominal,
-    const Eigen::MatrixXd& sensor_target, const std::string& weight_file,
-    CompensatorTraining& training, const std::function<void(const std::string&)>& say) {
-  EstimatorSetup<kMeasuredJoints> setup;
+ReplaySetup train_measured_compensator(const MeasuredOptions& o, const Log& fit,
+                                       const Gen3Model& nominal,
+                                       const Eigen::MatrixXd& sensor_target,
+                                       const std::string& weight_file,
+                                       CompensatorTraining& training,
+                                       const std::function<void(const std::string&)>& say) {
+  ReplaySetup setup;
   setup.nominal = nominal;
-  setup.parameters = estimator_parameters_from_noise<kMeasuredJoints>(
-      estimate_sensor_noise(fit, nominal.model.torque_constant));
+  setup.parameters =
+      estimator_parameters_from_noise(estimate_sensor_noise(fit, nominal.model.torque_constant));
   std::vector<EstimatorTrace> traces{
-      replay_estimator(setup, estimator_samples<kMeasuredJoints>(fit, nominal.model, 0))};
+      replay_estimator(setup, estimator_samples(fit, setup.nominal.model, 0))};
   for (int j = 0; j < static_cast<int>(sensor_target.cols()); ++j)
     if (sensor_target.col(j).array().isFinite().any())
       traces[0].residual.col(j) = sensor_target.col(j);
@@ -224,7 +227,7 @@ Eigen::VectorXd choose_low_pass_time_constants(const Log& log, const JointSample
 
 /// What every stage reads: the arm, the fitting and the scoring logs with their samples.
 struct MeasuredData {
-  Model<double, kMeasuredJoints> model;
+  ModelX model;
   Log fit, score;
   JointSamples fit_samples, score_samples;  ///< effort in N·m
 };
@@ -237,23 +240,22 @@ std::vector<EffortEstimate> identify_stage(const MeasuredOptions& o, MeasuredDat
                                            MeasuredResult& result, Gen3Model& identified,
                                            Gen3Model& sensor_model, const Say& say) {
   say("measured: identify on " + joined_file_names(o.fitting));
-  identified = gen3_model(
-      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false, say).nominal);
-  save_nominal_model<kMeasuredJoints>(o.out / "gen3.identified.params.json", identified,
-                                      d.fit.source + " (MEASURED)");
+  identified =
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, false, say).nominal;
+  save_nominal_model(o.out / "gen3.identified.params.json", identified,
+                     d.fit.source + " (MEASURED)");
   std::vector<EffortEstimate> estimates{
-      nominal_estimate<kMeasuredJoints>(identified, d.score_samples, result.notes)};
+      gen3_nominal_estimate(identified, d.score_samples, result.notes)};
   estimates.back().name = "after identification";
   say("measured: identify again, the friction fitted against the torque sensor");
-  sensor_model = gen3_model(
-      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true, say).nominal);
-  save_nominal_model<kMeasuredJoints>(o.out / "gen3.sensor-friction.params.json", sensor_model,
-                                      d.fit.source + " (MEASURED)");
+  sensor_model =
+      identify_on_every_sample(d.fit, d.model, o.friction_samples_per_joint, true, say).nominal;
+  save_nominal_model(o.out / "gen3.sensor-friction.params.json", sensor_model,
+                     d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
-  estimates.push_back(nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, ignored));
+  estimates.push_back(gen3_nominal_estimate(sensor_model, d.score_samples, ignored));
   estimates.back().name = "friction against the sensor";
-  const EffortEstimate on_fit =
-      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored);
+  const EffortEstimate on_fit = gen3_nominal_estimate(sensor_model, d.fit_samples, ignored);
   result.low_pass_time_constants = choose_low_pass_time_constants(d.fit, d.fit_samples, on_fit);
   estimates.push_back(
       low_passed_estimate(estimates[1], d.score, d.score_samples, result.low_pass_time_constants));
@@ -267,7 +269,7 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
                     std::vector<EffortEstimate>& estimates, const Say& say) {
   say("measured: diagnose on " + joined_file_names(o.fitting) + " (held out: " + o.fitting.back() +
       ")");
-  const Diagnosis diagnosis = diagnose(d.fit, joint_count_cast<Eigen::Dynamic>(d.model), {});
+  const Diagnosis diagnosis = diagnose(d.fit, d.model, {});
   result.diagnosis_findings = diagnosis.findings;
   result.diagnosis_notes = diagnosis.notes;
   result.diagnosis_heldout = o.fitting.back();
@@ -283,12 +285,11 @@ void diagnose_stage(const MeasuredOptions& o, const MeasuredData& d, MeasuredRes
   if (!folded.empty())
     result.diagnosis_effort.push_back(
         {"diagnose's declared model (as identify fits it, nothing added)",
-         effort_rmse_per_joint(d.score_samples,
-                               nominal_estimate<kMeasuredJoints>(gen3_model(diagnosis.declared),
-                                                                 d.score_samples, ignored))});
+         effort_rmse_per_joint(d.score_samples, gen3_nominal_estimate(diagnosis.declared,
+                                                                      d.score_samples, ignored))});
   for (std::size_t keep = 0; keep <= written_effect_count(diagnosis); ++keep) {
-    EffortEstimate e = nominal_estimate<kMeasuredJoints>(
-        with_first_diagnosed_effects(diagnosis, keep), d.score_samples, ignored);
+    EffortEstimate e = gen3_nominal_estimate(with_first_diagnosed_effects(diagnosis, keep),
+                                             d.score_samples, ignored);
     const std::string name = keep > 0 ? "+ " + titles[keep - 1]
                              : folded.empty()
                                  ? "diagnose's model without its effects"
@@ -317,20 +318,19 @@ void compensator_stage(const MeasuredOptions& o, const MeasuredData& d, Measured
                        std::vector<EffortEstimate>& estimates, const Say& say) {
   say("measured: train one network per joint on " + joined_file_names(o.fitting) + " (" +
       std::to_string(o.training_epochs) + " epochs at most), on the current residual");
-  const EstimatorSetup<kMeasuredJoints> setup =
+  const ReplaySetup setup =
       train_measured_compensator(o, d.fit, identified, {}, "gen3.tcn.json", result.training, say);
-  estimates.push_back(compensated_estimate<kMeasuredJoints>(setup, d.score, estimates[0]));
+  estimates.push_back(compensated_estimate(setup, d.score, estimates[0]));
   estimates.back().name = "with the compensator";
   say("measured: the same networks over the sensor-fitted friction, trained against the "
       "torque sensor (K_t·i − d − τ_sensor)");
   std::vector<std::string> ignored;
-  const SensorSide fit_side{
-      &d.fit, &d.fit_samples,
-      nominal_estimate<kMeasuredJoints>(sensor_model, d.fit_samples, ignored).drive_loss};
-  const EstimatorSetup<kMeasuredJoints> sensor_setup =
+  const SensorSide fit_side{&d.fit, &d.fit_samples,
+                            gen3_nominal_estimate(sensor_model, d.fit_samples, ignored).drive_loss};
+  const ReplaySetup sensor_setup =
       train_measured_compensator(o, d.fit, sensor_model, sensor_residual(fit_side),
                                  "gen3.tcn-sensor.json", result.sensor_training, say);
-  estimates.push_back(compensated_estimate<kMeasuredJoints>(sensor_setup, d.score, estimates[1]));
+  estimates.push_back(compensated_estimate(sensor_setup, d.score, estimates[1]));
   estimates.back().name = "friction against the sensor + compensator trained against it";
 }
 
@@ -347,8 +347,7 @@ void plain_fit_stage(const MeasuredOptions& o, const MeasuredData& d,
   save_nominal_model(o.out / "gen3.no-inertia-prior.params.json", id.nominal,
                      d.fit.source + " (MEASURED)");
   std::vector<std::string> ignored;  // the same notes again
-  estimates.push_back(
-      nominal_estimate<kMeasuredJoints>(gen3_model(id.nominal), d.score_samples, ignored));
+  estimates.push_back(gen3_nominal_estimate(id.nominal, d.score_samples, ignored));
   estimates.back().name = kWithoutInertiaPriorColumn;
 }
 
@@ -363,12 +362,11 @@ std::vector<double> oracle_compensator_rmse(const MeasuredOptions& o, const Meas
       " themselves (a bound for the compensator target)");
   const SensorSide side{&d.score, &d.score_samples, sensor_estimate.drive_loss};
   CompensatorTraining training;
-  const EstimatorSetup<kMeasuredJoints> setup =
+  const ReplaySetup setup =
       train_measured_compensator(o, d.score, sensor_model, sensor_residual(side),
                                  "gen3.tcn-sensor-oracle.json", training, say);
-  const Validation v =
-      score_estimates(d.score, d.score_samples,
-                      {compensated_estimate<kMeasuredJoints>(setup, d.score, sensor_estimate)});
+  const Validation v = score_estimates(d.score, d.score_samples,
+                                       {compensated_estimate(setup, d.score, sensor_estimate)});
   std::vector<double> rmse;
   for (const SensorScore& s : v.sensor)
     rmse.push_back(s.samples > 0 ? s.estimates[0].valid.rmse
@@ -405,17 +403,16 @@ MeasuredSplit reverse_stage(const MeasuredOptions& o, const MeasuredData& d,
   std::vector<std::string> notes;
   std::vector<EffortEstimate> estimates;
   for (bool from_sensor : {false, true}) {
-    const Gen3Model model = gen3_model(
+    const Gen3Model model =
         identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, from_sensor, say)
-            .nominal);
-    estimates.push_back(nominal_estimate<kMeasuredJoints>(model, d.fit_samples, notes));
+            .nominal;
+    estimates.push_back(gen3_nominal_estimate(model, d.fit_samples, notes));
     estimates.back().name = from_sensor ? "friction against the sensor" : "after identification";
     if (from_sensor) sensor_model = model;
   }
   // The low-pass chosen on this split's fitting files (the scoring files of the forward one).
   time_constants = choose_low_pass_time_constants(
-      d.score, d.score_samples,
-      nominal_estimate<kMeasuredJoints>(sensor_model, d.score_samples, notes));
+      d.score, d.score_samples, gen3_nominal_estimate(sensor_model, d.score_samples, notes));
   estimates.push_back(low_passed_estimate(estimates[1], d.fit, d.fit_samples, time_constants));
   estimates.back().name = "+ current low-pass";
   MeasuredSplit split;
@@ -472,23 +469,19 @@ MeasuredFloor measured_floor(const MeasuredData& d, const MeasuredSplit& split,
 void bound_stage(const MeasuredOptions& o, const MeasuredData& d, const Gen3Model& fitted,
                  const Gen3Model& scored_fitted, MeasuredResult& result) {
   std::vector<std::string> ignored;
-  const EffortEstimate on_fit = nominal_estimate<kMeasuredJoints>(fitted, d.fit_samples, ignored);
-  const EffortEstimate on_score =
-      nominal_estimate<kMeasuredJoints>(fitted, d.score_samples, ignored);
-  const EffortEstimate own_score =
-      nominal_estimate<kMeasuredJoints>(scored_fitted, d.score_samples, ignored);
-  const EffortEstimate own_fit =
-      nominal_estimate<kMeasuredJoints>(scored_fitted, d.fit_samples, ignored);
+  const EffortEstimate on_fit = gen3_nominal_estimate(fitted, d.fit_samples, ignored);
+  const EffortEstimate on_score = gen3_nominal_estimate(fitted, d.score_samples, ignored);
+  const EffortEstimate own_score = gen3_nominal_estimate(scored_fitted, d.score_samples, ignored);
+  const EffortEstimate own_fit = gen3_nominal_estimate(scored_fitted, d.fit_samples, ignored);
   const MeasuredBoundSide fit{&d.fit, &d.fit_samples}, score{&d.score, &d.score_samples};
   result.bound = measured_bound(fit, score, on_fit, on_score, own_score, o.target_reduction,
                                 o.band_low_hz, o.floor_cutoff_hz);
   // The load terms of the friction (α_c, α_v on |G_j(q)|, the load the run time has) left out.
   const Say quiet;
   const auto without_load = [&](const Log& log, const JointSamples& on) {
-    return nominal_estimate<kMeasuredJoints>(
-        gen3_model(
-            identify_on_every_sample(log, d.model, o.friction_samples_per_joint, true, quiet, false)
-                .nominal),
+    return gen3_nominal_estimate(
+        identify_on_every_sample(log, d.model, o.friction_samples_per_joint, true, quiet, false)
+            .nominal,
         on, ignored);
   };
   result.bound.fitted_on = joined_file_names(o.fitting);
@@ -519,7 +512,7 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   };
   std::filesystem::create_directories(o.out);
   MeasuredResult result;
-  MeasuredData d{load_robot<double, kMeasuredJoints>(data_file(o.robot)),
+  MeasuredData d{load_robot<double, Eigen::Dynamic>(data_file(o.robot)),
                  read_measured_files(o, o.fitting),
                  read_measured_files(o, o.scoring),
                  {},
@@ -548,9 +541,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
   // What the residual holds: each candidate fitted on the fitting files, scored held out.
   say("measured: candidate effects against the torque sensor, held out by file");
   std::vector<std::string> ignored;
-  const SensorSide fit_side{
-      &d.fit, &d.fit_samples,
-      nominal_estimate<kMeasuredJoints>(identified, d.fit_samples, ignored).drive_loss};
+  const SensorSide fit_side{&d.fit, &d.fit_samples,
+                            gen3_nominal_estimate(identified, d.fit_samples, ignored).drive_loss};
   const SensorSide held_side{&d.score, &d.score_samples, estimates.front().drive_loss};
   result.candidates = sensor_candidates(fit_side, held_side, Eigen::VectorXd(d.model.gear_ratio));
   result.traces = plot_traces(d, estimates, o.run_training);
@@ -559,9 +551,8 @@ MeasuredResult run_measured(const MeasuredOptions& o,
     result.reverse =
         reverse_stage(o, d, result.reverse_low_pass_time_constants, scored_sensor_model, say);
   else
-    scored_sensor_model = gen3_model(
-        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, true, say)
-            .nominal);
+    scored_sensor_model =
+        identify_on_every_sample(d.score, d.model, o.friction_samples_per_joint, true, say).nominal;
   say("measured: what bounds the held-out error (oracles, bands, coverage; both splits)");
   bound_stage(o, d, sensor_model, scored_sensor_model, result);
   result.facts = measured_facts({{&d.fit, &d.fit_samples}, {&d.score, &d.score_samples}});

@@ -5,13 +5,9 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
-#include <limits>
-#include <vector>
 
-#include "offline/replay/recording_compensator.hpp"
-#include "tpf/estimation/estimator.hpp"
-#include "tpf/estimation/proprioceptive_estimate.hpp"
-#include "tpf/kinematics/forward_kinematics.hpp"
+#include "tpf/estimation/compensator.hpp"
+#include "tpf/estimation/estimator_types.hpp"
 
 namespace tpf::offline {
 
@@ -65,87 +61,6 @@ inline Eigen::VectorXi any_joint_outside_band(const Eigen::MatrixXd& estimate) {
     for (Eigen::Index j = 0; j < estimate.cols(); ++j)
       if (std::isfinite(estimate(k, j)) && estimate(k, j) != 0.0) e[k] = 1;
   return e;
-}
-
-/// Runs `estimator` (reset first) over `samples` in order and records every row. The compensator
-/// must be a RecordingCompensator, whose last input is the row's TCN input.
-template <typename S, int N, int P, typename Inner>
-EstimatorTrace trace_estimator(Estimator<S, N, P, RecordingCompensator<Inner, S, N>>& estimator,
-                               const std::vector<EstimatorSample<S, N, P>>& samples) {
-  const auto T = static_cast<Eigen::Index>(samples.size());
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  EstimatorTrace tr;
-  tr.t = Eigen::VectorXd::Constant(T, nan);
-  tr.dq = Eigen::MatrixXd::Constant(T, N, nan);
-  tr.inputs = Eigen::MatrixXd::Constant(T, kCompensatorInputsPerJoint * N, nan);
-  tr.residual = tr.dq;
-  tr.compensation = tr.dq;
-  for (auto& e : tr.estimates)
-    e = tr.dq;
-  tr.proprioceptive = tr.dq;
-  tr.external = tr.dq;
-  tr.state = Eigen::VectorXi::Constant(T, -1);
-  tr.contact = tr.state;
-  tr.estimator_contact = tr.state;
-  tr.pad = tr.state;
-  tr.pad_force = Eigen::VectorXd::Constant(T, nan);
-  tr.force_world = Eigen::MatrixXd::Constant(T, 3, nan);
-  tr.wrench_valid = tr.state;
-  tr.force_tactile = tr.force_world;
-  tr.force_proprioceptive = tr.force_world;
-  tr.torque_tactile = tr.dq;
-
-  const auto& model = estimator.nominal().model;
-  Data<S, N> data(model);
-  Jacobian<S, N> J;
-  ContactForceSettings<S> no_prior = estimator.parameters().wrench;
-  no_prior.prior_floor_n = S(1e9);  // σ_Fn huge: the pad reading does not inform the solve
-  no_prior.prior_relative = S(0);
-
-  estimator.reset();
-  for (Eigen::Index r = 0; r < T; ++r) {
-    const auto& out = estimator.update(samples[static_cast<std::size_t>(r)]);
-    if (out.status & (kStatusNonFiniteInput | kStatusStaleTime)) continue;
-    tr.t[r] = double(out.t);
-    tr.dq.row(r) = samples[static_cast<std::size_t>(r)].dq.transpose().template cast<double>();
-    tr.inputs.row(r) = estimator.compensator().last_input.transpose().template cast<double>();
-    tr.residual.row(r) = out.residual.transpose().template cast<double>();
-    tr.compensation.row(r) = out.compensation.transpose().template cast<double>();
-    for (int e = 0; e < kTorqueEstimatorCount; ++e) {
-      const auto& est = out.estimates[static_cast<std::size_t>(e)];
-      for (int j = 0; j < N; ++j)
-        tr.estimates[static_cast<std::size_t>(e)](r, j) =
-            (est.valid & (1u << j)) ? double(est.residual[j]) : nan;
-    }
-    const ExternalTorque<S, N> proprio = proprioceptive_estimate(out, estimator.parameters());
-    tr.proprioceptive.row(r) = proprio.residual.transpose().template cast<double>();
-    tr.external.row(r) = out.external.residual.transpose().template cast<double>();
-    tr.state[r] = static_cast<int>(out.state);
-    const auto& skin = estimator.skin();
-    tr.contact[r] = skin.any_contact() ? 1 : 0;
-    tr.estimator_contact[r] = out.contact ? 1 : 0;
-    const int pad = skin.most_loaded();
-    tr.pad[r] = pad;
-    tr.pad_force[r] = pad >= 0 ? double(skin.normal_force(pad)) : 0.0;
-    if (out.wrench.pad >= 0)
-      tr.force_world.row(r) = out.wrench.force_world.transpose().template cast<double>();
-    tr.wrench_valid[r] = out.wrench.pad >= 0 && out.wrench.valid ? 1 : 0;
-    tr.torque_tactile.row(r).setZero();
-    if (pad >= 0) {
-      const auto& g = skin.geometry(pad);
-      forward_kinematics(model, data, samples[static_cast<std::size_t>(r)].q);
-      const Vector3<S> normal = pad_normal_in_world(data, g);
-      tr.force_tactile.row(r) = (-tr.pad_force[r] * normal.template cast<double>()).transpose();
-      point_jacobian(model, data, g.link, pad_point_in_world(data, g), J);
-      tr.torque_tactile.row(r) = (J.template topRows<3>().transpose().template cast<double>() *
-                                  tr.force_tactile.row(r).transpose())
-                                     .transpose();
-      const ContactForce<S> f = estimate_contact_force(J, pad_contact_frame_in_world(data, g),
-                                                       proprio.torque, S(0), no_prior);
-      tr.force_proprioceptive.row(r) = f.force_world.transpose().template cast<double>();
-    }
-  }
-  return tr;
 }
 
 }  // namespace tpf::offline

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "tpf/common/joint_counts.hpp"
+#include "tpf/estimation/proprioceptive_estimate.hpp"
+#include "tpf/kinematics/forward_kinematics.hpp"
 #include "tpf/model/effort_unit.hpp"
 
 namespace tpf::offline {
@@ -57,21 +58,100 @@ double pad_noise(const Log& log) {
 
 }  // namespace
 
-template <int N>
-SteppedEstimator<N>::SteppedEstimator(const EstimatorSetup<N>& setup)
-    : estimator_(
-          std::make_unique<ReplayEstimator<N>>(setup.nominal, setup.pads, setup.parameters)) {
-  estimator_->compensator().inner.load(setup.weights);
-  estimator_->set_compensated_joints(
-      compensated_joints(setup.weights, N, setup.parameters.compensator_min_held_out_gain));
+std::unique_ptr<ReplayEstimator> make_replay_estimator(const ReplaySetup& setup) {
+  auto e = std::make_unique<ReplayEstimator>(setup.nominal, setup.pads, setup.parameters);
+  e->compensator().inner.load(setup.weights);
+  e->set_compensated_joints(compensated_joints(setup.weights, e->joint_count(),
+                                               setup.parameters.compensator_min_held_out_gain));
+  return e;
 }
 
-template <int N>
-SteppedEstimator<N>::~SteppedEstimator() = default;
+EstimatorTrace trace_estimator(ReplayEstimator& estimator,
+                               const std::vector<ReplaySample>& samples) {
+  using S = double;
+  const auto T = static_cast<Eigen::Index>(samples.size());
+  const int N = estimator.joint_count();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EstimatorTrace tr;
+  tr.t = Eigen::VectorXd::Constant(T, nan);
+  tr.dq = Eigen::MatrixXd::Constant(T, N, nan);
+  tr.inputs = Eigen::MatrixXd::Constant(T, kCompensatorInputsPerJoint * N, nan);
+  tr.residual = tr.dq;
+  tr.compensation = tr.dq;
+  for (auto& e : tr.estimates)
+    e = tr.dq;
+  tr.proprioceptive = tr.dq;
+  tr.external = tr.dq;
+  tr.state = Eigen::VectorXi::Constant(T, -1);
+  tr.contact = tr.state;
+  tr.estimator_contact = tr.state;
+  tr.pad = tr.state;
+  tr.pad_force = Eigen::VectorXd::Constant(T, nan);
+  tr.force_world = Eigen::MatrixXd::Constant(T, 3, nan);
+  tr.wrench_valid = tr.state;
+  tr.force_tactile = tr.force_world;
+  tr.force_proprioceptive = tr.force_world;
+  tr.torque_tactile = tr.dq;
 
-template <int N>
-const EstimatorOutput<double, N>& SteppedEstimator<N>::update(
-    const ReplaySample<N>& sample) noexcept {
+  const auto& model = estimator.nominal().model;
+  Data<S, Eigen::Dynamic> data(model);
+  Jacobian<S, Eigen::Dynamic> J;
+  ContactForceSettings<S> no_prior = estimator.parameters().wrench;
+  no_prior.prior_floor_n = S(1e9);  // σ_Fn huge: the pad reading does not inform the solve
+  no_prior.prior_relative = S(0);
+
+  estimator.reset();
+  for (Eigen::Index r = 0; r < T; ++r) {
+    const auto& out = estimator.update(samples[static_cast<std::size_t>(r)]);
+    if (out.status & (kStatusNonFiniteInput | kStatusStaleTime)) continue;
+    tr.t[r] = double(out.t);
+    tr.dq.row(r) = samples[static_cast<std::size_t>(r)].dq.transpose();
+    tr.inputs.row(r) = estimator.compensator().last_input.transpose();
+    tr.residual.row(r) = out.residual.transpose();
+    tr.compensation.row(r) = out.compensation.transpose();
+    for (int e = 0; e < kTorqueEstimatorCount; ++e) {
+      const auto& est = out.estimates[static_cast<std::size_t>(e)];
+      for (int j = 0; j < N; ++j)
+        tr.estimates[static_cast<std::size_t>(e)](r, j) =
+            (est.valid & (1u << j)) ? double(est.residual[j]) : nan;
+    }
+    const ExternalTorque<S, Eigen::Dynamic> proprio =
+        proprioceptive_estimate(out, estimator.parameters());
+    tr.proprioceptive.row(r) = proprio.residual.transpose();
+    tr.external.row(r) = out.external.residual.transpose();
+    tr.state[r] = static_cast<int>(out.state);
+    const auto& skin = estimator.skin();
+    tr.contact[r] = skin.any_contact() ? 1 : 0;
+    tr.estimator_contact[r] = out.contact ? 1 : 0;
+    const int pad = skin.most_loaded();
+    tr.pad[r] = pad;
+    tr.pad_force[r] = pad >= 0 ? double(skin.normal_force(pad)) : 0.0;
+    if (out.wrench.pad >= 0) tr.force_world.row(r) = out.wrench.force_world.transpose();
+    tr.wrench_valid[r] = out.wrench.pad >= 0 && out.wrench.valid ? 1 : 0;
+    tr.torque_tactile.row(r).setZero();
+    if (pad >= 0) {
+      const auto& g = skin.geometry(pad);
+      forward_kinematics(model, data, samples[static_cast<std::size_t>(r)].q);
+      const Vector3<S> normal = pad_normal_in_world(data, g);
+      tr.force_tactile.row(r) = (-tr.pad_force[r] * normal).transpose();
+      point_jacobian(model, data, g.link, pad_point_in_world(data, g), J);
+      tr.torque_tactile.row(r) =
+          (J.topRows<3>().transpose() * tr.force_tactile.row(r).transpose()).transpose();
+      const ContactForce<S> f = estimate_contact_force(J, pad_contact_frame_in_world(data, g),
+                                                       proprio.torque, S(0), no_prior);
+      tr.force_proprioceptive.row(r) = f.force_world.transpose();
+    }
+  }
+  return tr;
+}
+
+SteppedEstimator::SteppedEstimator(const ReplaySetup& setup)
+    : estimator_(make_replay_estimator(setup)) {}
+
+SteppedEstimator::~SteppedEstimator() = default;
+
+const EstimatorOutput<double, Eigen::Dynamic>& SteppedEstimator::update(
+    const ReplaySample& sample) noexcept {
   return estimator_->update(sample);
 }
 
@@ -107,70 +187,55 @@ SensorNoise estimate_sensor_noise(const Log& log, const Eigen::VectorXd& torque_
   return noise;
 }
 
-template <int N>
-EstimatorParameters<double, N> estimator_parameters_from_noise(const SensorNoise& noise,
-                                                               double pad_gain_kpa_per_n) {
-  EstimatorParameters<double, N> p;
-  if (noise.effort.size() != N || noise.effort_step.size() != N)
-    throw Error("sensor noise of " + std::to_string(noise.effort.size()) + " joints for a " +
-                std::to_string(N) + "-joint estimator");
+ReplayParameters estimator_parameters_from_noise(const SensorNoise& noise,
+                                                 double pad_gain_kpa_per_n) {
+  const auto n = static_cast<int>(noise.effort.size());
+  if (noise.effort_step.size() != n)
+    throw Error("sensor noise of " + std::to_string(n) + " joints with effort steps of " +
+                std::to_string(noise.effort_step.size()));
+  ReplayParameters p;
+  p.resize(n);
   const int window =
       static_cast<int>(std::lround(p.static_friction.baseline_window_s / p.sample_period_s));
   // The effort is rounded to 1 unit of the log: its variance adds step²/12.
-  const JointVector<double, N> sigma =
+  const ReplayVector sigma =
       (noise.effort.array().square() + noise.effort_step.array().square() / 12.0).sqrt().matrix();
-  p.static_dead_band = static_dead_band_from_noise<double, N>(sigma, window);
+  p.static_dead_band = static_dead_band_from_noise<double, Eigen::Dynamic>(sigma, window);
   if (noise.pad_kpa > 0)
     p.skin.detector = detector_settings_from_noise(noise.pad_kpa, p.sample_period_s, 0.0105);
   p.skin.force_gain = 1.0 / (pad_gain_kpa_per_n * 1000.0 * 0.0025);
   return p;
 }
 
-template <int N>
-EstimatorTrace replay_estimator(const EstimatorSetup<N>& setup,
-                                const std::vector<ReplaySample<N>>& samples) {
-  return with_estimator(setup, [&](auto& e) { return trace_estimator(e, samples); });
+EstimatorTrace replay_estimator(const ReplaySetup& setup,
+                                const std::vector<ReplaySample>& samples) {
+  return trace_estimator(*make_replay_estimator(setup), samples);
 }
 
-template <int N>
-JointVector<double, N> speed_envelope(const std::vector<ReplaySample<N>>& samples) {
-  JointVector<double, N> v = JointVector<double, N>::Zero();
-  for (const ReplaySample<N>& s : samples)
+ReplayVector speed_envelope(const std::vector<ReplaySample>& samples) {
+  ReplayVector v = ReplayVector::Zero(samples.empty() ? 0 : samples.front().dq.size());
+  for (const ReplaySample& s : samples)
     if (std::isfinite(s.t) && s.dq.allFinite()) v = v.cwiseMax(s.dq.cwiseAbs());
   return v;
 }
 
-template <int N>
-JointVector<double, N> acceleration_envelope(const EstimatorTrace& tr) {
-  JointVector<double, N> a = JointVector<double, N>::Zero();
-  const auto ddq = tr.inputs.middleCols<N>(2 * N);  // compensator_input
+ReplayVector acceleration_envelope(const EstimatorTrace& tr) {
+  const Eigen::Index n = tr.dq.cols();
+  ReplayVector a = ReplayVector::Zero(n);
+  const auto ddq = tr.inputs.middleCols(2 * n, n);  // compensator_input
   for (Eigen::Index k = 0; k < tr.rows(); ++k)
     if (ddq.row(k).allFinite()) a = a.cwiseMax(ddq.row(k).transpose().cwiseAbs());
   return a;
 }
 
-template <int N>
-TransitionSigma<double, N> calibrate_sigma(EstimatorSetup<N>& setup,
-                                           const std::vector<ReplaySample<N>>& samples,
-                                           const std::string& source) {
-  const auto sigma = with_estimator(
-      setup, [&](auto& e) { return calibrate_transition_sigma(e, samples, 0.07, source); });
+TransitionSigma<double, Eigen::Dynamic> calibrate_sigma(ReplaySetup& setup,
+                                                        const std::vector<ReplaySample>& samples,
+                                                        const std::string& source) {
+  const auto estimator = make_replay_estimator(setup);
+  const auto sigma = calibrate_transition_sigma(*estimator, samples, 0.07, source);
   setup.parameters.nominal_sigma = sigma.nominal;
   setup.parameters.fused_sigma = sigma.fused;
   return sigma;
 }
-
-#define TPF_INSTANTIATE_REPLAY(N)                                                                \
-  template EstimatorParameters<double, N> estimator_parameters_from_noise<N>(const SensorNoise&, \
-                                                                             double);            \
-  template EstimatorTrace replay_estimator<N>(const EstimatorSetup<N>&,                          \
-                                              const std::vector<ReplaySample<N>>&);              \
-  template JointVector<double, N> speed_envelope<N>(const std::vector<ReplaySample<N>>&);        \
-  template JointVector<double, N> acceleration_envelope<N>(const EstimatorTrace&);               \
-  template TransitionSigma<double, N> calibrate_sigma<N>(                                        \
-      EstimatorSetup<N>&, const std::vector<ReplaySample<N>>&, const std::string&);              \
-  template class SteppedEstimator<N>;
-TPF_FOR_EACH_JOINT_COUNT(TPF_INSTANTIATE_REPLAY)
-#undef TPF_INSTANTIATE_REPLAY
 
 }  // namespace tpf::offline

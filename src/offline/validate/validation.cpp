@@ -14,11 +14,10 @@ namespace {
 
 /// Identified armature of each joint: the base value of regressor column "Ia<j>" when that
 /// column is a base column of its own (0 otherwise).
-template <int N>
-JointVector<double, N> identified_armature(const NominalModel<double, N>& nominal,
-                                           std::vector<std::string>& notes) {
-  JointVector<double, N> armature = JointVector<double, N>::Zero();
-  std::vector<bool> found(N, false);
+Eigen::VectorXd identified_armature(const NominalModelX& nominal, std::vector<std::string>& notes) {
+  const int N = nominal.model.joint_count();
+  Eigen::VectorXd armature = Eigen::VectorXd::Zero(N);
+  std::vector<bool> found(static_cast<std::size_t>(N), false);
   for (int i = 0; i < nominal.base_count; ++i) {
     const int c = nominal.base_columns[static_cast<std::size_t>(i)];
     if (c >= 10 * N && c < 11 * N) {
@@ -57,22 +56,22 @@ const char* const kNoSampleNote = "  -: no held-out sample in this regime\n";
 
 }  // namespace
 
-template <int N>
-EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const JointSamples& samples,
+EffortEstimate nominal_estimate(const NominalModelX& nominal, const JointSamples& samples,
                                 std::vector<std::string>& notes) {
-  const JointVector<double, N> armature = identified_armature(nominal, notes);
-  const NominalLinks<double, N> links = nominal_links(nominal);
-  Data<double, N> data;
+  const int N = nominal.model.joint_count();
+  const Eigen::VectorXd armature = identified_armature(nominal, notes);
+  const NominalLinks<double, Eigen::Dynamic> links = nominal_links(nominal);
+  Data<double, Eigen::Dynamic> data(nominal.model);
   EffortEstimate e;
   e.name = "nominal model";
   e.effort.setConstant(samples.size(), N, kNaN);
   e.drive_loss.setConstant(samples.size(), N, kNaN);
-  JointVector<double, N> rigid, friction;
+  Eigen::VectorXd rigid(N), friction(N);
   for (Eigen::Index k = 0; k < samples.size(); ++k) {
     if (!samples.valid[static_cast<std::size_t>(k)]) continue;
-    const JointVector<double, N> q = samples.q.row(k).transpose();
-    const JointVector<double, N> dq = samples.dq.row(k).transpose();
-    const JointVector<double, N> ddq = samples.ddq.row(k).transpose();
+    const Eigen::VectorXd q = samples.q.row(k).transpose();
+    const Eigen::VectorXd dq = samples.dq.row(k).transpose();
+    const Eigen::VectorXd ddq = samples.ddq.row(k).transpose();
     predict_effort(nominal, links, data, q, dq, ddq, rigid, friction);
     e.effort.row(k) = (rigid + friction).transpose();
     e.drive_loss.row(k) = (friction + armature.cwiseProduct(ddq)).transpose();
@@ -80,11 +79,10 @@ EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const Jo
   return e;
 }
 
-template <int N>
-EffortEstimate compensated_estimate(const EstimatorSetup<N>& setup, const Log& log,
+EffortEstimate compensated_estimate(const EstimatorSetup<Eigen::Dynamic>& setup, const Log& log,
                                     const EffortEstimate& nominal) {
   const EstimatorTrace trace =
-      replay_estimator(setup, estimator_samples<N>(log, setup.nominal.model, 0));
+      replay_estimator(setup, estimator_samples(log, setup.nominal.model, 0));
   EffortEstimate e;
   e.name = "with the compensator";
   e.effort = nominal.effort + trace.compensation;
@@ -311,19 +309,5 @@ std::string validation_json(const Validation& v) {
   }
   return j.dump(2);
 }
-
-#define TPF_INSTANTIATE_VALIDATION(N)                                                              \
-  template EffortEstimate nominal_estimate<N>(const NominalModel<double, N>&, const JointSamples&, \
-                                              std::vector<std::string>&);                          \
-  template EffortEstimate compensated_estimate<N>(const EstimatorSetup<N>&, const Log&,            \
-                                                  const EffortEstimate&);
-TPF_INSTANTIATE_VALIDATION(1)
-TPF_INSTANTIATE_VALIDATION(2)
-TPF_INSTANTIATE_VALIDATION(3)
-TPF_INSTANTIATE_VALIDATION(4)
-TPF_INSTANTIATE_VALIDATION(5)
-TPF_INSTANTIATE_VALIDATION(6)
-TPF_INSTANTIATE_VALIDATION(7)
-#undef TPF_INSTANTIATE_VALIDATION
 
 }  // namespace tpf::offline

@@ -58,8 +58,7 @@ struct Validation {
 /// friction, drive_loss = friction + I_a·q̈ with I_a the identified base
 /// parameter of column "Ia<j>" (0, and a note, where the identification grouped it with a link
 /// inertia).
-template <int N>
-EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const JointSamples& samples,
+EffortEstimate nominal_estimate(const NominalModelX& nominal, const JointSamples& samples,
                                 std::vector<std::string>& notes);
 
 /// The nominal model with the friction compensator as the run-time estimator runs it (the setup's
@@ -67,8 +66,7 @@ EffortEstimate nominal_estimate(const NominalModel<double, N>& nominal, const Jo
 /// + τ_TCN (the network learns what the nominal model leaves of the
 /// drive's effort on contact-free logs). The compensator's output on every row the estimator
 /// took (NaN where it skipped one); its domain is not applied.
-template <int N>
-EffortEstimate compensated_estimate(const EstimatorSetup<N>& setup, const Log& log,
+EffortEstimate compensated_estimate(const EstimatorSetup<Eigen::Dynamic>& setup, const Log& log,
                                     const EffortEstimate& nominal);
 
 /// Scores `estimates` on `samples` of `log` (every sample is held out): effort residual per
