@@ -11,6 +11,85 @@
 
 namespace tpf {
 
+/// Lag j of a row-major [rows, cols, K] convolution tensor (file index k = K − 1 − j).
+inline Eigen::MatrixXd tcn_tensor_tap(const TcnTensor& t, int j, int kernel) {
+  const int rows = t.shape[0], cols = t.shape[1], k = kernel - 1 - j;
+  Eigen::MatrixXd m(rows, cols);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c)
+      m(r, c) = t.values[static_cast<std::size_t>((r * cols + c) * kernel + k)];
+  return m;
+}
+
+/// A row-major [rows, cols] tensor as a matrix.
+inline Eigen::MatrixXd tcn_tensor_matrix(const TcnTensor& t) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      t.values.data(), t.shape[0], static_cast<Eigen::Index>(t.values.size()) / t.shape[0]);
+}
+
+/// A [rows] tensor as a vector.
+inline Eigen::VectorXd tcn_tensor_vector(const TcnTensor& t) {
+  return Eigen::Map<const Eigen::VectorXd>(t.values.data(), t.shape[0]);
+}
+
+/// Checks the architecture and every tensor's shape of a network of `in` inputs, `hidden`
+/// channels, `levels` blocks of `kernel` taps and `out` outputs, and refuses a tensor it does not
+/// name: everything a loader checks before it changes anything. Throws tpf::Error naming the file
+/// and the field.
+inline void require_tcn_tensors(const TcnWeightFile& file, int in, int hidden, int levels,
+                                int kernel, int out) {
+  file.require_architecture(in, hidden, levels, kernel, out);
+  std::vector<std::string> names;
+  for (int l = 0; l < levels; ++l) {
+    names.push_back(tcn_conv_weight_name(l));
+    file.tensor(names.back(), {hidden, l == 0 ? in : hidden, kernel});
+    names.push_back(tcn_conv_bias_name(l));
+    file.tensor(names.back(), {hidden});
+  }
+  if (in != hidden) {
+    names.push_back(tcn_downsample_name());
+    file.tensor(names.back(), {hidden, in, 1});
+  }
+  for (bool high : {false, true}) {
+    names.push_back(tcn_head_weight_name(high));
+    file.tensor(names.back(), {out, hidden});
+    names.push_back(tcn_head_bias_name(high));
+    file.tensor(names.back(), {out});
+  }
+  file.refuse_unexpected_tensors(names);
+}
+
+/// Block 0 of a network with the input normalisation x̃ = D·(x − μ), D = diag(1/σ), folded in
+/// (tcn_weights_from_file): the taps W_{0,j}, the projection P_0 and the bias b_0.
+struct FoldedInputBlock {
+  std::vector<Eigen::MatrixXd> taps;
+  Eigen::MatrixXd projection;
+  Eigen::VectorXd bias;
+};
+
+/// Block 0 of `file` (checked by require_tcn_tensors) with the normalisation folded in.
+inline FoldedInputBlock fold_input_block(const TcnWeightFile& file, int in, int hidden,
+                                         int kernel) {
+  const Eigen::VectorXd mean = Eigen::Map<const Eigen::VectorXd>(file.input_mean.data(), in);
+  const Eigen::VectorXd inv_std =
+      Eigen::Map<const Eigen::VectorXd>(file.input_std.data(), in).cwiseInverse();
+  const TcnTensor& w0 = file.tensor(tcn_conv_weight_name(0), {hidden, in, kernel});
+  const Eigen::VectorXd b0 = tcn_tensor_vector(file.tensor(tcn_conv_bias_name(0), {hidden}));
+  Eigen::MatrixXd projection = Eigen::MatrixXd::Identity(hidden, in);
+  if (in != hidden)
+    projection = tcn_tensor_matrix(file.tensor(tcn_downsample_name(), {hidden, in, 1}));
+  FoldedInputBlock block;
+  Eigen::MatrixXd sum = projection;
+  for (int j = 0; j < kernel; ++j) {
+    const Eigen::MatrixXd w = tcn_tensor_tap(w0, j, kernel);
+    sum += w;
+    block.taps.push_back(w * inv_std.asDiagonal());
+  }
+  block.projection = projection * inv_std.asDiagonal();
+  block.bias = b0 - sum * inv_std.asDiagonal() * mean;
+  return block;
+}
+
 /// Copies the tensors of `file` into `weights`, folding the input normalisation x̃ = D·(x − μ),
 /// D = diag(1/σ), into block 0 (W̃, b̃, P̃ act on x̃; P̃ = I when In == Hidden):
 ///   W_{0,j} = W̃_{0,j}·D,   P_0 = P̃_0·D,   b_0 = b̃_0 − (Σ_j W̃_{0,j} + P̃_0)·D·μ.
@@ -20,76 +99,29 @@ namespace tpf {
 template <typename S, int In, int Hidden, int Levels, int Kernel, int Out>
 void tcn_weights_from_file(const TcnWeightFile& file,
                            TcnWeights<S, In, Hidden, Levels, Kernel, Out>& weights) {
-  using MatrixXd = Eigen::MatrixXd;
   // Check everything before touching `weights`, so a refused file leaves them unchanged.
-  file.require_architecture(In, Hidden, Levels, Kernel, Out);
-  std::vector<std::string> names;
-  for (int l = 0; l < Levels; ++l) {
-    names.push_back(tcn_conv_weight_name(l));
-    file.tensor(names.back(), {Hidden, l == 0 ? In : Hidden, Kernel});
-    names.push_back(tcn_conv_bias_name(l));
-    file.tensor(names.back(), {Hidden});
-  }
-  if constexpr (In != Hidden) {
-    names.push_back(tcn_downsample_name());
-    file.tensor(names.back(), {Hidden, In, 1});
-  }
-  for (bool high : {false, true}) {
-    names.push_back(tcn_head_weight_name(high));
-    file.tensor(names.back(), {Out, Hidden});
-    names.push_back(tcn_head_bias_name(high));
-    file.tensor(names.back(), {Out});
-  }
-  file.refuse_unexpected_tensors(names);
-
-  // Row-major [rows, cols, K] tensor → the rows×cols matrix of lag j.
-  auto tap = [](const TcnTensor& t, int j) {
-    const int rows = t.shape[0], cols = t.shape[1], k = Kernel - 1 - j;
-    MatrixXd m(rows, cols);
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c)
-        m(r, c) = t.values[(r * cols + c) * Kernel + k];
-    return m;
-  };
-  auto matrix = [](const TcnTensor& t) {
-    return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-               t.values.data(), t.shape[0], static_cast<Eigen::Index>(t.values.size()) / t.shape[0])
-        .eval();
-  };
-  auto vector = [](const TcnTensor& t) {
-    return Eigen::Map<const Eigen::VectorXd>(t.values.data(), t.shape[0]).eval();
-  };
-
-  const Eigen::VectorXd mean = Eigen::Map<const Eigen::VectorXd>(file.input_mean.data(), In);
-  const Eigen::VectorXd inv_std =
-      Eigen::Map<const Eigen::VectorXd>(file.input_std.data(), In).cwiseInverse();
-
-  const TcnTensor& w0 = file.tensor(tcn_conv_weight_name(0), {Hidden, In, Kernel});
-  Eigen::VectorXd b0 = vector(file.tensor(tcn_conv_bias_name(0), {Hidden}));
-  MatrixXd projection = MatrixXd::Identity(Hidden, In);
-  if constexpr (In != Hidden)
-    projection = matrix(file.tensor(tcn_downsample_name(), {Hidden, In, 1}));
-  MatrixXd sum = projection;
-  for (int j = 0; j < Kernel; ++j) {
-    const MatrixXd w = tap(w0, j);
-    sum += w;
-    weights.input_taps[j] = (w * inv_std.asDiagonal()).template cast<S>();
-  }
-  weights.input_projection = (projection * inv_std.asDiagonal()).template cast<S>();
-  weights.input_bias = (b0 - sum * inv_std.asDiagonal() * mean).template cast<S>();
+  require_tcn_tensors(file, In, Hidden, Levels, Kernel, Out);
+  const FoldedInputBlock input = fold_input_block(file, In, Hidden, Kernel);
+  for (int j = 0; j < Kernel; ++j)
+    weights.input_taps[j] = input.taps[static_cast<std::size_t>(j)].template cast<S>();
+  weights.input_projection = input.projection.template cast<S>();
+  weights.input_bias = input.bias.template cast<S>();
 
   for (int l = 1; l < Levels; ++l) {
     const TcnTensor& w = file.tensor(tcn_conv_weight_name(l), {Hidden, Hidden, Kernel});
     for (int j = 0; j < Kernel; ++j)
-      weights.taps[l - 1][j] = tap(w, j).template cast<S>();
-    weights.bias[l - 1] = vector(file.tensor(tcn_conv_bias_name(l), {Hidden})).template cast<S>();
+      weights.taps[l - 1][j] = tcn_tensor_tap(w, j, Kernel).template cast<S>();
+    weights.bias[l - 1] =
+        tcn_tensor_vector(file.tensor(tcn_conv_bias_name(l), {Hidden})).template cast<S>();
   }
   weights.low_weight =
-      matrix(file.tensor(tcn_head_weight_name(false), {Out, Hidden})).template cast<S>();
-  weights.low_bias = vector(file.tensor(tcn_head_bias_name(false), {Out})).template cast<S>();
+      tcn_tensor_matrix(file.tensor(tcn_head_weight_name(false), {Out, Hidden})).template cast<S>();
+  weights.low_bias =
+      tcn_tensor_vector(file.tensor(tcn_head_bias_name(false), {Out})).template cast<S>();
   weights.high_weight =
-      matrix(file.tensor(tcn_head_weight_name(true), {Out, Hidden})).template cast<S>();
-  weights.high_bias = vector(file.tensor(tcn_head_bias_name(true), {Out})).template cast<S>();
+      tcn_tensor_matrix(file.tensor(tcn_head_weight_name(true), {Out, Hidden})).template cast<S>();
+  weights.high_bias =
+      tcn_tensor_vector(file.tensor(tcn_head_bias_name(true), {Out})).template cast<S>();
 }
 
 /// The same into the network `tcn` (Tcn::set_weights: its history is cleared), through a heap

@@ -1,30 +1,13 @@
 #include "offline/replay/all_joints_network.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "tpf/estimation/compensator.hpp"
+#include "tpf/nn/load_tcn_weights.hpp"
 
 namespace tpf::offline {
 namespace {
-
-/// Lag j of a row-major [rows, cols, K] convolution tensor (file index k = K − 1 − j).
-Eigen::MatrixXd tensor_tap(const TcnTensor& t, int j, int kernel) {
-  const int rows = t.shape[0], cols = t.shape[1], k = kernel - 1 - j;
-  Eigen::MatrixXd m(rows, cols);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c)
-      m(r, c) = t.values[static_cast<std::size_t>((r * cols + c) * kernel + k)];
-  return m;
-}
-
-Eigen::MatrixXd tensor_matrix(const TcnTensor& t) {
-  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-      t.values.data(), t.shape[0], static_cast<Eigen::Index>(t.values.size()) / t.shape[0]);
-}
-
-Eigen::VectorXd tensor_vector(const TcnTensor& t) {
-  return Eigen::Map<const Eigen::VectorXd>(t.values.data(), t.shape[0]);
-}
 
 /// (i + 1) mod n for i in [0, n).
 int next_column(int i, int n) noexcept {
@@ -42,46 +25,15 @@ void AllJointsNetwork::load(const TcnWeightFile& file, int joints, int hidden, i
                             int kernel) {
   const int in = kCompensatorInputsPerJoint * joints, out = joints;
   // Everything is checked before anything changes (tcn_weights_from_file's order).
-  file.require_architecture(in, hidden, levels, kernel, out);
-  std::vector<std::string> names;
-  for (int l = 0; l < levels; ++l) {
-    names.push_back(tcn_conv_weight_name(l));
-    file.tensor(names.back(), {hidden, l == 0 ? in : hidden, kernel});
-    names.push_back(tcn_conv_bias_name(l));
-    file.tensor(names.back(), {hidden});
-  }
-  if (in != hidden) {
-    names.push_back(tcn_downsample_name());
-    file.tensor(names.back(), {hidden, in, 1});
-  }
-  for (bool high : {false, true}) {
-    names.push_back(tcn_head_weight_name(high));
-    file.tensor(names.back(), {out, hidden});
-    names.push_back(tcn_head_bias_name(high));
-    file.tensor(names.back(), {out});
-  }
-  file.refuse_unexpected_tensors(names);
+  require_tcn_tensors(file, in, hidden, levels, kernel, out);
 
   levels_ = levels;
   kernel_ = kernel;
-  // x̃ = D·(x − μ), D = diag(1/σ): W_{0,j} = W̃_{0,j}·D, P_0 = P̃_0·D,
-  // b_0 = b̃_0 − (Σ_j W̃_{0,j} + P̃_0)·D·μ.
+  FoldedInputBlock input = fold_input_block(file, in, hidden, kernel);
+  input_taps_ = std::move(input.taps);
+  input_projection_ = std::move(input.projection);
+  input_bias_ = std::move(input.bias);
   const Eigen::VectorXd mean = Eigen::Map<const Eigen::VectorXd>(file.input_mean.data(), in);
-  const Eigen::VectorXd inv_std =
-      Eigen::Map<const Eigen::VectorXd>(file.input_std.data(), in).cwiseInverse();
-  const TcnTensor& w0 = file.tensor(tcn_conv_weight_name(0), {hidden, in, kernel});
-  const Eigen::VectorXd b0 = tensor_vector(file.tensor(tcn_conv_bias_name(0), {hidden}));
-  Eigen::MatrixXd projection = Eigen::MatrixXd::Identity(hidden, in);
-  if (in != hidden) projection = tensor_matrix(file.tensor(tcn_downsample_name(), {hidden, in, 1}));
-  Eigen::MatrixXd sum = projection;
-  input_taps_.assign(static_cast<std::size_t>(kernel), Eigen::MatrixXd());
-  for (int j = 0; j < kernel; ++j) {
-    const Eigen::MatrixXd w = tensor_tap(w0, j, kernel);
-    sum += w;
-    input_taps_[static_cast<std::size_t>(j)] = w * inv_std.asDiagonal();
-  }
-  input_projection_ = projection * inv_std.asDiagonal();
-  input_bias_ = b0 - sum * inv_std.asDiagonal() * mean;
 
   taps_.assign(static_cast<std::size_t>(levels - 1), {});
   bias_.assign(static_cast<std::size_t>(levels - 1), Eigen::VectorXd());
@@ -89,14 +41,14 @@ void AllJointsNetwork::load(const TcnWeightFile& file, int joints, int hidden, i
     const TcnTensor& w = file.tensor(tcn_conv_weight_name(l), {hidden, hidden, kernel});
     auto& block = taps_[static_cast<std::size_t>(l - 1)];
     for (int j = 0; j < kernel; ++j)
-      block.push_back(tensor_tap(w, j, kernel));
+      block.push_back(tcn_tensor_tap(w, j, kernel));
     bias_[static_cast<std::size_t>(l - 1)] =
-        tensor_vector(file.tensor(tcn_conv_bias_name(l), {hidden}));
+        tcn_tensor_vector(file.tensor(tcn_conv_bias_name(l), {hidden}));
   }
-  low_weight_ = tensor_matrix(file.tensor(tcn_head_weight_name(false), {out, hidden}));
-  low_bias_ = tensor_vector(file.tensor(tcn_head_bias_name(false), {out}));
-  high_weight_ = tensor_matrix(file.tensor(tcn_head_weight_name(true), {out, hidden}));
-  high_bias_ = tensor_vector(file.tensor(tcn_head_bias_name(true), {out}));
+  low_weight_ = tcn_tensor_matrix(file.tensor(tcn_head_weight_name(false), {out, hidden}));
+  low_bias_ = tcn_tensor_vector(file.tensor(tcn_head_bias_name(false), {out}));
+  high_weight_ = tcn_tensor_matrix(file.tensor(tcn_head_weight_name(true), {out, hidden}));
+  high_bias_ = tcn_tensor_vector(file.tensor(tcn_head_bias_name(true), {out}));
 
   history_.assign(static_cast<std::size_t>(levels), Eigen::MatrixXd());
   history_[0] = Eigen::MatrixXd::Zero(in, kernel);
