@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "core/common/atomic_file.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
-#include "robot_joint_count.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/log/read_logs.hpp"
@@ -20,7 +20,7 @@
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
-#include "tpf/common/atomic_file.hpp"
+#include "robot_joint_count.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
 

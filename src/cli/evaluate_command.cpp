@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
@@ -16,7 +17,6 @@
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
-#include "tpf/common/atomic_file.hpp"
 #include "tpf/estimation/load_estimator.hpp"
 
 namespace {

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "tpf/common/atomic_file.hpp"
+#include "core/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 
 int main(int argc, char** argv) {

@@ -8,13 +8,13 @@
 
 #include "commands.hpp"
 #include "compensator_gate_printout.hpp"
+#include "core/common/atomic_file.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/validate/validation.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "robot_joint_count.hpp"
-#include "tpf/common/atomic_file.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "tpf/common/atomic_file.hpp"
+#include "core/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
 

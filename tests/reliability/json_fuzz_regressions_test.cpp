@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/common/json_object.hpp"
+#include "core/common/json_parse.hpp"
 #include "support/temp_dir.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
-#include "tpf/common/json_parse.hpp"
 #include "tpf/friction/friction_file.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
 

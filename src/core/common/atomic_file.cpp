@@ -1,4 +1,4 @@
-#include "tpf/common/atomic_file.hpp"
+#include "core/common/atomic_file.hpp"
 
 #include <unistd.h>
 

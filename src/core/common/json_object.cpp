@@ -1,12 +1,12 @@
-#include "tpf/common/json_object.hpp"
+#include "core/common/json_object.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
+#include "core/common/json_parse.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_parse.hpp"
 
 namespace tpf::json {
 

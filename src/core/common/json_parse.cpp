@@ -1,4 +1,4 @@
-#include "tpf/common/json_parse.hpp"
+#include "core/common/json_parse.hpp"
 
 #include <algorithm>
 #include <fstream>

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "tpf/common/atomic_file.hpp"
-#include "tpf/common/json_object.hpp"
+#include "core/common/atomic_file.hpp"
+#include "core/common/json_object.hpp"
 
 namespace tpf {
 namespace {

@@ -6,9 +6,9 @@
 #include <random>
 #include <sstream>
 
-#include "tpf/common/atomic_file.hpp"
+#include "core/common/atomic_file.hpp"
+#include "core/common/json_object.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/model/load_robot.hpp"
 

@@ -1,7 +1,7 @@
 // Start-up loading of friction parameter files (see include/tpf/friction/friction_file.hpp).
 #include "tpf/friction/friction_file.hpp"
 
-#include "tpf/common/json_object.hpp"
+#include "core/common/json_object.hpp"
 
 namespace tpf {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <limits>
 
+#include "core/common/json_object.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
 
 namespace tpf {
 

@@ -11,10 +11,10 @@
 #include <numeric>
 #include <sstream>
 
-#include "tpf/common/atomic_file.hpp"
+#include "core/common/atomic_file.hpp"
+#include "core/common/json_object.hpp"
+#include "core/common/json_parse.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
-#include "tpf/common/json_parse.hpp"
 
 namespace tpf {
 namespace {

@@ -3,8 +3,8 @@
 #include <limits>
 #include <map>
 
+#include "core/common/json_object.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
 
 namespace tpf {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/common/json_object.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
 
 namespace tpf::offline {
 namespace {

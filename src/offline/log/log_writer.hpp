@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "core/common/atomic_file.hpp"
 #include "offline/log/gzip.hpp"
 #include "offline/log/log.hpp"
 #include "offline/log/log_metadata.hpp"
-#include "tpf/common/atomic_file.hpp"
 
 namespace tpf::offline {
 

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/common/atomic_file.hpp"
 #include "offline/common/data_files.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
@@ -20,7 +21,6 @@
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/sim/simulate.hpp"
-#include "tpf/common/atomic_file.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/model/load_robot.hpp"
 

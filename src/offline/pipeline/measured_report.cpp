@@ -7,12 +7,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/common/atomic_file.hpp"
 #include "offline/pipeline/measured_bound_report.hpp"
 #include "offline/report/bar_chart.hpp"
 #include "offline/report/line_plot.hpp"
 #include "offline/report/scatter_plot.hpp"
 #include "offline/report/text_format.hpp"
-#include "tpf/common/atomic_file.hpp"
 
 namespace tpf::offline {
 namespace {

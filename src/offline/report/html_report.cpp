@@ -4,9 +4,9 @@
 #include <cctype>
 #include <string_view>
 
+#include "core/common/atomic_file.hpp"
 #include "offline/report/plot_canvas.hpp"
 #include "offline/report/text_format.hpp"
-#include "tpf/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::offline {

@@ -8,8 +8,9 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/common/json_object.hpp"
+#include "offline/common/data_files.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/common/json_object.hpp"
 #include "tpf/model/robot_description.hpp"
 
 namespace tpf::offline {
@@ -245,11 +246,9 @@ Scenario default_scenario(const std::string& robot_file) {
 Scenario load_scenario(const std::string& path, const std::string& robot_file) {
   json::Object o = json::Object::read_file(path);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  const std::string robot =
-      robot_file.empty()
-          ? resolve(o, "robot", dir,
-                    (std::filesystem::path(TPF_DATA_DIR) / "arm4.robot.json").string())
-          : robot_file;
+  const std::string robot = robot_file.empty()
+                                ? resolve(o, "robot", dir, data_file("arm4.robot.json").string())
+                                : robot_file;
   if (!robot_file.empty()) o.text("robot", "");  // replaced: read so that finish() accepts it
   const RobotDescription description = load_robot_description(robot);
   Scenario s = scenario_for(robot, description);

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "tpf/common/atomic_file.hpp"
+#include "core/common/atomic_file.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/compensator.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
