@@ -169,6 +169,7 @@ Evaluation evaluate(ReplaySetup& setup, const EvaluationLogs& logs,
   }
   // The residuals "meet" when they differ by less than the effort noise (the static band / 3).
   ev.table = residual_table(recordings, ev.calibration.fusion_static_band / 3.0);
+  ev.rest_memory = rest_memory(ev.table, rest_noise_floor(recordings));
 
   if (logs.contacts) {
     if (!ev.has_skin)
@@ -230,6 +231,19 @@ std::string evaluation_json(const Evaluation& ev) {
          {"rmse_change_percent", num(percent_change(r.nominal.rmse, r.compensated.rmse))},
          {"std_change_percent", num(percent_change(r.nominal.std, r.compensated.std))}});
   j["residual_table"] = rows;
+  json memory = json::array();
+  for (const RestMemoryRow& m : ev.rest_memory)
+    memory.push_back({{"joint", m.joint + 1},
+                      {"static_samples", m.samples},
+                      {"nominal_rmse", num(m.nominal_rmse)},
+                      {"compensated_rmse", num(m.compensated_rmse)},
+                      {"noise_floor", num(m.noise_floor)},
+                      {"nominal_memory", num(m.nominal_memory)},
+                      {"compensated_memory", num(m.compensated_memory)},
+                      {"removed_share", num(m.removed_share)},
+                      {"nominal_times_floor", num(m.nominal_times_floor)},
+                      {"compensated_times_floor", num(m.compensated_times_floor)}});
+  j["rest_memory"] = memory;
   j["excitation_rows"] = ev.excitation_rows;
   for (int m = 0; m < kModalityCount; ++m) {
     const std::string name = modality_name(static_cast<Modality>(m));

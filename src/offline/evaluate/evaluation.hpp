@@ -11,6 +11,7 @@
 #include "offline/evaluate/contact_detection.hpp"
 #include "offline/evaluate/force_error.hpp"
 #include "offline/evaluate/residual_table.hpp"
+#include "offline/evaluate/rest_memory.hpp"
 #include "offline/log/log.hpp"
 #include "offline/replay/replay_estimator.hpp"
 #include "tpf/estimation/transition_sigma.hpp"
@@ -69,6 +70,8 @@ struct Evaluation {
   /// What every estimator ran with, calibrated on the calibration log.
   Calibration calibration;
   std::vector<ResidualRow> table;  ///< Table I on the held-out excitation logs
+  /// The static residual per joint as noise floor and friction memory (the same logs).
+  std::vector<RestMemoryRow> rest_memory;
   Eigen::Index excitation_rows = 0;
   bool has_contacts = false, has_teaching = false;
   std::array<DetectionStats, kModalityCount> detection{};

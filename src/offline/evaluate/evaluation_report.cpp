@@ -1,5 +1,6 @@
 #include "offline/evaluate/evaluation_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -43,6 +44,45 @@ Table residual_table_html(const Evaluation& ev) {
                       format_percent_change(r.nominal.std, r.compensated.std)});
   }
   return t;
+}
+
+/// The friction memory at rest per joint (Evaluation::rest_memory).
+Table rest_memory_html(const Evaluation& ev) {
+  Table t;
+  const std::string u = ev.units.name();
+  t.header = {"joint",
+              "static nominal [" + u + "]",
+              "+ TCN [" + u + "]",
+              "noise floor [" + u + "]",
+              "nominal / floor",
+              "+ TCN / floor",
+              "memory removed"};
+  for (const RestMemoryRow& m : ev.rest_memory)
+    t.rows.push_back({joint_label(m.joint), format_number(m.nominal_rmse),
+                      format_number(m.compensated_rmse), format_number(m.noise_floor),
+                      format_fixed(m.nominal_times_floor, 1) + "×",
+                      format_fixed(m.compensated_times_floor, 1) + "×",
+                      format_fixed(100.0 * m.removed_share, 1) + " %"});
+  t.caption =
+      "The static residual is white noise (the floor: std of its sample-to-sample change at "
+      "rest / √2) plus the friction's memory of the last motion, √(RMSE² − floor²). What the "
+      "compensator removes of that memory, and how far above the floor it leaves the joint.";
+  return t;
+}
+
+/// One line: the share of the memory removed and what is left, over the joints.
+std::string rest_memory_line(const Evaluation& ev) {
+  if (ev.rest_memory.empty()) return {};
+  double removed_lo = 1e300, removed_hi = -1e300, left_lo = 1e300, left_hi = -1e300;
+  for (const RestMemoryRow& m : ev.rest_memory) {
+    removed_lo = std::min(removed_lo, 100.0 * m.removed_share);
+    removed_hi = std::max(removed_hi, 100.0 * m.removed_share);
+    left_lo = std::min(left_lo, m.compensated_times_floor);
+    left_hi = std::max(left_hi, m.compensated_times_floor);
+  }
+  return "rest: the TCN removes " + format_fixed(removed_lo, 0) + "–" +
+         format_fixed(removed_hi, 0) + " % of the friction memory per joint, leaving " +
+         format_fixed(left_lo, 1) + "–" + format_fixed(left_hi, 1) + "× the noise floor";
 }
 
 /// The paper's Table I goals: the TCN lowers the pooled RMSE by this much [%] (0: no goal).
@@ -136,6 +176,10 @@ HtmlReport evaluation_report(const Evaluation& ev, bool simulated,
   page.open_details("Table I per joint, with the standard deviations");
   page.table(residual_table_html(ev));
   page.close_details();
+  if (!ev.rest_memory.empty()) {
+    page.heading("At rest: the friction memory against the noise floor");
+    page.table(rest_memory_html(ev));
+  }
   page.figure(histogram({"Error distribution, static", "residual [mA]", "share [%]"},
                         error_distributions(ev, Regime::Static)),
               "Static samples of all joints, first held-out log.");
@@ -334,6 +378,7 @@ std::string evaluation_headline(const Evaluation& ev, bool simulated) {
   }
   for (const std::string& l : target_lines(ev))
     out += "  " + l + "\n";
+  if (const std::string l = rest_memory_line(ev); !l.empty()) out += "  " + l + "\n";
   if (ev.has_contacts) {
     for (int m = 0; m < kModalityCount; ++m) {
       char line[200];
