@@ -85,9 +85,10 @@ std::string rest_memory_line(const Evaluation& ev) {
          format_fixed(left_lo, 1) + "–" + format_fixed(left_hi, 1) + "× the noise floor";
 }
 
-/// The paper's Table I goals: the TCN lowers the pooled RMSE by this much [%] (0: no goal).
+/// tpf's goals for Table I: the TCN lowers the pooled RMSE by this much [%] (0: no goal); set
+/// above what the paper's Table I reports (static −88.6 %, static-to-kinetic −54.8 %).
 double table_one_goal(Regime g) {
-  return g == Regime::Static ? 90.0 : g == Regime::StaticToKinetic ? 60.0 : 0.0;
+  return g == Regime::Static ? 95.0 : g == Regime::StaticToKinetic ? 75.0 : 0.0;
 }
 
 /// The target check lines.
@@ -358,8 +359,8 @@ Table table_one_summary(const Evaluation& ev) {
                       goal > 0 ? (change <= -goal ? "yes" : "no") : "–"});
   }
   t.caption =
-      "RMSE of the current residual on a held-out log, all joints; goals from the "
-      "paper's Table I.";
+      "RMSE of the current residual on a held-out log, all joints; tpf's goals, above the "
+      "paper's Table I (static −88.6 %, static-to-kinetic −54.8 %).";
   return t;
 }
 

@@ -92,9 +92,12 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
       " threads");
   jobs = {{"training excitation", o.training_scenario, o.training_seed, o.training_s, {}},
           {"held-out excitation", o.test_scenario, o.test_seed, o.test_s, {}},
-          {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}},
-          {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}},
-          {"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}}};
+          {"calibration excitation", o.test_scenario, o.calibration_seed, o.calibration_s, {}}};
+  if (o.run_contacts) {
+    jobs.push_back(
+        {"static contacts", "scenarios/static-contacts.json", o.contacts_seed, o.contacts_s, {}});
+    jobs.push_back({"teaching", "scenarios/teaching.json", o.teaching_seed, o.teaching_s, {}});
+  }
   // The arm is the training scenario's: the held-out, contact and teaching logs come from the same
   // plant the model was identified on (its payload, ripple, … included).
   const EffectsConfig arm = load_scenario(data_file(o.training_scenario).string()).effects;
@@ -164,21 +167,23 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   say("[5/6] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
       std::to_string(o.contacts_seed) + ", " + std::to_string(o.teaching_seed) + ")");
   EvaluationLogs logs;
-  logs.calibration = &jobs[3].log;
+  logs.calibration = &jobs[2].log;
   logs.excitation = {&jobs[1].log};
-  logs.contacts = &jobs[2].log;
-  logs.teaching = &jobs[4].log;
   Scenario teaching = load_scenario(data_file("scenarios/teaching.json").string());
   teaching.effects = arm;  // the closed loop runs on the same arm
-  logs.teaching_scenario = &teaching;
-  logs.teaching_seed = o.teaching_seed;
-  logs.teaching_duration_s = o.teaching_s;
+  if (o.run_contacts) {
+    logs.contacts = &jobs[3].log;
+    logs.teaching = &jobs[4].log;
+    logs.teaching_scenario = &teaching;
+    logs.teaching_seed = o.teaching_seed;
+    logs.teaching_duration_s = o.teaching_s;
+  }
   setup.parameters = estimator_parameters_from_noise(
-      estimate_sensor_noise(jobs[3].log, setup.nominal.model.torque_constant));
+      estimate_sensor_noise(jobs[2].log, setup.nominal.model.torque_constant));
   result.evaluation = evaluate(setup, logs, say);
   // The run-time loop's estimator parameters as calibrated here (tpf_arm_loop --estimator).
   save_estimator_parameters(o.out / "arm4.estimator.json", setup.parameters,
-                            jobs[3].log.source + " (SIMULATED log)");
+                            jobs[2].log.source + " (SIMULATED log)");
   std::vector<std::string> notes{
       "nominal model: identified and diagnosed on the training log (nominal.params.json)",
       "arm: every log is simulated on one arm, with the physical effects of " +
