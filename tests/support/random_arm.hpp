@@ -20,10 +20,10 @@ inline Model<double, Eigen::Dynamic> random_arm(int n, unsigned seed) {
   auto vector3 = [&] { return Vector3<double>(u(rng), u(rng), u(rng)); };
   Model<double, Eigen::Dynamic> model;
   model.resize(n);
-  model.name = "random" + std::to_string(n);
+  model.name = std::string("random").append(std::to_string(n));
   for (int k = 0; k < n; ++k) {
-    model.joint_names[k] = "j" + std::to_string(k + 1);
-    model.link_names[k + 1] = "l" + std::to_string(k + 1);
+    model.joint_names[k] = std::string("j").append(std::to_string(k + 1));
+    model.link_names[k + 1] = std::string("l").append(std::to_string(k + 1));
     const Eigen::Quaterniond rotation = Eigen::Quaterniond::UnitRandom();
     model.joint_placements[k] = {rotation.toRotationMatrix(), 0.3 * vector3()};
     model.axes[k] = k % 3 == 0 ? Vector3<double>::Unit(k % 2 == 0 ? 2 : 1) : vector3().normalized();

@@ -48,11 +48,11 @@ template <bool kPrismatic, typename S, int N>
     if (prismatic(i)) {
       f = c.subtree_mass[i] * z;
       n = data.composite_first_moment[i].cross(z);
-      data.M(i - 1, i - 1) = z.dot(f) + model.armature(i - 1);
+      data.M(i - 1, i - 1) = z.dot(f) + (model.coupled ? S(0) : model.armature(i - 1));
     } else {
       f = z.cross(data.composite_first_moment[i]);
       n = data.composite_inertia[i] * z;
-      data.M(i - 1, i - 1) = z.dot(n) + model.armature(i - 1);
+      data.M(i - 1, i - 1) = z.dot(n) + (model.coupled ? S(0) : model.armature(i - 1));
     }
     for (int j = i - 1; j >= 1; --j) {
       const Matrix3<S>& R = data.liMi[j + 1].R;
@@ -63,9 +63,20 @@ template <bool kPrismatic, typename S, int N>
   }
 }
 
+/// M += Cᵀ·diag(armature)·C: the rotors of coupled motors.
+template <typename S, int N>
+void add_coupled_armature(const Model<S, N>& model, Data<S, N>& data) noexcept {
+  const int n = model.joint_count();
+  for (int m = 0; m < n; ++m)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        data.M(i, j) += model.armature(m) * model.coupling(m, i) * model.coupling(m, j);
+}
+
 }  // namespace detail
 
-/// M(q) (N×N, symmetric positive definite) in data.M, armature on the diagonal:
+/// M(q) (N×N, symmetric positive definite) in data.M, armature on the diagonal (through the
+/// coupling, Cᵀ·diag(armature)·C, where motors are coupled):
 /// kinetic energy T = ½ q̇ᵀ M q̇. Composite bodies k..N are accumulated from the tip (mass, a model
 /// constant; first moment h and inertia I about link k's origin): with the child's moved into
 /// link k's frame, h' = R h_{k+1}, and v = ½ m_{k+1} p + h',
@@ -83,6 +94,7 @@ const JointMatrix<S, N>& compute_mass_matrix(const Model<S, N>& model, Data<S, N
     detail::out_of_line([&] { detail::composite_rigid_bodies<true>(model, data); });
   else
     detail::composite_rigid_bodies<false>(model, data);
+  if (model.coupled) detail::add_coupled_armature(model, data);
   return data.M;
 }
 

@@ -37,7 +37,8 @@ DynamicParameters<S, N> dynamic_parameters(const Model<S, N>& model,
 }
 
 /// The regressor Y (N × 13N) with Y π = RNEA(q, q̇, q̈) + τ_c sgn(q̇) + b q̇ (friction that the
-/// motor must overcome, so measured torque = Y π). Each link's wrench at its origin is linear in
+/// motor must overcome, so measured torque = Y π); where motors are coupled, the armature and
+/// friction columns are per motor, Cᵀ·(τ_c,m sgn(θ̇_m) + b_m θ̇_m + I_a,m θ̈_m), θ̇ = C·q̇. Each link's wrench at its origin is linear in
 /// its 10 parameters, [f; n] = [F; M] π_k (3 × 10 each, in link k's frame), with
 ///   f = m a + ω̇ × h + ω × (ω × h),   n = I ω̇ + ω × (I ω) + h × a.
 /// A revolute joint j ≤ k carries that wrench's moment about its own origin, z_j · (n + r × f)
@@ -105,10 +106,23 @@ void compute_regressor(const Model<S, N>& model, Data<S, N>& data,
       Y.template block<1, 6>(j, column + 4) = u[j].transpose() * M_I;
     }
   }
-  for (int j = 0; j < n; ++j) {
-    Y(j, 10 * n + j) = ddq(j);
-    Y(j, 11 * n + j) = dq(j) > S(0) ? S(1) : (dq(j) < S(0) ? S(-1) : S(0));
-    Y(j, 12 * n + j) = dq(j);
+  const auto sign = [](const S& x) { return x > S(0) ? S(1) : (x < S(0) ? S(-1) : S(0)); };
+  if (!model.coupled) {
+    for (int j = 0; j < n; ++j) {
+      Y(j, 10 * n + j) = ddq(j);
+      Y(j, 11 * n + j) = sign(dq(j));
+      Y(j, 12 * n + j) = dq(j);
+    }
+    return;
+  }
+  // Motor m's armature and friction act on its own rates (C·q̈)_m, (C·q̇)_m, through C(m, :)ᵀ.
+  for (int m = 0; m < n; ++m) {
+    const S a = model.motor_rate(m, ddq), v = model.motor_rate(m, dq);
+    for (int j = 0; j < n; ++j) {
+      Y(j, 10 * n + m) = model.coupling(m, j) * a;
+      Y(j, 11 * n + m) = model.coupling(m, j) * sign(v);
+      Y(j, 12 * n + m) = model.coupling(m, j) * v;
+    }
   }
 }
 

@@ -139,6 +139,17 @@ template <bool kPrismatic, typename S, int N>
   }
 }
 
+/// tau += Cᵀ·diag(armature)·C·q̈ (armature·q̈ per joint without a coupling).
+template <typename S, int N>
+void add_armature(const Model<S, N>& model, const JointVector<S, N>& ddq, JointVector<S, N>& tau) {
+  if (!model.coupled) {
+    tau += model.armature.cwiseProduct(ddq);
+    return;
+  }
+  for (int m = 0; m < model.joint_count(); ++m)
+    model.add_motor_torque(m, model.armature(m) * model.motor_rate(m, ddq), tau);
+}
+
 }  // namespace detail
 
 /// Joint efforts τ = M(q)q̈ + C(q,q̇)q̇ + G(q) [N·m, or N at a prismatic joint], M including the
@@ -153,7 +164,7 @@ const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
                               const NoDeduce<JointVector<S, N>>& ddq) {
   joint_transforms(model, data, q);
   detail::newton_euler_passes(model, data, dq, ddq, Vector3<S>(-model.gravity));
-  data.tau += model.armature.cwiseProduct(ddq);
+  detail::add_armature(model, ddq, data.tau);
   return data.tau;
 }
 
@@ -180,7 +191,7 @@ const JointVector<S, N>& rnea(const Model<S, N>& model, Data<S, N>& data,
     m = R * m + data.liMi[k].p.cross(R * f);
     f = R * f;
   }
-  data.tau += model.armature.cwiseProduct(ddq);
+  detail::add_armature(model, ddq, data.tau);
   return data.tau;
 }
 

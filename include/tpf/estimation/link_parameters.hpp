@@ -90,9 +90,12 @@ void link_parameter_torque(const Model<S, N>& model, const LinkParameters<S, N>&
     data.moment[k] = I * dw + w.cross(I * w) + h.cross(a);
   }
   detail::newton_euler_backward_pass(model, data, tau);
-  for (int j = 0; j < n; ++j) {
-    const S sign = dq(j) > S(0) ? S(1) : (dq(j) < S(0) ? S(-1) : S(0));
-    tau(j) += p.armature(j) * ddq(j) + p.coulomb(j) * sign + p.viscous(j) * dq(j);
+  // Per motor, on its own rates through the coupling (per joint without one).
+  for (int m = 0; m < n; ++m) {
+    const S v = model.motor_rate(m, dq);
+    const S sign = v > S(0) ? S(1) : (v < S(0) ? S(-1) : S(0));
+    model.add_motor_torque(
+        m, p.armature(m) * model.motor_rate(m, ddq) + p.coulomb(m) * sign + p.viscous(m) * v, tau);
   }
 }
 

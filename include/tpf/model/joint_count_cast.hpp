@@ -38,6 +38,7 @@ Model<S, To> joint_count_cast(const Model<S, From>& from) {
   to.velocity_limit = from.velocity_limit;
   to.effort_limit = from.effort_limit;
   to.gravity = from.gravity;
+  to.set_coupling(from.coupling);
   to.update_constants();
   return to;
 }

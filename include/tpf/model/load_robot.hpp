@@ -56,6 +56,7 @@ Model<S, N> make_model(const RobotDescription& robot) {
     model.current_limit(k) = S(d.current_limit);
   }
   model.gravity = robot.gravity.template cast<S>();
+  if (robot.coupling.size() > 0) model.set_coupling(robot.coupling.template cast<S>());
   return model;
 }
 

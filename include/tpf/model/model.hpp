@@ -99,6 +99,35 @@ struct Model {
 
   Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  ///< in the world frame [m/s²].
 
+  /// The transmission's coupling C (motors × joints, motor m in joint m's row): motor m turns
+  /// with θ_m = gear_ratio(m)·Σ_j C(m, j)·q_j, and its torque at the output scale τ_m acts on the
+  /// joints as τ_j = Σ_m C(m, j)·τ_m. The armature and the drives' friction act through it,
+  /// Cᵀ·diag(armature)·C·q̈ and Cᵀ·f(C·q̇). The identity (each motor drives its own joint)
+  /// unless the robot file couples motors (a differential wrist: θ_6 ∝ q_5 + q_6).
+  JointMatrix<S, N> coupling = identity_or_empty();
+  bool coupled = false;  ///< C is not the identity (set_coupling)
+
+  /// Sets C; `coupled` says whether it differs from the identity.
+  void set_coupling(const JointMatrix<S, N>& c) {
+    coupling = c;
+    const int n = joint_count();
+    coupled = !(c.rows() == n && c.cols() == n && c.isIdentity(S(0)));
+  }
+
+  /// Motor m's velocity at the output scale, (C·v)_m (v: q̇ or q̈). Allocation-free.
+  S motor_rate(int m, const Vector& v) const {
+    return coupled ? coupling.row(m).dot(v) : v(m);
+  }
+  /// Adds motor m's output-scale torque t to the joint torques tau: tau += t·C(m, :)ᵀ.
+  void add_motor_torque(int m, const S& t, Vector& tau) const {
+    if (!coupled) {
+      tau(m) += t;
+      return;
+    }
+    for (int j = 0; j < joint_count(); ++j)
+      tau(j) += coupling(m, j) * t;
+  }
+
   /// Derived from joint_placements, axes and inertias; update_constants() after changing those.
   ModelConstants<S, N> constants;
 
@@ -128,6 +157,8 @@ struct Model {
       *v = Vector::Zero(n);
     gear_ratio = Vector::Ones(n);
     torque_constant = Vector::Ones(n);
+    coupling = JointMatrix<S, N>::Identity(n, n);
+    coupled = false;
     constants.resize(n);
   }
 
@@ -226,11 +257,18 @@ struct Model {
     m.velocity_limit = velocity_limit.template cast<T>();
     m.effort_limit = effort_limit.template cast<T>();
     m.gravity = gravity.template cast<T>();
+    m.set_coupling(coupling.template cast<T>());
     m.update_constants();
     return m;
   }
 
  private:
+  static JointMatrix<S, N> identity_or_empty() {
+    if constexpr (N == Eigen::Dynamic)
+      return JointMatrix<S, N>();
+    else
+      return JointMatrix<S, N>::Identity();
+  }
   static Vector ones_or_empty() {
     if constexpr (N == Eigen::Dynamic)
       return Vector();

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tpf/common/types.hpp"
@@ -45,8 +46,12 @@ struct DriveDescription {
   std::string joint;
   std::string motor;
   /// Motor radians per output radian; per metre of travel for a prismatic joint [rad/m] (a ball
-  /// screw of lead ℓ after a gearbox of ratio r: r·2π/ℓ).
+  /// screw of lead ℓ after a gearbox of ratio r: r·2π/ℓ). Signed: negative where the motor turns
+  /// against its joint.
   double gear_ratio = 1;
+  /// Other joints this motor also turns with (joint name → coefficient c): its angle is
+  /// gear_ratio·(q_own + Σ c·q_other). Empty for a motor that drives its own joint only.
+  std::vector<std::pair<std::string, double>> coupled_to;
   double rotor_inertia = 0;    ///< [kg·m²] motor side.
   double torque_constant = 1;  ///< [N·m/A] output side ([N/A] for a prismatic joint).
   double current_limit = 0;    ///< [mA].
@@ -59,6 +64,9 @@ struct RobotDescription {
   std::string source;
   ChainDescription chain;
   std::vector<DriveDescription> drives;  ///< in chain order.
+  /// The transmission's coupling C (motors × joints, Model::coupling) from the drives'
+  /// coupled_to: the identity where no motor is coupled; checked invertible.
+  Eigen::MatrixXd coupling;
   Vector3<double> gravity{0, 0, -9.81};
   std::filesystem::path pads_file;      ///< empty if the robot has no skin.
   std::filesystem::path friction_file;  ///< the twin's true friction; empty if none is named.

@@ -1,11 +1,48 @@
 #include "tpf/model/robot_description.hpp"
 
+#include <Eigen/LU>
+#include <cmath>
 #include <limits>
 
 #include "core/common/json_object.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf {
+namespace {
+
+// A drive's "coupled_to": {"<joint>": c, …}: other joints of the chain, finite coefficients.
+std::vector<std::pair<std::string, double>> coupled_joints(json::Object c,
+                                                           const ChainDescription& chain,
+                                                           std::size_t own) {
+  std::vector<std::pair<std::string, double>> out;
+  for (std::size_t k = 0; k < chain.joints.size(); ++k) {
+    const std::string& name = chain.joints[k].name;
+    if (!c.has(name)) continue;
+    if (k == own) c.fail(name, "is the motor's own joint (its coefficient is 1)");
+    out.emplace_back(name, c.number(name, -json::Object::kInfinity, json::Object::kInfinity));
+  }
+  c.finish();  // names a key that is no joint of the chain
+  return out;
+}
+
+// C from the drives (row m: motor m, 1 on its own joint); refused when singular.
+Eigen::MatrixXd coupling_matrix(const RobotDescription& robot, json::Object& top) {
+  const auto n = static_cast<Eigen::Index>(robot.drives.size());
+  Eigen::MatrixXd c = Eigen::MatrixXd::Identity(n, n);
+  for (Eigen::Index m = 0; m < n; ++m)
+    for (const auto& [joint, coefficient] : robot.drives[m].coupled_to)
+      for (Eigen::Index k = 0; k < n; ++k)
+        if (robot.chain.joints[k].name == joint) c(m, k) = coefficient;
+  if (n > 0 && !c.isIdentity(0.0)) {
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(c);
+    if (lu.rank() < n)
+      top.fail("joints", "the motors' coupled_to make a singular coupling: the motors cannot "
+                         "move every joint on its own");
+  }
+  return c;
+}
+
+}  // namespace
 
 RobotDescription load_robot_description(const std::filesystem::path& robot_file) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -37,13 +74,16 @@ RobotDescription load_robot_description(const std::filesystem::path& robot_file)
                          " of the URDF is '" + robot.chain.joints[k].name + "'");
     }
     d.motor = j.text("motor", "");
-    d.gear_ratio = j.number("gear_ratio", 1e-9, kInf);
+    d.gear_ratio = j.number("gear_ratio", -kInf, kInf);
+    if (std::abs(d.gear_ratio) < 1e-9) j.fail("gear_ratio", "must not be 0");
+    if (j.has("coupled_to")) d.coupled_to = coupled_joints(j.child("coupled_to"), robot.chain, k);
     d.rotor_inertia = j.number("rotor_inertia", 0.0, kInf);
     d.torque_constant = j.number("torque_constant", 1e-9, kInf);
     d.current_limit = j.number("current_limit", 1e-9, kInf);
     j.finish();
     robot.drives.push_back(d);
   }
+  robot.coupling = coupling_matrix(robot, top);
   top.finish();
   return robot;
 }

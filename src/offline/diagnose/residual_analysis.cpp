@@ -103,7 +103,7 @@ void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residu
                                     "from %.0f periods/rev (a longer period does not fit in "
                                     "the motion)",
                                     range, shortest));
-  a.ripple_motor_cycles[j] = dominant_cycles(q, r, 1, 4, gear_ratio[j]);
+  a.ripple_motor_cycles[j] = dominant_cycles(q, r, 1, 4, std::abs(gear_ratio[j]));
 }
 
 }  // namespace
