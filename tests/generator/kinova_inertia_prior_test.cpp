@@ -20,8 +20,8 @@
 #include "offline/identify/effect_design.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/identify/inertia_prior.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::test {
 namespace {

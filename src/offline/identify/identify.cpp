@@ -8,13 +8,13 @@
 #include <random>
 
 #include "offline/effects/effect_columns.hpp"
+#include "offline/fit/gram_fit.hpp"
+#include "offline/fit/parallel_halves.hpp"
+#include "offline/fit/parallel_jobs.hpp"
 #include "offline/identify/effect_design.hpp"
-#include "offline/identify/gram_fit.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/inertia_prior.hpp"
 #include "offline/identify/linear_friction_fit.hpp"
-#include "offline/identify/parallel_halves.hpp"
-#include "offline/identify/parallel_jobs.hpp"
 #include "offline/identify/sensor_friction.hpp"
 #include "offline/identify/stribeck_fit.hpp"
 #include "offline/report/text_format.hpp"

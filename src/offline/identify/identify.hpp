@@ -9,9 +9,9 @@
 
 #include "offline/common/run_time_types.hpp"
 #include "offline/identify/identification_setup.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime_stats.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 

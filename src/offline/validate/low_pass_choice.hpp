@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <span>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "offline/validate/sensor_candidates.hpp"
 
 namespace tpf::offline {

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 

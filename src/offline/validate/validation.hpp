@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime_stats.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "tpf/estimation/load_estimator.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 

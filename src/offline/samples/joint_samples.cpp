@@ -1,11 +1,11 @@
-#include "offline/identify/joint_samples.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
 
-#include "offline/identify/parallel_halves.hpp"
+#include "offline/fit/parallel_halves.hpp"
 #include "offline/signal/acceleration.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"

@@ -1,3 +1,9 @@
+// Folder samples/: the sample table of a log (JointSamples: joint state, effort, regimes, the
+// held-out split), the rigid-body regressor of every sample (SampleRegressors) and the one
+// function that decides which rows are held out (held_out_rows.hpp). Identification, diagnosis,
+// the column families of effects/ and tpf validate read it; it depends on log/, signal/,
+// regimes/ and fit/'s threading helpers only.
+//
 // The samples of a log that identification and diagnosis use: joint state, effort, regimes and
 // the held-out split, with missing values flagged (never invented).
 #pragma once
