@@ -32,6 +32,7 @@ void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
   const int joints = nominal.model.joint_count();
   SampleOptions options;
   options.regimes.static_velocity = a.static_velocity;
+  options.all_held_out = true;  // fitted on other logs: every row of this one is held out
   const JointSamples samples = extract_joint_samples(log, nominal.model.torque_constant, options);
   std::vector<std::string> notes;
   // One column per estimate; the compensator (--weights) becomes one more here.

@@ -16,7 +16,8 @@
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/inertia_prior.hpp"
 #include "offline/report/text_format.hpp"
-#include "offline/validate/measured_facts.hpp"
+#include "offline/samples/held_out_rows.hpp"
+#include "offline/samples/repeated_motion.hpp"
 #include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
@@ -122,15 +123,6 @@ CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup&
   return inputs;
 }
 
-/// The held-out split by file of a several-file log: files that repeat one motion
-/// (repeated_motions) form one group, held out together; the selection holds out the group of the
-/// last file, the transfer test each other group in turn.
-struct FileSplit {
-  std::vector<std::vector<std::size_t>> groups;
-  std::size_t selection_group = 0;
-  std::vector<RepeatedMotion> repeats;
-};
-
 std::string file_names(const Log& log, const std::vector<std::size_t>& files) {
   std::string text;
   for (std::size_t i = 0; i < files.size(); ++i)
@@ -138,62 +130,33 @@ std::string file_names(const Log& log, const std::vector<std::size_t>& files) {
   return text;
 }
 
-/// Rows of `files` marked 1, the others 0.
-std::vector<char> rows_of(const Log& log, const std::vector<std::size_t>& files, std::size_t n) {
-  std::vector<char> rows(n, 0);
-  for (std::size_t f : files) {
-    const auto [begin, end] = log.file_rows(f);
-    std::fill(rows.begin() + begin, rows.begin() + end, 1);
-  }
-  return rows;
-}
-
-/// Groups the files of a log held out by file and holds out the last file's group in `s`; when
-/// every file repeats one motion, no file is independent of another: the log is split in
-/// interleaved blocks, as one file is.
-FileSplit split_by_file(const Log& log, JointSamples& s, const DiagnoseOptions& options) {
-  FileSplit split;
-  if (s.heldout_file == 0) return split;
-  split.repeats = repeated_motions(log, s, options.repeat_tolerance);
-  split.groups = repeated_motion_groups(log.file_count(), split.repeats);
-  for (std::size_t g = 0; g < split.groups.size(); ++g)
-    if (split.groups[g].back() + 1 == log.file_count()) split.selection_group = g;
-  if (split.groups.size() > 1) {
-    s.heldout = rows_of(log, split.groups[split.selection_group], s.heldout.size());
-  } else {
-    s.heldout = interleaved_heldout_blocks(s.t, options.samples);
-    s.heldout_file = 0;
-  }
-  return split;
-}
-
 /// The held-out split in a sentence, with the repeated motions that grouped files.
-std::string split_sentence(const Log& log, const FileSplit& split, const JointSamples& s,
-                           const DiagnoseOptions& o) {
-  if (split.groups.empty()) return {};
+std::string split_sentence(const Log& log, const JointSamples& s, const DiagnoseOptions& o) {
+  const std::vector<std::vector<std::size_t>>& groups = s.heldout_file_groups;
+  if (groups.empty()) return {};
   const double heldout_share =
       static_cast<double>(std::count(s.heldout.begin(), s.heldout.end(), 1)) /
       static_cast<double>(std::max<std::size_t>(s.heldout.size(), 1));
   std::string text;
-  if (split.groups.size() == 1) {
+  if (groups.size() == 1) {
     text = format_sentence(
         "Not held out by file: every file repeats one motion, so a fit on some would be scored "
         "on their own motion; the files are split as one log, in interleaved %g s blocks, 1 in "
         "%.0f held out (%.0f %% of the samples).",
         o.samples.block_s, o.samples.heldout_every, 100 * heldout_share);
   } else {
-    const std::vector<std::size_t>& held = split.groups[split.selection_group];
+    const std::vector<std::size_t>& held = groups[s.heldout_group];
     text = "Held out by file: " + file_names(log, held) + " (fitted on the other files)";
     text += "; for the transfer test, one at a time:";
-    for (std::size_t g = 0; g < split.groups.size(); ++g)
-      if (g != split.selection_group) {
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      if (g != s.heldout_group) {
         text += text.back() == ':' ? " " : "; ";
-        text += file_names(log, split.groups[g]);
+        text += file_names(log, groups[g]);
       }
     text += ".";
   }
   // Appended piece by piece (a chain of string + string trips GCC 12's -Wrestrict here).
-  for (const RepeatedMotion& r : split.repeats) {
+  for (const RepeatedMotion& r : s.repeats) {
     text += " ";
     text += file_names(log, {r.second});
     text += " repeats the motion of ";
@@ -201,8 +164,9 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
     text += format_sentence(
         " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
         "joint, below %.2g rad)",
-        static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance);
-    text += split.groups.size() > 1
+        static_cast<double>(r.common_samples), r.rms_position_difference,
+        o.samples.repeat_tolerance);
+    text += groups.size() > 1
                 ? ", so they are held out together: a fit on one would be scored on its own motion."
                 : ".";
   }
@@ -210,11 +174,10 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
 }
 
 /// How rows are held out, in a phrase: by file (which) or by time blocks (their length).
-std::string heldout_method(const Log& log, const FileSplit& split, const JointSamples& s,
-                           const DiagnoseOptions& o) {
+std::string heldout_method(const Log& log, const JointSamples& s, const DiagnoseOptions& o) {
   if (!holds_rows_out(s)) return "none";
-  if (split.groups.size() > 1)
-    return "by file: " + file_names(log, split.groups[split.selection_group]);
+  if (s.heldout_file_groups.size() > 1)
+    return "by file: " + file_names(log, s.heldout_file_groups[s.heldout_group]);
   return format_sentence("by time blocks: 1 in %.0f of interleaved %g s blocks",
                          o.samples.heldout_every, o.samples.block_s);
 }
@@ -222,18 +185,18 @@ std::string heldout_method(const Log& log, const FileSplit& split, const JointSa
 /// The folds a candidate's gain must transfer to (each group of files but the selection's held
 /// out in turn, fitted on the rest), and every held-out group (the selection's first) scored only
 /// outside the range of q its fit saw.
-void held_out_folds(const Log& log, const FileSplit& split, const EffectDesign& design,
-                    const JointSamples& s, std::vector<TransferFold>& transfer,
-                    std::vector<OutsideFold>& outside) {
-  if (split.groups.size() < 2) return;
-  std::vector<std::size_t> order{split.selection_group};
-  for (std::size_t g = 0; g < split.groups.size(); ++g)
-    if (g != split.selection_group) order.push_back(g);
+void held_out_folds(const Log& log, const EffectDesign& design, const JointSamples& s,
+                    std::vector<TransferFold>& transfer, std::vector<OutsideFold>& outside) {
+  const std::vector<std::vector<std::size_t>>& groups = s.heldout_file_groups;
+  if (groups.size() < 2) return;
+  std::vector<std::size_t> order{s.heldout_group};
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    if (g != s.heldout_group) order.push_back(g);
   for (std::size_t g : order) {
     JointSamples fold = s;
-    fold.heldout = rows_of(log, split.groups[g], s.heldout.size());
-    const std::string name = file_names(log, split.groups[g]);
-    if (g != split.selection_group) transfer.push_back({name, design.accumulate(fold)});
+    fold.heldout = file_group_rows(log, groups[g]);
+    const std::string name = file_names(log, groups[g]);
+    if (g != s.heldout_group) transfer.push_back({name, design.accumulate(fold)});
     std::vector<char> fit_rows(fold.heldout.size());
     for (std::size_t k = 0; k < fit_rows.size(); ++k)
       fit_rows[k] = !fold.heldout[k];
@@ -398,9 +361,8 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   const int joints = model.joint_count();
   Diagnosis out;
   out.samples = std::move(setup.samples);
-  const FileSplit split = split_by_file(log, out.samples, options);
-  out.heldout_split = split_sentence(log, split, out.samples, options);
-  out.heldout_method = heldout_method(log, split, out.samples, options);
+  out.heldout_split = split_sentence(log, out.samples, options);
+  out.heldout_method = heldout_method(log, out.samples, options);
   const JointSamples& s = out.samples;
   std::vector<char> training(s.heldout.size());
   for (std::size_t k = 0; k < training.size(); ++k)
@@ -455,7 +417,7 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   out.groups = design.groups();
   std::vector<TransferFold> transfer;
   std::vector<OutsideFold> outside;
-  held_out_folds(log, split, design, s, transfer, outside);
+  held_out_folds(log, design, s, transfer, outside);
   EffectSelection sel =
       select_effects(grams, transfer, outside, out.groups, design.declared_columns(), selection,
                      analysis.variance_inflation, options);

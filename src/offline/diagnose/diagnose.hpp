@@ -35,9 +35,6 @@ struct DiagnoseOptions {
   /// A claimed coefficient must be this many standard errors from zero (Wald statistic per
   /// column, standard errors inflated for the residual's autocorrelation).
   double min_standard_errors = 3.0;
-  /// Several files: two files repeat one motion when the RMS of Δq over their common length is
-  /// below this on every joint [rad] (repeated_motions); such files are held out together.
-  double repeat_tolerance = 0.01;
   /// IdentifyOptions::inertia_prior for diagnose's fits: one strength holds for every fit of the
   /// selection and the written model, `inertia_prior_strength` where it is given, else the one
   /// identify would write for the declared model (choose_inertia_prior on the training rows, kept
