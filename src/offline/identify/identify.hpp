@@ -1,3 +1,8 @@
+// Folder identify/: `tpf identify`: the declared model's design over the column families of
+// effects/ (EffectDesign), its linear fit (fit/) with the robot file's inertias as a prior, the
+// friction curves (Ceres), the held-out and consistency checks. It reads the samples of samples/
+// and hands diagnose/ its result (Identification).
+//
 // `tpf identify`: the declared model of an arm (rigid-body base parameters with armature,
 // Stribeck + viscous friction with load dependence) from a log, with held-out validation.
 #pragma once

@@ -29,7 +29,7 @@ std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
                                              const SampleOptions& options);
 
 /// The rows of `files` (indices of `log`'s files) marked 1, the others 0: the rows of a group of
-/// JointSamples::heldout_file_groups, held out in its turn by diagnose's transfer test.
+/// JointSamples::heldout_file_groups, held out one at a time by diagnose's transfer test.
 std::vector<char> file_group_rows(const Log& log, const std::vector<std::size_t>& files);
 
 }  // namespace tpf::offline

@@ -1,3 +1,6 @@
+// Folder validate/: `tpf validate` only: a saved parameter file scored on other logs, every row
+// held out (decide_held_out_rows with all_held_out).
+//
 // `tpf validate`: a saved model applied to other logs (held out by log), scored per joint and
 // regime in the log's effort unit, and against the joint torque sensor where there is one.
 #pragma once

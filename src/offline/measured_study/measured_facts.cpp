@@ -1,4 +1,4 @@
-#include "offline/validate/measured_facts.hpp"
+#include "offline/measured_study/measured_facts.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 #include <span>
 
 #include "offline/log/log.hpp"
+#include "offline/measured_study/sensor_candidates.hpp"
 #include "offline/samples/joint_samples.hpp"
-#include "offline/validate/sensor_candidates.hpp"
 
 namespace tpf::offline {
 
