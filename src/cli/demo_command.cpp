@@ -6,8 +6,8 @@
 
 #include "commands.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
+#include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
-#include "offline/pipeline/measured_report.hpp"
 #include "option_validators.hpp"
 #include "tpf/common/error.hpp"
 

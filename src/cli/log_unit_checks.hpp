@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "offline/common/run_time_types.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/unit_check.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "tpf/dynamics/rnea.hpp"
 
 namespace tpf::cli {

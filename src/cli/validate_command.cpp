@@ -9,8 +9,8 @@
 #include "commands.hpp"
 #include "compensator_gate_printout.hpp"
 #include "core/common/atomic_file.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "offline/validate/validation.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
@@ -32,6 +32,7 @@ void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
   const int joints = nominal.model.joint_count();
   SampleOptions options;
   options.regimes.static_velocity = a.static_velocity;
+  options.all_held_out = true;  // fitted on other logs: every row of this one is held out
   const JointSamples samples = extract_joint_samples(log, nominal.model.torque_constant, options);
   std::vector<std::string> notes;
   // One column per estimate; the compensator (--weights) becomes one more here.

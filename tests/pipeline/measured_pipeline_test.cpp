@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
-#include "offline/pipeline/measured_report.hpp"
 #include "support/page_structure.hpp"
 
 namespace tpf::offline {

@@ -1,7 +1,7 @@
 #include "offline/pipeline/demo_index.hpp"
 
 #include "offline/evaluate/evaluation_report.hpp"
-#include "offline/pipeline/measured_report.hpp"
+#include "offline/measured_study/measured_report.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
 

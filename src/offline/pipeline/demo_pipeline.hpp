@@ -1,3 +1,6 @@
+// Folder pipeline/: `tpf demo`: every stage of the loop in order (simulate, identify, diagnose,
+// train, calibrate, evaluate, then the measured study of measured_study/) and the one report.
+//
 // `tpf demo`: the whole loop on the digital twin, from simulation to one report.
 #pragma once
 
@@ -10,7 +13,7 @@
 
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/evaluate/evaluation.hpp"
-#include "offline/pipeline/measured_pipeline.hpp"
+#include "offline/measured_study/measured_pipeline.hpp"
 #include "offline/report/html_report.hpp"
 
 namespace tpf::offline {

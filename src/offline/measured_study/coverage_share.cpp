@@ -1,4 +1,4 @@
-#include "offline/validate/coverage_share.hpp"
+#include "offline/measured_study/coverage_share.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,8 @@
+// Folder fit/: the weighted least-squares fit from accumulated Gram matrices (DesignGrams,
+// fit_columns), the AVX kernels that reproduce Eigen's summation order (GramRowBlock,
+// ThetaProducts) and the two threading helpers of the offline passes (parallel_halves,
+// parallel_jobs). It knows nothing of logs, models or effects (only regimes/' labels).
+//
 // Least squares from accumulated Gram matrices: one pass over an hour-long log, then any subset
 // of columns can be fitted on the training blocks and scored on the held-out blocks for free.
 #pragma once

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "offline/pipeline/measured_pipeline.hpp"
+#include "offline/measured_study/measured_pipeline.hpp"
 #include "offline/report/html_report.hpp"
 
 namespace tpf::offline {

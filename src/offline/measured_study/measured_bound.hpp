@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "offline/validate/validation.hpp"
 
 namespace tpf::offline {

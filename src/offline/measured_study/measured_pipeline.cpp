@@ -1,4 +1,4 @@
-#include "offline/pipeline/measured_pipeline.hpp"
+#include "offline/measured_study/measured_pipeline.hpp"
 
 #include <array>
 #include <chrono>
@@ -11,12 +11,12 @@
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
+#include "offline/measured_study/low_pass_choice.hpp"
+#include "offline/measured_study/noise_floor.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
-#include "offline/validate/low_pass_choice.hpp"
-#include "offline/validate/noise_floor.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 #include "tpf/model/load_robot.hpp"
 

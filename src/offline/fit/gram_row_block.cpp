@@ -1,10 +1,10 @@
-#include "offline/identify/gram_row_block.hpp"
+#include "offline/fit/gram_row_block.hpp"
 
 #include <algorithm>
 #include <utility>
 #include <vector>
 
-#include "offline/identify/eigen_order_kernels.hpp"
+#include "offline/fit/eigen_order_kernels.hpp"
 
 namespace tpf::offline {
 namespace {

@@ -1,4 +1,4 @@
-#include "offline/identify/gram_fit.hpp"
+#include "offline/fit/gram_fit.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>

@@ -1,11 +1,12 @@
-#include "offline/identify/joint_samples.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
 
-#include "offline/identify/parallel_halves.hpp"
+#include "offline/fit/parallel_halves.hpp"
+#include "offline/samples/held_out_rows.hpp"
 #include "offline/signal/acceleration.hpp"
 #include "offline/signal/segments.hpp"
 #include "tpf/common/error.hpp"
@@ -27,17 +28,6 @@ bool identification_column(std::string_view name) {
 bool holds_rows_out(const JointSamples& samples) {
   return std::any_of(samples.heldout.begin(), samples.heldout.end(),
                      [](char held) { return held != 0; });
-}
-
-std::vector<char> interleaved_heldout_blocks(const Eigen::VectorXd& t,
-                                             const SampleOptions& options) {
-  std::vector<char> heldout(static_cast<std::size_t>(t.size()), 0);
-  for (Eigen::Index k = 0; k < t.size(); ++k) {
-    const long block = static_cast<long>(std::floor((t[k] - t[0]) / options.block_s));
-    heldout[static_cast<std::size_t>(k)] =
-        (block % options.heldout_every) == options.heldout_every - 1;
-  }
-  return heldout;
 }
 
 std::string nothing_held_out_note(const JointSamples& s, const SampleOptions& options) {
@@ -157,18 +147,7 @@ JointSamples extract_joint_samples(const Log& log, const Eigen::VectorXd& torque
                         std::to_string(n - static_cast<Eigen::Index>(s.invalid_count)) +
                         "): nothing to identify from");
 
-  // Held-out split: the last file of a several-file log (fit on the others), else interleaved
-  // time blocks; none when the caller scores on other logs.
-  s.heldout.assign(n, 0);
-  const bool by_file =
-      log.file_starts.size() > 1 && log.file_starts.back() > 0 && log.file_starts.back() < n;
-  if (options.hold_out && by_file) {
-    s.heldout_file = static_cast<int>(log.file_starts.size());
-    for (Eigen::Index k = log.file_starts.back(); k < n; ++k)
-      s.heldout[k] = 1;
-  } else if (options.hold_out) {
-    s.heldout = interleaved_heldout_blocks(s.t, options);
-  }
+  decide_held_out_rows(log, options, s);
   return s;
 }
 

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 

@@ -1,4 +1,4 @@
-#include "offline/pipeline/measured_bound_report.hpp"
+#include "offline/measured_study/measured_bound_report.hpp"
 
 #include <algorithm>
 #include <cmath>

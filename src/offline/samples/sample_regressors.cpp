@@ -1,9 +1,9 @@
-#include "offline/identify/sample_regressors.hpp"
+#include "offline/samples/sample_regressors.hpp"
 
 #include <algorithm>
 #include <utility>
 
-#include "offline/identify/parallel_halves.hpp"
+#include "offline/fit/parallel_halves.hpp"
 #include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {

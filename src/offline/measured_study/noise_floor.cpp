@@ -1,4 +1,4 @@
-#include "offline/validate/noise_floor.hpp"
+#include "offline/measured_study/noise_floor.hpp"
 
 #include <algorithm>
 #include <cmath>

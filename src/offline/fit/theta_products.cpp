@@ -1,8 +1,8 @@
-#include "offline/identify/theta_products.hpp"
+#include "offline/fit/theta_products.hpp"
 
 #include <algorithm>
 
-#include "offline/identify/eigen_order_kernels.hpp"
+#include "offline/fit/eigen_order_kernels.hpp"
 
 namespace tpf::offline {
 namespace {

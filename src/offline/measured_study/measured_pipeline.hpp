@@ -1,3 +1,10 @@
+// Folder measured_study/: the study of the measured Kinova Gen3 logs that tpf demo runs
+// (MEASURED): the loop below, the facts the logs can and cannot decide (measured_facts), what the
+// sensor residual holds (sensor_candidates, fitted on that residual per joint), the causal
+// current low-pass, the noise floor, the coverage of the fitted range and the bound against
+// oracles, and their report. It reads identify/, diagnose/ and validate/; tpf validate does not
+// read it.
+//
 // The loop on measured data: the Kinova Gen3 logs (data/real/kinova-gen3), held out by file —
 // identify, diagnose and train on the fitting files, score the current-based joint torque against
 // the torque sensor on the held-out files, test what the residual holds, and say what the files
@@ -11,9 +18,9 @@
 
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/identify/identify.hpp"
-#include "offline/pipeline/measured_bound.hpp"
-#include "offline/validate/measured_facts.hpp"
-#include "offline/validate/sensor_candidates.hpp"
+#include "offline/measured_study/measured_bound.hpp"
+#include "offline/measured_study/measured_facts.hpp"
+#include "offline/measured_study/sensor_candidates.hpp"
 #include "offline/validate/validation.hpp"
 
 namespace tpf::offline {

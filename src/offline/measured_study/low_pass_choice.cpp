@@ -1,4 +1,4 @@
-#include "offline/validate/low_pass_choice.hpp"
+#include "offline/measured_study/low_pass_choice.hpp"
 
 #include <algorithm>
 #include <cmath>

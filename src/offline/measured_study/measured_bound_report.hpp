@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "offline/pipeline/measured_bound.hpp"
+#include "offline/measured_study/measured_bound.hpp"
 #include "offline/report/html_report.hpp"
 
 namespace tpf::offline {

@@ -5,9 +5,9 @@
 #include <Eigen/Core>
 #include <span>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
-#include "offline/validate/sensor_candidates.hpp"
+#include "offline/measured_study/sensor_candidates.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 

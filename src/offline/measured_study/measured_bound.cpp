@@ -1,12 +1,12 @@
-#include "offline/pipeline/measured_bound.hpp"
+#include "offline/measured_study/measured_bound.hpp"
 
 #include <cmath>
 #include <limits>
 
-#include "offline/validate/coverage_share.hpp"
-#include "offline/validate/low_pass_choice.hpp"
-#include "offline/validate/noise_floor.hpp"
-#include "offline/validate/sensor_candidates.hpp"
+#include "offline/measured_study/coverage_share.hpp"
+#include "offline/measured_study/low_pass_choice.hpp"
+#include "offline/measured_study/noise_floor.hpp"
+#include "offline/measured_study/sensor_candidates.hpp"
 
 namespace tpf::offline {
 namespace {

@@ -1,4 +1,4 @@
-#include "offline/pipeline/measured_report.hpp"
+#include "offline/measured_study/measured_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/common/atomic_file.hpp"
-#include "offline/pipeline/measured_bound_report.hpp"
+#include "offline/measured_study/measured_bound_report.hpp"
 #include "offline/report/bar_chart.hpp"
 #include "offline/report/line_plot.hpp"
 #include "offline/report/scatter_plot.hpp"

@@ -1,4 +1,4 @@
-#include "offline/validate/sensor_candidates.hpp"
+#include "offline/measured_study/sensor_candidates.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -7,10 +7,10 @@
 #include <limits>
 
 #include "offline/log/torque_sensor.hpp"
+#include "offline/measured_study/noise_floor.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/causal_low_pass.hpp"
 #include "offline/signal/periodogram.hpp"
-#include "offline/validate/noise_floor.hpp"
 
 namespace tpf::offline {
 namespace {
