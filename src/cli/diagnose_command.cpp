@@ -54,7 +54,7 @@ tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
   identify_options.inertia_prior = a.inertia_prior;
   Identification id = identify(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
-                                          tpf::cli::check_log_units(model, id.samples));
+                                          tpf::cli::check_log_units(model, id.samples), a.verbose);
   DiagnoseOptions with_identify_prior = options;  // its written model fitted as identify's
   if (a.inertia_prior)
     with_identify_prior.inertia_prior_strength = id.inertia_prior.written_strength;
