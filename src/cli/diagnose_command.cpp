@@ -171,11 +171,14 @@ namespace tpf::cli {
 void register_diagnose_command(CLI::App& app) {
   auto a = std::make_shared<DiagnoseArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "diagnose",
+      "diagnose", "Find which physical effect the nominal model misses, add it, check it held out");
+  cmd->footer(
       "Fit the declared model, find which candidate physical effect (load-dependent friction, "
       "ripple, payload, temperature, spring, delay, coupling) explains the residual on held-out "
       "data, add it, refit and report before/after; --params gets the model refitted on every "
-      "sample");
+      "sample"
+      "\nExample: tpf diagnose --log ex.csv --robot data/arm4.robot.json --report diagnose.html "
+      "--params arm4.params.json");
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz); several are read as one, each file its own segment")
       ->required()

@@ -115,7 +115,7 @@ void print_summary(const EstimateSummary& s, const EstimateCommandOptions& o) {
   std::printf("estimate: %zu contact episodes, in contact %.1f %% of the cycles\n",
               s.episodes.size(), 100.0 * static_cast<double>(s.contact_cycles) / rows);
   for (int b = 0; b < tpf::kEstimatorStatusBits; ++b)
-    if (const long n = s.status_cycles[static_cast<std::size_t>(b)]; n > 0)
+    if (const long n = s.status_cycles[static_cast<std::size_t>(b)]; n > 0 || o.verbose)
       std::printf("  status %-30s %8ld cycles (%.1f %%)\n", tpf::estimator_status_name(b), n,
                   100.0 * static_cast<double>(n) / rows);
   if (s.episodes.empty()) return;
@@ -217,7 +217,8 @@ void register_estimate_command(CLI::App& app) {
                   "Contacts apart by less than this are one episode [s]")
       ->capture_default_str()
       ->check(non_negative());
-  cmd->add_flag("--verbose", o->verbose, "List every episode (default: the first 15)");
+  cmd->add_flag("--verbose", o->verbose,
+                "List every episode (default: the first 15) and every status bit");
   cmd->callback([o] {
     const std::string report = o->report.empty() ? default_report_path(o->out) : o->report;
     refuse_overwriting_inputs(

@@ -55,10 +55,12 @@ namespace tpf::cli {
 void register_identify_command(CLI::App& app) {
   auto a = std::make_shared<IdentifyArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "identify",
+      "identify", "Identify the nominal model (rigid body, armature, friction) from a log");
+  cmd->footer(
       "Identify rigid-body base parameters (with armature) and Stribeck + load-dependent friction "
       "from a log by weighted least squares and Ceres; validate on held-out data (the last file "
-      "of several, else every 4th 5 s block), then write the model refitted on every sample");
+      "of several, else every 4th 5 s block), then write the model refitted on every sample"
+      "\nExample: tpf identify --log ex.csv --robot data/arm4.robot.json --out arm4.params.json");
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz; i<j> in mA or tau<j> in N·m); several are read as "
                   "one, each file its own segment")

@@ -96,14 +96,17 @@ namespace tpf::cli {
 
 void register_import_command(CLI::App& app) {
   auto a = std::make_shared<ImportArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "import",
+  CLI::App* cmd =
+      app.add_subcommand("import", "Turn foreign CSV files into tpf logs through a column map");
+  cmd->footer(
       "Turn foreign CSV files (plain or .gz) into tpf logs with a column map (JSON: time column "
       "and unit or sample rate, q, dq, current or torque, torque sensor, temperature, units, "
       "scale, sign, offset, joint order, several files per recording joined by index or time, "
       "motor-side columns through a transmission, q-dot and q-ddot derived from q; "
       "docs/log-format.md). Reports irregular time stamps and what was done about them, each "
-      "conversion, and where the torque sensor is missing or flat");
+      "conversion, and where the torque sensor is missing or flat"
+      "\nExample: tpf import --map data/real/kinova-gen3/kinova.import.json --out-dir logs/ "
+      "raw/*.csv.gz");
   cmd->add_option("--map", a->map, "Column map, e.g. data/real/kinova-gen3/kinova.import.json")
       ->required()
       ->check(input_file());

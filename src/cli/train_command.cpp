@@ -288,9 +288,12 @@ void register_train_command(CLI::App& app) {
   o->tcn.max_seconds = 0.0;
   o->tcn.min_learning_rate = 5e-5;  // the sixth halving of 2e-3 stops (docs/tcn-training.md)
   CLI::App* cmd = app.add_subcommand(
-      "train",
+      "train", "Train the friction compensator (TCN) on contact-free excitation logs");
+  cmd->footer(
       "Train the friction compensator (TCN) on contact-free excitation logs: target = effort − "
-      "the nominal model's prediction, inputs = what the run-time estimator feeds it");
+      "the nominal model's prediction, inputs = what the run-time estimator feeds it"
+      "\nExample: tpf train --log ex.csv --params arm4.params.json --per-joint --out "
+      "arm4.tcn.json");
   cmd->add_option("--log", o->logs, "Contact-free excitation log(s)")
       ->required()
       ->check(input_file());

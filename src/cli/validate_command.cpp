@@ -73,11 +73,14 @@ namespace tpf::cli {
 void register_validate_command(CLI::App& app) {
   auto a = std::make_shared<ValidateArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "validate",
+      "validate", "Score a saved parameter file on other logs (and against a torque sensor)");
+  cmd->footer(
       "Apply a saved parameter file to other logs (held out by log: none of them was fitted on) "
       "and print the effort RMSE per joint and regime in the log's unit, and, where the log has "
       "a joint torque sensor (tau_sensor<j>), the RMSE of the current-based joint torque "
-      "Kt*i - friction - armature*q'' against it (Kt only and the maker's tau_maker<j> beside)");
+      "Kt*i - friction - armature*q'' against it (Kt only and the maker's tau_maker<j> beside)"
+      "\nExample: tpf validate --params arm4.params.json --robot data/arm4.robot.json --log "
+      "held-out.csv");
   cmd->add_option("--params", a->params, "Parameter file (tpf-params) from identify/diagnose")
       ->required()
       ->check(input_file());
