@@ -56,8 +56,8 @@ struct EstimateSummary {
   long contact_cycles = 0;
 };
 
-EstimateSummary replay(const EstimateCommandOptions& o, const tpf::offline::ReplaySetup& setup,
-                       const tpf::offline::Log& log) {
+EstimateSummary replay_log(const EstimateCommandOptions& o, const tpf::offline::ReplaySetup& setup,
+                           const tpf::offline::Log& log) {
   using namespace tpf::offline;
   EstimateSummary s;
   s.joints = setup.nominal.model.joint_count();
@@ -109,7 +109,7 @@ nlohmann::json summary_json(const EstimateSummary& s, const EstimateCommandOptio
   return j;
 }
 
-void print_summary(const EstimateSummary& s, const EstimateCommandOptions& o) {
+void print_estimate_summary(const EstimateSummary& s, const EstimateCommandOptions& o) {
   using namespace tpf::offline;
   const double rows = static_cast<double>(std::max<Eigen::Index>(s.log.rows(), 1));
   std::printf("estimate: %zu contact episodes, in contact %.1f %% of the cycles\n",
@@ -130,8 +130,8 @@ void print_summary(const EstimateSummary& s, const EstimateCommandOptions& o) {
     std::printf("  … %zu more (--verbose or --json: all)\n", s.episodes.size() - shown);
 }
 
-void write_report(const EstimateSummary& s, const EstimateCommandOptions& o,
-                  const std::string& report) {
+void write_estimate_page(const EstimateSummary& s, const EstimateCommandOptions& o,
+                         const std::string& report) {
   using namespace tpf::offline;
   EstimatePageData page;
   page.log = o.log;
@@ -160,7 +160,7 @@ void run_estimate(const EstimateCommandOptions& o, const std::string& report) {
   setup.parameters = tpf::load_estimator_parameters(o.estimator, joints);
   const Log log = tpf::cli::read_replayed_log(o.log, false);
   tpf::cli::require_log_joint_count(log.joint_count(), o.log, o.model.robot);
-  const EstimateSummary s = replay(o, setup, log);
+  const EstimateSummary s = replay_log(o, setup, log);
   std::printf("estimate: %s (%s), %lld rows, %.1f s; %d joints, %s, %s\n", o.log.c_str(),
               s.simulated ? "SIMULATED" : "MEASURED", static_cast<long long>(log.rows()),
               log.rows() > 1 ? log.col("t")[log.rows() - 1] - log.col("t")[0] : 0.0, joints,
@@ -171,10 +171,10 @@ void run_estimate(const EstimateCommandOptions& o, const std::string& report) {
               describe(setup.weights).c_str());
   tpf::cli::print_compensated_joints("estimate", setup.weights, joints,
                                      setup.parameters.compensator_min_held_out_gain);
-  print_summary(s, o);
+  print_estimate_summary(s, o);
   // Every output is complete or absent: written only once the replay has succeeded.
   write_log(o.out, s.log);
-  write_report(s, o, report);
+  write_estimate_page(s, o, report);
   if (!o.json.empty()) tpf::write_file_atomically(o.json, summary_json(s, o).dump(1) + "\n");
   std::printf("estimate: wrote %s, %s%s%s\n", o.out.c_str(), report.c_str(),
               o.json.empty() ? "" : ", ", o.json.c_str());

@@ -177,6 +177,34 @@ TEST(CliEstimate, AContactFreeLogHasNoEpisode) {
               est.values.size());
 }
 
+TEST(CliEstimate, AMeasuredContactFreeLogHasNoEpisode) {
+  // The Kinova Gen3 logs (MEASURED, MIT, data/real/kinova-gen3): a model identified on the three
+  // fitting files, the estimator calibrated on one of them, replayed over a held-out file.
+  CliSandbox box("estimate_measured");
+  const std::string gen3 = kShippedData + "/real/kinova-gen3/";
+  const std::string logs = gen3 + "logs/";
+  const std::string robot = " --robot " + gen3 + "gen3.robot.json";
+  const CliResult identify = box.tpf(
+      "identify --quiet --log " + logs + "RunTrajectory1.csv.gz " + logs + "Trajectory1.csv.gz " +
+      logs + "RecordTrajectory_quadratic.csv.gz" + robot + " --out gen3.params.json");
+  ASSERT_EQ(identify.exit_code, 0) << identify.err;
+  const std::string model = " --params gen3.params.json" + robot;
+  const CliResult calibrate =
+      box.tpf("calibrate --log " + logs + "RunTrajectory1.csv.gz" + model + " --out gen3.e.json");
+  ASSERT_EQ(calibrate.exit_code, 0) << calibrate.err;
+  const CliResult r = box.tpf("estimate --log " + logs + "opti_traj_testing1.csv.gz" + model +
+                              " --estimator gen3.e.json --out measured.est.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(MEASURED), 4741 rows"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 contact episodes"), std::string::npos) << r.out;
+  const offline::Log est = offline::read_log(box / "measured.est.csv");
+  EXPECT_EQ(est.col("est_contact").maxCoeff(), 0.0);
+  EXPECT_TRUE(est.col("est_tau_ext7").allFinite());
+  const std::string page = CliSandbox::slurp(box / "measured.est.html");
+  EXPECT_NE(page.find("MEASURED"), std::string::npos);
+  EXPECT_NE(page.find("MIT"), std::string::npos);  // the licence, from the log's metadata
+}
+
 TEST(CliEstimate, BadInputIsRefusedNamingTheFileAndLeavesNoOutput) {
   CliSandbox box("estimate_bad_input");
   simulate(box, "excitation", 3, 2.0, "arm4.csv");

@@ -11,7 +11,7 @@ namespace tpf::offline {
 
 namespace {
 
-std::string fixed(double v, const char* format) {
+std::string episode_cell(double v, const char* format) {
   char text[48];
   std::snprintf(text, sizeof text, format, v);
   return text;
@@ -27,7 +27,7 @@ Series contact_bar(const std::string& name, const Eigen::VectorXd& t, const Eige
   return s;
 }
 
-std::string joint_list(const std::vector<int>& joints) {
+std::string episode_joint_list(const std::vector<int>& joints) {
   std::string list;
   for (int j : joints) {
     if (!list.empty()) list += ' ';
@@ -45,11 +45,11 @@ Table episode_table(const std::vector<ContactEpisode>& episodes, int joints) {
     table.header.push_back("peak |tau" + std::to_string(j) + "| [N*m]");
   for (std::size_t k = 0; k < episodes.size(); ++k) {
     const ContactEpisode& e = episodes[k];
-    std::vector<std::string> row{std::to_string(k + 1), fixed(e.start_s, "%.3f"),
-                                 fixed(e.end_s, "%.3f"), fixed(e.end_s - e.start_s, "%.3f"),
-                                 joint_list(e.joints)};
+    std::vector<std::string> row{
+        std::to_string(k + 1), episode_cell(e.start_s, "%.3f"), episode_cell(e.end_s, "%.3f"),
+        episode_cell(e.end_s - e.start_s, "%.3f"), episode_joint_list(e.joints)};
     for (int j = 0; j < joints; ++j)
-      row.push_back(fixed(e.peak_abs_torque[j], "%.3g"));
+      row.push_back(episode_cell(e.peak_abs_torque[j], "%.3g"));
     table.rows.push_back(std::move(row));
   }
   return table;
