@@ -1,7 +1,9 @@
 // `tpf estimate`: the run-time estimator replayed over any recorded log — the est_* columns the arm
 // loop writes, the contact episodes it found, and a plot of τ̂_ext against time.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>

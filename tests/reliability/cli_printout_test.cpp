@@ -32,7 +32,7 @@ TEST(CliPrintout, EveryCommandsDefaultFitsAScreenAndVerbosePrintsMore) {
   const std::string robot = " --robot " + d + "arm4.robot.json";
   const std::string model = " --params " + d + "arm4.params.json";
   const std::string weights = " --weights " + d + "weights/arm4.tcn.json";
-  box.write("foreign.csv", [] {
+  const std::string foreign = [] {
     std::string csv = "Time,P1,P2,V1,V2,C1,C2\n";
     for (int k = 0; k < 200; ++k) {
       const double t = 0.01 * k;
@@ -40,7 +40,12 @@ TEST(CliPrintout, EveryCommandsDefaultFitsAScreenAndVerbosePrintsMore) {
              std::to_string(0.01 * k) + ",0.2\n";
     }
     return csv;
-  }());
+  }();
+  std::string recordings;  // six recordings of the same foreign file
+  for (int k = 1; k <= 6; ++k) {
+    box.write("foreign" + std::to_string(k) + ".csv", foreign);
+    recordings += " foreign" + std::to_string(k) + ".csv";
+  }
   box.write("map.json",
             R"({"format": "tpf-import", "version": 1, "joints": 2,
  "time": {"column": "Time", "unit": "s"},
@@ -67,7 +72,7 @@ TEST(CliPrintout, EveryCommandsDefaultFitsAScreenAndVerbosePrintsMore) {
        true},
       {"estimate",
        "estimate --log c.csv" + model + " --estimator e.json" + weights + " --out c.est.csv", true},
-      {"import", "import --map map.json --out imported.csv foreign.csv", false},
+      {"import", "import --map map.json --out-dir imported" + recordings, true},
       {"upgrade", "upgrade --params old.params.json", false},
   };
   for (const CommandRun& run : runs) {

@@ -1,7 +1,9 @@
 #include "offline/replay/contact_episodes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "tpf/common/error.hpp"
 
