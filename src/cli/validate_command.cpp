@@ -24,7 +24,17 @@ struct ValidateArgs {
   std::string params, robot, json, weights, estimator;
   std::vector<std::string> logs;
   double static_velocity = 1e-4;
+  bool verbose = false;
 };
+
+/// validation_text without its sensor comparison per regime and per file (from "the same per
+/// regime" on): the default printout; --verbose prints it whole.
+std::string brief_validation_text(const std::string& text) {
+  const std::size_t cut = text.find("the same per regime");
+  if (cut == std::string::npos) return text;
+  return text.substr(0, cut) +
+         "(--verbose: the sensor comparison per regime and per file; --json: every number)\n";
+}
 
 void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
   using namespace tpf::offline;
@@ -59,7 +69,8 @@ void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
     sensor = sensor || score.samples > 0;
   for (const std::string& n : notes)  // the armature matters only against a sensor
     if (sensor || n.find("armature") == std::string::npos) std::printf("note: %s\n", n.c_str());
-  std::printf("%s", validation_text(v).c_str());
+  const std::string text = validation_text(v);
+  std::printf("%s", (a.verbose ? text : brief_validation_text(text)).c_str());
   if (!a.json.empty()) {
     tpf::write_file_atomically(a.json, validation_json(v) + "\n");
     std::printf("wrote %s\n", a.json.c_str());
@@ -101,6 +112,8 @@ void register_validate_command(CLI::App& app) {
                   "the defaults; only the static-friction tracker and the q'' filter matter here)")
       ->check(input_file());
   cmd->add_option("--json", a->json, "The same numbers as JSON");
+  cmd->add_flag("--verbose", a->verbose,
+                "Also the torque-sensor comparison per regime and per file");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str()
       ->check(positive());

@@ -53,6 +53,11 @@ TEST(CliPrintout, EveryCommandsDefaultFitsAScreenAndVerbosePrintsMore) {
              "i": {"source": "C{j}", "unit": "A"}},
  "metadata": {"robot": "two-joint test", "source": "synthetic", "license": "CC0"}})");
   const std::string scenarios = " --scenario " + d + "scenarios/";
+  const std::string kinova = d + "real/kinova-gen3/logs/";
+  const std::string gen3 = " --robot " + d + "real/kinova-gen3/gen3.robot.json";
+  const std::string gen3_fitting = " " + kinova + "RunTrajectory1.csv.gz " + kinova +
+                                   "Trajectory1.csv.gz " + kinova +
+                                   "RecordTrajectory_quadratic.csv.gz";
   const std::vector<CommandRun> runs{
       {"simulate", "simulate" + scenarios + "excitation.json --seed 1 --duration 40 --out ex.csv",
        false},
@@ -74,6 +79,13 @@ TEST(CliPrintout, EveryCommandsDefaultFitsAScreenAndVerbosePrintsMore) {
        "estimate --log c.csv" + model + " --estimator e.json" + weights + " --out c.est.csv", true},
       {"import", "import --map map.json --out-dir imported" + recordings, true},
       {"upgrade", "upgrade --params old.params.json", false},
+      // 7 joints with torque sensors (MEASURED, Kinova Gen3): the sensor tables fit too.
+      {"identify measured", "identify --quiet --log" + gen3_fitting + gen3 + " --out gen3.json",
+       true},
+      {"validate measured",
+       "validate --params gen3.json" + gen3 + " --log " + kinova + "opti_traj_testing1.csv.gz " +
+           kinova + "opti_traj_testing2.csv.gz",
+       true},
   };
   for (const CommandRun& run : runs) {
     SCOPED_TRACE(run.name);
