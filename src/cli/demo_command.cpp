@@ -21,6 +21,7 @@ void register_demo_command(CLI::App& app) {
       "demo",
       "Run the whole loop on the digital twin and on the measured Kinova Gen3 logs and write one "
       "report (the README's main job)");
+  cmd->footer("Example: tpf demo --out demo   (then open demo/index.html)");
   cmd->add_option("--out", *out, "output folder for parameters, weights and the report")
       ->capture_default_str();
   cmd->add_option("--train-epochs", o->training_epochs,

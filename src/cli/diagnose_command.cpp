@@ -48,7 +48,7 @@ tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
   IdentifiedLog identified = identify_for_diagnosis(log, model, identify_options);
   const Identification& id = identified.identification;
   tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
-                                          tpf::cli::check_log_units(model, id.samples));
+                                          tpf::cli::check_log_units(model, id.samples), a.verbose);
   return diagnose(log, model, std::move(identified), options);
 }
 
@@ -161,11 +161,14 @@ namespace tpf::cli {
 void register_diagnose_command(CLI::App& app) {
   auto a = std::make_shared<DiagnoseArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "diagnose",
+      "diagnose", "Find which physical effect the nominal model misses, add it, check it held out");
+  cmd->footer(
       "Fit the declared model, find which candidate physical effect (load-dependent friction, "
       "ripple, payload, temperature, spring, delay, coupling) explains the residual on held-out "
       "data, add it, refit and report before/after; --params gets the model refitted on every "
-      "sample");
+      "sample"
+      "\nExample: tpf diagnose --log ex.csv --robot data/arm4.robot.json --report diagnose.html "
+      "--params arm4.params.json");
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz); several are read as one, each file its own segment")
       ->required()

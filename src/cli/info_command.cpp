@@ -85,6 +85,7 @@ void print_robot_summary(const std::string& robot_file) {
 
 void register_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Load a robot file and print its model, drives and pads");
+  cmd->footer("Example: tpf info --robot data/arm4.robot.json");
   auto robot = std::make_shared<std::string>(offline::data_file("arm4.robot.json").string());
   cmd->add_option("--robot", *robot, "robot file (JSON naming the URDF and pad layout)")
       ->capture_default_str()
