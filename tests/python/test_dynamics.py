@@ -150,3 +150,34 @@ def test_wrong_shapes_are_refused(robot):
         robot.rnea(np.zeros((2, n)), np.zeros((3, n)), np.zeros((2, n)))
     with pytest.raises(ValueError, match="link"):
         robot.point_jacobian(np.zeros(n), n + 1, np.zeros(3))
+
+
+def test_out_arrays_and_inputs_numpy_does_not_hold_exactly(robot):
+    q, dq, ddq = states(robot, 6, seed=4)
+    n = robot.joint_count
+    tau = robot.rnea(q[0], dq[0], ddq[0])
+    out = np.full(n, np.nan)
+    assert robot.rnea(q[0], dq[0], ddq[0], out=out) is out
+    np.testing.assert_array_equal(out, tau)
+    stacked = np.empty((6, n, n))
+    assert robot.compute_mass_matrix(q, out=stacked) is stacked
+    np.testing.assert_array_equal(stacked, robot.compute_mass_matrix(q))
+    # Lists, float32, Fortran order and strided views are converted: the same numbers.
+    np.testing.assert_array_equal(robot.rnea(list(q[0]), tuple(dq[0]), ddq[0]), tau)
+    np.testing.assert_array_equal(robot.rnea(np.asfortranarray(q), dq, ddq), robot.rnea(q, dq, ddq))
+    wide = np.zeros((6, 2 * n))
+    wide[:, ::2] = q
+    np.testing.assert_array_equal(robot.compute_gravity(wide[:, ::2]), robot.compute_gravity(q))
+    assert robot.compute_gravity(q[0].astype(np.float32)).dtype == np.float64
+    for bad in (np.empty(n + 1), np.empty(n, dtype=np.float32), np.empty((1, n)),
+                np.empty(2 * n)[::2]):
+        with pytest.raises(ValueError, match="out must be"):
+            robot.rnea(q[0], dq[0], ddq[0], out=bad)
+    frozen = np.empty(n)
+    frozen.flags.writeable = False
+    with pytest.raises(ValueError, match="out must be"):
+        robot.rnea(q[0], dq[0], ddq[0], out=frozen)
+    with pytest.raises(TypeError, match="q must be an array"):
+        robot.rnea("joint angles", dq[0], ddq[0])
+    with pytest.raises(ValueError, match="dq has shape"):
+        robot.rnea(q[0], dq[0, :-1], ddq[0])
