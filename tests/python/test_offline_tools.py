@@ -121,3 +121,15 @@ def test_bad_input_raises(paths, data):
     assert "4" in str(e.value) and "7" in str(e.value)
     with pytest.raises(TypeError):
         tpf.identify(paths["fit"], paths["robot"], 1e-4)  # options are keyword-only
+
+
+def test_diagnose_equals_the_cli(paths, tmp_path):
+    report, params = tmp_path / "cli.diagnosis.json", tmp_path / "cli.params.json"
+    cli("diagnose", "--log", paths["fit"][0], "--robot", paths["robot"], "--json", str(report),
+        "--params", str(params), "--quiet")
+    result = tpf.diagnose(paths["fit"][0], paths["robot"])
+    same(result.report, json.loads(report.read_text()))
+    result.save(str(tmp_path / "py.params.json"))
+    same(json.loads((tmp_path / "py.params.json").read_text()), json.loads(params.read_text()))
+    with pytest.raises(ValueError, match="min_improvement"):
+        tpf.diagnose(paths["fit"][0], paths["robot"], min_improvement=1.5)
