@@ -13,6 +13,7 @@ void bind_log(pybind11::module_& m);
 void bind_identification(pybind11::module_& m);
 void bind_validation(pybind11::module_& m);
 void bind_diagnosis(pybind11::module_& m);
+void bind_training(pybind11::module_& m);
 void bind_estimate(pybind11::module_& m);
 
 }  // namespace tpf::python

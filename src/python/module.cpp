@@ -5,7 +5,7 @@
 PYBIND11_MODULE(tpf, m) {
   m.doc() =
       "tpf: robot dynamics, friction, nominal model, tpf logs, the run-time estimator over logs, "
-      "identify, diagnose and validate (docs/python.md)";
+      "identify, diagnose, validate and train (docs/python.md)";
   tpf::python::bind_error(m);
   tpf::python::bind_robot(m);
   tpf::python::bind_friction(m);
@@ -14,5 +14,6 @@ PYBIND11_MODULE(tpf, m) {
   tpf::python::bind_identification(m);
   tpf::python::bind_validation(m);
   tpf::python::bind_diagnosis(m);
+  tpf::python::bind_training(m);
   tpf::python::bind_estimate(m);
 }

@@ -4,6 +4,7 @@
 import json
 import math
 import os
+import pathlib
 import subprocess
 
 import numpy as np
@@ -133,3 +134,35 @@ def test_diagnose_equals_the_cli(paths, tmp_path):
     same(json.loads((tmp_path / "py.params.json").read_text()), json.loads(params.read_text()))
     with pytest.raises(ValueError, match="min_improvement"):
         tpf.diagnose(paths["fit"][0], paths["robot"], min_improvement=1.5)
+
+
+def test_train_equals_the_cli(identified, paths, tmp_path):
+    _, params, _ = identified
+    short = ["--per-joint", "--max-epochs", "2", "--epoch-windows", "16", "--quiet"]
+    cli_out = tmp_path / "cli.tcn.json"
+    run = subprocess.run([os.environ["TPF_CLI"], "train", *sum((["--log", p] for p in paths["fit"]), []),
+                          "--params", str(params), "--robot", paths["robot"], "--out", str(cli_out),
+                          *short], check=True, capture_output=True, text=True)
+    result = tpf.train(paths["fit"], str(params), paths["robot"], str(tmp_path / "py.tcn.json"),
+                       per_joint=True, max_epochs=2, epoch_windows=16)
+    assert len(result["files"]) == 7 and len(result["networks"]) == 7
+    for j, (path, weights) in enumerate(zip(result["files"], result["weights"])):
+        assert path.endswith(f"py.tcn.joint{j + 1}.json")
+        same(weights, json.loads((tmp_path / f"cli.tcn.joint{j + 1}.json").read_text()))
+        assert weights == json.loads(pathlib.Path(path).read_text())
+    # The held-out verdict the CLI prints, line by line.
+    printed = [line[len("train:   "):] for line in run.stdout.splitlines()
+               if line.startswith("train:   joint")]
+    assert result["held_out_lines"] == printed
+    moving = result["held_out"]["moving"]
+    assert moving["nominal_rmse"].shape == (7,) and np.all(moving["rows"] > 0)
+    np.testing.assert_allclose(moving["gain"], 1 - moving["compensated_rmse"] / moving["nominal_rmse"],
+                               rtol=1e-12)
+    assert all(n["epochs"] <= 2 for n in result["networks"])
+    with pytest.raises(tpf.Error) as e:
+        tpf.train(paths["fit"], str(params), paths["robot"], str(tmp_path / "x.json"),
+                  without_input=["torque"])
+    assert e.value.field == "input"
+    with pytest.raises(ValueError, match="joint_hidden"):
+        tpf.train(paths["fit"], str(params), paths["robot"], str(tmp_path / "x.json"),
+                  joint_hidden=8)
