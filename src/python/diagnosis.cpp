@@ -26,7 +26,8 @@ struct DiagnoseResult {
 
 DiagnoseResult diagnose_logs(const py::object& logs, const std::string& robot,
                              double static_velocity, double min_improvement, bool inertia_prior) {
-  const offline::Log log = log_argument(logs, true);
+  const LogArgument read(logs, true);
+  const offline::Log& log = *read;
   const offline::ModelX model = load_robot<double, Eigen::Dynamic>(robot);
   if (log.joint_count() != model.joint_count())
     throw Error::at(log.source, 0, "",
@@ -51,7 +52,8 @@ void bind_diagnosis(py::module_& m) {
   py::class_<DiagnoseResult> c(m, "Diagnosis",
                                "tpf.diagnose's result: the written model and the diagnosis.");
   c.def_property_readonly(
-       "nominal", [](const DiagnoseResult& r) { return r.nominal; },
+       "nominal", [](DiagnoseResult& r) -> Nominal& { return r.nominal; },
+       py::return_value_policy::reference_internal,
        "the declared model with the effects claimed (tpf.NominalModel), as `--params` writes it")
       .def_readonly("source", &DiagnoseResult::source, "the log's path(s)")
       .def_readonly("refitted", &DiagnoseResult::refitted,

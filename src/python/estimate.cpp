@@ -114,7 +114,7 @@ py::dict estimate(const py::object& data, const std::string& params, const std::
   const std::vector<ReplaySample> samples =
       py::isinstance<py::dict>(data)
           ? samples_of_arrays(data.cast<py::dict>(), setup.nominal.model, pad_count)
-          : offline::estimator_samples(log_argument(data, false), setup.nominal.model, pad_count);
+          : offline::estimator_samples(*LogArgument(data, false), setup.nominal.model, pad_count);
   auto trace = std::make_unique<offline::EstimatorTrace>();
   {
     py::gil_scoped_release unlocked;

@@ -117,7 +117,8 @@ json fit_json(const offline::Identification& id, const offline::SampleOptions& o
 IdentifyResult identify_logs(const py::object& logs, const std::string& robot,
                              double static_velocity, bool load_friction, bool friction_from_sensor,
                              bool inertia_prior, bool hold_out) {
-  const offline::Log log = log_argument(logs, true);
+  const LogArgument read(logs, true);
+  const offline::Log& log = *read;
   const offline::ModelX model = load_robot<double, Eigen::Dynamic>(robot);
   if (log.joint_count() != model.joint_count())
     throw Error::at(log.source, 0, "",
@@ -148,7 +149,8 @@ void bind_identification(py::module_& m) {
       "tpf.identify's result: the nominal model, the fit quality the parameter file keeps under "
       "'fit', and the residual the held-out figures score.");
   c.def_property_readonly(
-       "nominal", [](const IdentifyResult& r) { return r.nominal; },
+       "nominal", [](IdentifyResult& r) -> Nominal& { return r.nominal; },
+       py::return_value_policy::reference_internal,
        "the identified model (tpf.NominalModel), refitted on every sample where rows were held out")
       .def_readonly("source", &IdentifyResult::source, "the log's path(s)")
       .def_property_readonly(

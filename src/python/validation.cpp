@@ -30,7 +30,8 @@ py::object validate_logs(const py::object& params, const py::object& logs,
                          const std::optional<std::string>& estimator, double static_velocity) {
   using namespace offline;
   const NominalModelX nominal = nominal_argument(params, robot);
-  const Log log = log_argument(logs, false);
+  const LogArgument read(logs, false);
+  const Log& log = *read;
   const int joints = nominal.model.joint_count();
   if (log.joint_count() != joints)
     throw Error::at(log.source, 0, "",

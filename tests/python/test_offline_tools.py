@@ -105,6 +105,11 @@ def test_identify_options_change_the_fit(paths):
     assert "inertia_prior" not in plain.fit
     np.testing.assert_array_equal(plain.nominal.friction.load_coulomb, 0)
     assert plain.fit["heldout_rmse"][0]["all"] is None  # nothing held out: JSON null
+    # A tpf.Log read beforehand gives the same fit as its path.
+    from_log = tpf.identify(tpf.read_log(paths["fit"][0]), paths["robot"], load_friction=False,
+                            inertia_prior=False, hold_out=False)
+    same(from_log.fit, plain.fit)
+    np.testing.assert_array_equal(from_log.nominal.base_values, plain.nominal.base_values)
 
 
 def test_bad_input_raises(paths, data):
