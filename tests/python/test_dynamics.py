@@ -1,6 +1,9 @@
 """The robot model from Python: the dynamics identities, an independent Jacobian form of the
-gravity torque and the mass matrix, finite differences of the kinematics, and batches equal to
-their samples."""
+gravity torque and the mass matrix, finite differences of the kinematics, batches equal to
+their samples, out= arrays, and the C++ core's own results to 1e-12."""
+import os
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -181,3 +184,25 @@ def test_out_arrays_and_inputs_numpy_does_not_hold_exactly(robot):
         robot.rnea("joint angles", dq[0], ddq[0])
     with pytest.raises(ValueError, match="dq has shape"):
         robot.rnea(q[0], dq[0, :-1], ddq[0])
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_equals_the_cpp_core(name, data, tmp_path):
+    """RNEA, gravity, M(q) and forward dynamics from Python against the same functions called
+    from C++ (tests/python/dynamics_reference.cpp) on 20 random states, to 1e-12."""
+    robot = tpf.Robot(str(data / name))
+    q, dq, ddq = states(robot, 20, seed=7)
+    n = robot.joint_count
+    np.savetxt(tmp_path / "states.csv", np.hstack([q, dq, ddq]), delimiter=",", fmt="%.17g")
+    subprocess.run([os.environ["TPF_DYNAMICS_REFERENCE"], str(data / name),
+                    str(tmp_path / "states.csv"), str(tmp_path / "out.csv")], check=True)
+    ref = np.loadtxt(tmp_path / "out.csv", delimiter=",", ndmin=2)
+    assert ref.shape == (20, 1 + 3 * n + n * n) and np.all(ref[:, 0] == n)
+    tau = robot.rnea(q, dq, ddq)
+    parts = [tau, robot.compute_gravity(q), robot.compute_mass_matrix(q).reshape(20, n * n),
+             robot.forward_dynamics(q, dq, tau)]
+    column = 1
+    for got in parts:
+        want = ref[:, column:column + got.shape[1]]
+        assert np.abs(got - want).max() <= 1e-12 * (1 + np.abs(want).max())
+        column += got.shape[1]
