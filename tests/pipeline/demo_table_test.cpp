@@ -53,6 +53,7 @@ TEST(DemoTable, StaticAndStaticToKineticAsTheReadmeStates) {
   DemoOptions o;  // the demo's scale: logs, seeds, epochs
   o.out = dir.path();
   o.run_measured = false;
+  o.run_tiago = false;
   const DemoResult r = run_demo(o);
   for (const auto& [regime, name] : {std::pair{Regime::Static, "static"},
                                      std::pair{Regime::StaticToKinetic, "static-to-kinetic"}}) {

@@ -195,7 +195,8 @@ void count_events(const TiagoOptions& o, const Log& log, Eigen::Index cut, Tiago
   for (int j = 0; j < static_cast<int>(r.joint_names.size()); ++j) {
     const Eigen::VectorXd dq = log.col(indexed_name("dq", j + 1));
     r.events.push_back({count_motion_events(t, dq, 0, cut, o.reversal_velocity),
-                        count_motion_events(t, dq, cut, log.rows(), o.reversal_velocity)});
+                        count_motion_events(t, dq, cut, log.rows(), o.reversal_velocity),
+                        count_motion_events(t, dq, 0, r.rows_trained, o.reversal_velocity)});
   }
 }
 
@@ -246,7 +247,6 @@ TiagoResult run_tiago_study(const TiagoOptions& o, const Say& progress) {
   const Log fit = log_rows(log, 0, cut, "fitted part, t < " + format_number(r.t_split, 4) + " s");
   const Log held =
       log_rows(log, cut, log.rows(), "held-out part, t >= " + format_number(r.t_split, 4) + " s");
-  count_events(o, log, cut, r);
 
   say("tiago: identify on the first " + format_number(100 * o.fit_share, 3) + " % (t < " +
       format_number(r.t_split, 4) + " s)");
@@ -272,6 +272,9 @@ TiagoResult run_tiago_study(const TiagoOptions& o, const Say& progress) {
       " epochs at most), gated on the fitted part's last " + format_number(100 * o.gate_share, 3) +
       " %");
   const ReplaySetup compensated = train_with_gate(o, diagnosis.nominal, fit, r, say);
+  count_events(o, log, cut, r);
+  if (!o.other_arm_logs.empty())
+    r.other_arm = count_file_onsets(data_file(o.other_arm_logs), o.reversal_velocity);
   std::vector<int> never_rests;
   r.noise_ma = 1000.0 *
                estimate_sensor_noise(fit, model.torque_constant, &never_rests).effort.array() /

@@ -13,6 +13,7 @@
 
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/evaluate/residual_table.hpp"
+#include "offline/regimes/file_onsets.hpp"
 #include "offline/regimes/motion_events.hpp"
 
 namespace tpf::offline {
@@ -40,6 +41,9 @@ struct TiagoOptions {
   std::vector<int> table_joints{0, 1, 2, 3, 4};
   /// Reversals count sign changes of q̇ beyond this [rad/s or m/s] (count_motion_events).
   double reversal_velocity = 0.01;
+  /// The Kinova Gen3's logs (data_file name; empty: none): their onsets are counted the same
+  /// way, to say why Table I is scored on the TIAGo and not there.
+  std::string other_arm_logs = "real/kinova-gen3/logs";
   int training_epochs = 40;  ///< per network (reproducible: an epoch budget)
   int joint_hidden = kPerJointHiddenSmall;
   int friction_samples_per_joint = 2000;  ///< identify's Ceres subsample per joint
@@ -54,6 +58,7 @@ struct TiagoOptions {
 /// One joint's motion events in each part.
 struct TiagoEvents {
   MotionEvents fit, held_out;
+  MotionEvents trained;  ///< of `fit`, those in the rows the networks trained on (before the gate)
 };
 
 /// One joint's current residual on the held-out part over every valid row.
@@ -101,8 +106,9 @@ struct TiagoResult {
   std::vector<ResidualRow> table;
   /// The same for the run time with the gate (a gated-off joint keeps τ_res).
   std::vector<ResidualRow> gated_table;
-  Eigen::VectorXd noise_ma;      ///< effort noise at rest per joint, fitted part [mA]
-  std::vector<TiagoGoal> goals;  ///< table_joints × 3 regimes
+  Eigen::VectorXd noise_ma;           ///< effort noise at rest per joint, fitted part [mA]
+  std::vector<TiagoGoal> goals;       ///< table_joints × 3 regimes
+  std::vector<FileOnsets> other_arm;  ///< TiagoOptions::other_arm_logs, per file
   std::vector<std::string> notes;
   double seconds = 0.0;
 
