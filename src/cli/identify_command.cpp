@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
+#include "robot_joint_count.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
@@ -16,7 +17,6 @@
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
-#include "robot_joint_count.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
 
