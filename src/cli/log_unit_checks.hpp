@@ -38,6 +38,8 @@ inline offline::LogChecks check_log_units(const offline::ModelX& model,
   in.effort_is_current = samples.units.unit == EffortUnit::Milliampere;
   in.lower = model.lower;
   in.upper = model.upper;
+  for (int j = 0; j < model.joint_count(); ++j)
+    in.prismatic.push_back(model.is_prismatic(j));
   return offline::check_log_units(in);
 }
 

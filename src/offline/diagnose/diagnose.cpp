@@ -76,6 +76,9 @@ CandidateInputs candidate_inputs(const ModelX& model,
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
   inputs.ripple_motor_cycles = analysis.ripple_motor_cycles;
+  // Ripple is periodic in an angle: a prismatic joint (q in m) has no revolution to count over.
+  for (int j = 0; j < model.joint_count(); ++j)
+    if (model.is_prismatic(j)) inputs.ripple_cycles[j] = inputs.ripple_motor_cycles[j] = 0.0;
   inputs.prediction_rate = analysis.prediction_rate;
   inputs.abs_gravity = abs_gravity ? *abs_gravity : gravity_load(model, s);
   inputs.reference_temperature =
