@@ -15,6 +15,7 @@
 #include "offline/pipeline/demo_pipeline.hpp"
 #include "support/page_structure.hpp"
 #include "support/temp_dir.hpp"
+#include "tpf/common/error.hpp"
 
 namespace tpf::offline {
 namespace {
@@ -170,6 +171,27 @@ TEST(TiagoStudy, HeldOutByTimeAsTheReadmeStates) {
   expect_residuals(*result.tiago);
   expect_table_one(*result.tiago);
   expect_pages(dir.path());
+}
+
+TEST(TiagoStudy, RefusesASplitOutsideTheLogNamingTheField) {
+  const test::TempDir dir("tiago_study_bad");
+  TiagoOptions o;
+  o.out = dir.path();
+  o.fit_share = 1.0;
+  try {
+    run_tiago_study(o);
+    FAIL() << "a split that holds nothing out must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("fit_share"), std::string::npos) << e.what();
+  }
+  o.fit_share = 0.6;
+  o.log = "real/kinova-gen3/logs/joint_1_trapez.csv.gz";  // 7 joints against the TIAGo's 8
+  try {
+    run_tiago_study(o);
+    FAIL() << "a log of another arm must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("has 7 joints"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

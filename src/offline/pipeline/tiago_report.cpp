@@ -10,10 +10,8 @@
 namespace tpf::offline {
 namespace {
 
-constexpr Regime kTableRegimes[] = {Regime::Static, Regime::StaticToKinetic, Regime::Moving};
-
 /// "1 torso_lift_joint".
-std::string joint_label(const TiagoResult& r, int j) {
+std::string tiago_joint_label(const TiagoResult& r, int j) {
   return std::to_string(j + 1) + " " + r.joint_names[static_cast<std::size_t>(j)];
 }
 
@@ -140,7 +138,7 @@ Table tiago_table_one(const TiagoResult& r) {
               "change", "goal",   "noise at rest [mA]", "verdict"};
   t.percent_column = 5;
   for (const TiagoGoal& g : r.goals)
-    t.rows.push_back({joint_label(r, g.joint), std::string(regime_name(g.regime)),
+    t.rows.push_back({tiago_joint_label(r, g.joint), std::string(regime_name(g.regime)),
                       std::to_string(g.rows), format_number(g.nominal),
                       format_number(g.compensated), format_percent_change(g.nominal, g.compensated),
                       goal_text(g), format_number(r.noise_ma[g.joint], 3),
@@ -161,7 +159,7 @@ Table tiago_residual_table(const TiagoResult& r) {
   for (int j = 0; j < static_cast<int>(r.residual.size()); ++j) {
     const TiagoJointResidual& x = r.residual[static_cast<std::size_t>(j)];
     const std::string unit = si_unit(r, j);
-    t.rows.push_back({joint_label(r, j),
+    t.rows.push_back({tiago_joint_label(r, j),
                       format_number(r.torque_constant[j], 3) + (r.prismatic[j] ? " N/A" : " N·m/A"),
                       format_number(x.identified_ma / 1000.0), format_number(x.nominal_ma / 1000.0),
                       format_number(x.compensated_ma / 1000.0), format_number(x.gated_ma / 1000.0),
@@ -184,7 +182,7 @@ Table tiago_events_table(const TiagoResult& r) {
               "reversals, held out"};
   for (int j = 0; j < static_cast<int>(r.events.size()); ++j) {
     const TiagoEvents& e = r.events[static_cast<std::size_t>(j)];
-    t.rows.push_back({joint_label(r, j), std::to_string(e.fit.starts),
+    t.rows.push_back({tiago_joint_label(r, j), std::to_string(e.fit.starts),
                       std::to_string(e.fit.reversals), std::to_string(e.trained.starts),
                       std::to_string(e.held_out.starts), std::to_string(e.held_out.reversals)});
   }
@@ -222,7 +220,7 @@ void add_tiago_headline(HtmlReport& page, const TiagoResult& r, const TiagoOptio
   for (const int j : o.table_joints) {
     const ResidualRow& s = r.row(j, Regime::Static);
     const ResidualRow& k = r.row(j, Regime::StaticToKinetic);
-    t.rows.push_back({joint_label(r, j),
+    t.rows.push_back({tiago_joint_label(r, j),
                       format_number(s.nominal.rmse) + " → " + format_number(s.compensated.rmse),
                       format_percent_change(s.nominal.rmse, s.compensated.rmse),
                       format_number(k.nominal.rmse) + " → " + format_number(k.compensated.rmse),

@@ -224,30 +224,22 @@ bool TiagoResult::all_goals_met() const {
          std::all_of(goals.begin(), goals.end(), [](const TiagoGoal& g) { return g.met; });
 }
 
-TiagoResult run_tiago_study(const TiagoOptions& o, const Say& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto say = [&](const std::string& line) {
-    if (progress) progress(line);
-  };
-  std::filesystem::create_directories(o.out);
-  TiagoResult r;
-  const std::filesystem::path robot_file = data_file(o.robot);
-  const RobotDescription robot = load_robot_description(robot_file);
-  const ModelX model = load_robot<double, Eigen::Dynamic>(robot_file);
-  describe_robot(model, robot, r);
-  const Log log = read_logs(std::vector<std::filesystem::path>{data_file(o.log)});
-  if (log.joint_count() != model.joint_count())
-    throw Error::at(log.source, 0, "joints",
-                    "has " + std::to_string(log.joint_count()) + " joints, " + robot_file.string() +
-                        " " + std::to_string(model.joint_count()));
-  const Eigen::VectorXd t = log.col("t");
-  const Eigen::Index cut = first_row_at(t, t[0] + o.fit_share * (t[t.size() - 1] - t[0]));
-  r.t_begin = t[0], r.t_split = t[cut], r.t_end = t[t.size() - 1];
-  r.rows_fit = cut, r.rows_held_out = log.rows() - cut;
-  const Log fit = log_rows(log, 0, cut, "fitted part, t < " + format_number(r.t_split, 4) + " s");
-  const Log held =
-      log_rows(log, cut, log.rows(), "held-out part, t >= " + format_number(r.t_split, 4) + " s");
+namespace {
 
+void check_options(const TiagoOptions& o) {
+  const auto share = [](double v, const char* field) {
+    if (!(v > 0.0 && v < 1.0))
+      throw Error::at("tiago study", 0, field,
+                      "must lie strictly between 0 and 1, is " + format_number(v));
+  };
+  share(o.fit_share, "fit_share");
+  share(o.gate_share, "gate_share");
+}
+
+/// identify (written to tiago.identified.params.json, its log checks kept) and diagnose (the
+/// nominal model, tiago.nominal.params.json) on the fitted part.
+std::pair<NominalModelX, NominalModelX> fit_models(const TiagoOptions& o, const ModelX& model,
+                                                   const Log& fit, TiagoResult& r, const Say& say) {
   say("tiago: identify on the first " + format_number(100 * o.fit_share, 3) + " % (t < " +
       format_number(r.t_split, 4) + " s)");
   IdentifyOptions io;
@@ -267,11 +259,40 @@ TiagoResult run_tiago_study(const TiagoOptions& o, const Say& progress) {
   const Diagnosis diagnosis = diagnose(fit, model, dio);
   r.diagnosis_findings = diagnosis.findings;
   save_nominal_model(o.out / "tiago.nominal.params.json", diagnosis.nominal, fit.source);
+  return {identified.nominal, diagnosis.nominal};
+}
+
+}  // namespace
+
+TiagoResult run_tiago_study(const TiagoOptions& o, const Say& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  check_options(o);
+  std::filesystem::create_directories(o.out);
+  TiagoResult r;
+  const std::filesystem::path robot_file = data_file(o.robot);
+  const ModelX model = load_robot<double, Eigen::Dynamic>(robot_file);
+  describe_robot(model, load_robot_description(robot_file), r);
+  const Log log = read_logs(std::vector<std::filesystem::path>{data_file(o.log)});
+  if (log.joint_count() != model.joint_count())
+    throw Error::at(log.source, 0, "joints",
+                    "has " + std::to_string(log.joint_count()) + " joints; the robot file " +
+                        robot_file.string() + " has " + std::to_string(model.joint_count()));
+  const Eigen::VectorXd t = log.col("t");
+  const Eigen::Index cut = first_row_at(t, t[0] + o.fit_share * (t[t.size() - 1] - t[0]));
+  r.t_begin = t[0], r.t_split = t[cut], r.t_end = t[t.size() - 1];
+  r.rows_fit = cut, r.rows_held_out = log.rows() - cut;
+  const Log fit = log_rows(log, 0, cut, "fitted part, t < " + format_number(r.t_split, 4) + " s");
+  const Log held =
+      log_rows(log, cut, log.rows(), "held-out part, t >= " + format_number(r.t_split, 4) + " s");
+  const auto [identified, nominal] = fit_models(o, model, fit, r, say);
 
   say("tiago: train one network per joint (" + std::to_string(o.training_epochs) +
       " epochs at most), gated on the fitted part's last " + format_number(100 * o.gate_share, 3) +
       " %");
-  const ReplaySetup compensated = train_with_gate(o, diagnosis.nominal, fit, r, say);
+  const ReplaySetup compensated = train_with_gate(o, nominal, fit, r, say);
   count_events(o, log, cut, r);
   if (!o.other_arm_logs.empty())
     r.other_arm = count_file_onsets(data_file(o.other_arm_logs), o.reversal_velocity);
@@ -281,10 +302,7 @@ TiagoResult run_tiago_study(const TiagoOptions& o, const Say& progress) {
                model.torque_constant.array();
 
   say("tiago: validate on the held-out part (t >= " + format_number(r.t_split, 4) + " s)");
-  ReplaySetup id_setup = setup_of(identified.nominal, fit);
-  ReplaySetup comp_setup = compensated;
-  comp_setup.parameters = setup_of(diagnosis.nominal, fit).parameters;
-  score_held_out_part(o, id_setup, comp_setup, held, r);
+  score_held_out_part(o, setup_of(identified, fit), compensated, held, r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
