@@ -10,6 +10,7 @@ packages=(
   liborocos-kdl-dev libkdl-parser-dev   # peer for tests and benchmarks only
   clang libclang-rt-14-dev              # fuzzers and sanitizer build (reliability)
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest   # the Python module
+  python3-matplotlib                    # examples/python (plots)
 )
 
 missing=()

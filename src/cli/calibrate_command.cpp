@@ -89,17 +89,16 @@ namespace tpf::cli {
 void register_calibrate_command(CLI::App& app) {
   auto o = std::make_shared<CalibrateCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "calibrate",
-      "Calibrate the run-time estimator's parameters on a contact-free log of the arm (at rest "
-      "and moving every joint, nothing touching it): sensor noise -> dead bands and pad contact "
-      "levels, the compensator's domain (the log's top speed and acceleration per joint: beyond "
-      "them, and for the network's input window after, the fused estimate falls back to the "
-      "nominal model), transition sigma of the nominal and "
-      "compensated residuals, persistence of the torque-only contact alarm (the shortest that "
-      "raises no alarm anywhere on this log: the longer and richer the log, the fewer false "
-      "alarms later). Writes the estimator parameter file (tpf-estimator) that "
-      "tpf_arm_loop --estimator loads at start-up. Run it again when the arm, its nominal model "
-      "or its compensator changes.");
+      "calibrate", "Calibrate the run-time estimator's parameters on a contact-free log");
+  cmd->footer(
+      "The log: the arm at rest and moving every joint, nothing touching it. Finds the sensor "
+      "noise (-> dead bands, pad contact levels), the compensator's domain (top speed and "
+      "acceleration per joint), the transition sigma of the nominal and compensated residuals "
+      "and the shortest torque-only alarm persistence that raises no alarm on this log. Writes "
+      "the estimator parameter file (tpf-estimator) tpf_arm_loop --estimator and tpf estimate "
+      "load. Run it again when the arm, its nominal model or its compensator changes.\n"
+      "Example: tpf calibrate --log free.csv --params arm4.params.json --weights arm4.tcn.json "
+      "--out arm4.estimator.json");
   cmd->add_option("--log", o->log,
                   "Contact-free calibration log (tpf CSV, effort i<j> in mA or tau<j> in N*m)")
       ->required()

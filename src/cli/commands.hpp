@@ -16,6 +16,7 @@ void register_calibrate_command(CLI::App& app);
 void register_import_command(CLI::App& app);
 void register_validate_command(CLI::App& app);
 void register_upgrade_command(CLI::App& app);
+void register_estimate_command(CLI::App& app);
 
 /// Prints a robot file's model, drives, pads and a few computed quantities (used by info and demo).
 void print_robot_summary(const std::string& robot_file);

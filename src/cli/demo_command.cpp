@@ -3,11 +3,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
+#include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
-#include "offline/pipeline/measured_report.hpp"
+#include "offline/pipeline/tiago_report.hpp"
+#include "offline/report/text_format.hpp"
 #include "option_validators.hpp"
 #include "tpf/common/error.hpp"
 
@@ -21,6 +25,7 @@ void register_demo_command(CLI::App& app) {
       "demo",
       "Run the whole loop on the digital twin and on the measured Kinova Gen3 logs and write one "
       "report (the README's main job)");
+  cmd->footer("Example: tpf demo --out demo   (then open demo/index.html)");
   cmd->add_option("--out", *out, "output folder for parameters, weights and the report")
       ->capture_default_str();
   cmd->add_option("--train-epochs", o->training_epochs,
@@ -50,6 +55,7 @@ void register_demo_command(CLI::App& app) {
                 "one network for all joints instead of one per joint (the default)");
   cmd->add_flag("!--no-twin", o->run_twin, "skip the digital twin (stages 1-5)");
   cmd->add_flag("!--no-measured", o->run_measured, "skip the Kinova Gen3 logs (stage 6, MEASURED)");
+  cmd->add_flag("!--no-tiago", o->run_tiago, "skip the TIAGo log (stage 7, MEASURED)");
   cmd->add_option("--measured-epochs", o->measured.training_epochs,
                   "training budget of the measured compensator: epochs per network")
       ->capture_default_str()
@@ -63,13 +69,15 @@ void register_demo_command(CLI::App& app) {
                 "print every stage's progress lines and the long summary (the report has both)");
   cmd->callback([o, out, verbose] {
     o->out = *out;
-    if (!o->run_twin && !o->run_measured)
-      throw Error("tpf demo: --no-twin and --no-measured leave nothing to run");
-    const std::string twin = o->run_twin ? "the digital twin (SIMULATED)" : "";
-    const std::string measured = o->run_measured ? "the Kinova Gen3 logs (MEASURED)" : "";
-    std::printf("tpf demo: the whole loop on %s%s%s, output in %s\n", twin.c_str(),
-                twin.empty() || measured.empty() ? "" : " and on ", measured.c_str(), out->c_str());
-    // By default one line per stage ("[k/6] …"); --verbose: every line of every stage.
+    if (!o->run_twin && !o->run_measured && !o->run_tiago)
+      throw Error("tpf demo: --no-twin, --no-measured and --no-tiago leave nothing to run");
+    std::vector<std::string> parts;
+    if (o->run_twin) parts.push_back("the digital twin (SIMULATED)");
+    if (o->run_measured) parts.push_back("the Kinova Gen3 logs (MEASURED)");
+    if (o->run_tiago) parts.push_back("the TIAGo log (MEASURED)");
+    std::printf("tpf demo: the whole loop on %s, output in %s\n",
+                offline::joined(parts, " and on ").c_str(), out->c_str());
+    // By default one line per stage ("[k/7] …"); --verbose: every line of every stage.
     const auto result = offline::run_demo(*o, [verbose](const std::string& line) {
       if (!*verbose && line.rfind('[', 0) != 0) return;
       std::printf("%s\n", line.c_str());
@@ -84,6 +92,9 @@ void register_demo_command(CLI::App& app) {
           (*verbose ? offline::measured_headline(*result.measured, o->measured.target_reduction)
                     : offline::measured_brief(*result.measured, o->measured.target_reduction))
               .c_str());
+    if (result.tiago)
+      std::printf("\n%s\n%s\n", offline::kTiagoLabel,
+                  offline::tiago_goal_sentence(*result.tiago, o->tiago).c_str());
     for (const auto& t : result.training.results)
       if (t.stopped_on_time) {
         std::printf(

@@ -34,32 +34,22 @@ struct DiagnoseArgs {
   bool no_load_friction = false, friction_from_sensor = false;  ///< of --identify-out's fit
 };
 
-/// With --identify-out: identify (with the friction options of `a`) on the samples diagnose then
-/// takes over, read and regressed once; prints and writes what `tpf identify` would.
+/// With --identify-out: the identification diagnose starts from, with the friction options of
+/// `a`, printed and written as `tpf identify` would.
 tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
                                                const tpf::offline::ModelX& model,
                                                const tpf::offline::DiagnoseOptions& options,
                                                const DiagnoseArgs& a) {
   using namespace tpf::offline;
   const auto start = std::chrono::steady_clock::now();
-  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples);
-  const tpf::BaseParameters base = setup.base;
-  const auto regressors = setup.regressors;
-  const auto abs_gravity = setup.abs_gravity;
-  IdentifyOptions identify_options;
-  identify_options.samples = options.samples;
-  identify_options.progress = options.progress;
+  IdentifyOptions identify_options = identify_options_of(options);
   identify_options.fit_load_friction = !a.no_load_friction;
   identify_options.friction_from_sensor = a.friction_from_sensor;
-  identify_options.inertia_prior = a.inertia_prior;
-  Identification id = identify(log, model, std::move(setup), identify_options);
+  IdentifiedLog identified = identify_for_diagnosis(log, model, identify_options);
+  const Identification& id = identified.identification;
   tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
-                                          tpf::cli::check_log_units(model, id.samples));
-  DiagnoseOptions with_identify_prior = options;  // its written model fitted as identify's
-  if (a.inertia_prior)
-    with_identify_prior.inertia_prior_strength = id.inertia_prior.written_strength;
-  return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity},
-                  with_identify_prior);
+                                          tpf::cli::check_log_units(model, id.samples), a.verbose);
+  return diagnose(log, model, std::move(identified), options);
 }
 
 /// The inertia prior's line, when diagnose's fits needed one.
@@ -171,11 +161,14 @@ namespace tpf::cli {
 void register_diagnose_command(CLI::App& app) {
   auto a = std::make_shared<DiagnoseArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "diagnose",
+      "diagnose", "Find which physical effect the nominal model misses, add it, check it held out");
+  cmd->footer(
       "Fit the declared model, find which candidate physical effect (load-dependent friction, "
       "ripple, payload, temperature, spring, delay, coupling) explains the residual on held-out "
       "data, add it, refit and report before/after; --params gets the model refitted on every "
-      "sample");
+      "sample"
+      "\nExample: tpf diagnose --log ex.csv --robot data/arm4.robot.json --report diagnose.html "
+      "--params arm4.params.json");
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz); several are read as one, each file its own segment")
       ->required()
@@ -200,8 +193,7 @@ void register_diagnose_command(CLI::App& app) {
   cmd->add_flag("--inertia-prior,!--no-inertia-prior", a->inertia_prior,
                 "On by default: where the declared model's M(q) is not positive definite, every "
                 "fit is pulled toward the robot file's inertias as tpf identify's are (the "
-                "strength identify would choose for the declared model; with --identify-out, the "
-                "one it chose). "
+                "strength identify chooses for the declared model). "
                 "--no-inertia-prior: every fit plain");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str()

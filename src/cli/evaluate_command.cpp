@@ -13,6 +13,8 @@
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/log/read_log.hpp"
+#include "offline/regimes/regime_stats.hpp"
+#include "offline/report/text_table.hpp"
 #include "offline/sim/scenario.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
@@ -28,7 +30,7 @@ struct EvaluateCommandOptions {
   std::string teaching_scenario;
   std::uint64_t teaching_seed = 5;
   double teaching_duration = 60.0;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
 };
 
 bool is_simulated(const tpf::offline::Log& log) {
@@ -48,6 +50,28 @@ void refuse_colliding_outputs(const EvaluateCommandOptions& o) {
   refuse_overwriting_inputs(
       "evaluate", joined(joined(model_inputs(o.model), weight_files("--weights", o.weights)), logs),
       {{"--out", (out / "evaluate.html").string()}, {"--out", (out / "evaluation.json").string()}});
+}
+
+/// Table I per joint (--verbose): RMSE nominal -> with the TCN and the change, per regime.
+void print_per_joint_table(const tpf::offline::Evaluation& ev) {
+  using namespace tpf::offline;
+  Table table;
+  table.header = {"joint"};
+  for (const Regime g : {Regime::Static, Regime::StaticToKinetic, Regime::Moving})
+    table.header.push_back(std::string(regime_name(g)) + " [" + ev.units.name() + "]");
+  for (int j = 0; j < ev.joints; ++j) {
+    std::vector<std::string> row{std::to_string(j + 1)};
+    for (const Regime g : {Regime::Static, Regime::StaticToKinetic, Regime::Moving}) {
+      char cell[80] = "-";
+      for (const ResidualRow& r : ev.table)
+        if (r.joint == j && r.regime == g)
+          std::snprintf(cell, sizeof cell, "%.1f -> %.1f (%+.0f %%)", r.nominal.rmse,
+                        r.compensated.rmse, percent_change(r.nominal.rmse, r.compensated.rmse));
+      row.emplace_back(cell);
+    }
+    table.rows.push_back(std::move(row));
+  }
+  std::printf("  per joint, RMSE nominal -> TCN (change):\n%s", table_text(table).c_str());
 }
 
 void run_evaluate(const EvaluateCommandOptions& o) {
@@ -101,7 +125,9 @@ void run_evaluate(const EvaluateCommandOptions& o) {
   json.write(evaluation_json(ev));
   json.commit();
   std::printf("%s", evaluation_headline(ev, simulated).c_str());
-  std::printf("evaluate: report %s\n", html.string().c_str());
+  if (o.verbose) print_per_joint_table(ev);
+  std::printf("evaluate: report %s, every number in %s\n", html.string().c_str(),
+              (std::filesystem::path(o.out) / "evaluation.json").string().c_str());
 }
 
 }  // namespace
@@ -111,9 +137,12 @@ namespace tpf::cli {
 void register_evaluate_command(CLI::App& app) {
   auto o = std::make_shared<EvaluateCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "evaluate",
+      "evaluate", "Compare tactile-only, proprioceptive-only and fusion on held-out logs");
+  cmd->footer(
       "Compare tactile-only, proprioceptive-only and fusion on held-out logs: Table I (residual "
-      "per regime, nominal vs TCN), dead bands, detection latency, force error, teaching");
+      "per regime, nominal vs TCN), dead bands, detection latency, force error, teaching"
+      "\nExample: tpf evaluate --params arm4.params.json --weights arm4.tcn.json --calibration "
+      "cal.csv --excitation ex.csv --contacts contacts.csv --out report");
   add_model_file_options(cmd, o->model, "Nominal model (tpf-params file)");
   cmd->add_option("--weights", o->weights,
                   "Compensator weights (all joints, or <stem>.joint<j>.json per joint)")
@@ -139,6 +168,7 @@ void register_evaluate_command(CLI::App& app) {
       ->check(positive(kMaxSimulatedSeconds));
   cmd->add_option("--out", o->out, "Output folder (evaluate.html, evaluation.json)")->required();
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
+  cmd->add_flag("--verbose", o->verbose, "Also Table I per joint (evaluation.json: every number)");
   cmd->callback([o] {
     refuse_colliding_outputs(*o);
     run_evaluate(*o);

@@ -15,24 +15,28 @@
 namespace tpf::cli {
 
 /// Prints which strength of the inertia prior identify chose and why (a table of the strengths
-/// tried), and keeps them in `fit["inertia_prior"]`.
+/// tried, with `verbose`), and keeps them in `fit["inertia_prior"]`.
 inline void print_inertia_prior_choice(const offline::Identification::InertiaPrior& prior,
-                                       nlohmann::json& fit) {
+                                       nlohmann::json& fit, bool verbose) {
   std::printf(
       "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (judged fit), %.4g "
       "(written fit); the rigid body pulled toward the robot file's inertias with strength "
       "%.3g (judged) and %.3g (written): %s\n",
       prior.judged_min_eigenvalue, prior.written_min_eigenvalue, prior.judged_strength,
       prior.written_strength, prior.choice.c_str());
-  std::printf(
-      "  strength   held-out error (in σ)   min eigenvalue of M(q) [kg·m²] against the floor "
-      "%.4g (a tenth of the robot file's own)\n",
-      prior.floor);
+  if (verbose)
+    std::printf(
+        "  strength   held-out error (in σ)   min eigenvalue of M(q) [kg·m²] against the floor "
+        "%.4g (a tenth of the robot file's own)\n",
+        prior.floor);
+  else
+    std::printf("  (--verbose: the %zu strengths tried)\n", prior.candidates.size());
   nlohmann::json candidates = nlohmann::json::array();
   for (const auto& c : prior.candidates) {
-    std::printf("  %8.3g   %21.4f   %+14.4g %s%s\n", c.strength, c.heldout_error, c.min_eigenvalue,
-                c.positive_definite ? "above: positive definite" : "below",
-                c.strength == prior.judged_strength ? "  <- chosen" : "");
+    if (verbose)
+      std::printf("  %8.3g   %21.4f   %+14.4g %s%s\n", c.strength, c.heldout_error,
+                  c.min_eigenvalue, c.positive_definite ? "above: positive definite" : "below",
+                  c.strength == prior.judged_strength ? "  <- chosen" : "");
     candidates.push_back(
         {{"strength", c.strength},
          {"heldout_error", std::isfinite(c.heldout_error) ? nlohmann::json(c.heldout_error)
@@ -52,13 +56,15 @@ inline void print_inertia_prior_choice(const offline::Identification::InertiaPri
 /// Prints the identification of `log` (held-out RMSE per joint and regime in the log's unit,
 /// consistency, friction notes) and writes its model to `out` (tpf-params), with the wall time
 /// since `start`. `log_checks` (the log against the robot file, check_log_units) are printed
-/// after the consistency check and written as the fit's "log_checks".
+/// after the consistency check and written as the fit's "log_checks". Without `verbose` the notes
+/// and the inertia prior's table are cut to their first lines; the file's fit keeps them all.
 inline void print_and_save_identification(const offline::Log& log,
                                           const offline::Identification& id,
                                           const offline::SampleOptions& sample_options,
                                           const std::string& out,
                                           std::chrono::steady_clock::time_point start,
-                                          const offline::LogChecks& log_checks) {
+                                          const offline::LogChecks& log_checks,
+                                          bool verbose = true) {
   using offline::Regime;
   const auto& s = id.samples;
   std::printf("%s%s: %ld samples (%s), effort in %s\n", s.simulated ? "SIMULATED log " : "log ",
@@ -85,7 +91,7 @@ inline void print_and_save_identification(const offline::Log& log,
               id.consistency.consistent() ? "ok" : "PROBLEMS", id.consistency.min_mass_eigenvalue);
   for (const auto& p : id.consistency.problems)
     std::printf("  problem: %s\n", p.c_str());
-  fit["log_checks"] = print_log_checks(log_checks);
+  fit["log_checks"] = print_log_checks(log_checks, verbose);
   const auto& prior = id.inertia_prior;
   if (prior.asked && !(prior.floor > 0)) {
     std::printf(
@@ -100,10 +106,9 @@ inline void print_and_save_identification(const offline::Log& log,
         "inertia prior: not needed (M(q)'s smallest eigenvalue is at least a tenth of "
         "the robot file's own without it)\n");
   } else if (prior.asked) {
-    print_inertia_prior_choice(prior, fit);
+    print_inertia_prior_choice(prior, fit, verbose);
   }
-  for (const auto& n : id.friction_notes)
-    std::printf("  friction: %s\n", n.c_str());
+  print_capped(id.friction_notes, "  friction: ", verbose ? id.friction_notes.size() : kNotesShown);
   fit["friction_notes"] = id.friction_notes;
   if (!held_out_note.empty()) fit["heldout_note"] = held_out_note;
   fit["consistent"] = id.consistency.consistent();

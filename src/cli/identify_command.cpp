@@ -9,14 +9,14 @@
 #include "commands.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
-#include "robot_joint_count.hpp"
 #include "offline/identify/identify.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
+#include "robot_joint_count.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -26,7 +26,8 @@ struct IdentifyArgs {
   std::vector<std::string> logs;
   std::string robot, out;
   double static_velocity = 1e-4;
-  bool no_load_friction = false, quiet = false, friction_from_sensor = false, inertia_prior = true;
+  bool no_load_friction = false, quiet = false, verbose = false, friction_from_sensor = false,
+       inertia_prior = true;
 };
 
 void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
@@ -43,7 +44,7 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   const ModelX model = tpf::load_robot<double, Eigen::Dynamic>(a.robot);
   const Identification id = identify(log, model, options);
   print_and_save_identification(log, id, options.samples, a.out, start,
-                                tpf::cli::check_log_units(model, id.samples));
+                                tpf::cli::check_log_units(model, id.samples), a.verbose);
 }
 
 }  // namespace
@@ -54,10 +55,12 @@ namespace tpf::cli {
 void register_identify_command(CLI::App& app) {
   auto a = std::make_shared<IdentifyArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "identify",
+      "identify", "Identify the nominal model (rigid body, armature, friction) from a log");
+  cmd->footer(
       "Identify rigid-body base parameters (with armature) and Stribeck + load-dependent friction "
       "from a log by weighted least squares and Ceres; validate on held-out data (the last file "
-      "of several, else every 4th 5 s block), then write the model refitted on every sample");
+      "of several, else every 4th 5 s block), then write the model refitted on every sample"
+      "\nExample: tpf identify --log ex.csv --robot data/arm4.robot.json --out arm4.params.json");
   cmd->add_option("--log", a->logs,
                   "Log(s) (tpf CSV or .csv.gz; i<j> in mA or tau<j> in N·m); several are read as "
                   "one, each file its own segment")
@@ -84,6 +87,9 @@ void register_identify_command(CLI::App& app) {
                 "are printed, and kept in the file's fit). --no-inertia-prior: the plain "
                 "least-squares fit, whatever M(q)");
   cmd->add_flag("--quiet", a->quiet, "No progress lines");
+  cmd->add_flag("--verbose", a->verbose,
+                "Every note and the inertia prior's strengths tried (default: the first lines; "
+                "the parameter file's \"fit\" keeps them all)");
   cmd->callback([a] {
     refuse_overwriting_inputs("identify",
                               joined(each_of("--log", a->logs), {{"--robot", a->robot}}),

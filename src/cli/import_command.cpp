@@ -19,7 +19,7 @@ namespace {
 struct ImportArgs {
   std::string map, out, out_dir;
   std::vector<std::string> inputs;
-  bool compress = true;
+  bool compress = true, verbose = false;
 };
 
 /// "<dir>/<name without .gz and .csv>.csv.gz" (or .csv).
@@ -31,9 +31,19 @@ std::filesystem::path output_in(const std::string& dir, const std::filesystem::p
   return std::filesystem::path(dir) / (name + (compress ? ".csv.gz" : ".csv"));
 }
 
-/// One recording: map.files inputs joined into one log.
+/// Recordings printed in full by default; beyond them a recording the import found nothing
+/// unusual in (no irregular or dropped step, no reader note, no missing value) gets one line.
+constexpr std::size_t kRecordingsInFull = 3;
+
+bool routine(const tpf::offline::ImportReport& report, const tpf::offline::Log& log) {
+  return report.irregular_steps == 0 && report.not_increasing == 0 && report.reader_notes.empty() &&
+         report.unmatched_rows == 0 && log.quality.missing_total() == 0;
+}
+
+/// One recording: map.files inputs joined into one log; `in_full`: every line of its report,
+/// else one line when it is routine (its flat or missing torque sensors still said).
 void import_one(const tpf::offline::ImportMap& map, const std::vector<std::string>& inputs,
-                const std::filesystem::path& output) {
+                const std::filesystem::path& output, bool in_full) {
   using namespace tpf::offline;
   ImportReport report;
   const Log log =
@@ -42,6 +52,13 @@ void import_one(const tpf::offline::ImportMap& map, const std::vector<std::strin
   std::string names;
   for (const std::string& input : inputs)
     names.append(names.empty() ? "" : " + ").append(input);
+  if (!in_full && routine(report, log)) {
+    std::printf("import: %s -> %s: %zu rows, step %.6g s, regular\n", names.c_str(),
+                output.string().c_str(), report.rows_written, report.nominal_step_s);
+    for (const std::string& line : torque_sensor_problems(log, map.joints))
+      std::printf("  %s\n", line.c_str());
+    return;
+  }
   std::printf("import: %s -> %s\n", names.c_str(), output.string().c_str());
   for (const std::string& line : report.lines())
     std::printf("  %s\n", line.c_str());
@@ -87,7 +104,9 @@ void run_import(const ImportArgs& a) {
     import_one(map,
                std::vector<std::string>(a.inputs.begin() + static_cast<long>(k * files),
                                         a.inputs.begin() + static_cast<long>((k + 1) * files)),
-               outputs[k].path);
+               outputs[k].path, a.verbose || k < kRecordingsInFull);
+  if (!a.verbose && outputs.size() > kRecordingsInFull)
+    std::printf("(--verbose: every recording's conversions and time steps)\n");
 }
 
 }  // namespace
@@ -96,14 +115,17 @@ namespace tpf::cli {
 
 void register_import_command(CLI::App& app) {
   auto a = std::make_shared<ImportArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "import",
+  CLI::App* cmd =
+      app.add_subcommand("import", "Turn foreign CSV files into tpf logs through a column map");
+  cmd->footer(
       "Turn foreign CSV files (plain or .gz) into tpf logs with a column map (JSON: time column "
       "and unit or sample rate, q, dq, current or torque, torque sensor, temperature, units, "
       "scale, sign, offset, joint order, several files per recording joined by index or time, "
       "motor-side columns through a transmission, q-dot and q-ddot derived from q; "
       "docs/log-format.md). Reports irregular time stamps and what was done about them, each "
-      "conversion, and where the torque sensor is missing or flat");
+      "conversion, and where the torque sensor is missing or flat"
+      "\nExample: tpf import --map data/real/kinova-gen3/kinova.import.json --out-dir logs/ "
+      "raw/*.csv.gz");
   cmd->add_option("--map", a->map, "Column map, e.g. data/real/kinova-gen3/kinova.import.json")
       ->required()
       ->check(input_file());
@@ -116,6 +138,9 @@ void register_import_command(CLI::App& app) {
   cmd->add_option("--out-dir", a->out_dir,
                   "Folder for the logs, one per input, named after it (<name>.csv.gz)");
   cmd->add_flag("!--no-gzip", a->compress, "With --out-dir: write plain .csv");
+  cmd->add_flag("--verbose", a->verbose,
+                "Every recording in full (default: the first 3, then one line each unless its "
+                "time steps or values need a word)");
   cmd->callback([a] { run_import(*a); });
 }
 

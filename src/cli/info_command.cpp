@@ -38,8 +38,13 @@ void print_summary(const std::string& robot_file) {
   const RobotDescription description = load_robot_description(robot_file);
   const offline::ModelX model = make_model<double, Eigen::Dynamic>(description);
   const int joints = model.joint_count();
-  std::printf("robot '%s' from %s: %d revolute joints\n\n", model.name.c_str(), robot_file.c_str(),
-              joints);
+  int prismatic = 0;
+  for (int j = 0; j < joints; ++j)
+    prismatic += model.is_prismatic(j) ? 1 : 0;
+  std::printf(
+      "robot '%s' from %s: %d joints (%d revolute, %d prismatic; a prismatic joint's "
+      "rows read N for N·m, kg for kg·m², N/A for Nm/A)\n\n",
+      model.name.c_str(), robot_file.c_str(), joints, joints - prismatic, prismatic);
   std::printf("%-8s %-17s %8s %12s %8s %9s %15s\n", "joint", "motor", "link", "mass [kg]", "ratio",
               "Kt [Nm/A]", "armature [kgm2]");
   for (int j = 0; j < joints; ++j) {
@@ -85,6 +90,7 @@ void print_robot_summary(const std::string& robot_file) {
 
 void register_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Load a robot file and print its model, drives and pads");
+  cmd->footer("Example: tpf info --robot data/arm4.robot.json");
   auto robot = std::make_shared<std::string>(offline::data_file("arm4.robot.json").string());
   cmd->add_option("--robot", *robot, "robot file (JSON naming the URDF and pad layout)")
       ->capture_default_str()

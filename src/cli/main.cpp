@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   tpf::cli::register_train_command(app);
   tpf::cli::register_evaluate_command(app);
   tpf::cli::register_calibrate_command(app);
+  tpf::cli::register_estimate_command(app);
   tpf::cli::register_import_command(app);
   tpf::cli::register_validate_command(app);
   tpf::cli::register_upgrade_command(app);

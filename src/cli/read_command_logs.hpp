@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "tpf/common/error.hpp"
 
 namespace tpf::cli {

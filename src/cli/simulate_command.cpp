@@ -65,9 +65,12 @@ namespace tpf::cli {
 void register_simulate_command(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "simulate",
+      "simulate", "Run the digital twin on a scenario and write a log with gt_* ground truth");
+  cmd->footer(
       "Run the digital twin (arm of any joint count, drive cascades, friction with memory, "
-      "sensors, pads, contacts) on a scenario and write a simulated log with gt_* ground truth");
+      "sensors, pads, contacts) on a scenario and write a simulated log with gt_* ground truth"
+      "\nExample: tpf simulate --scenario data/scenarios/static-contacts.json --seed 1 --duration "
+      "60 --out contacts.csv");
   cmd->add_option("--scenario", options->scenario,
                   "Scenario file, e.g. data/scenarios/excitation.json; it names its robot "
                   "(\"robot\", default data/arm4.robot.json)")

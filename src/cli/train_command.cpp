@@ -3,13 +3,16 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
 #include "offline/compensator_training/held_out_score.hpp"
 #include "offline/compensator_training/train_compensator.hpp"
@@ -17,10 +20,12 @@
 #include "offline/log/torque_sensor.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
+#include "offline/report/text_table.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
 #include "robot_joint_count.hpp"
+#include "tpf/nn/tcn_weight_file.hpp"
 
 namespace {
 
@@ -31,7 +36,8 @@ struct TrainCommandOptions {
   std::string checkpoint;
   bool per_joint = false;
   int joint_hidden = tpf::offline::kPerJointHiddenSmall;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
+  std::string json;
   double static_to_kinetic_weight =
       tpf::offline::CompensatorTrainingOptions{}.static_to_kinetic_weight;
   double static_weight = tpf::offline::CompensatorTrainingOptions{}.static_weight;
@@ -111,10 +117,39 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(
   return traces;
 }
 
+/// The held-out score as a table: per joint, nominal -> compensated RMSE of each regime, and
+/// whether the gate keeps the network.
+tpf::offline::Table held_out_table(const tpf::offline::HeldOutScore& score, double min_gain) {
+  using tpf::TcnWeightFile;
+  tpf::offline::Table table;
+  table.header = {"joint"};
+  for (const char* regime : TcnWeightFile::kHeldOutRegimes)
+    table.header.emplace_back(regime);
+  table.header.emplace_back("network");
+  for (Eigen::Index j = 0; j < score.gain[0].size(); ++j) {
+    std::vector<std::string> row{std::to_string(j + 1)};
+    bool kept = true;
+    for (std::size_t r = 0; r < 3; ++r) {
+      char cell[64] = "not scored";
+      const double g = score.gain[r][j];
+      if (std::isfinite(g))
+        std::snprintf(cell, sizeof cell, "%.3g -> %.3g", score.nominal_rmse[r][j],
+                      score.compensated_rmse[r][j]);
+      row.emplace_back(cell);
+      kept = kept && (!std::isfinite(g) || g >= min_gain);
+    }
+    row.emplace_back(kept ? "used" : "GATED OFF");
+    table.rows.push_back(std::move(row));
+  }
+  return table;
+}
+
 /// Scores the written networks on the held-out logs, writes the gains into the weight files
-/// and prints them with the gate's verdict (the estimator's default threshold).
-void score_and_rewrite(const TrainCommandOptions& o, const std::vector<tpf::offline::Log>& held_out,
-                       tpf::offline::CompensatorTraining& result) {
+/// and prints them with the gate's verdict (the estimator's default threshold): a table, with
+/// --verbose a line per joint with the change and rows of each regime.
+tpf::offline::HeldOutScore score_and_rewrite(const TrainCommandOptions& o,
+                                             const std::vector<tpf::offline::Log>& held_out,
+                                             tpf::offline::CompensatorTraining& result) {
   using namespace tpf::offline;
   const auto weights =
       tpf::find_compensator_weights(o.out, tpf::cli::robot_joint_count(o.model.robot));
@@ -123,11 +158,16 @@ void score_and_rewrite(const TrainCommandOptions& o, const std::vector<tpf::offl
   write_compensator(result, o.out);
   const double min_gain = ReplayParameters{}.compensator_min_held_out_gain;
   std::printf(
-      "train: held out, RMSE nominal -> with the network (change); the gate keeps a network whose "
+      "train: held out, RMSE nominal -> with the network [N*m]; the gate keeps a network whose "
       "gain is >= %.1f %% in every regime scored:\n",
       100.0 * min_gain);
-  for (const std::string& line : describe_held_out(score, min_gain))
-    std::printf("train:   %s\n", line.c_str());
+  if (o.verbose) {
+    for (const std::string& line : describe_held_out(score, min_gain))
+      std::printf("train:   %s\n", line.c_str());
+  } else {
+    std::printf("%s", table_text(held_out_table(score, min_gain)).c_str());
+  }
+  return score;
 }
 
 /// Refuses weight files (--out, --checkpoint; per joint, each joint's) that would overwrite an
@@ -137,8 +177,81 @@ void refuse_colliding_outputs(const TrainCommandOptions& o) {
   using namespace tpf::cli;
   refuse_overwriting_inputs(
       "train", joined(each_of("--log", o.logs), model_inputs(o.model)),
-      joined(written_weight_files("--out", o.out, o.per_joint, joints),
-             written_weight_files("--checkpoint", o.checkpoint, o.per_joint, joints)));
+      joined(joined(written_weight_files("--out", o.out, o.per_joint, joints),
+                    written_weight_files("--checkpoint", o.checkpoint, o.per_joint, joints)),
+             {{"--json", o.json}}));
+}
+
+/// "train: wrote a.joint1.json … a.joint4.json (4 files)"; --verbose: one line per file.
+void print_written(const std::vector<std::string>& paths, bool verbose) {
+  if (verbose || paths.size() < 3) {
+    for (const std::string& p : paths)
+      std::printf("train: wrote %s\n", p.c_str());
+    return;
+  }
+  std::printf("train: wrote %s … %s (%zu files)\n", paths.front().c_str(), paths.back().c_str(),
+              paths.size());
+}
+
+/// Each network's best epoch and held-out loss: one line for all; --verbose: one per network.
+void print_networks(const tpf::offline::CompensatorTraining& result, bool verbose) {
+  std::string epochs, losses;
+  for (std::size_t k = 0; k < result.results.size(); ++k) {
+    const tpf::offline::TcnTrainResult& r = result.results[k];
+    const char* note = r.stopped_early ? ", stopped early"
+                       : r.stopped_on_time
+                           ? ", STOPPED BY THE WALL-CLOCK SAFETY NET (--max-seconds): "
+                             "not reproducible on another machine"
+                           : "";
+    if (verbose || r.stopped_on_time)
+      std::printf("train: network %zu: best epoch %d of %zu, held-out loss %.4g (N*m^2)%s\n", k + 1,
+                  r.best_epoch, r.history.size(), r.best_validation_loss, note);
+    char cell[32];
+    std::snprintf(cell, sizeof cell, "%s%d/%zu", k == 0 ? "" : " ", r.best_epoch, r.history.size());
+    epochs += cell;
+    std::snprintf(cell, sizeof cell, "%s%.3g", k == 0 ? "" : " ", r.best_validation_loss);
+    losses += cell;
+  }
+  if (!verbose)
+    std::printf("train: best epoch per network %s; held-out loss [N*m^2] %s\n", epochs.c_str(),
+                losses.c_str());
+  std::printf("train: %zu training / %zu held-out windows, %.1f s\n", result.training_windows,
+              result.validation_windows, result.seconds);
+}
+
+/// Everything train found, for --json: per network its epochs (loss history) and per joint and
+/// regime the held-out RMSE and gain.
+nlohmann::json training_json(const tpf::offline::CompensatorTraining& result,
+                             const tpf::offline::HeldOutScore& score) {
+  using tpf::TcnWeightFile;
+  nlohmann::json j;
+  j["training_windows"] = result.training_windows;
+  j["held_out_windows"] = result.validation_windows;
+  j["seconds"] = result.seconds;
+  for (const tpf::offline::TcnTrainResult& r : result.results) {
+    nlohmann::json n{{"best_epoch", r.best_epoch},
+                     {"best_held_out_loss", r.best_validation_loss},
+                     {"stopped_early", r.stopped_early},
+                     {"stopped_on_time", r.stopped_on_time},
+                     {"history", nlohmann::json::array()}};
+    for (const auto& e : r.history)
+      n["history"].push_back({{"train_loss", e.train_loss}, {"held_out_loss", e.validation_loss}});
+    j["networks"].push_back(n);
+  }
+  const auto number = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+  };
+  for (Eigen::Index q = 0; q < score.gain[0].size(); ++q) {
+    nlohmann::json joint;
+    for (std::size_t r = 0; r < 3; ++r)
+      joint[TcnWeightFile::kHeldOutRegimes[r]] = {
+          {"nominal_rmse_nm", number(score.nominal_rmse[r][q])},
+          {"compensated_rmse_nm", number(score.compensated_rmse[r][q])},
+          {"gain", number(score.gain[r][q])},
+          {"rows", score.rows[r][q]}};
+    j["held_out"].push_back(joint);
+  }
+  return j;
 }
 
 void run_train(TrainCommandOptions o) {
@@ -157,20 +270,13 @@ void run_train(TrainCommandOptions o) {
   CompensatorTraining result = train_compensator(
       traces, options,
       o.quiet ? TcnProgressCallback{} : tcn_progress_bar(std::cerr, ::isatty(STDERR_FILENO) == 1));
-  for (const std::string& p : write_compensator(result, o.out))
-    std::printf("train: wrote %s\n", p.c_str());
-  for (std::size_t k = 0; k < result.results.size(); ++k) {
-    const TcnTrainResult& r = result.results[k];
-    std::printf("train: network %zu: best epoch %d of %zu, held-out loss %.4g (N*m^2)%s\n", k + 1,
-                r.best_epoch, r.history.size(), r.best_validation_loss,
-                r.stopped_early     ? ", stopped early"
-                : r.stopped_on_time ? ", STOPPED BY THE WALL-CLOCK SAFETY NET (--max-seconds): "
-                                      "not reproducible on another machine"
-                                    : "");
+  print_written(write_compensator(result, o.out), o.verbose);
+  print_networks(result, o.verbose);
+  const HeldOutScore score = score_and_rewrite(o, split.held_out, result);
+  if (!o.json.empty()) {
+    tpf::write_file_atomically(o.json, training_json(result, score).dump(1) + "\n");
+    std::printf("train: wrote %s\n", o.json.c_str());
   }
-  std::printf("train: %zu training / %zu held-out windows, %.1f s\n", result.training_windows,
-              result.validation_windows, result.seconds);
-  score_and_rewrite(o, split.held_out, result);
 }
 
 }  // namespace
@@ -182,9 +288,12 @@ void register_train_command(CLI::App& app) {
   o->tcn.max_seconds = 0.0;
   o->tcn.min_learning_rate = 5e-5;  // the sixth halving of 2e-3 stops (docs/tcn-training.md)
   CLI::App* cmd = app.add_subcommand(
-      "train",
+      "train", "Train the friction compensator (TCN) on contact-free excitation logs");
+  cmd->footer(
       "Train the friction compensator (TCN) on contact-free excitation logs: target = effort − "
-      "the nominal model's prediction, inputs = what the run-time estimator feeds it");
+      "the nominal model's prediction, inputs = what the run-time estimator feeds it"
+      "\nExample: tpf train --log ex.csv --params arm4.params.json --per-joint --out "
+      "arm4.tcn.json");
   cmd->add_option("--log", o->logs, "Contact-free excitation log(s)")
       ->required()
       ->check(input_file());
@@ -249,6 +358,10 @@ void register_train_command(CLI::App& app) {
                   "joint's range")
       ->check(CLI::IsMember({"q", "dq", "ddq", "static-friction", "nominal-friction"}));
   cmd->add_flag("--quiet", o->quiet, "No progress bar");
+  cmd->add_flag("--verbose", o->verbose,
+                "Each file written, each network's epochs, each joint's held-out change and rows");
+  cmd->add_option("--json", o->json,
+                  "Every network's loss history and the held-out score per joint and regime");
   cmd->callback([o] {
     refuse_colliding_outputs(*o);
     run_train(*o);

@@ -16,11 +16,14 @@ void register_upgrade_command(CLI::App& app) {
   auto params = std::make_shared<std::string>(), estimator = std::make_shared<std::string>(),
        weights = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
-      "upgrade",
+      "upgrade", "Convert version-1 parameter, estimator and weight files to N*m, in place");
+  cmd->footer(
       "Convert, in place, a version-1 parameter file (friction and added effects in the log's "
       "effort unit, e.g. mA) and the estimator parameters and compensator weights made with it "
       "to today's files, every torque in N*m (exact: divided by the file's own "
-      "effort_per_newton_metre). Converts every file or none");
+      "effort_per_newton_metre). Converts every file or none"
+      "\nExample: tpf upgrade --params old.params.json --estimator old.estimator.json --weights "
+      "old.tcn.json");
   cmd->add_option("--params", *params, "tpf-params file, version 1 (holds the unit factor)")
       ->required()
       ->check(input_file());

@@ -9,8 +9,8 @@
 #include "commands.hpp"
 #include "compensator_gate_printout.hpp"
 #include "core/common/atomic_file.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/read_logs.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "offline/validate/validation.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
@@ -24,7 +24,17 @@ struct ValidateArgs {
   std::string params, robot, json, weights, estimator;
   std::vector<std::string> logs;
   double static_velocity = 1e-4;
+  bool verbose = false;
 };
+
+/// validation_text without its sensor comparison per regime and per file (from "the same per
+/// regime" on): the default printout; --verbose prints it whole.
+std::string brief_validation_text(const std::string& text) {
+  const std::size_t cut = text.find("the same per regime");
+  if (cut == std::string::npos) return text;
+  return text.substr(0, cut) +
+         "(--verbose: the sensor comparison per regime and per file; --json: every number)\n";
+}
 
 void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
   using namespace tpf::offline;
@@ -32,6 +42,7 @@ void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
   const int joints = nominal.model.joint_count();
   SampleOptions options;
   options.regimes.static_velocity = a.static_velocity;
+  options.all_held_out = true;  // fitted on other logs: every row of this one is held out
   const JointSamples samples = extract_joint_samples(log, nominal.model.torque_constant, options);
   std::vector<std::string> notes;
   // One column per estimate; the compensator (--weights) becomes one more here.
@@ -59,7 +70,8 @@ void run_validate(const tpf::offline::Log& log, const ValidateArgs& a) {
     sensor = sensor || score.samples > 0;
   for (const std::string& n : notes)  // the armature matters only against a sensor
     if (sensor || n.find("armature") == std::string::npos) std::printf("note: %s\n", n.c_str());
-  std::printf("%s", validation_text(v).c_str());
+  const std::string text = validation_text(v);
+  std::printf("%s", (a.verbose ? text : brief_validation_text(text)).c_str());
   if (!a.json.empty()) {
     tpf::write_file_atomically(a.json, validation_json(v) + "\n");
     std::printf("wrote %s\n", a.json.c_str());
@@ -73,11 +85,14 @@ namespace tpf::cli {
 void register_validate_command(CLI::App& app) {
   auto a = std::make_shared<ValidateArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "validate",
+      "validate", "Score a saved parameter file on other logs (and against a torque sensor)");
+  cmd->footer(
       "Apply a saved parameter file to other logs (held out by log: none of them was fitted on) "
       "and print the effort RMSE per joint and regime in the log's unit, and, where the log has "
       "a joint torque sensor (tau_sensor<j>), the RMSE of the current-based joint torque "
-      "Kt*i - friction - armature*q'' against it (Kt only and the maker's tau_maker<j> beside)");
+      "Kt*i - friction - armature*q'' against it (Kt only and the maker's tau_maker<j> beside)"
+      "\nExample: tpf validate --params arm4.params.json --robot data/arm4.robot.json --log "
+      "held-out.csv");
   cmd->add_option("--params", a->params, "Parameter file (tpf-params) from identify/diagnose")
       ->required()
       ->check(input_file());
@@ -98,6 +113,8 @@ void register_validate_command(CLI::App& app) {
                   "the defaults; only the static-friction tracker and the q'' filter matter here)")
       ->check(input_file());
   cmd->add_option("--json", a->json, "The same numbers as JSON");
+  cmd->add_flag("--verbose", a->verbose,
+                "Also the torque-sensor comparison per regime and per file");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str()
       ->check(positive());

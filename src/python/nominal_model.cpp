@@ -1,6 +1,6 @@
 // tpf.NominalModel: a parameter file (identified rigid body, friction, added effects) and the
 // effort it predicts over numpy samples.
-#include "tpf/estimation/nominal_model.hpp"
+#include "nominal_model.hpp"
 
 #include <pybind11/stl.h>
 
@@ -10,22 +10,11 @@
 #include "bindings.hpp"
 #include "friction.hpp"
 #include "robot.hpp"
+#include "tpf/estimation/nominal_model.hpp"
 
 namespace tpf::python {
 
 namespace {
-
-/// The model with its link form and workspace.
-struct Nominal {
-  NominalModelX nominal;
-  NominalLinks<double, Eigen::Dynamic> links;
-  Data<double, Eigen::Dynamic> data;
-  Eigen::VectorXd q, dq, ddq, rigid, friction;
-
-  explicit Nominal(NominalModelX m)
-      : nominal(std::move(m)), links(nominal_links(nominal)), data(nominal.model) {}
-  int n() const { return nominal.model.joint_count(); }
-};
 
 /// predict_effort over samples: (rigid, friction), each (n,) or (S, n) [N·m].
 py::tuple predict(Nominal& m, const InArray& q, const InArray& dq, const InArray& ddq) {

@@ -4,7 +4,9 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <string>
+#include <utility>
 
 #include "bindings.hpp"
 #include "tpf/dynamics/coriolis.hpp"
@@ -23,26 +25,47 @@ namespace {
 using VectorMap = Eigen::Map<Eigen::VectorXd>;
 using RowMap = Eigen::Map<RowMatrix>;
 
-/// Calls f(s, out) for every sample s after copying the arguments' sample s into robot.a, .b,
-/// .c (as many as given); out is the sample's storage in the result, `shape` per sample.
+using Argument = std::pair<const char*, py::handle>;
+
+/// Calls f(out) for every sample after copying the arguments' sample into robot.a, .b, .c (as
+/// many as given); out is the sample's storage in the result (`out` when given), `shape` per
+/// sample. One sample of numpy's own float64 is read in place with nothing allocated but the
+/// result (nothing at all with `out`): what a control loop calling it once per cycle pays.
 template <typename F>
-OutArray over_samples(Robot& robot,
-                      std::initializer_list<std::pair<const char*, const InArray*>> args,
-                      std::vector<py::ssize_t> shape, F f) {
+py::object over_samples(Robot& robot, std::initializer_list<Argument> args, const Shape& shape,
+                        py::handle out, F f) {
   const int n = robot.n();
-  const Samples samples = joint_samples(n, args);
-  py::ssize_t size = 1;
-  for (py::ssize_t d : shape)
-    size *= d;
-  OutArray out = new_output(samples, std::move(shape));
   Eigen::VectorXd* into[] = {&robot.a, &robot.b, &robot.c};
-  for (py::ssize_t s = 0; s < samples.count; ++s) {
-    int k = 0;
-    for (const auto& arg : args)
-      *into[k++] = sample(*arg.second, s, n);
-    f(output_sample(out, s, size));
+  const double* exact[3] = {};
+  int k = 0;
+  for (const auto& arg : args)
+    exact[k++] = exact_array(arg.second, {n});
+  if (std::all_of(exact, exact + k, [](const double* p) { return p != nullptr; })) {
+    for (int i = 0; i < k; ++i)
+      *into[i] = Eigen::Map<const Eigen::VectorXd>(exact[i], n);
+    double* data = nullptr;
+    py::object result = output_array(out, shape, data);
+    f(data);
+    return result;
   }
-  return out;
+  InArray converted[3];
+  std::pair<const char*, const InArray*> checked[3];
+  k = 0;
+  for (const auto& [name, h] : args) {
+    converted[k] = input_array(name, h);
+    checked[k] = {name, &converted[k]};
+    ++k;
+  }
+  const Samples samples = joint_samples(n, checked, k);
+  double* data = nullptr;
+  py::object result =
+      output_array(out, samples.stacked ? shape.stacked(samples.count) : shape, data);
+  for (py::ssize_t s = 0; s < samples.count; ++s) {
+    for (int i = 0; i < k; ++i)
+      *into[i] = sample(converted[i], s, n);
+    f(data + s * shape.size());
+  }
+  return result;
 }
 
 /// Homogeneous 4×4 matrix of a transform, row-major into `out`.
@@ -115,95 +138,113 @@ void bind_properties(py::class_<Robot>& c) {
       "gravity in the world frame [m/s²]");
 }
 
+const char* const kOutDoc =
+    " out: an array of the result's shape (float64, C-ordered) to write it into, returned.";
+
 void bind_kinematics(py::class_<Robot>& c) {
   c.def(
       "forward_kinematics",
-      [](Robot& r, const InArray& q) {
+      [](Robot& r, py::handle q, py::handle out) {
         const int n = r.n();
-        return over_samples(r, {{"q", &q}}, {n + 1, 4, 4}, [&r, n](double* out) {
+        return over_samples(r, {{"q", q}}, {n + 1, 4, 4}, out, [&r, n](double* pose) {
           forward_kinematics(r.model, r.data, r.a);
           for (int k = 0; k <= n; ++k)
-            write_pose(r.data.oMi[k], out + 16 * k);
+            write_pose(r.data.oMi[k], pose + 16 * k);
         });
       },
-      py::arg("q"),
-      "World poses of links 0..n (0: base) as 4×4 homogeneous matrices: (n+1, 4, 4), or "
-      "(S, n+1, 4, 4) for q of shape (S, n).");
+      py::arg("q"), py::arg("out") = py::none(),
+      (std::string("World poses of links 0..n (0: base) as 4×4 homogeneous matrices: (n+1, 4, "
+                   "4), or (S, n+1, 4, 4) for q of shape (S, n).") +
+       kOutDoc)
+          .c_str());
   c.def(
       "point_jacobian",
-      [](Robot& r, const InArray& q, int link, const InArray& point) {
+      [](Robot& r, py::handle q, int link, const InArray& point, py::handle out) {
         require_link(r, link);
         const Samples points = joint_samples(3, {{"point", &point}});
-        const Samples samples = joint_samples(r.n(), {{"q", &q}});
+        const InArray qs = input_array("q", q);
+        const Samples samples = joint_samples(r.n(), {{"q", &qs}});
         if (points.stacked != samples.stacked || points.count != samples.count)
           throw py::value_error("point must be (3,) for q (n,), (S, 3) for q (S, n)");
         py::ssize_t s = 0;
-        return over_samples(r, {{"q", &q}}, {6, r.n()}, [&](double* out) {
+        return over_samples(r, {{"q", qs}}, {6, r.n()}, out, [&](double* J) {
           forward_kinematics(r.model, r.data, r.a, link);
-          RowMap(out, 6, r.n()) = point_jacobian(r.model, r.data, link, sample(point, s++, 3));
+          RowMap(J, 6, r.n()) = point_jacobian(r.model, r.data, link, sample(point, s++, 3));
         });
       },
-      py::arg("q"), py::arg("link"), py::arg("point"),
-      "Jacobian (6, n), rows [linear; angular], world frame, of the point `point` (3,) (world "
-      "coordinates) fixed to link `link` (1..n); (S, 6, n) for q (S, n) and points (S, 3).");
+      py::arg("q"), py::arg("link"), py::arg("point"), py::arg("out") = py::none(),
+      (std::string("Jacobian (6, n), rows [linear; angular], world frame, of the point `point` "
+                   "(3,) (world coordinates) fixed to link `link` (1..n); (S, 6, n) for q (S, n) "
+                   "and points (S, 3).") +
+       kOutDoc)
+          .c_str());
 }
 
 void bind_dynamics(py::class_<Robot>& c) {
   c.def(
       "rnea",
-      [](Robot& r, const InArray& q, const InArray& dq, const InArray& ddq) {
-        return over_samples(r, {{"q", &q}, {"dq", &dq}, {"ddq", &ddq}}, {r.n()}, [&r](double* out) {
-          VectorMap(out, r.n()) = rnea(r.model, r.data, r.a, r.b, r.c);
-        });
+      [](Robot& r, py::handle q, py::handle dq, py::handle ddq, py::handle out) {
+        return over_samples(
+            r, {{"q", q}, {"dq", dq}, {"ddq", ddq}}, {r.n()}, out,
+            [&r](double* tau) { VectorMap(tau, r.n()) = rnea(r.model, r.data, r.a, r.b, r.c); });
       },
-      py::arg("q"), py::arg("dq"), py::arg("ddq"),
-      "Inverse dynamics τ = M(q)q̈ + C(q,q̇)q̇ + G(q) [N·m], armature included.");
+      py::arg("q"), py::arg("dq"), py::arg("ddq"), py::arg("out") = py::none(),
+      (std::string("Inverse dynamics τ = M(q)q̈ + C(q,q̇)q̇ + G(q) [N·m], armature included.") +
+       kOutDoc)
+          .c_str());
   c.def(
       "compute_gravity",
-      [](Robot& r, const InArray& q) {
-        return over_samples(r, {{"q", &q}}, {r.n()}, [&r](double* out) {
-          VectorMap(out, r.n()) = compute_gravity(r.model, r.data, r.a);
+      [](Robot& r, py::handle q, py::handle out) {
+        return over_samples(r, {{"q", q}}, {r.n()}, out, [&r](double* g) {
+          VectorMap(g, r.n()) = compute_gravity(r.model, r.data, r.a);
         });
       },
-      py::arg("q"), "Gravity torque G(q) [N·m].");
+      py::arg("q"), py::arg("out") = py::none(),
+      (std::string("Gravity torque G(q) [N·m].") + kOutDoc).c_str());
   c.def(
       "compute_mass_matrix",
-      [](Robot& r, const InArray& q) {
-        return over_samples(r, {{"q", &q}}, {r.n(), r.n()}, [&r](double* out) {
-          RowMap(out, r.n(), r.n()) = compute_mass_matrix(r.model, r.data, r.a);
+      [](Robot& r, py::handle q, py::handle out) {
+        return over_samples(r, {{"q", q}}, {r.n(), r.n()}, out, [&r](double* M) {
+          RowMap(M, r.n(), r.n()) = compute_mass_matrix(r.model, r.data, r.a);
         });
       },
-      py::arg("q"), "Joint-space inertia M(q) [kg·m²], armature included.");
+      py::arg("q"), py::arg("out") = py::none(),
+      (std::string("Joint-space inertia M(q) [kg·m²], armature included.") + kOutDoc).c_str());
   c.def(
       "compute_coriolis_matrix",
-      [](Robot& r, const InArray& q, const InArray& dq) {
-        return over_samples(r, {{"q", &q}, {"dq", &dq}}, {r.n(), r.n()}, [&r](double* out) {
-          RowMap(out, r.n(), r.n()) = compute_coriolis_matrix(r.model, r.data, r.a, r.b);
+      [](Robot& r, py::handle q, py::handle dq, py::handle out) {
+        return over_samples(r, {{"q", q}, {"dq", dq}}, {r.n(), r.n()}, out, [&r](double* C) {
+          RowMap(C, r.n(), r.n()) = compute_coriolis_matrix(r.model, r.data, r.a, r.b);
         });
       },
-      py::arg("q"), py::arg("dq"), "Coriolis matrix C(q, q̇) with C + Cᵀ = Ṁ.");
+      py::arg("q"), py::arg("dq"), py::arg("out") = py::none(),
+      (std::string("Coriolis matrix C(q, q̇) with C + Cᵀ = Ṁ.") + kOutDoc).c_str());
   c.def(
       "forward_dynamics",
-      [](Robot& r, const InArray& q, const InArray& dq, const InArray& tau) {
-        return over_samples(r, {{"q", &q}, {"dq", &dq}, {"tau", &tau}}, {r.n()}, [&r](double* out) {
-          VectorMap(out, r.n()) = forward_dynamics(r.model, r.data, r.a, r.b, r.c);
-        });
+      [](Robot& r, py::handle q, py::handle dq, py::handle tau, py::handle out) {
+        return over_samples(
+            r, {{"q", q}, {"dq", dq}, {"tau", tau}}, {r.n()}, out, [&r](double* ddq) {
+              VectorMap(ddq, r.n()) = forward_dynamics(r.model, r.data, r.a, r.b, r.c);
+            });
       },
-      py::arg("q"), py::arg("dq"), py::arg("tau"), "Joint accelerations q̈ [rad/s²] under τ.");
+      py::arg("q"), py::arg("dq"), py::arg("tau"), py::arg("out") = py::none(),
+      (std::string("Joint accelerations q̈ [rad/s²] under τ.") + kOutDoc).c_str());
   c.def(
       "compute_regressor",
-      [](Robot& r, const InArray& q, const InArray& dq, const InArray& ddq) {
+      [](Robot& r, py::handle q, py::handle dq, py::handle ddq, py::handle out) {
         const int n = r.n();
         Eigen::MatrixXd Y;
-        return over_samples(r, {{"q", &q}, {"dq", &dq}, {"ddq", &ddq}}, {n, 13 * n},
-                            [&](double* out) {
+        return over_samples(r, {{"q", q}, {"dq", dq}, {"ddq", ddq}}, {n, 13 * n}, out,
+                            [&](double* y) {
                               compute_regressor(r.model, r.data, r.a, r.b, r.c, Y);
-                              RowMap(out, n, 13 * n) = Y;
+                              RowMap(y, n, 13 * n) = Y;
                             });
       },
-      py::arg("q"), py::arg("dq"), py::arg("ddq"),
-      "Regressor Y (n, 13n): τ = Y·π with π per link [m, mx, my, mz, Ixx, Ixy, Ixz, Iyy, Iyz, "
-      "Izz, armature, Coulomb, viscous].");
+      py::arg("q"), py::arg("dq"), py::arg("ddq"), py::arg("out") = py::none(),
+      (std::string("Regressor Y (n, 13n): τ = Y·π with π per link [m, mx, my, mz, Ixx, Ixy, "
+                   "Ixz, Iyy, Iyz, Izz, armature, Coulomb, viscous].") +
+       kOutDoc)
+          .c_str());
 }
 
 }  // namespace

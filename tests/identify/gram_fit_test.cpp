@@ -1,5 +1,5 @@
 // Least squares from accumulated Gram matrices against the direct solution on the rows.
-#include "offline/identify/gram_fit.hpp"
+#include "offline/fit/gram_fit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The Gram kernel of identify and diagnose against Eigen's rankUpdate: the same bits, entry by
 // entry, over the shapes Eigen blocks differently (row blocks, depth blocks, the one-packet rows
 // it sums as even and odd halves) and values over many magnitudes.
-#include "offline/identify/gram_row_block.hpp"
+#include "offline/fit/gram_row_block.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Sample extraction runs per joint on two threads and computes t's median step once: its q̈ and
 // held sign of motion are those of the one-joint-at-a-time definitions, bit for bit.
-#include "offline/identify/joint_samples.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 #include <gtest/gtest.h>
 

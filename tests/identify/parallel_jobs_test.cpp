@@ -1,4 +1,4 @@
-#include "offline/identify/parallel_jobs.hpp"
+#include "offline/fit/parallel_jobs.hpp"
 
 #include <gtest/gtest.h>
 

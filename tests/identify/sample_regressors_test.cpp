@@ -1,5 +1,5 @@
 // The regressor computed once per log: every entry the design reads is compute_regressor's double.
-#include "offline/identify/sample_regressors.hpp"
+#include "offline/samples/sample_regressors.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The prediction kernel of identify and diagnose against Eigen's row-vector × matrix product:
 // the same bits for every feature count and number of parameter sets, zeros and magnitudes
 // that round differently in another order included.
-#include "offline/identify/theta_products.hpp"
+#include "offline/fit/theta_products.hpp"
 
 #include <gtest/gtest.h>
 

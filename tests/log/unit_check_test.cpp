@@ -176,5 +176,46 @@ TEST(UnitCheck, PositionsBeyondTheLimitsAreFlagged) {
       << checks.problems[0];
 }
 
+/// A vertical lift (prismatic, m and m/s) that carries a constant 185 N: it rests for 2 s, then
+/// moves at ±0.02 m/s (a lift's speed, below the rotary rest threshold of 0.05 rad/s) for 2 s,
+/// where its drive pushes 185 ± 250 N against friction, and so on for 20 s.
+UnitCheckInput lift_joint() {
+  UnitCheckInput in;
+  const int n = 2000;
+  in.t = Eigen::VectorXd::LinSpaced(n, 0.0, 19.99);
+  in.q.resize(n, 1);
+  in.dq.resize(n, 1);
+  in.ddq = Eigen::MatrixXd::Zero(n, 1);
+  in.effort.resize(n, 1);
+  double q = 0.1;
+  for (int k = 0; k < n; ++k) {
+    const int phase = static_cast<int>(in.t[k] / 2.0) % 4;  // rest, up, rest, down
+    const double v = phase == 1 ? 0.02 : phase == 3 ? -0.02 : 0.0;
+    q += v * 0.01;
+    in.q(k, 0) = q, in.dq(k, 0) = v;
+    in.effort(k, 0) = 185.0 + 250.0 * (v > 0 ? 1 : v < 0 ? -1 : 0) + 5.0 * std::sin(0.37 * k);
+  }
+  in.gravity = Eigen::MatrixXd::Constant(n, 1, 185.0);
+  in.gear_ratio = Eigen::VectorXd::Ones(1);
+  in.torque_constant = Eigen::VectorXd::Constant(1, 200.0);
+  in.effort_is_current = true;
+  in.lower = Eigen::VectorXd::Zero(1);
+  in.upper = Eigen::VectorXd::Constant(1, 0.35);
+  return in;
+}
+
+TEST(UnitCheck, APrismaticJointRestsBelowALinearThreshold) {
+  UnitCheckInput in = lift_joint();
+  // Read as revolute, 0.02 m/s passes for rest: the friction of the motion spoils the fit.
+  const LogChecks rotary = check_log_units(in);
+  ASSERT_EQ(rotary.problems.size(), 1u);
+  EXPECT_NE(rotary.problems[0].find("does not follow the robot file's gravity"), std::string::npos)
+      << rotary.problems[0];
+  in.prismatic = {true};
+  const LogChecks linear = check_log_units(in);
+  EXPECT_TRUE(linear.problems.empty()) << linear.problems.front();
+  EXPECT_NEAR(linear.rest_factor[0], 1.0, 1e-3);
+}
+
 }  // namespace
 }  // namespace tpf::offline

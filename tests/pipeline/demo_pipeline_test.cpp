@@ -36,11 +36,12 @@ TEST(DemoPipeline, ShortLogsRunEveryStageAndWriteTheReport) {
   o.teaching_s = 6.0;
   o.training_epochs = 2;
   o.run_measured = false;  // the Kinova logs: MeasuredLoop
+  o.run_tiago = false;     // the TIAGo log: TiagoStudy
   std::vector<std::string> lines;
   const DemoResult r = run_demo(o, [&](const std::string& l) { lines.push_back(l); });
 
   for (const char* stage :
-       {"[1/6] simulate", "[2/6] identify", "[3/6] diagnose", "[4/6] train", "[5/6] evaluate"}) {
+       {"[1/7] simulate", "[2/7] identify", "[3/7] diagnose", "[4/7] train", "[5/7] evaluate"}) {
     EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
       return l.rfind(stage, 0) == 0;
     })) << stage;

@@ -55,6 +55,7 @@ TEST(DemoTable, StaticAndStaticToKineticAsTheReadmeStates) {
   o.run_measured = false;
   o.run_contacts = false;     // Table I needs the training, calibration and held-out logs only
   o.training_safety_s = 0.0;  // no wall-clock limit: the figures must not depend on the load
+  o.run_tiago = false;
   const DemoResult r = run_demo(o);
   for (const auto& [regime, name] : {std::pair{Regime::Static, "static"},
                                      std::pair{Regime::StaticToKinetic, "static-to-kinetic"}}) {

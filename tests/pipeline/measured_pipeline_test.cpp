@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
-#include "offline/pipeline/measured_report.hpp"
 #include "support/page_structure.hpp"
 
 namespace tpf::offline {
@@ -193,6 +193,7 @@ TEST(MeasuredLoop, BeatsKtOnlyHeldOutByFileAndReportsIt) {
   o.out =
       std::filesystem::temp_directory_path() / ("tpf_measured_loop_" + std::to_string(::getpid()));
   o.run_twin = false;
+  o.run_tiago = false;              // the TIAGo log: TiagoStudy
   o.measured.run_diagnose = false;  // diagnose and train have their own tests; keep this short
   o.measured.run_training = false;
   o.measured.run_reverse = false;

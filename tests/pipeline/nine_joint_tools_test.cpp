@@ -17,9 +17,9 @@
 
 #include "offline/calibrate/estimator_calibration.hpp"
 #include "offline/evaluate/evaluation.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "offline/validate/validation.hpp"

@@ -1,6 +1,9 @@
 """The robot model from Python: the dynamics identities, an independent Jacobian form of the
-gravity torque and the mass matrix, finite differences of the kinematics, and batches equal to
-their samples."""
+gravity torque and the mass matrix, finite differences of the kinematics, batches equal to
+their samples, out= arrays, and the C++ core's own results to 1e-12."""
+import os
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -150,3 +153,56 @@ def test_wrong_shapes_are_refused(robot):
         robot.rnea(np.zeros((2, n)), np.zeros((3, n)), np.zeros((2, n)))
     with pytest.raises(ValueError, match="link"):
         robot.point_jacobian(np.zeros(n), n + 1, np.zeros(3))
+
+
+def test_out_arrays_and_inputs_numpy_does_not_hold_exactly(robot):
+    q, dq, ddq = states(robot, 6, seed=4)
+    n = robot.joint_count
+    tau = robot.rnea(q[0], dq[0], ddq[0])
+    out = np.full(n, np.nan)
+    assert robot.rnea(q[0], dq[0], ddq[0], out=out) is out
+    np.testing.assert_array_equal(out, tau)
+    stacked = np.empty((6, n, n))
+    assert robot.compute_mass_matrix(q, out=stacked) is stacked
+    np.testing.assert_array_equal(stacked, robot.compute_mass_matrix(q))
+    # Lists, float32, Fortran order and strided views are converted: the same numbers.
+    np.testing.assert_array_equal(robot.rnea(list(q[0]), tuple(dq[0]), ddq[0]), tau)
+    np.testing.assert_array_equal(robot.rnea(np.asfortranarray(q), dq, ddq), robot.rnea(q, dq, ddq))
+    wide = np.zeros((6, 2 * n))
+    wide[:, ::2] = q
+    np.testing.assert_array_equal(robot.compute_gravity(wide[:, ::2]), robot.compute_gravity(q))
+    assert robot.compute_gravity(q[0].astype(np.float32)).dtype == np.float64
+    for bad in (np.empty(n + 1), np.empty(n, dtype=np.float32), np.empty((1, n)),
+                np.empty(2 * n)[::2]):
+        with pytest.raises(ValueError, match="out must be"):
+            robot.rnea(q[0], dq[0], ddq[0], out=bad)
+    frozen = np.empty(n)
+    frozen.flags.writeable = False
+    with pytest.raises(ValueError, match="out must be"):
+        robot.rnea(q[0], dq[0], ddq[0], out=frozen)
+    with pytest.raises(TypeError, match="q must be an array"):
+        robot.rnea("joint angles", dq[0], ddq[0])
+    with pytest.raises(ValueError, match="dq has shape"):
+        robot.rnea(q[0], dq[0, :-1], ddq[0])
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_equals_the_cpp_core(name, data, tmp_path):
+    """RNEA, gravity, M(q) and forward dynamics from Python against the same functions called
+    from C++ (tests/python/dynamics_reference.cpp) on 20 random states, to 1e-12."""
+    robot = tpf.Robot(str(data / name))
+    q, dq, ddq = states(robot, 20, seed=7)
+    n = robot.joint_count
+    np.savetxt(tmp_path / "states.csv", np.hstack([q, dq, ddq]), delimiter=",", fmt="%.17g")
+    subprocess.run([os.environ["TPF_DYNAMICS_REFERENCE"], str(data / name),
+                    str(tmp_path / "states.csv"), str(tmp_path / "out.csv")], check=True)
+    ref = np.loadtxt(tmp_path / "out.csv", delimiter=",", ndmin=2)
+    assert ref.shape == (20, 1 + 3 * n + n * n) and np.all(ref[:, 0] == n)
+    tau = robot.rnea(q, dq, ddq)
+    parts = [tau, robot.compute_gravity(q), robot.compute_mass_matrix(q).reshape(20, n * n),
+             robot.forward_dynamics(q, dq, tau)]
+    column = 1
+    for got in parts:
+        want = ref[:, column:column + got.shape[1]]
+        assert np.abs(got - want).max() <= 1e-12 * (1 + np.abs(want).max())
+        column += got.shape[1]

@@ -1,5 +1,5 @@
 // The share of a held-out error from motion outside the fitting range of q and q̇.
-#include "offline/validate/coverage_share.hpp"
+#include "offline/measured_study/coverage_share.hpp"
 
 #include <gtest/gtest.h>
 

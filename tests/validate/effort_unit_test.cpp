@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "offline/compensator_training/tcn_parameters.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/replay/estimator_samples.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "offline/upgrade/upgrade_files.hpp"
 #include "support/arm_fixture.hpp"
 #include "tpf/common/error.hpp"

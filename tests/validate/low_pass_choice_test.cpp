@@ -1,7 +1,7 @@
 // The current low-pass's time constant: pooled, a file whose current carries a large oscillation
 // the sensor does not show chooses a filter whose lag ruins the other file; the worst-file
 // criterion takes the one that helps both. Numbers from the first-order filter's response.
-#include "offline/validate/low_pass_choice.hpp"
+#include "offline/measured_study/low_pass_choice.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The error floor of a motion model against the sensor: the residual's RMS above a cut-off,
 // filtered within each file.
-#include "offline/validate/noise_floor.hpp"
+#include "offline/measured_study/noise_floor.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <random>
 #include <thread>
@@ -398,14 +400,24 @@ TcnTrainResult train_tcn(const TcnDataset& dataset, const TcnTrainOptions& optio
 
 TcnProgressCallback tcn_progress_bar(std::ostream& out, bool redraw) {
   auto bar = std::make_shared<TerminalProgressBar>(out, 30, redraw);
-  return [bar](const TcnTrainProgress& p) {
+  // Not a terminal (a log file): a line per network at each third of its epochs and at its end,
+  // not one per epoch.
+  auto thirds = std::make_shared<std::map<int, int>>();
+  auto lock = std::make_shared<std::mutex>();
+  return [bar, thirds, lock, redraw](const TcnTrainProgress& p) {
+    const std::lock_guard<std::mutex> guard(*lock);
+    const double fraction = p.last ? 1.0 : static_cast<double>(p.epoch) / p.max_epochs;
+    const int third = static_cast<int>(std::floor(3.0 * fraction));
+    const auto seen = thirds->find(p.network);
+    if (!redraw && !p.last && (third == 0 || (seen != thirds->end() && seen->second >= third)))
+      return;
+    (*thirds)[p.network] = third;
     char status[192];
     std::snprintf(status, sizeof status,
                   "net %d  epoch %d/%d  loss %.4g  val %.4g  best %.4g @%d  lr %.2g  %.1f s",
                   p.network + 1, p.epoch, p.max_epochs, p.train_loss, p.validation_loss,
                   p.best_validation_loss, p.best_epoch, p.learning_rate, p.elapsed_seconds);
-    bar->update(p.last ? 1.0 : static_cast<double>(p.epoch) / p.max_epochs, status,
-                p.remaining_seconds);
+    bar->update(fraction, status, p.remaining_seconds);
     if (p.last) bar->finish();
   };
 }

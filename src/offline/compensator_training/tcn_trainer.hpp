@@ -192,7 +192,8 @@ TcnTrainResult train_tcn(const TcnDataset& dataset, const TcnTrainOptions& optio
                          const TcnProgressCallback& progress = {});
 
 /// A callback drawing a TerminalProgressBar on `out` ("epoch 12/200  loss …  val …  ETA …"),
-/// redrawn in place when `redraw` (a terminal), a line per epoch otherwise.
+/// redrawn in place when `redraw` (a terminal), else a line per network at each tenth of its
+/// epochs.
 TcnProgressCallback tcn_progress_bar(std::ostream& out, bool redraw = true);
 
 }  // namespace tpf::offline

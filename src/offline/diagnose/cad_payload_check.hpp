@@ -8,7 +8,7 @@
 
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/diagnose/effect_selection.hpp"
-#include "offline/identify/gram_fit.hpp"
+#include "offline/fit/gram_fit.hpp"
 
 namespace tpf::offline {
 

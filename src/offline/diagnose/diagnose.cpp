@@ -14,9 +14,9 @@
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/inertia_prior.hpp"
-#include "offline/identify/parallel_jobs.hpp"
 #include "offline/report/text_format.hpp"
-#include "offline/validate/measured_facts.hpp"
+#include "offline/samples/held_out_rows.hpp"
+#include "offline/samples/repeated_motion.hpp"
 #include "tpf/dynamics/regressor.hpp"
 
 namespace tpf::offline {
@@ -33,11 +33,9 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
   return part;
 }
 
-/// Pass 1: the declared model fitted on motion (every 4th sample is plenty for the candidates'
-/// inputs; selection and the before/after table use every sample), its residual, its rigid-body
-/// prediction, and the joint weights 1/σ_j² of the fit; with an inertia prior, the strength the
-/// fit then has: `given` (identify's) when it is a number, else the one identify would write
-/// (choose_inertia_prior on the training rows, refit_with_inertia_prior on every row).
+/// Pass 1, from identify's declared fit (its linear θ on the training rows, its joint weights
+/// 1/σ_j² and the prior strength it wrote, which every fit of diagnose keeps): the residual of
+/// that linear fit, its rigid-body prediction and the viscous coefficients the candidates read.
 struct DeclaredFit {
   double prior_strength = 0;
   double min_mass_eigenvalue_without_prior = 0;
@@ -48,51 +46,16 @@ struct DeclaredFit {
   Eigen::MatrixXd rigid_prediction;  ///< its rigid-body part
 };
 
-/// The strength of the prior for every fit of diagnose (DeclaredFit), its M(q) without it and
-/// why, into `fit`.
-void declared_prior_strength(const ModelX& model, const BaseParameters& base,
-                             const EffectDesign& declared, const JointSamples& s,
-                             const DesignGrams& grams, const FitSelection& selection,
-                             const RobotFileInertiaPrior& prior, double given, DeclaredFit& fit) {
-  const std::vector<int> columns = declared.declared_columns();
-  FitSelection every = selection;
-  every.heldout_rows = true;
-  if (std::isfinite(given)) {
-    const PriorFit with = fit_with_inertia_prior_strength(model, declared, base, grams, columns,
-                                                          every, &prior, given);
-    fit.prior_strength = given;
-    fit.min_mass_eigenvalue_without_prior = with.min_eigenvalue_without;
-    fit.prior_choice = "identify's (chosen on its held-out rows)";
-    return;
-  }
-  const PriorFit judged =
-      choose_inertia_prior(model, declared, base, grams, columns, selection, &prior);
-  const PriorFit written =
-      holds_rows_out(s)
-          ? refit_with_inertia_prior(model, declared, base, grams, columns, every, &prior, judged)
-          : judged;
-  fit.prior_strength = written.strength;
-  fit.min_mass_eigenvalue_without_prior =
-      std::min(judged.min_eigenvalue_without, written.min_eigenvalue_without);
-  fit.prior_choice = judged.choice;
-}
-
-DeclaredFit fit_declared(const ModelX& model, const BaseParameters& base,
-                         const EffectDesign& declared, const JointSamples& s,
-                         FitSelection selection, const RobotFileInertiaPrior* prior,
-                         double given_strength) {
-  const DesignGrams grams = declared.accumulate(s, 4);
-  Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
+DeclaredFit declared_fit(const Identification& id, const EffectDesign& declared,
+                         const JointSamples& s) {
   DeclaredFit fit;
-  fit.joint_weights = moving_residual_weights(grams, theta);
-  selection.joint_weights = fit.joint_weights;
-  if (prior) {
-    declared_prior_strength(model, base, declared, s, grams, selection, *prior, given_strength,
-                            fit);
-    selection.prior = prior->prior;
-    selection.prior.strength = fit.prior_strength;
-  }
-  theta = fit_columns(grams, declared.declared_columns(), selection);
+  const Identification::InertiaPrior& prior = id.inertia_prior;
+  fit.prior_strength = prior.written_strength;
+  fit.min_mass_eigenvalue_without_prior =
+      std::min(prior.judged_min_eigenvalue, prior.written_min_eigenvalue);
+  fit.prior_choice = prior.choice;
+  fit.joint_weights = id.joint_weights;
+  const Eigen::VectorXd& theta = id.declared_theta;
   std::vector<Eigen::MatrixXd> predictions =
       declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
   fit.residual = std::move(predictions[0]);  // in place: effort − prediction
@@ -105,15 +68,19 @@ DeclaredFit fit_declared(const ModelX& model, const BaseParameters& base,
   return fit;
 }
 
-CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup& setup,
+CandidateInputs candidate_inputs(const ModelX& model,
+                                 const std::shared_ptr<const Eigen::MatrixXd>& abs_gravity,
                                  const JointSamples& s, const ResidualAnalysis& analysis,
                                  const DeclaredFit& fit) {
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
   inputs.ripple_motor_cycles = analysis.ripple_motor_cycles;
+  // Ripple is periodic in an angle: a prismatic joint (q in m) has no revolution to count over.
+  for (int j = 0; j < model.joint_count(); ++j)
+    if (model.is_prismatic(j)) inputs.ripple_cycles[j] = inputs.ripple_motor_cycles[j] = 0.0;
   inputs.prediction_rate = analysis.prediction_rate;
-  inputs.abs_gravity = setup.abs_gravity ? *setup.abs_gravity : gravity_load(model, s);
+  inputs.abs_gravity = abs_gravity ? *abs_gravity : gravity_load(model, s);
   inputs.reference_temperature =
       s.temperature.cols() == s.joints()
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -122,15 +89,6 @@ CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup&
   return inputs;
 }
 
-/// The held-out split by file of a several-file log: files that repeat one motion
-/// (repeated_motions) form one group, held out together; the selection holds out the group of the
-/// last file, the transfer test each other group in turn.
-struct FileSplit {
-  std::vector<std::vector<std::size_t>> groups;
-  std::size_t selection_group = 0;
-  std::vector<RepeatedMotion> repeats;
-};
-
 std::string file_names(const Log& log, const std::vector<std::size_t>& files) {
   std::string text;
   for (std::size_t i = 0; i < files.size(); ++i)
@@ -138,62 +96,33 @@ std::string file_names(const Log& log, const std::vector<std::size_t>& files) {
   return text;
 }
 
-/// Rows of `files` marked 1, the others 0.
-std::vector<char> rows_of(const Log& log, const std::vector<std::size_t>& files, std::size_t n) {
-  std::vector<char> rows(n, 0);
-  for (std::size_t f : files) {
-    const auto [begin, end] = log.file_rows(f);
-    std::fill(rows.begin() + begin, rows.begin() + end, 1);
-  }
-  return rows;
-}
-
-/// Groups the files of a log held out by file and holds out the last file's group in `s`; when
-/// every file repeats one motion, no file is independent of another: the log is split in
-/// interleaved blocks, as one file is.
-FileSplit split_by_file(const Log& log, JointSamples& s, const DiagnoseOptions& options) {
-  FileSplit split;
-  if (s.heldout_file == 0) return split;
-  split.repeats = repeated_motions(log, s, options.repeat_tolerance);
-  split.groups = repeated_motion_groups(log.file_count(), split.repeats);
-  for (std::size_t g = 0; g < split.groups.size(); ++g)
-    if (split.groups[g].back() + 1 == log.file_count()) split.selection_group = g;
-  if (split.groups.size() > 1) {
-    s.heldout = rows_of(log, split.groups[split.selection_group], s.heldout.size());
-  } else {
-    s.heldout = interleaved_heldout_blocks(s.t, options.samples);
-    s.heldout_file = 0;
-  }
-  return split;
-}
-
 /// The held-out split in a sentence, with the repeated motions that grouped files.
-std::string split_sentence(const Log& log, const FileSplit& split, const JointSamples& s,
-                           const DiagnoseOptions& o) {
-  if (split.groups.empty()) return {};
+std::string split_sentence(const Log& log, const JointSamples& s, const DiagnoseOptions& o) {
+  const std::vector<std::vector<std::size_t>>& groups = s.heldout_file_groups;
+  if (groups.empty()) return {};
   const double heldout_share =
       static_cast<double>(std::count(s.heldout.begin(), s.heldout.end(), 1)) /
       static_cast<double>(std::max<std::size_t>(s.heldout.size(), 1));
   std::string text;
-  if (split.groups.size() == 1) {
+  if (groups.size() == 1) {
     text = format_sentence(
         "Not held out by file: every file repeats one motion, so a fit on some would be scored "
         "on their own motion; the files are split as one log, in interleaved %g s blocks, 1 in "
         "%.0f held out (%.0f %% of the samples).",
         o.samples.block_s, o.samples.heldout_every, 100 * heldout_share);
   } else {
-    const std::vector<std::size_t>& held = split.groups[split.selection_group];
+    const std::vector<std::size_t>& held = groups[s.heldout_group];
     text = "Held out by file: " + file_names(log, held) + " (fitted on the other files)";
     text += "; for the transfer test, one at a time:";
-    for (std::size_t g = 0; g < split.groups.size(); ++g)
-      if (g != split.selection_group) {
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      if (g != s.heldout_group) {
         text += text.back() == ':' ? " " : "; ";
-        text += file_names(log, split.groups[g]);
+        text += file_names(log, groups[g]);
       }
     text += ".";
   }
   // Appended piece by piece (a chain of string + string trips GCC 12's -Wrestrict here).
-  for (const RepeatedMotion& r : split.repeats) {
+  for (const RepeatedMotion& r : s.repeats) {
     text += " ";
     text += file_names(log, {r.second});
     text += " repeats the motion of ";
@@ -201,8 +130,9 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
     text += format_sentence(
         " (RMS of Δq over their common %.0f samples ≤ %.2g rad on every "
         "joint, below %.2g rad)",
-        static_cast<double>(r.common_samples), r.rms_position_difference, o.repeat_tolerance);
-    text += split.groups.size() > 1
+        static_cast<double>(r.common_samples), r.rms_position_difference,
+        o.samples.repeat_tolerance);
+    text += groups.size() > 1
                 ? ", so they are held out together: a fit on one would be scored on its own motion."
                 : ".";
   }
@@ -210,11 +140,10 @@ std::string split_sentence(const Log& log, const FileSplit& split, const JointSa
 }
 
 /// How rows are held out, in a phrase: by file (which) or by time blocks (their length).
-std::string heldout_method(const Log& log, const FileSplit& split, const JointSamples& s,
-                           const DiagnoseOptions& o) {
+std::string heldout_method(const Log& log, const JointSamples& s, const DiagnoseOptions& o) {
   if (!holds_rows_out(s)) return "none";
-  if (split.groups.size() > 1)
-    return "by file: " + file_names(log, split.groups[split.selection_group]);
+  if (s.heldout_file_groups.size() > 1)
+    return "by file: " + file_names(log, s.heldout_file_groups[s.heldout_group]);
   return format_sentence("by time blocks: 1 in %.0f of interleaved %g s blocks",
                          o.samples.heldout_every, o.samples.block_s);
 }
@@ -222,18 +151,18 @@ std::string heldout_method(const Log& log, const FileSplit& split, const JointSa
 /// The folds a candidate's gain must transfer to (each group of files but the selection's held
 /// out in turn, fitted on the rest), and every held-out group (the selection's first) scored only
 /// outside the range of q its fit saw.
-void held_out_folds(const Log& log, const FileSplit& split, const EffectDesign& design,
-                    const JointSamples& s, std::vector<TransferFold>& transfer,
-                    std::vector<OutsideFold>& outside) {
-  if (split.groups.size() < 2) return;
-  std::vector<std::size_t> order{split.selection_group};
-  for (std::size_t g = 0; g < split.groups.size(); ++g)
-    if (g != split.selection_group) order.push_back(g);
+void held_out_folds(const Log& log, const EffectDesign& design, const JointSamples& s,
+                    std::vector<TransferFold>& transfer, std::vector<OutsideFold>& outside) {
+  const std::vector<std::vector<std::size_t>>& groups = s.heldout_file_groups;
+  if (groups.size() < 2) return;
+  std::vector<std::size_t> order{s.heldout_group};
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    if (g != s.heldout_group) order.push_back(g);
   for (std::size_t g : order) {
     JointSamples fold = s;
-    fold.heldout = rows_of(log, split.groups[g], s.heldout.size());
-    const std::string name = file_names(log, split.groups[g]);
-    if (g != split.selection_group) transfer.push_back({name, design.accumulate(fold)});
+    fold.heldout = file_group_rows(log, groups[g]);
+    const std::string name = file_names(log, groups[g]);
+    if (g != s.heldout_group) transfer.push_back({name, design.accumulate(fold)});
     std::vector<char> fit_rows(fold.heldout.size());
     for (std::size_t k = 0; k < fit_rows.size(); ++k)
       fit_rows[k] = !fold.heldout[k];
@@ -263,7 +192,6 @@ struct EffectPredictions {
   Eigen::MatrixXd selected, declared;  ///< the selected and the declared linear models
   std::vector<Eigen::MatrixXd> terms;  ///< per selected effect, as the written model has it
   Eigen::MatrixXd non_friction;        ///< written, outside the friction (curves fit it)
-  Eigen::MatrixXd declared_rigid;      ///< the declared rigid body (its curves fit it)
   Eigen::MatrixXd final_non_friction;  ///< non_friction of the model refitted on every row
 };
 
@@ -279,7 +207,6 @@ EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagno
     thetas.push_back(part);
   }
   thetas.push_back(non_friction_part(d.groups, sel.theta_written));
-  thetas.push_back(only_family<RigidBodyColumns>(d.groups, sel.theta_declared));
   if (refitted) thetas.push_back(non_friction_part(d.groups, sel.theta_final));
   std::vector<Eigen::MatrixXd> p = design.predict_each(d.samples, thetas);
   EffectPredictions out;
@@ -289,8 +216,7 @@ EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagno
     out.terms.push_back(std::move(p[e + 2]));
   const std::size_t next = d.selected.size() + 2;
   out.non_friction = std::move(p[next]);
-  out.declared_rigid = std::move(p[next + 1]);
-  if (refitted) out.final_non_friction = std::move(p[next + 2]);
+  if (refitted) out.final_non_friction = std::move(p[next + 1]);
   return out;
 }
 
@@ -314,21 +240,6 @@ StribeckParametersX write_effects(const std::vector<FeatureGroup>& groups,
     nominal.base_values[i] += payload_base[i];
   load_selected = written.load_selected;
   return linear;
-}
-
-/// The declared model as identify fits it: the declared rigid body and friction curves, nothing
-/// added.
-NominalModelX declared_nominal(const ModelX& model, const EffectDesign& design,
-                               const Eigen::VectorXd& theta_declared, const BaseParameters& base,
-                               const JointSamples& s,
-                               const Eigen::MatrixXd& declared_rigid_prediction,
-                               const CandidateInputs& inputs) {
-  const LinearNominal fit = linear_nominal(model, design, base, theta_declared);
-  NominalModelX declared = fit.nominal;
-  declared.friction = fit_friction_curves(s, declared_rigid_prediction, inputs.abs_gravity,
-                                          fit.linear, false, 20000)
-                          .parameters;
-  return declared;
 }
 
 /// The written model refitted on every row, held-out ones included (EffectSelection::theta_final,
@@ -385,22 +296,39 @@ IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
   return setup;
 }
 
-Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options) {
-  IdentificationSetup setup = prepare_identification(log, model, options.samples);
-  return diagnose(log, model, std::move(setup), options);
+IdentifyOptions identify_options_of(const DiagnoseOptions& options) {
+  IdentifyOptions identify_options;
+  identify_options.samples = options.samples;
+  identify_options.inertia_prior = options.inertia_prior;
+  identify_options.progress = options.progress;
+  return identify_options;
 }
 
-Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
+IdentifiedLog identify_for_diagnosis(const Log& log, const ModelX& model,
+                                     const IdentifyOptions& options) {
+  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples);
+  IdentifiedLog out{{}, setup.base, setup.regressors, setup.abs_gravity};
+  out.identification = identify(log, model, std::move(setup), options);
+  return out;
+}
+
+Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options) {
+  return diagnose(log, model, identify_for_diagnosis(log, model, identify_options_of(options)),
+                  options);
+}
+
+Diagnosis diagnose(const Log& log, const ModelX& model, IdentifiedLog identified,
                    const DiagnoseOptions& options) {
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
   const int joints = model.joint_count();
   Diagnosis out;
-  out.samples = std::move(setup.samples);
-  const FileSplit split = split_by_file(log, out.samples, options);
-  out.heldout_split = split_sentence(log, split, out.samples, options);
-  out.heldout_method = heldout_method(log, split, out.samples, options);
+  Identification& id = identified.identification;
+  const BaseParameters& base = identified.base;
+  out.samples = std::move(id.samples);
+  out.heldout_split = split_sentence(log, out.samples, options);
+  out.heldout_method = heldout_method(log, out.samples, options);
   const JointSamples& s = out.samples;
   std::vector<char> training(s.heldout.size());
   for (std::size_t k = 0; k < training.size(); ++k)
@@ -412,23 +340,18 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
 
   say("diagnose: pass 1/4: declared model");
   const auto regressors =
-      setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
-  const EffectDesign declared(model, setup.base, s, regressors, {}, threshold);
-  const RobotFileInertiaPrior declared_prior =
-      options.inertia_prior ? robot_file_inertia_prior(model, declared, setup.base)
-                            : RobotFileInertiaPrior{};
-  const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
-                                       options.inertia_prior ? &declared_prior : nullptr,
-                                       options.inertia_prior_strength);
+      identified.regressors ? identified.regressors : diagnosis_regressors(model, base, s);
+  const EffectDesign declared(model, base, s, regressors, {}, threshold);
+  const DeclaredFit fit = declared_fit(id, declared, s);
   selection.joint_weights = fit.joint_weights;
   out.inertia_prior_strength = fit.prior_strength;
   out.min_mass_eigenvalue_without_prior = fit.min_mass_eigenvalue_without_prior;
   out.inertia_prior_choice = fit.prior_choice;
-  if (options.inertia_prior && !(declared_prior.floor > 0))
+  if (id.inertia_prior.asked && !(id.inertia_prior.floor > 0))
     out.notes.push_back(
         "inertia prior not applied: the robot file's own M(q) is not positive "
         "definite (smallest eigenvalue " +
-        format_number(10 * declared_prior.floor, 4) +
+        format_number(10 * id.inertia_prior.floor, 4) +
         " kg·m²), so it sets no floor to lift the fit's to");
 
   say("diagnose: pass 2/4: residual analysis");
@@ -444,18 +367,19 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const EffectDesign design(model, setup.base, s, regressors,
-                            candidate_inputs(model, setup, s, analysis, fit), threshold);
+  const EffectDesign design(model, base, s, regressors,
+                            candidate_inputs(model, identified.abs_gravity, s, analysis, fit),
+                            threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
   if (fit.prior_strength > 0) {  // the declared fit's strength for every fit from here on
-    selection.prior = robot_file_prior(model, design, setup.base);
+    selection.prior = robot_file_prior(model, design, base);
     selection.prior.strength = fit.prior_strength;
   }
   out.groups = design.groups();
   std::vector<TransferFold> transfer;
   std::vector<OutsideFold> outside;
-  held_out_folds(log, split, design, s, transfer, outside);
+  held_out_folds(log, design, s, transfer, outside);
   EffectSelection sel =
       select_effects(grams, transfer, outside, out.groups, design.declared_columns(), selection,
                      analysis.variance_inflation, options);
@@ -476,40 +400,30 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   NominalModelX& nominal = out.nominal;
   nominal.model = model;
   nominal.resize(joints);
-  nominal.base_count = setup.base.size();
+  nominal.base_count = base.size();
   bool load_selected = false;
   const StribeckParametersX linear =
-      write_effects(out.groups, sel.theta_written, setup.base, inputs, nominal, load_selected);
-  // The written models on the held-out samples: the extended one (what --params holds) and the
-  // declared model as identify fits it: independent fits at once, then both residuals in one
-  // pass (one forward kinematics per sample).
-  FrictionCurves curves;
-  parallel_jobs(2, [&](int job) {
-    if (job == 0)
-      curves =
-          fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, load_selected, 20000);
-    else
-      out.declared = declared_nominal(model, design, sel.theta_declared, setup.base, s,
-                                      p.declared_rigid, inputs);
-  });
+      write_effects(out.groups, sel.theta_written, base, inputs, nominal, load_selected);
+  // The written model on the held-out samples beside the declared model identify fitted on the
+  // training rows (scored on the same rows by identify: its held-out table).
+  const FrictionCurves curves =
+      fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, load_selected, 20000);
   nominal.friction = curves.parameters;
   for (const std::string& note : curves.notes)
     out.notes.push_back("friction curve: " + note);
-  std::vector<Eigen::MatrixXd> residuals = nominal_residuals({&nominal, &out.declared}, s);
-  out.residual_written = std::move(residuals[0]);
-  parallel_jobs(2, [&](int job) {
-    (job == 0 ? out.written_after : out.written_before) =
-        split_regime_stats(s, job == 0 ? out.residual_written : residuals[1], true);
-  });
+  out.residual_written = nominal_residual(nominal, s);
+  out.written_after = split_regime_stats(s, out.residual_written, true);
+  out.written_before = std::move(id.heldout);
+  out.declared = std::move(id.judged);
 
   out.judged = out.nominal;
   if (out.refitted)
-    out.nominal = refitted_on_every_row(out.groups, sel.theta_final, p.final_non_friction,
-                                        setup.base, inputs, s, model, curves);
+    out.nominal = refitted_on_every_row(out.groups, sel.theta_final, p.final_non_friction, base,
+                                        inputs, s, model, curves);
 
   out.cad_payload = judge_cad_payload(
-      grams, out.groups, cad_rigid_body(model, setup.base, out.groups, design.features()),
-      out.selected, transfer, selection, analysis.variance_inflation, options);
+      grams, out.groups, cad_rigid_body(model, base, out.groups, design.features()), out.selected,
+      transfer, selection, analysis.variance_inflation, options);
   out.findings = diagnosis_findings(out, options);
   return out;
 }

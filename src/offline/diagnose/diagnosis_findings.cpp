@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/report/text_format.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 namespace {

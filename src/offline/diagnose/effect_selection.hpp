@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "offline/diagnose/diagnose.hpp"
-#include "offline/identify/gram_fit.hpp"
+#include "offline/fit/gram_fit.hpp"
 
 namespace tpf::offline {
 

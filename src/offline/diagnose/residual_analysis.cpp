@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "offline/identify/parallel_jobs.hpp"
+#include "offline/fit/parallel_jobs.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/signal/acceleration.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 

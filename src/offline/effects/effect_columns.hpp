@@ -1,3 +1,7 @@
+// Folder effects/: the typed registry of the design matrix's column families, one header each
+// (the declared model and every candidate effect), read by identify/ and diagnose/. It depends on
+// samples/ (SampleRow) and report/'s number format only.
+//
 // The registration of the design matrix's column families: the declared model, then the library
 // of candidate effects, each one type (see its header) with
 //   key, written_to, kSharedGroupFirst,

@@ -7,7 +7,7 @@
 
 #include "offline/common/run_time_types.hpp"
 #include "offline/effects/candidate_inputs.hpp"
-#include "offline/identify/joint_samples.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 

@@ -6,9 +6,9 @@
 #include <type_traits>
 
 #include "offline/effects/effect_columns.hpp"
-#include "offline/identify/gram_row_block.hpp"
-#include "offline/identify/parallel_halves.hpp"
-#include "offline/identify/theta_products.hpp"
+#include "offline/fit/gram_row_block.hpp"
+#include "offline/fit/parallel_halves.hpp"
+#include "offline/fit/theta_products.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/dynamics/rnea.hpp"

@@ -14,9 +14,9 @@
 #include "offline/effects/design_context.hpp"
 #include "offline/effects/feature_group.hpp"
 #include "offline/effects/sample_row.hpp"
-#include "offline/identify/gram_fit.hpp"
-#include "offline/identify/joint_samples.hpp"
-#include "offline/identify/sample_regressors.hpp"
+#include "offline/fit/gram_fit.hpp"
+#include "offline/samples/joint_samples.hpp"
+#include "offline/samples/sample_regressors.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
 
 namespace tpf::offline {

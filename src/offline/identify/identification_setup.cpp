@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "offline/identify/parallel_halves.hpp"
+#include "offline/fit/parallel_halves.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/rnea.hpp"
 

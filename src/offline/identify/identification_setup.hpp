@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "offline/common/run_time_types.hpp"
-#include "offline/identify/joint_samples.hpp"
-#include "offline/identify/sample_regressors.hpp"
 #include "offline/log/log.hpp"
+#include "offline/samples/joint_samples.hpp"
+#include "offline/samples/sample_regressors.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
 
 namespace tpf::offline {

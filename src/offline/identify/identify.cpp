@@ -8,13 +8,13 @@
 #include <random>
 
 #include "offline/effects/effect_columns.hpp"
+#include "offline/fit/gram_fit.hpp"
+#include "offline/fit/parallel_halves.hpp"
+#include "offline/fit/parallel_jobs.hpp"
 #include "offline/identify/effect_design.hpp"
-#include "offline/identify/gram_fit.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/inertia_prior.hpp"
 #include "offline/identify/linear_friction_fit.hpp"
-#include "offline/identify/parallel_halves.hpp"
-#include "offline/identify/parallel_jobs.hpp"
 #include "offline/identify/sensor_friction.hpp"
 #include "offline/identify/stribeck_fit.hpp"
 #include "offline/report/text_format.hpp"
@@ -360,6 +360,7 @@ LinearNominal linear_nominal(const ModelX& model, const EffectDesign& design,
   out.nominal.resize(model.joint_count());
   out.linear.resize(model.joint_count());
   out.nominal.base_count = base.size();
+  out.theta = theta;
   out.rigid_theta = Eigen::VectorXd::Zero(design.features());
   using Friction = JointFrictionColumns;
   for (const FeatureGroup& g : design.groups()) {
@@ -468,6 +469,7 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
                        judged.candidates,
                        judged.choice};
   LinearNominal fit = std::move(judged.fit);
+  out.declared_theta = fit.theta;
   LinearNominal final_fit = std::move(written.fit);
   std::vector<Eigen::MatrixXd> rigids = design.predict_each(
       s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
@@ -487,6 +489,7 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   nominal.friction = curves.parameters;
   const StribeckParametersX& linear = fit.linear;
   out.nominal = nominal;
+  out.judged = nominal;
   if (out.refitted) {
     std::vector<std::string> unused;
     Eigen::MatrixXd final_sensor_reference;

@@ -1,3 +1,8 @@
+// Folder identify/: `tpf identify`: the declared model's design over the column families of
+// effects/ (EffectDesign), its linear fit (fit/) with the robot file's inertias as a prior, the
+// friction curves (Ceres), the held-out and consistency checks. It reads the samples of samples/
+// and hands diagnose/ its result (Identification).
+//
 // `tpf identify`: the declared model of an arm (rigid-body base parameters with armature,
 // Stribeck + viscous friction with load dependence) from a log, with held-out validation.
 #pragma once
@@ -9,9 +14,9 @@
 
 #include "offline/common/run_time_types.hpp"
 #include "offline/identify/identification_setup.hpp"
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime_stats.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 
@@ -61,6 +66,13 @@ struct Identification {
   /// then refitted on every row (`refitted`) where rows were held out.
   NominalModelX nominal;
   bool refitted = false;
+  /// The declared model fitted on the training rows (rigid body, friction curves): what
+  /// `residual`, `heldout` and `training` score; equal to `nominal` when nothing is held out.
+  NominalModelX judged;
+  /// The linear fit `judged` starts from: θ over the columns of the declared design (EffectDesign
+  /// without candidates: rigid body, Coulomb and viscous levels), with the judged prior strength.
+  /// Diagnose starts from it (its residual, rigid-body prediction and viscous coefficients).
+  Eigen::VectorXd declared_theta;
   JointSamples samples;
   /// effort − prediction of the model fitted on the training rows, per sample and joint (NaN
   /// invalid): what `heldout` and `training` score.
@@ -154,6 +166,7 @@ class EffectDesign;
 /// parameters, and the linear friction (Coulomb + viscous) the curves start from.
 struct LinearNominal {
   NominalModelX nominal;
+  Eigen::VectorXd theta;        ///< the fit θ itself, over every column of the design
   Eigen::VectorXd rigid_theta;  ///< θ's rigid-body columns, zero elsewhere
   StribeckParametersX linear;   ///< the linear friction the curves start from
 };

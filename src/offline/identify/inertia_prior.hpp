@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "offline/common/run_time_types.hpp"
+#include "offline/fit/gram_fit.hpp"
 #include "offline/identify/effect_design.hpp"
-#include "offline/identify/gram_fit.hpp"
 #include "offline/identify/identify.hpp"
 #include "tpf/dynamics/base_parameters.hpp"
 

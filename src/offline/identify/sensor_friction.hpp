@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
+#include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {
 

@@ -1,6 +1,7 @@
 #include "offline/log/unit_check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -56,16 +57,31 @@ std::string matching_reading(const std::vector<Reading>& readings, double factor
   return {};
 }
 
-/// Rows where every joint's |q̇| and |q̈| are below the rest thresholds and every value is finite.
+bool joint_is_prismatic(const UnitCheckInput& in, int j) {
+  return static_cast<std::size_t>(j) < in.prismatic.size() &&
+         in.prismatic[static_cast<std::size_t>(j)];
+}
+
+/// Joint j's rest, rest-acceleration and moving thresholds (rad or m).
+std::array<double, 3> joint_thresholds(const UnitCheckInput& in, const UnitCheckOptions& o, int j) {
+  if (joint_is_prismatic(in, j))
+    return {o.rest_linear_velocity, o.rest_linear_acceleration, o.moving_linear_velocity};
+  return {o.rest_velocity, o.rest_acceleration, o.moving_velocity};
+}
+
+/// Rows where every joint's |q̇| and |q̈| are below its rest thresholds and every value is finite.
 std::vector<Eigen::Index> rest_rows(const UnitCheckInput& in, const UnitCheckOptions& o) {
   std::vector<Eigen::Index> rows;
   for (Eigen::Index r = 0; r < in.q.rows(); ++r) {
     const bool finite = in.q.row(r).allFinite() && in.dq.row(r).allFinite() &&
                         in.ddq.row(r).allFinite() && in.effort.row(r).allFinite() &&
                         in.gravity.row(r).allFinite();
-    if (finite && in.dq.row(r).cwiseAbs().maxCoeff() < o.rest_velocity &&
-        in.ddq.row(r).cwiseAbs().maxCoeff() < o.rest_acceleration)
-      rows.push_back(r);
+    bool rests = finite;
+    for (int j = 0; rests && j < in.q.cols(); ++j) {
+      const std::array<double, 3> limit = joint_thresholds(in, o, j);
+      rests = std::abs(in.dq(r, j)) < limit[0] && std::abs(in.ddq(r, j)) < limit[1];
+    }
+    if (rests) rows.push_back(r);
   }
   return rows;
 }
@@ -139,7 +155,7 @@ void check_dead_channels(const UnitCheckInput& in, const UnitCheckOptions& o, Lo
     if (finite == 0) continue;
     const double zero_share = static_cast<double>(zeros) / static_cast<double>(finite);
     // a joint that rests all along may well hold few values (a steady current's counts)
-    const bool moves = (in.dq.col(j).array().abs() > o.moving_velocity).count() > 0;
+    const bool moves = (in.dq.col(j).array().abs() > joint_thresholds(in, o, j)[2]).count() > 0;
     const bool few = moves && distinct.size() <= o.dead_distinct_values;
     if (zero_share < o.dead_zero_fraction && !few) continue;
     out.dead_joints.push_back(j + 1);
@@ -183,7 +199,8 @@ void check_velocity(const UnitCheckInput& in, const UnitCheckOptions& o, LogChec
     for (Eigen::Index r = 1; r + 1 < in.q.rows(); ++r) {
       const double step = in.t[r + 1] - in.t[r - 1];
       const double d = (in.q(r + 1, j) - in.q(r - 1, j)) / step;
-      if (!std::isfinite(d) || !std::isfinite(in.dq(r, j)) || std::abs(d) < o.rest_velocity)
+      if (!std::isfinite(d) || !std::isfinite(in.dq(r, j)) ||
+          std::abs(d) < joint_thresholds(in, o, j)[0])
         continue;
       vd += in.dq(r, j) * d;
       dd += d * d;

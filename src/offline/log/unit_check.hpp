@@ -20,6 +20,8 @@ struct UnitCheckInput {
   Eigen::VectorXd torque_constant;  ///< robot file, output side [N·m/A]
   bool effort_is_current = false;   ///< the log's effort is i<j> (mA)
   Eigen::VectorXd lower, upper;     ///< position limits [rad]; ±∞ where none
+  /// Per joint, true at a prismatic joint (q [m], q̇ [m/s], effort [N]); empty: all revolute.
+  std::vector<bool> prismatic;
 };
 
 /// What the checks found, per finding one line "joint j: …".
@@ -36,6 +38,11 @@ struct UnitCheckOptions {
   double rest_velocity = 0.05;  ///< every joint's |q̇| below this [rad/s]: the arm (nearly) rests
   double rest_acceleration = 0.5;  ///< and every joint's |q̈| below this [rad/s²]
   double moving_velocity = 0.05;   ///< a joint with |q̇| above this somewhere moves
+  /// The same three at a prismatic joint [m/s, m/s², m/s]: a lift's top speed (0.07 m/s on a
+  /// TIAGo torso) is of the order of the rotary thresholds, so a tenth of them.
+  double rest_linear_velocity = 0.005;
+  double rest_linear_acceleration = 0.05;
+  double moving_linear_velocity = 0.005;
   std::size_t min_rest_samples = 20;
   /// Rest samples are compared where |G_j| is at least min_gravity [N·m] and min_gravity_share of
   /// its largest over the log (near its smallest, friction would decide the factor).

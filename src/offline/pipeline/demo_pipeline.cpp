@@ -15,8 +15,9 @@
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/demo_index.hpp"
-#include "offline/pipeline/measured_report.hpp"
+#include "offline/pipeline/tiago_report.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
@@ -88,7 +89,7 @@ std::string training_summary(const CompensatorTraining& training) {
 void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJob>& jobs,
               const std::function<void(const std::string&)>& say) {
   // 1. Simulate.
-  say("[1/6] simulate: training, calibration and held-out logs on " + std::to_string(o.threads) +
+  say("[1/7] simulate: training, calibration and held-out logs on " + std::to_string(o.threads) +
       " threads");
   jobs = {{"training excitation", o.training_scenario, o.training_seed, o.training_s, {}},
           {"held-out excitation", o.test_scenario, o.test_seed, o.test_s, {}},
@@ -105,7 +106,7 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   const Log& training_log = jobs[0].log;
 
   // 2. Identify the declared model on the training log.
-  say("[2/6] identify: declared model (base parameters, armature, Stribeck + load friction) on "
+  say("[2/7] identify: declared model (base parameters, armature, Stribeck + load friction) on "
       "the training log");
   const ModelX model = load_robot<double, Eigen::Dynamic>(data_file("arm4.robot.json"));
   IdentifyOptions identify_options;
@@ -114,7 +115,7 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   save_nominal_model(o.out / "identified.params.json", identified.nominal, training_log.source);
 
   // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
-  say("[3/6] diagnose: candidate effects on the training log's held-out blocks");
+  say("[3/7] diagnose: candidate effects on the training log's held-out blocks");
   DiagnoseOptions diagnose_options;
   diagnose_options.progress = say;
   const Diagnosis diagnosis = diagnose(training_log, model, diagnose_options);
@@ -133,7 +134,7 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   const int pads = static_cast<int>(setup.pads.size());
 
   // 4. Train.
-  say("[4/6] train: estimator features on the training log, then the TCN (" +
+  say("[4/7] train: estimator features on the training log, then the TCN (" +
       std::to_string(o.training_epochs) + " epochs per network at most)");
   setup.parameters = estimator_parameters_from_noise(
       estimate_sensor_noise(training_log, setup.nominal.model.torque_constant));
@@ -164,7 +165,7 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   setup.weights = find_compensator_weights(weights, kDemoJoints);
 
   // 5. Evaluate.
-  say("[5/6] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
+  say("[5/7] evaluate: held-out logs (seeds " + std::to_string(o.test_seed) + ", " +
       std::to_string(o.contacts_seed) + ", " + std::to_string(o.teaching_seed) + ")");
   EvaluationLogs logs;
   logs.calibration = &jobs[2].log;
@@ -224,13 +225,21 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
   std::vector<SimulationJob> jobs;
   if (o.run_twin) run_twin(o, result, jobs, say);
   if (o.run_measured) {
-    say("[6/6] measured: the Kinova Gen3 logs, held out by file (" + std::string(kMeasuredLabel) +
+    say("[6/7] measured: the Kinova Gen3 logs, held out by file (" + std::string(kMeasuredLabel) +
         ")");
     MeasuredOptions measured = o.measured;
     measured.out = o.out;
     measured.threads = o.threads;
     result.measured = run_measured(measured, say);
     write_measured_report(*result.measured, measured, o.out);
+  }
+  if (o.run_tiago) {
+    say("[7/7] measured: the TIAGo log, held out by time (" + std::string(kTiagoLabel) + ")");
+    TiagoOptions tiago = o.tiago;
+    tiago.out = o.out;
+    tiago.threads = o.threads;
+    result.tiago = run_tiago_study(tiago, say);
+    write_tiago_report(*result.tiago, tiago, o.out);
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_demo_index(o.out, o, result);

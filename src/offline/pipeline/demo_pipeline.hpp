@@ -1,3 +1,6 @@
+// Folder pipeline/: `tpf demo`: every stage of the loop in order (simulate, identify, diagnose,
+// train, calibrate, evaluate, then the measured study of measured_study/) and the one report.
+//
 // `tpf demo`: the whole loop on the digital twin, from simulation to one report.
 #pragma once
 
@@ -10,7 +13,8 @@
 
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/evaluate/evaluation.hpp"
-#include "offline/pipeline/measured_pipeline.hpp"
+#include "offline/measured_study/measured_pipeline.hpp"
+#include "offline/pipeline/tiago_study.hpp"
 #include "offline/report/html_report.hpp"
 
 namespace tpf::offline {
@@ -51,6 +55,8 @@ struct DemoOptions {
   bool run_contacts = true;
   bool run_measured = true;  ///< stage 6: the Kinova Gen3 logs (MEASURED)
   MeasuredOptions measured;  ///< its out and threads are the demo's
+  bool run_tiago = true;     ///< stage 7: the TIAGo log, held out by time (MEASURED)
+  TiagoOptions tiago;        ///< its out and threads are the demo's
 };
 
 struct DemoResult {
@@ -60,15 +66,17 @@ struct DemoResult {
   Table diagnosis_summary;                 ///< the diagnosis at a glance (diagnosis_summary_table)
   std::vector<std::string> stages;         ///< the twin's logs, nominal model and training
   std::optional<MeasuredResult> measured;  ///< stage 6, when run
+  std::optional<TiagoResult> tiago;        ///< stage 7, when run
   std::filesystem::path index;             ///< the report's entry page
   double seconds = 0.0;
 };
 
 /// The twin (SIMULATED): simulate (training, calibration and held-out logs, two at a time) →
 /// identify → diagnose (the nominal model: declared + added effects) → train → evaluate; then the
-/// Kinova Gen3 logs (MEASURED, run_measured, held out by file); one report (out/index.html
-/// linking out/diagnose.html, out/evaluate.html and out/measured.html; parameters, weights,
-/// evaluation.json and measured.json beside it). `progress` gets one line per stage.
+/// Kinova Gen3 logs (MEASURED, run_measured, held out by file); then the TIAGo log (MEASURED,
+/// run_tiago, held out by time); one report (out/index.html linking out/diagnose.html,
+/// out/evaluate.html, out/measured.html and out/tiago.html; parameters, weights,
+/// evaluation.json, measured.json and tiago.json beside it). `progress` gets one line per stage.
 DemoResult run_demo(const DemoOptions& options,
                     const std::function<void(const std::string&)>& progress = {});
 

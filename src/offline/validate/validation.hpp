@@ -1,3 +1,6 @@
+// Folder validate/: `tpf validate` only: a saved parameter file scored on other logs, every row
+// held out (decide_held_out_rows with all_held_out).
+//
 // `tpf validate`: a saved model applied to other logs (held out by log), scored per joint and
 // regime in the log's effort unit, and against the joint torque sensor where there is one.
 #pragma once
@@ -7,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "offline/identify/joint_samples.hpp"
 #include "offline/log/log.hpp"
 #include "offline/regimes/regime_stats.hpp"
+#include "offline/samples/joint_samples.hpp"
 #include "tpf/estimation/load_estimator.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 
