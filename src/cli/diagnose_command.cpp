@@ -34,22 +34,32 @@ struct DiagnoseArgs {
   bool no_load_friction = false, friction_from_sensor = false;  ///< of --identify-out's fit
 };
 
-/// With --identify-out: the identification diagnose starts from, with the friction options of
-/// `a`, printed and written as `tpf identify` would.
+/// With --identify-out: identify (with the friction options of `a`) on the samples diagnose then
+/// takes over, read and regressed once; prints and writes what `tpf identify` would.
 tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
                                                const tpf::offline::ModelX& model,
                                                const tpf::offline::DiagnoseOptions& options,
                                                const DiagnoseArgs& a) {
   using namespace tpf::offline;
   const auto start = std::chrono::steady_clock::now();
-  IdentifyOptions identify_options = identify_options_of(options);
+  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples);
+  const tpf::BaseParameters base = setup.base;
+  const auto regressors = setup.regressors;
+  const auto abs_gravity = setup.abs_gravity;
+  IdentifyOptions identify_options;
+  identify_options.samples = options.samples;
+  identify_options.progress = options.progress;
   identify_options.fit_load_friction = !a.no_load_friction;
   identify_options.friction_from_sensor = a.friction_from_sensor;
-  IdentifiedLog identified = identify_for_diagnosis(log, model, identify_options);
-  const Identification& id = identified.identification;
+  identify_options.inertia_prior = a.inertia_prior;
+  Identification id = identify(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
                                           tpf::cli::check_log_units(model, id.samples), a.verbose);
-  return diagnose(log, model, std::move(identified), options);
+  DiagnoseOptions with_identify_prior = options;  // its written model fitted as identify's
+  if (a.inertia_prior)
+    with_identify_prior.inertia_prior_strength = id.inertia_prior.written_strength;
+  return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity},
+                  with_identify_prior);
 }
 
 /// The inertia prior's line, when diagnose's fits needed one.
@@ -193,7 +203,8 @@ void register_diagnose_command(CLI::App& app) {
   cmd->add_flag("--inertia-prior,!--no-inertia-prior", a->inertia_prior,
                 "On by default: where the declared model's M(q) is not positive definite, every "
                 "fit is pulled toward the robot file's inertias as tpf identify's are (the "
-                "strength identify chooses for the declared model). "
+                "strength identify would choose for the declared model; with --identify-out, the "
+                "one it chose). "
                 "--no-inertia-prior: every fit plain");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str()

@@ -12,6 +12,7 @@
 #include "offline/diagnose/effect_selection.hpp"
 #include "offline/diagnose/residual_analysis.hpp"
 #include "offline/effects/effect_columns.hpp"
+#include "offline/fit/parallel_jobs.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/inertia_prior.hpp"
 #include "offline/report/text_format.hpp"
@@ -33,9 +34,11 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
   return part;
 }
 
-/// Pass 1, from identify's declared fit (its linear θ on the training rows, its joint weights
-/// 1/σ_j² and the prior strength it wrote, which every fit of diagnose keeps): the residual of
-/// that linear fit, its rigid-body prediction and the viscous coefficients the candidates read.
+/// Pass 1: the declared model fitted on motion (every 4th sample is plenty for the candidates'
+/// inputs; selection and the before/after table use every sample), its residual, its rigid-body
+/// prediction, and the joint weights 1/σ_j² of the fit; with an inertia prior, the strength the
+/// fit then has: `given` (identify's) when it is a number, else the one identify would write
+/// (choose_inertia_prior on the training rows, refit_with_inertia_prior on every row).
 struct DeclaredFit {
   double prior_strength = 0;
   double min_mass_eigenvalue_without_prior = 0;
@@ -46,16 +49,51 @@ struct DeclaredFit {
   Eigen::MatrixXd rigid_prediction;  ///< its rigid-body part
 };
 
-DeclaredFit declared_fit(const Identification& id, const EffectDesign& declared,
-                         const JointSamples& s) {
-  DeclaredFit fit;
-  const Identification::InertiaPrior& prior = id.inertia_prior;
-  fit.prior_strength = prior.written_strength;
+/// The strength of the prior for every fit of diagnose (DeclaredFit), its M(q) without it and
+/// why, into `fit`.
+void declared_prior_strength(const ModelX& model, const BaseParameters& base,
+                             const EffectDesign& declared, const JointSamples& s,
+                             const DesignGrams& grams, const FitSelection& selection,
+                             const RobotFileInertiaPrior& prior, double given, DeclaredFit& fit) {
+  const std::vector<int> columns = declared.declared_columns();
+  FitSelection every = selection;
+  every.heldout_rows = true;
+  if (std::isfinite(given)) {
+    const PriorFit with = fit_with_inertia_prior_strength(model, declared, base, grams, columns,
+                                                          every, &prior, given);
+    fit.prior_strength = given;
+    fit.min_mass_eigenvalue_without_prior = with.min_eigenvalue_without;
+    fit.prior_choice = "identify's (chosen on its held-out rows)";
+    return;
+  }
+  const PriorFit judged =
+      choose_inertia_prior(model, declared, base, grams, columns, selection, &prior);
+  const PriorFit written =
+      holds_rows_out(s)
+          ? refit_with_inertia_prior(model, declared, base, grams, columns, every, &prior, judged)
+          : judged;
+  fit.prior_strength = written.strength;
   fit.min_mass_eigenvalue_without_prior =
-      std::min(prior.judged_min_eigenvalue, prior.written_min_eigenvalue);
-  fit.prior_choice = prior.choice;
-  fit.joint_weights = id.joint_weights;
-  const Eigen::VectorXd& theta = id.declared_theta;
+      std::min(judged.min_eigenvalue_without, written.min_eigenvalue_without);
+  fit.prior_choice = judged.choice;
+}
+
+DeclaredFit fit_declared(const ModelX& model, const BaseParameters& base,
+                         const EffectDesign& declared, const JointSamples& s,
+                         FitSelection selection, const RobotFileInertiaPrior* prior,
+                         double given_strength) {
+  const DesignGrams grams = declared.accumulate(s, 4);
+  Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
+  DeclaredFit fit;
+  fit.joint_weights = moving_residual_weights(grams, theta);
+  selection.joint_weights = fit.joint_weights;
+  if (prior) {
+    declared_prior_strength(model, base, declared, s, grams, selection, *prior, given_strength,
+                            fit);
+    selection.prior = prior->prior;
+    selection.prior.strength = fit.prior_strength;
+  }
+  theta = fit_columns(grams, declared.declared_columns(), selection);
   std::vector<Eigen::MatrixXd> predictions =
       declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
   fit.residual = std::move(predictions[0]);  // in place: effort − prediction
@@ -68,8 +106,7 @@ DeclaredFit declared_fit(const Identification& id, const EffectDesign& declared,
   return fit;
 }
 
-CandidateInputs candidate_inputs(const ModelX& model,
-                                 const std::shared_ptr<const Eigen::MatrixXd>& abs_gravity,
+CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup& setup,
                                  const JointSamples& s, const ResidualAnalysis& analysis,
                                  const DeclaredFit& fit) {
   CandidateInputs inputs;
@@ -80,7 +117,7 @@ CandidateInputs candidate_inputs(const ModelX& model,
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.is_prismatic(j)) inputs.ripple_cycles[j] = inputs.ripple_motor_cycles[j] = 0.0;
   inputs.prediction_rate = analysis.prediction_rate;
-  inputs.abs_gravity = abs_gravity ? *abs_gravity : gravity_load(model, s);
+  inputs.abs_gravity = setup.abs_gravity ? *setup.abs_gravity : gravity_load(model, s);
   inputs.reference_temperature =
       s.temperature.cols() == s.joints()
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -192,6 +229,7 @@ struct EffectPredictions {
   Eigen::MatrixXd selected, declared;  ///< the selected and the declared linear models
   std::vector<Eigen::MatrixXd> terms;  ///< per selected effect, as the written model has it
   Eigen::MatrixXd non_friction;        ///< written, outside the friction (curves fit it)
+  Eigen::MatrixXd declared_rigid;      ///< the declared rigid body (its curves fit it)
   Eigen::MatrixXd final_non_friction;  ///< non_friction of the model refitted on every row
 };
 
@@ -207,6 +245,7 @@ EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagno
     thetas.push_back(part);
   }
   thetas.push_back(non_friction_part(d.groups, sel.theta_written));
+  thetas.push_back(only_family<RigidBodyColumns>(d.groups, sel.theta_declared));
   if (refitted) thetas.push_back(non_friction_part(d.groups, sel.theta_final));
   std::vector<Eigen::MatrixXd> p = design.predict_each(d.samples, thetas);
   EffectPredictions out;
@@ -216,7 +255,8 @@ EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagno
     out.terms.push_back(std::move(p[e + 2]));
   const std::size_t next = d.selected.size() + 2;
   out.non_friction = std::move(p[next]);
-  if (refitted) out.final_non_friction = std::move(p[next + 1]);
+  out.declared_rigid = std::move(p[next + 1]);
+  if (refitted) out.final_non_friction = std::move(p[next + 2]);
   return out;
 }
 
@@ -240,6 +280,21 @@ StribeckParametersX write_effects(const std::vector<FeatureGroup>& groups,
     nominal.base_values[i] += payload_base[i];
   load_selected = written.load_selected;
   return linear;
+}
+
+/// The declared model as identify fits it: the declared rigid body and friction curves, nothing
+/// added.
+NominalModelX declared_nominal(const ModelX& model, const EffectDesign& design,
+                               const Eigen::VectorXd& theta_declared, const BaseParameters& base,
+                               const JointSamples& s,
+                               const Eigen::MatrixXd& declared_rigid_prediction,
+                               const CandidateInputs& inputs) {
+  const LinearNominal fit = linear_nominal(model, design, base, theta_declared);
+  NominalModelX declared = fit.nominal;
+  declared.friction = fit_friction_curves(s, declared_rigid_prediction, inputs.abs_gravity,
+                                          fit.linear, false, 20000)
+                          .parameters;
+  return declared;
 }
 
 /// The written model refitted on every row, held-out ones included (EffectSelection::theta_final,
@@ -296,37 +351,19 @@ IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
   return setup;
 }
 
-IdentifyOptions identify_options_of(const DiagnoseOptions& options) {
-  IdentifyOptions identify_options;
-  identify_options.samples = options.samples;
-  identify_options.inertia_prior = options.inertia_prior;
-  identify_options.progress = options.progress;
-  return identify_options;
-}
-
-IdentifiedLog identify_for_diagnosis(const Log& log, const ModelX& model,
-                                     const IdentifyOptions& options) {
-  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples);
-  IdentifiedLog out{{}, setup.base, setup.regressors, setup.abs_gravity};
-  out.identification = identify(log, model, std::move(setup), options);
-  return out;
-}
-
 Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options) {
-  return diagnose(log, model, identify_for_diagnosis(log, model, identify_options_of(options)),
-                  options);
+  IdentificationSetup setup = prepare_identification(log, model, options.samples);
+  return diagnose(log, model, std::move(setup), options);
 }
 
-Diagnosis diagnose(const Log& log, const ModelX& model, IdentifiedLog identified,
+Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
                    const DiagnoseOptions& options) {
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
   const int joints = model.joint_count();
   Diagnosis out;
-  Identification& id = identified.identification;
-  const BaseParameters& base = identified.base;
-  out.samples = std::move(id.samples);
+  out.samples = std::move(setup.samples);
   out.heldout_split = split_sentence(log, out.samples, options);
   out.heldout_method = heldout_method(log, out.samples, options);
   const JointSamples& s = out.samples;
@@ -340,18 +377,23 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentifiedLog identified
 
   say("diagnose: pass 1/4: declared model");
   const auto regressors =
-      identified.regressors ? identified.regressors : diagnosis_regressors(model, base, s);
-  const EffectDesign declared(model, base, s, regressors, {}, threshold);
-  const DeclaredFit fit = declared_fit(id, declared, s);
+      setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
+  const EffectDesign declared(model, setup.base, s, regressors, {}, threshold);
+  const RobotFileInertiaPrior declared_prior =
+      options.inertia_prior ? robot_file_inertia_prior(model, declared, setup.base)
+                            : RobotFileInertiaPrior{};
+  const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
+                                       options.inertia_prior ? &declared_prior : nullptr,
+                                       options.inertia_prior_strength);
   selection.joint_weights = fit.joint_weights;
   out.inertia_prior_strength = fit.prior_strength;
   out.min_mass_eigenvalue_without_prior = fit.min_mass_eigenvalue_without_prior;
   out.inertia_prior_choice = fit.prior_choice;
-  if (id.inertia_prior.asked && !(id.inertia_prior.floor > 0))
+  if (options.inertia_prior && !(declared_prior.floor > 0))
     out.notes.push_back(
         "inertia prior not applied: the robot file's own M(q) is not positive "
         "definite (smallest eigenvalue " +
-        format_number(10 * id.inertia_prior.floor, 4) +
+        format_number(10 * declared_prior.floor, 4) +
         " kg·m²), so it sets no floor to lift the fit's to");
 
   say("diagnose: pass 2/4: residual analysis");
@@ -367,13 +409,12 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentifiedLog identified
   if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const EffectDesign design(model, base, s, regressors,
-                            candidate_inputs(model, identified.abs_gravity, s, analysis, fit),
-                            threshold);
+  const EffectDesign design(model, setup.base, s, regressors,
+                            candidate_inputs(model, setup, s, analysis, fit), threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
   if (fit.prior_strength > 0) {  // the declared fit's strength for every fit from here on
-    selection.prior = robot_file_prior(model, design, base);
+    selection.prior = robot_file_prior(model, design, setup.base);
     selection.prior.strength = fit.prior_strength;
   }
   out.groups = design.groups();
@@ -400,30 +441,40 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentifiedLog identified
   NominalModelX& nominal = out.nominal;
   nominal.model = model;
   nominal.resize(joints);
-  nominal.base_count = base.size();
+  nominal.base_count = setup.base.size();
   bool load_selected = false;
   const StribeckParametersX linear =
-      write_effects(out.groups, sel.theta_written, base, inputs, nominal, load_selected);
-  // The written model on the held-out samples beside the declared model identify fitted on the
-  // training rows (scored on the same rows by identify: its held-out table).
-  const FrictionCurves curves =
-      fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, load_selected, 20000);
+      write_effects(out.groups, sel.theta_written, setup.base, inputs, nominal, load_selected);
+  // The written models on the held-out samples: the extended one (what --params holds) and the
+  // declared model as identify fits it: independent fits at once, then both residuals in one
+  // pass (one forward kinematics per sample).
+  FrictionCurves curves;
+  parallel_jobs(2, [&](int job) {
+    if (job == 0)
+      curves =
+          fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, load_selected, 20000);
+    else
+      out.declared = declared_nominal(model, design, sel.theta_declared, setup.base, s,
+                                      p.declared_rigid, inputs);
+  });
   nominal.friction = curves.parameters;
   for (const std::string& note : curves.notes)
     out.notes.push_back("friction curve: " + note);
-  out.residual_written = nominal_residual(nominal, s);
-  out.written_after = split_regime_stats(s, out.residual_written, true);
-  out.written_before = std::move(id.heldout);
-  out.declared = std::move(id.judged);
+  std::vector<Eigen::MatrixXd> residuals = nominal_residuals({&nominal, &out.declared}, s);
+  out.residual_written = std::move(residuals[0]);
+  parallel_jobs(2, [&](int job) {
+    (job == 0 ? out.written_after : out.written_before) =
+        split_regime_stats(s, job == 0 ? out.residual_written : residuals[1], true);
+  });
 
   out.judged = out.nominal;
   if (out.refitted)
-    out.nominal = refitted_on_every_row(out.groups, sel.theta_final, p.final_non_friction, base,
-                                        inputs, s, model, curves);
+    out.nominal = refitted_on_every_row(out.groups, sel.theta_final, p.final_non_friction,
+                                        setup.base, inputs, s, model, curves);
 
   out.cad_payload = judge_cad_payload(
-      grams, out.groups, cad_rigid_body(model, base, out.groups, design.features()), out.selected,
-      transfer, selection, analysis.variance_inflation, options);
+      grams, out.groups, cad_rigid_body(model, setup.base, out.groups, design.features()),
+      out.selected, transfer, selection, analysis.variance_inflation, options);
   out.findings = diagnosis_findings(out, options);
   return out;
 }

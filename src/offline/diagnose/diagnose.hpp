@@ -1,16 +1,14 @@
-// Folder diagnose/: `tpf diagnose` and its passes (residual analysis, effect selection, the CAD
-// payload check, findings, report). It starts from identify/'s result on the same samples (the
-// declared model's fit, weights, prior and held-out split) and adds the candidate effects of
-// effects/, fitted with fit/.
+// Folder diagnose/: `tpf diagnose` and its passes (the declared fit, residual analysis, effect
+// selection, the CAD payload check, findings, report), on the samples and held-out split of
+// samples/, the column families of effects/ and identify/'s design, fitted with fit/.
 //
-// `tpf diagnose`: from identify's declared model, trace the residual to the physical effects it
-// lacks, add them, refit, and compare on held-out data (the rows identify held out).
+// `tpf diagnose`: fit the declared model, trace the residual to the physical effects it lacks,
+// add them, refit, and compare on held-out data.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,10 +39,14 @@ struct DiagnoseOptions {
   /// A claimed coefficient must be this many standard errors from zero (Wald statistic per
   /// column, standard errors inflated for the residual's autocorrelation).
   double min_standard_errors = 3.0;
-  /// IdentifyOptions::inertia_prior of the identification diagnose starts from
-  /// (identify_options_of): one strength then holds for every fit of the selection and the
-  /// written model, the one identify wrote for the declared model. Off: every fit plain.
+  /// IdentifyOptions::inertia_prior for diagnose's fits: one strength holds for every fit of the
+  /// selection and the written model, `inertia_prior_strength` where it is given, else the one
+  /// identify would write for the declared model (choose_inertia_prior on the training rows, kept
+  /// or raised for every row by refit_with_inertia_prior). Off: every fit plain, whatever M(q).
   bool inertia_prior = true;
+  /// The strength identify chose for this log (Identification::inertia_prior.written_strength),
+  /// so that diagnose's written model is fitted as identify's is; NaN: diagnose chooses it.
+  double inertia_prior_strength = std::numeric_limits<double>::quiet_NaN();
   ProgressLine progress;
 };
 
@@ -195,39 +197,19 @@ struct Diagnosis : EffectDiagnosis {
   /// The same model fitted on the training rows: what residual_written, written_after and
   /// effect_terms are of (equal to `nominal` when nothing is held out).
   NominalModelX judged;
-  /// The declared model identify fitted on the training rows (Identification::judged: rigid body
-  /// and friction curves, nothing added): what `written_before` scores; beside `nominal` it shows
-  /// what a folded payload does.
+  /// The declared model as identify fits it (rigid body and friction curves, nothing added):
+  /// what `written_before` scores; beside `nominal` it shows what a folded payload does.
   NominalModelX declared;
 };
 
-/// What diagnose starts from: identify's result on a log (its samples in
-/// identification.samples) and the tables both read, computed once (prepare_diagnosis).
-struct IdentifiedLog {
-  Identification identification;
-  BaseParameters base;
-  std::shared_ptr<const SampleRegressors> regressors;  ///< in the columns diagnose reads
-  std::shared_ptr<const Eigen::MatrixXd> abs_gravity;  ///< gravity_load of the samples
-};
-
-/// The options of the identification a diagnosis starts from: its samples, inertia prior and
-/// progress, identify's defaults otherwise.
-IdentifyOptions identify_options_of(const DiagnoseOptions& options);
-
-/// prepare_diagnosis, then identify with `options` on those samples.
-IdentifiedLog identify_for_diagnosis(const Log& log, const ModelX& model,
-                                     const IdentifyOptions& options);
-
 /// Runs the diagnosis of `log` for the arm of `model` (robot file, any joint count; the log must
-/// have as many joints): identify_for_diagnosis with identify_options_of(options), then the
-/// diagnosis from it. Never hands ground truth (gt_* columns) to the fit.
+/// have as many joints). Never hands ground truth (gt_* columns) to the fit.
 Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options = {});
 
-/// The diagnosis from identify's result on `log` (identify_for_diagnosis, whose sample options
-/// must be `options.samples`): the declared model's linear fit, joint weights, inertia prior
-/// strength and friction curves are identify's, scored on the rows identify held out
-/// (Diagnosis::written_before equals Identification::heldout).
-Diagnosis diagnose(const Log& log, const ModelX& model, IdentifiedLog identified,
+/// The same from samples already prepared by prepare_diagnosis (with `options.samples`): for a
+/// caller that first identifies on them (identify takes the same setup and gives the samples
+/// back in Identification::samples), so that the log is read and its regressors computed once.
+Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
                    const DiagnoseOptions& options);
 
 /// prepare_identification with the regressors diagnose reads (a superset of identify's) and the

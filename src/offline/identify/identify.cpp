@@ -360,7 +360,6 @@ LinearNominal linear_nominal(const ModelX& model, const EffectDesign& design,
   out.nominal.resize(model.joint_count());
   out.linear.resize(model.joint_count());
   out.nominal.base_count = base.size();
-  out.theta = theta;
   out.rigid_theta = Eigen::VectorXd::Zero(design.features());
   using Friction = JointFrictionColumns;
   for (const FeatureGroup& g : design.groups()) {
@@ -469,7 +468,6 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
                        judged.candidates,
                        judged.choice};
   LinearNominal fit = std::move(judged.fit);
-  out.declared_theta = fit.theta;
   LinearNominal final_fit = std::move(written.fit);
   std::vector<Eigen::MatrixXd> rigids = design.predict_each(
       s, out.refitted ? std::vector<Eigen::VectorXd>{fit.rigid_theta, final_fit.rigid_theta}
@@ -489,7 +487,6 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   nominal.friction = curves.parameters;
   const StribeckParametersX& linear = fit.linear;
   out.nominal = nominal;
-  out.judged = nominal;
   if (out.refitted) {
     std::vector<std::string> unused;
     Eigen::MatrixXd final_sensor_reference;

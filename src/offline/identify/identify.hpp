@@ -66,13 +66,6 @@ struct Identification {
   /// then refitted on every row (`refitted`) where rows were held out.
   NominalModelX nominal;
   bool refitted = false;
-  /// The declared model fitted on the training rows (rigid body, friction curves): what
-  /// `residual`, `heldout` and `training` score; equal to `nominal` when nothing is held out.
-  NominalModelX judged;
-  /// The linear fit `judged` starts from: θ over the columns of the declared design (EffectDesign
-  /// without candidates: rigid body, Coulomb and viscous levels), with the judged prior strength.
-  /// Diagnose starts from it (its residual, rigid-body prediction and viscous coefficients).
-  Eigen::VectorXd declared_theta;
   JointSamples samples;
   /// effort − prediction of the model fitted on the training rows, per sample and joint (NaN
   /// invalid): what `heldout` and `training` score.
@@ -166,7 +159,6 @@ class EffectDesign;
 /// parameters, and the linear friction (Coulomb + viscous) the curves start from.
 struct LinearNominal {
   NominalModelX nominal;
-  Eigen::VectorXd theta;        ///< the fit θ itself, over every column of the design
   Eigen::VectorXd rigid_theta;  ///< θ's rigid-body columns, zero elsewhere
   StribeckParametersX linear;   ///< the linear friction the curves start from
 };
