@@ -218,5 +218,21 @@ TEST(Transmission, BadCouplingsAreRefusedNamingTheFileAndField) {
   EXPECT_NE(e.find("must not be 0"), std::string::npos) << e;
 }
 
+TEST(Transmission, ToolsThatTakeFrictionPerJointRefuseACoupledRobot) {
+  const TempDir dir("transmission_refused");
+  const auto file = coupled_robot(dir, R"({"j2": 1.0})");
+  const CoupledModel model = load_robot<double, Eigen::Dynamic>(file);
+  try {
+    require_uncoupled_drives(model, "identify");
+    ADD_FAILURE() << "a coupled robot was accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("three"), std::string::npos) << m;
+    EXPECT_NE(m.find("coupled_to"), std::string::npos) << m;
+    EXPECT_NE(m.find("identify"), std::string::npos) << m;
+  }
+  EXPECT_NO_THROW(require_uncoupled_drives(random_arm(3, 1), "identify"));
+}
+
 }  // namespace
 }  // namespace tpf::test

@@ -5,9 +5,11 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "tpf/common/error.hpp"
 #include "tpf/common/types.hpp"
 #include "tpf/model/inertia.hpp"
 #include "tpf/model/model.hpp"
@@ -71,6 +73,19 @@ struct RobotDescription {
   std::filesystem::path pads_file;      ///< empty if the robot has no skin.
   std::filesystem::path friction_file;  ///< the twin's true friction; empty if none is named.
 };
+
+/// Refuses a model whose motors are coupled where `what` (a tool or model part) takes each
+/// drive's friction on its own joint: the coupling is carried by the dynamics and the regressor,
+/// not yet by the friction model, the estimator, the twin or the fits. Throws tpf::Error naming
+/// the robot and coupled_to.
+template <typename S, int N>
+void require_uncoupled_drives(const Model<S, N>& model, std::string_view what) {
+  if (!model.coupled) return;
+  throw Error::at(model.name + " (robot file)", 0, "coupled_to",
+                  std::string(what) +
+                      " takes each drive's friction on its own joint; coupled motors are "
+                      "modelled by the dynamics and the regressor only");
+}
 
 /// The ends of the chain to cut from a URDF: empty names take the URDF's root link and the end of
 /// the serial chain below the root.

@@ -358,6 +358,7 @@ Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& o
 
 Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
                    const DiagnoseOptions& options) {
+  require_uncoupled_drives(model, "diagnose");
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };

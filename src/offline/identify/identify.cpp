@@ -415,6 +415,7 @@ Identification identify(const Log& log, const ModelX& model, const IdentifyOptio
 
 Identification identify(const Log& log, const ModelX& model, IdentificationSetup setup,
                         const IdentifyOptions& options) {
+  require_uncoupled_drives(model, "identify");
   auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };

@@ -32,6 +32,7 @@ Inertia<double> with_point_mass(const Inertia<double>& body, double m_p, const V
 
 TwinArm::TwinArm(const Scenario& scenario) {
   const RobotDescription robot = load_robot_description(scenario.robot_file);
+  require_uncoupled_drives(make_model<double, Eigen::Dynamic>(robot), "the twin");
   if (robot.chain.joints.empty())
     throw Error::at(robot.source, 0, "joints",
                     "the twin simulates arms of 1 or more joints; this "
