@@ -19,6 +19,7 @@
 #include "offline/samples/held_out_rows.hpp"
 #include "offline/samples/repeated_motion.hpp"
 #include "tpf/dynamics/regressor.hpp"
+#include "tpf/model/robot_description.hpp"
 
 namespace tpf::offline {
 namespace {
