@@ -19,6 +19,7 @@
 #include "offline/identify/stribeck_fit.hpp"
 #include "offline/report/text_format.hpp"
 #include "tpf/common/error.hpp"
+#include "tpf/model/robot_description.hpp"
 
 namespace tpf::offline {
 
