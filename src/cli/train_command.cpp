@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -89,6 +90,29 @@ SplitLogs split_logs(const TrainCommandOptions& o) {
   return split;
 }
 
+/// Says when the log's time steps vary: the networks take its rows as they come (a window spans
+/// rows, not seconds), so a jittered clock is read as it is, not resampled.
+void say_irregular_steps(const tpf::offline::Log& log) {
+  const Eigen::Ref<const Eigen::VectorXd> t = log.col("t");
+  if (t.size() < 3) return;
+  std::vector<double> steps;
+  for (Eigen::Index k = 1; k < t.size(); ++k)
+    if (std::isfinite(t[k] - t[k - 1])) steps.push_back(t[k] - t[k - 1]);
+  if (steps.empty()) return;
+  std::vector<double> sorted = steps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  std::size_t off = 0;
+  for (double d : steps)
+    off += std::abs(d - median) > 0.1 * median ? 1 : 0;
+  if (off * 100 < steps.size()) return;  // under 1 %: a regular clock
+  const auto [lo, hi] = std::minmax_element(steps.begin(), steps.end());
+  std::printf(
+      "train: %s: %zu of %zu time steps are off the median %.2f ms by more than 10 %% (%.2f-%.2f "
+      "ms): the networks take the rows as they come (their window spans rows), not resampled\n",
+      log.source.c_str(), off, steps.size(), 1e3 * median, 1e3 * *lo, 1e3 * *hi);
+}
+
 /// The estimator's trace over each log (no skin: the network reads no pad; the compensator of
 /// `weights`, none by default), with parameters from the log's own noise.
 std::vector<tpf::offline::EstimatorTrace> trace_logs(
@@ -104,6 +128,7 @@ std::vector<tpf::offline::EstimatorTrace> trace_logs(
     // never an input of the networks.
     for (const std::string& line : torque_sensor_problems(log, joints))
       std::printf("%s\n", line.c_str());
+    say_irregular_steps(log);
     std::vector<int> never_rests;
     setup.parameters = estimator_parameters_from_noise(
         estimate_sensor_noise(log, setup.nominal.model.torque_constant, &never_rests));
