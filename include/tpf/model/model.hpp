@@ -99,7 +99,7 @@ struct Model {
 
   Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  ///< in the world frame [m/s²].
 
-  /// The transmission's coupling C (motors × joints, motor m in joint m's row): motor m turns
+  /// The transmission's coupling C (motors × joints, motor m in joint m's row): motor m rotates
   /// with θ_m = gear_ratio(m)·Σ_j C(m, j)·q_j, and its torque at the output scale τ_m acts on the
   /// joints as τ_j = Σ_m C(m, j)·τ_m. The armature and the drives' friction act through it,
   /// Cᵀ·diag(armature)·C·q̈ and Cᵀ·f(C·q̇). The identity (each motor drives its own joint)
