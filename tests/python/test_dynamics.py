@@ -9,6 +9,12 @@ import pytest
 
 import tpf
 
+
+def child_env():
+    """The environment of a child program: without the ASan runtime the sanitized build preloads
+    into Python (the sanitized tools carry their own)."""
+    return {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+
 ROBOTS = ["arm4.robot.json", "real/kinova-gen3/gen3.robot.json"]
 
 
@@ -194,7 +200,7 @@ def test_equals_the_cpp_core(name, data, tmp_path):
     q, dq, ddq = states(robot, 20, seed=7)
     n = robot.joint_count
     np.savetxt(tmp_path / "states.csv", np.hstack([q, dq, ddq]), delimiter=",", fmt="%.17g")
-    subprocess.run([os.environ["TPF_DYNAMICS_REFERENCE"], str(data / name),
+    subprocess.run(env=child_env(), args=[os.environ["TPF_DYNAMICS_REFERENCE"], str(data / name),
                     str(tmp_path / "states.csv"), str(tmp_path / "out.csv")], check=True)
     ref = np.loadtxt(tmp_path / "out.csv", delimiter=",", ndmin=2)
     assert ref.shape == (20, 1 + 3 * n + n * n) and np.all(ref[:, 0] == n)

@@ -12,6 +12,12 @@ import pytest
 
 import tpf
 
+
+def child_env():
+    """The environment of a child program: without the ASan runtime the sanitized build preloads
+    into Python (the sanitized tools carry their own)."""
+    return {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+
 GEN3 = "real/kinova-gen3"
 FIT = ["RunTrajectory1.csv.gz", "Trajectory1.csv.gz"]
 HELD_OUT = ["opti_traj_testing2.csv.gz"]
@@ -42,7 +48,7 @@ def paths(data):
 
 
 def cli(*args):
-    subprocess.run([os.environ["TPF_CLI"], *args], check=True, stdout=subprocess.DEVNULL,
+    subprocess.run(env=child_env(), args=[os.environ["TPF_CLI"], *args], check=True, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL)
 
 
@@ -147,7 +153,7 @@ def test_train_equals_the_cli(identified, paths, tmp_path):
     _, params, _ = identified
     short = ["--per-joint", "--max-epochs", "2", "--epoch-windows", "16", "--verbose"]
     cli_out = tmp_path / "cli.tcn.json"
-    run = subprocess.run([os.environ["TPF_CLI"], "train", *sum((["--log", p] for p in paths["fit"]), []),
+    run = subprocess.run(env=child_env(), args=[os.environ["TPF_CLI"], "train", *sum((["--log", p] for p in paths["fit"]), []),
                           "--params", str(params), "--robot", paths["robot"], "--out", str(cli_out),
                           *short], check=True, capture_output=True, text=True)
     result = tpf.train(paths["fit"], str(params), paths["robot"], str(tmp_path / "py.tcn.json"),
