@@ -29,9 +29,9 @@ struct DemoOptions {
   std::uint64_t test_seed = 3;         ///< held-out excitation
   std::uint64_t contacts_seed = 4;
   std::uint64_t teaching_seed = 5;
-  /// 600 s: the compensator's held-out goals (static −95 %, static-to-kinetic −75 %) are met
-  /// from here on; 300 s gave −94.8 % and −69.3 % (docs/evaluation.md).
-  double training_s = 600.0;
+  /// 300 s keeps the test workflow's DemoTable within the CI budget; the compensator's goals
+  /// (static −95 %, static-to-kinetic −75 %) are met from 600 s on (docs/evaluation.md).
+  double training_s = 300.0;
   double calibration_s = 60.0;
   double test_s = 120.0;
   double contacts_s = 90.0;
