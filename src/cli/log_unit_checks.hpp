@@ -4,43 +4,18 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "offline/common/run_time_types.hpp"
-#include "offline/log/unit_check.hpp"
-#include "offline/samples/joint_samples.hpp"
-#include "tpf/dynamics/rnea.hpp"
+#include "offline/samples/sample_unit_check.hpp"
 
 namespace tpf::cli {
 
-/// The checks of `samples` with the robot file's `model` (its gravity torque at every sample).
+/// The checks of `samples` with the robot file's `model` (offline::check_sample_units).
 inline offline::LogChecks check_log_units(const offline::ModelX& model,
                                           const offline::JointSamples& samples) {
-  offline::UnitCheckInput in;
-  in.t = samples.t;
-  in.q = samples.q;
-  in.dq = samples.dq;
-  in.ddq = samples.ddq;
-  in.effort = samples.effort;
-  in.gravity.setConstant(samples.size(), samples.joints(),
-                         std::numeric_limits<double>::quiet_NaN());
-  offline::DataX data(model);
-  Eigen::VectorXd q(model.joint_count());  // sized once, assigned per sample
-  for (Eigen::Index r = 0; r < samples.size(); ++r) {
-    q = samples.q.row(r).transpose();
-    if (q.allFinite()) in.gravity.row(r) = compute_gravity(model, data, q).transpose();
-  }
-  in.gear_ratio = model.gear_ratio;
-  in.torque_constant = model.torque_constant;
-  in.effort_is_current = samples.units.unit == EffortUnit::Milliampere;
-  in.lower = model.lower;
-  in.upper = model.upper;
-  for (int j = 0; j < model.joint_count(); ++j)
-    in.prismatic.push_back(model.is_prismatic(j));
-  return offline::check_log_units(in);
+  return offline::check_sample_units(model, samples);
 }
 
 /// Notes a default printout shows of a list (--verbose: all).

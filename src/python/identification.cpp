@@ -13,6 +13,7 @@
 #include "nominal_model.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/unit_check.hpp"
+#include "offline/samples/sample_unit_check.hpp"
 #include "results.hpp"
 #include "tpf/dynamics/rnea.hpp"
 #include "tpf/model/load_robot.hpp"
@@ -34,30 +35,6 @@ struct IdentifyResult {
 
 json number_or_null(double x) {
   return std::isfinite(x) ? json(x) : json(nullptr);
-}
-
-/// The log's units and dead channels against the robot file, as `tpf identify` checks them
-/// (offline::check_log_units with the robot file's gravity torque at every sample).
-offline::LogChecks log_checks(const offline::ModelX& model, const offline::JointSamples& s) {
-  offline::UnitCheckInput in;
-  in.t = s.t;
-  in.q = s.q;
-  in.dq = s.dq;
-  in.ddq = s.ddq;
-  in.effort = s.effort;
-  in.gravity.setConstant(s.size(), s.joints(), std::numeric_limits<double>::quiet_NaN());
-  offline::DataX data(model);
-  Eigen::VectorXd q(model.joint_count());
-  for (Eigen::Index r = 0; r < s.size(); ++r) {
-    q = s.q.row(r).transpose();
-    if (q.allFinite()) in.gravity.row(r) = compute_gravity(model, data, q).transpose();
-  }
-  in.gear_ratio = model.gear_ratio;
-  in.torque_constant = model.torque_constant;
-  in.effort_is_current = s.units.unit == EffortUnit::Milliampere;
-  in.lower = model.lower;
-  in.upper = model.upper;
-  return offline::check_log_units(in);
 }
 
 json log_checks_json(const offline::LogChecks& checks) {
@@ -136,7 +113,7 @@ IdentifyResult identify_logs(const py::object& logs, const std::string& robot,
     py::gil_scoped_release unlocked;  // minutes on long logs: other Python threads may run
     id = offline::identify(log, model, options);
   }
-  const json fit = fit_json(id, options.samples, log_checks(model, id.samples));
+  const json fit = fit_json(id, options.samples, offline::check_sample_units(model, id.samples));
   return {Nominal(std::move(id.nominal)), log.source, fit.dump(), id.refitted,
           std::move(id.residual)};
 }

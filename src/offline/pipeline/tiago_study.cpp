@@ -16,6 +16,7 @@
 #include "offline/replay/estimator_samples.hpp"
 #include "offline/replay/replay_estimator.hpp"
 #include "offline/report/text_format.hpp"
+#include "offline/samples/sample_unit_check.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/rnea.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
@@ -42,31 +43,6 @@ Eigen::Index first_row_at(const Eigen::VectorXd& t, double time) {
   while (k < t.size() && t[k] < time)
     ++k;
   return k;
-}
-
-/// identify's log checks (units at rest, dead channels) of the fitted part.
-LogChecks tiago_log_checks(const ModelX& model, const JointSamples& s) {
-  UnitCheckInput in;
-  in.t = s.t;
-  in.q = s.q;
-  in.dq = s.dq;
-  in.ddq = s.ddq;
-  in.effort = s.effort;
-  in.gravity.setConstant(s.size(), s.joints(), std::numeric_limits<double>::quiet_NaN());
-  DataX data(model);
-  Eigen::VectorXd q(model.joint_count());
-  for (Eigen::Index r = 0; r < s.size(); ++r) {
-    q = s.q.row(r).transpose();
-    if (q.allFinite()) in.gravity.row(r) = compute_gravity(model, data, q).transpose();
-  }
-  in.gear_ratio = model.gear_ratio;
-  in.torque_constant = model.torque_constant;
-  in.effort_is_current = true;
-  in.lower = model.lower;
-  in.upper = model.upper;
-  for (int j = 0; j < model.joint_count(); ++j)
-    in.prismatic.push_back(model.is_prismatic(j));
-  return check_log_units(in);
 }
 
 /// The replay setup of `nominal` with parameters from the noise of `calibration` (joints that
@@ -247,7 +223,7 @@ std::pair<NominalModelX, NominalModelX> fit_models(const TiagoOptions& o, const 
   io.friction_samples_per_joint = o.friction_samples_per_joint;
   const Identification identified = identify(fit, model, io);
   save_nominal_model(o.out / "tiago.identified.params.json", identified.nominal, fit.source);
-  const LogChecks checks = tiago_log_checks(model, identified.samples);
+  const LogChecks checks = check_sample_units(model, identified.samples);
   r.dead_joints = checks.dead_joints;
   r.log_problems = checks.problems;
   r.log_notes = checks.notes;
