@@ -114,6 +114,8 @@ CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup&
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
   inputs.ripple_motor_cycles = analysis.ripple_motor_cycles;
+  inputs.ripple_periods = analysis.ripple_periods;
+  inputs.ripple_motor_periods = analysis.ripple_motor_periods;
   // Ripple is periodic in an angle: a prismatic joint (q in m) has no revolution to count over.
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.is_prismatic(j)) inputs.ripple_cycles[j] = inputs.ripple_motor_cycles[j] = 0.0;

@@ -106,17 +106,24 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
     text = "Ambiguous between " + g.title +
            format_sentence(" (removes %.1f %%)", 100 * c.improvements[0]);
     for (std::size_t i = 1; i < c.groups.size(); ++i) {
-      text += " and " + d.groups[c.groups[i]].title;
+      const FeatureGroup& other = d.groups[c.groups[i]];
+      text += " and " + other.title;
       text += std::isfinite(c.improvements[i])
                   ? format_sentence(" (removes %.1f %%)", 100 * c.improvements[i])
-                  : std::string(" (declared)");
+                  : std::string(other.declared ? " (declared)" : " (in the model)");
     }
-    text += format_sentence(
-                ": on this log their columns are nearly collinear (share outside the "
-                "model %.3f), so the data cannot tell which it is and no coefficient "
-                "means much alone (the first: ",
-                c.distinct_share) +
-            coefficients +
+    text += g.indistinct_from_beside
+                ? std::string(
+                      ": the joint's range of motion holds under one period of it, which an "
+                      "offset and a slope stand for as well, so the data cannot tell which it is "
+                      "nor the ripple's frequency, and no coefficient means much alone (the "
+                      "first: ")
+                : format_sentence(
+                      ": on this log their columns are nearly collinear (share outside the "
+                      "model %.3f), so the data cannot tell which it is and no coefficient "
+                      "means much alone (the first: ",
+                      c.distinct_share);
+    text += coefficients +
             "); a log with more range of motion, both directions and rests tells them apart.";
   }
   if (const CandidateTrial* t = selected_trial(d, c); t && t->extrapolates)

@@ -247,9 +247,10 @@ class ForwardSelection {
   }
 
   /// The claim for `best`: alone, or ambiguous with the eligible candidates of its joint whose
-  /// parts outside the model are nearly collinear with its own, with the candidates of other
-  /// joints that are (cross_joint_alternatives), and with the model group whose removal frees it
-  /// most when the model's own columns nearly span it.
+  /// parts outside the model are nearly collinear with its own, with the families it is judged
+  /// beside when it cannot be told from them on this log (FeatureGroup::indistinct_from_beside),
+  /// with the candidates of other joints that are (cross_joint_alternatives), and with the model
+  /// group whose removal frees it most when the model's own columns nearly span it.
   Claim name_claim(int best, const std::vector<int>& eligible, const std::vector<double>& gain,
                    const std::vector<int>& model) const {
     Claim claim;
@@ -267,6 +268,7 @@ class ForwardSelection {
         claim.improvements.push_back(gain[g]);
       }
     }
+    if (groups_[best].indistinct_from_beside) add_beside(best, gain, claim);
     add_cross_joint_alternatives(best, eligible, model, claim);
     claim.distinct_share = distinct_share(A_, model, own);
     if (claim.distinct_share < options_.min_distinct_share) {
@@ -285,6 +287,21 @@ class ForwardSelection {
       }
     }
     return claim;
+  }
+
+  /// The families of best's joint it is judged beside, each with its gain this round (NaN: in the
+  /// model already).
+  void add_beside(int best, const std::vector<double>& gain, Claim& claim) const {
+    const FeatureGroup& b = groups_[best];
+    for (const std::string& key : b.judged_beside)
+      for (std::size_t g = 0; g < groups_.size(); ++g) {
+        const int index = static_cast<int>(g);
+        if (groups_[g].joint != b.joint || groups_[g].key != key ||
+            std::find(claim.groups.begin(), claim.groups.end(), index) != claim.groups.end())
+          continue;
+        claim.groups.push_back(index);
+        claim.improvements.push_back(used_[g] || groups_[g].declared ? std::nan("") : gain[g]);
+      }
   }
 
   /// A candidate of another joint whose part outside the model is nearly collinear with best's

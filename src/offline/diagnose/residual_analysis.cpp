@@ -95,15 +95,24 @@ void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residu
     r[i] = residual(moving[i * stride], j);
   }
   const double range = range_of_motion(q);
-  const int shortest = shortest_fitting_cycles(range);
-  if (shortest <= 64) a.ripple_cycles[j] = dominant_cycles(q, r, shortest, 64, 1.0);
-  if (shortest > 3)
+  // Output side: from half a period in the range (at least 3/rev: below, gravity's sin q and
+  // cos q) to 64/rev, when a period of 64/rev fits in it at all.
+  const double lowest = std::max(3.0, M_PI / range);
+  if (shortest_fitting_cycles(range) <= 64) {
+    a.ripple_cycles[j] = fitted_cycles(q, r, lowest, 64, 1.0);
+    a.ripple_periods[j] = a.ripple_cycles[j] * range / (2 * M_PI);
+  }
+  const double one_period = std::min(2 * M_PI / std::max(range, 1e-9), 1e6);
+  if (one_period > 3)
     notes.push_back("joint " + std::to_string(j + 1) +
-                    format_sentence(": moves over %.2f rad, so position ripple is checked only "
-                                    "from %.0f periods/rev (a longer period does not fit in "
-                                    "the motion)",
-                                    range, shortest));
-  a.ripple_motor_cycles[j] = dominant_cycles(q, r, 1, 4, std::abs(gear_ratio[j]));
+                    format_sentence(": moves over %.2f rad, so a position ripple of fewer than "
+                                    "%.3g periods/rev shows under one period there: its "
+                                    "frequency is not named (ambiguous with an offset and a "
+                                    "spring)",
+                                    range, one_period));
+  const double gear = std::abs(gear_ratio[j]);
+  a.ripple_motor_cycles[j] = fitted_cycles(q, r, 0.5, 4.5, gear);
+  a.ripple_motor_periods[j] = a.ripple_motor_cycles[j] * gear * range / (2 * M_PI);
 }
 
 }  // namespace
@@ -118,6 +127,8 @@ ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& 
   a.variance_inflation = Eigen::VectorXd::Ones(joints);
   a.ripple_cycles = Eigen::VectorXd::Zero(joints);
   a.ripple_motor_cycles = Eigen::VectorXd::Zero(joints);
+  a.ripple_periods = Eigen::VectorXd::Zero(joints);
+  a.ripple_motor_periods = Eigen::VectorXd::Zero(joints);
   a.prediction_rate.resize(s.size(), joints);
   // Joints are independent: each thread takes the next (same result as serial, notes in joint
   // order).

@@ -21,16 +21,24 @@ struct ResidualAnalysis {
   /// Per joint: (1 + ρ)/(1 − ρ), ρ the lag-1 autocorrelation of the residual on motion: the
   /// samples are not independent, which inflates every coefficient's variance by this much.
   Eigen::VectorXd variance_inflation;
-  Eigen::VectorXd ripple_cycles;        ///< per joint: periods per output revolution, 0 = none
-  Eigen::VectorXd ripple_motor_cycles;  ///< per joint: periods per motor revolution, 0 = none
-  Eigen::MatrixXd prediction_rate;      ///< d(rigid-body prediction)/dt per sample and joint
-  std::vector<std::string> notes;       ///< candidates limited by the data, and why
+  /// Per joint: the position ripple's frequency, periods per output revolution fitted as a real
+  /// number (fitted_cycles: sin/cos beside an offset and a slope in q), 0 = none …
+  Eigen::VectorXd ripple_cycles;
+  /// … and its periods within the joint's range of motion (central 98 % of q): under 1, the
+  /// ripple cannot be told from an offset and a spring and its frequency is not named.
+  Eigen::VectorXd ripple_periods;
+  Eigen::VectorXd ripple_motor_cycles;   ///< the same per motor revolution (θ = |G|·q), 0 = none
+  Eigen::VectorXd ripple_motor_periods;  ///< its periods of θ within the range of motion
+  Eigen::MatrixXd prediction_rate;       ///< d(rigid-body prediction)/dt per sample and joint
+  std::vector<std::string> notes;        ///< candidates limited by the data, and why
 };
 
 /// `residual` = effort − declared prediction (fitted on motion), `rigid_prediction` its rigid-body
 /// part (the delay candidate shifts that: the friction's own lag at a reversal is memory, not a
-/// delay), `gear_ratio` per joint. A ripple period must fit in the joint's range of motion, or
-/// the sine cannot be told from an offset or a slope (those are checked from 3 periods/rev up).
+/// delay), `gear_ratio` per joint. Output ripple is searched from half a period in the joint's
+/// range of motion (and 3 periods/rev) to 64 periods/rev, motor ripple from 0.5 to 4.5 periods
+/// per motor revolution; one with under one period in the range cannot be told from an offset
+/// or a slope (ripple_periods).
 /// `model_band_hz`: the acceleration filter's cutoff (SampleOptions::acceleration_cutoff_hz),
 /// above which the model predicts nothing (motion_noise).
 ResidualAnalysis analyse_residual(const JointSamples& samples, const Eigen::MatrixXd& residual,

@@ -30,6 +30,7 @@ struct GroupSpec {
   std::vector<std::string> column_names;
   int held_column;  ///< index in column_names of the friction held at rest, −1 = none
   std::vector<std::string> judged_beside;
+  bool indistinct_from_beside = false;  ///< FeatureGroup::indistinct_from_beside
 };
 
 /// "joint 3" of 0-based joint 2.

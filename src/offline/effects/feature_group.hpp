@@ -31,6 +31,9 @@ struct FeatureGroup {
   /// Its term is unbounded (k·q) or periodic with few periods (a ripple of the output angle) in
   /// its joint's q: fitted over a range of q, it extrapolates outside it.
   bool extrapolates_in_q = false;
+  /// On this log it cannot be told from the families it is judged beside (a ripple with under one
+  /// period in its joint's range of motion): a claim of it names them too, "ambiguous between".
+  bool indistinct_from_beside = false;
 };
 
 }  // namespace tpf::offline

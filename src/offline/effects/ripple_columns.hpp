@@ -2,6 +2,7 @@
 // PositionRipple per joint, its frequency found by the residual analysis (CandidateInputs).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -28,17 +29,29 @@ struct RippleColumns {
     const Eigen::VectorXd& n = MotorSide ? c.inputs.ripple_motor_cycles : c.inputs.ripple_cycles;
     return n.size() == c.joints && cycles(c.inputs, joint) > 0;
   }
-  /// Titled with its frequency; judged on top of its joint's offset and spring (a short stretch
-  /// of sine is one or the other).
+  /// Its frequency's periods within the joint's range of motion (infinite when not given).
+  static double periods_in_view(const CandidateInputs& inputs, int joint) {
+    const Eigen::VectorXd& p = MotorSide ? inputs.ripple_motor_periods : inputs.ripple_periods;
+    return joint >= 0 && joint < p.size() ? p[joint] : std::numeric_limits<double>::infinity();
+  }
+  /// Titled with its frequency (4 significant digits); judged on top of its joint's offset and
+  /// spring (a short stretch of sine is one or the other). Under one period in the joint's range
+  /// of motion its frequency is anything the stretch allows: it names none and cannot be told
+  /// from the offset and spring (a claim of it is ambiguous with them).
   static GroupSpec group(const DesignContext& c, int joint) {
     const std::string n = joint_suffix(joint);
     const char* side = MotorSide ? "motor-angle ripple, " : "position ripple, ";
-    const char* period = MotorSide ? " (%g periods/motor rev)" : " (%g periods/rev of q)";
+    const char* period = MotorSide ? " (%.4g periods/motor rev)" : " (%.4g periods/rev of q)";
     const std::string prefix = MotorSide ? "motor_" : "ripple_";
-    return {side + joint_title(joint) + format_sentence(period, cycles(c.inputs, joint)),
-            {prefix + "sin" + n, prefix + "cos" + n},
-            -1,
-            {"offset", "spring"}};
+    const bool in_view = periods_in_view(c.inputs, joint) >= 1.0;
+    GroupSpec spec{side + joint_title(joint) +
+                       (in_view ? format_sentence(period, cycles(c.inputs, joint))
+                                : std::string(" (under one period in the range of motion)")),
+                   {prefix + "sin" + n, prefix + "cos" + n},
+                   -1,
+                   {"offset", "spring"}};
+    spec.indistinct_from_beside = !in_view;
+    return spec;
   }
 
   /// The term of `joint` with the amplitudes a_sin, a_cos.

@@ -54,7 +54,8 @@ void EffectDesign::add_families(const DesignContext& context) {
                std::move(spec.judged_beside),
                {},
                std::move(spec.column_names),
-               extrapolates},
+               extrapolates,
+               spec.indistinct_from_beside},
               &Family::fill);
   };
   for_each_family<Families>([&]<typename Family>() {
