@@ -1,5 +1,8 @@
 #include "offline/compensator_training/tcn_window_model.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "offline/compensator_training/float_gemm16.hpp"
 
 namespace tpf::offline {
@@ -29,6 +32,17 @@ std::vector<std::ptrdiff_t>& lagged_offsets(const TcnArchitecture& a, int level,
     for (std::ptrdiff_t c = 0; c < in; ++c)
       offsets[static_cast<std::size_t>(j * in + c)] = (a.kernel - 1 - j) * d * in + c;
   return offsets;
+}
+
+/// Whether float_gemm16's reads of B(i, t) = b[t·stride + offset[i]], t < n, stay inside b's
+/// `size` elements. The kernels are not instrumented in the sanitized build (src/offline/
+/// CMakeLists.txt): each call's range is checked here, with the shapes of its other operands.
+bool lagged_reads_fit(const std::vector<std::ptrdiff_t>& offsets, std::ptrdiff_t stride,
+                      Eigen::Index n, Eigen::Index size) {
+  if (offsets.empty() || n < 1) return false;
+  const std::ptrdiff_t top = *std::max_element(offsets.begin(), offsets.end());
+  const std::ptrdiff_t low = *std::min_element(offsets.begin(), offsets.end());
+  return low >= 0 && (n - 1) * stride + top < size;
 }
 
 /// g ← g ⊙ [y > 0] (g where y > 0, else +0: Eigen's select, bit for bit), as a plain loop that
@@ -82,9 +96,14 @@ void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>
     z.colwise() += b.bias;
     stack_taps(b, ws.stacked_weights);
     if (avx2) {
-      if constexpr (std::is_same_v<S, float>)
+      if constexpr (std::is_same_v<S, float>) {
+        lagged_offsets(a, l, ws.offsets);
+        eigen_assert(ws.stacked_weights.rows() == 16 &&
+                     ws.stacked_weights.cols() == a.kernel * in && z.rows() == 16 &&
+                     z.cols() == t_out && lagged_reads_fit(ws.offsets, in, t_out, x.size()));
         float_gemm16_accumulate(ws.stacked_weights.data(), a.kernel * in, x.data(),
-                                lagged_offsets(a, l, ws.offsets).data(), in, t_out, z.data());
+                                ws.offsets.data(), in, t_out, z.data());
+      }
     } else {
       z.noalias() += ws.stacked_weights * stack;
     }
@@ -145,9 +164,13 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
     const bool avx2 = use_float_gemm16<S>(a, l, t_out);
     if (avx2) {
       ws.stacked_gradient.resize(dz.rows(), a.kernel * in);
-      if constexpr (std::is_same_v<S, float>)
-        float_gemm16_times_transpose(dz.data(), x.data(), lagged_offsets(a, l, ws.offsets).data(),
-                                     in, a.kernel * in, t_out, ws.stacked_gradient.data());
+      if constexpr (std::is_same_v<S, float>) {
+        lagged_offsets(a, l, ws.offsets);
+        eigen_assert(dz.rows() == 16 && dz.cols() == t_out &&
+                     lagged_reads_fit(ws.offsets, in, t_out, x.size()));
+        float_gemm16_times_transpose(dz.data(), x.data(), ws.offsets.data(), in, a.kernel * in,
+                                     t_out, ws.stacked_gradient.data());
+      }
     } else {
       ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
     }
@@ -160,9 +183,11 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
     if (avx2 && ws.stacked_weights.cols() % 8 == 0) {
       ws.transposed_weights = ws.stacked_weights.transpose();
       ws.stacked_gradient.resize(ws.stacked_weights.cols(), t_out);
-      if constexpr (std::is_same_v<S, float>)
+      if constexpr (std::is_same_v<S, float>) {
+        eigen_assert(ws.transposed_weights.cols() == 16 && dz.rows() == 16 && dz.cols() == t_out);
         float_gemm16_transpose_times(ws.transposed_weights.data(), ws.stacked_weights.cols(),
                                      dz.data(), t_out, ws.stacked_gradient.data());
+      }
     } else {
       ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
     }
