@@ -1,5 +1,5 @@
-// `tpf diagnose`: fit the declared model, trace the residual to missing effects, add them, refit,
-// and report before and after on held-out data.
+// `tpf diagnose`: identify the declared model, trace the residual to missing effects, add them,
+// refit, and report before and after on held-out data.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -55,21 +55,19 @@ tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
   Identification id = identify(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
                                           tpf::cli::check_log_units(model, id.samples), a.verbose);
-  DiagnoseOptions with_identify_prior = options;  // its written model fitted as identify's
-  if (a.inertia_prior)
-    with_identify_prior.inertia_prior_strength = id.inertia_prior.written_strength;
-  return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity},
-                  with_identify_prior);
+  return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity}, id, options);
 }
 
-/// The inertia prior's line, when diagnose's fits needed one.
+/// The inertia prior's line, when identify's fits, and so diagnose's, needed one.
 void print_inertia_prior(const tpf::offline::EffectDiagnosis& d) {
-  if (d.inertia_prior_strength > 0)
+  const auto& prior = d.inertia_prior;
+  if (prior.judged_strength > 0 || prior.written_strength > 0)
     std::printf(
-        "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (declared model); "
-        "every fit pulled toward the robot file's inertias with strength %.3g: %s\n",
-        d.min_mass_eigenvalue_without_prior, d.inertia_prior_strength,
-        d.inertia_prior_choice.c_str());
+        "inertia prior: M(q)'s smallest eigenvalue without it %.4g kg·m² (identify's declared "
+        "fit); the fits pulled toward the robot file's inertias with identify's strengths %.3g "
+        "(the selection's) and %.3g (the written model's refit on every row): %s\n",
+        prior.judged_min_eigenvalue, prior.judged_strength, prior.written_strength,
+        prior.choice.c_str());
 }
 
 /// Everything: the findings, notes, the inertia prior and the held-out table per joint and regime.
@@ -173,7 +171,7 @@ void register_diagnose_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "diagnose", "Find which physical effect the nominal model misses, add it, check it held out");
   cmd->footer(
-      "Fit the declared model, find which candidate physical effect (load-dependent friction, "
+      "Identify the declared model, find which candidate physical effect (load-dependent friction, "
       "ripple, payload, temperature, spring, delay, coupling) explains the residual on held-out "
       "data, add it, refit and report before/after; --params gets the model refitted on every "
       "sample"
@@ -201,11 +199,9 @@ void register_diagnose_command(CLI::App& app) {
                 "as tpf identify's (see tpf identify --help)")
       ->needs(identify_out);
   cmd->add_flag("--inertia-prior,!--no-inertia-prior", a->inertia_prior,
-                "On by default: where the declared model's M(q) is not positive definite, every "
-                "fit is pulled toward the robot file's inertias as tpf identify's are (the "
-                "strength identify would choose for the declared model; with --identify-out, the "
-                "one it chose). "
-                "--no-inertia-prior: every fit plain");
+                "On by default: where the declared model's M(q) is not positive definite, "
+                "identify's fit is pulled toward the robot file's inertias, and every fit of the "
+                "diagnosis with identify's strengths. --no-inertia-prior: every fit plain");
   cmd->add_option("--static-velocity", a->static_velocity, "Static threshold |q̇| [rad/s]")
       ->capture_default_str()
       ->check(positive());

@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "kinova_logs.hpp"
 #include "offline/diagnose/diagnose.hpp"
@@ -101,17 +102,22 @@ TEST(InertiaPriorKinova, MakesTheMassMatrixPhysicalAndPredictsTheHeldOutFilesBet
 }
 
 TEST(InertiaPriorKinova, DiagnoseWritesItsModelWithIdentifysStrength) {
-  // diagnose --identify-out hands identify's strength to diagnose: every fit of the diagnosis,
-  // its written model too, has it, and that model predicts the scoring files no worse than
-  // identify's.
+  // diagnose starts from identify's result (as `tpf diagnose --identify-out` runs them): every
+  // fit of the diagnosis has identify's strengths, its written model the written one, and that
+  // model predicts the scoring files no worse than identify's.
   const offline::Log log = offline::read_logs(kinova_fitting_files());
-  const offline::Identification id = offline::identify(log, gen3_model());
+  const offline::ModelX model = gen3_model();
+  const offline::DiagnoseOptions options;
+  offline::IdentificationSetup setup = offline::prepare_diagnosis(log, model, options.samples);
+  const BaseParameters base = setup.base;
+  const auto regressors = setup.regressors;
+  const auto abs_gravity = setup.abs_gravity;
+  offline::Identification id = offline::identify(log, model, std::move(setup), {});
   ASSERT_GT(id.inertia_prior.written_strength, 0.0);
-  offline::DiagnoseOptions options;
-  options.inertia_prior_strength = id.inertia_prior.written_strength;
-  const offline::Diagnosis d = offline::diagnose(log, gen3_model(), options);
-  EXPECT_EQ(d.inertia_prior_strength, id.inertia_prior.written_strength);
-  EXPECT_NE(d.inertia_prior_choice.find("identify's"), std::string::npos);
+  const offline::Diagnosis d = offline::diagnose(
+      log, model, {std::move(id.samples), base, regressors, abs_gravity}, id, options);
+  EXPECT_EQ(d.inertia_prior.judged_strength, id.inertia_prior.judged_strength);
+  EXPECT_EQ(d.inertia_prior.written_strength, id.inertia_prior.written_strength);
   EXPECT_EQ(d.heldout_method, "by file: RecordTrajectory_quadratic.csv.gz");
   EXPECT_GT(offline::min_mass_eigenvalue(d.nominal), 0.0);
   const Eigen::VectorXd identified = scoring_rms(id.nominal), diagnosed = scoring_rms(d.nominal);

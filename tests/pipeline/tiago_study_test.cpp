@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -111,6 +112,10 @@ void expect_residuals(const TiagoResult& r) {
   }
   for (int j = 0; j < 5; ++j) {
     const TiagoJointResidual& x = r.residual[static_cast<std::size_t>(j)];
+    std::printf(
+        "[ figure ] joint %d every held-out row: nominal %.4g (pinned %.4g), compensated "
+        "%.4g (pinned %.4g) mA\n",
+        j + 1, x.nominal_ma, kResidual[j][0], x.compensated_ma, kResidual[j][1]);
     EXPECT_NEAR(x.nominal_ma, kResidual[j][0], kTiagoTolerance * kResidual[j][0]) << j + 1;
     EXPECT_NEAR(x.compensated_ma, kResidual[j][1], kTiagoTolerance * kResidual[j][1]) << j + 1;
   }
@@ -126,6 +131,8 @@ void expect_table_one(const TiagoResult& r) {
     const ResidualRow& row = r.row(c.joint, c.regime);
     const std::string name =
         "joint " + std::to_string(c.joint + 1) + " " + std::string(regime_name(c.regime));
+    std::printf("[ figure ] %s: nominal %.4g (pinned %.4g), compensated %.4g (pinned %.4g) mA\n",
+                name.c_str(), row.nominal.rmse, c.nominal, row.compensated.rmse, c.compensated);
     EXPECT_NEAR(row.nominal.rmse, c.nominal, kTiagoTolerance * c.nominal) << name;
     EXPECT_NEAR(row.compensated.rmse, c.compensated, kTiagoTolerance * c.compensated) << name;
   }

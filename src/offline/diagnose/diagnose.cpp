@@ -18,6 +18,7 @@
 #include "offline/report/text_format.hpp"
 #include "offline/samples/held_out_rows.hpp"
 #include "offline/samples/repeated_motion.hpp"
+#include "tpf/common/error.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/model/robot_description.hpp"
 
@@ -35,81 +36,43 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
   return part;
 }
 
-/// Pass 1: the declared model fitted on motion (every 4th sample is plenty for the candidates'
-/// inputs; selection and the before/after table use every sample), its residual, its rigid-body
-/// prediction, and the joint weights 1/σ_j² of the fit; with an inertia prior, the strength the
-/// fit then has: `given` (identify's) when it is a number, else the one identify would write
-/// (choose_inertia_prior on the training rows, refit_with_inertia_prior on every row).
-struct DeclaredFit {
-  double prior_strength = 0;
-  double min_mass_eigenvalue_without_prior = 0;
-  std::string prior_choice;
-  Eigen::VectorXd joint_weights;
-  Eigen::VectorXd viscous;           ///< per joint: the fitted viscous coefficient b_j
-  Eigen::MatrixXd residual;          ///< effort − declared prediction
-  Eigen::MatrixXd rigid_prediction;  ///< its rigid-body part
-};
-
-/// The strength of the prior for every fit of diagnose (DeclaredFit), its M(q) without it and
-/// why, into `fit`.
-void declared_prior_strength(const ModelX& model, const BaseParameters& base,
-                             const EffectDesign& declared, const JointSamples& s,
-                             const DesignGrams& grams, const FitSelection& selection,
-                             const RobotFileInertiaPrior& prior, double given, DeclaredFit& fit) {
-  const std::vector<int> columns = declared.declared_columns();
-  FitSelection every = selection;
-  every.heldout_rows = true;
-  if (std::isfinite(given)) {
-    const PriorFit with = fit_with_inertia_prior_strength(model, declared, base, grams, columns,
-                                                          every, &prior, given);
-    fit.prior_strength = given;
-    fit.min_mass_eigenvalue_without_prior = with.min_eigenvalue_without;
-    fit.prior_choice = "identify's (chosen on its held-out rows)";
-    return;
-  }
-  const PriorFit judged =
-      choose_inertia_prior(model, declared, base, grams, columns, selection, &prior);
-  const PriorFit written =
-      holds_rows_out(s)
-          ? refit_with_inertia_prior(model, declared, base, grams, columns, every, &prior, judged)
-          : judged;
-  fit.prior_strength = written.strength;
-  fit.min_mass_eigenvalue_without_prior =
-      std::min(judged.min_eigenvalue_without, written.min_eigenvalue_without);
-  fit.prior_choice = judged.choice;
+/// θ of `groups`' columns (`features` of them) of identify's declared fit on the training rows:
+/// its rigid body (Identification::judged) and sliding friction levels (judged_linear), zero
+/// elsewhere (the friction held at rest is fitted at rest, on top of it).
+Eigen::VectorXd identified_theta(const std::vector<FeatureGroup>& groups, int features,
+                                 const Identification& identified) {
+  using Friction = JointFrictionColumns;
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(features);
+  for (const FeatureGroup& g : groups)
+    if (g.key == RigidBodyColumns::key) {
+      for (std::size_t i = 0; i < g.columns.size(); ++i)
+        theta[g.columns[i]] = identified.judged.base_values[static_cast<Eigen::Index>(i)];
+    } else if (g.key == Friction::key) {
+      theta[g.columns[Friction::kCoulomb]] = identified.judged_linear.coulomb[g.joint];
+      theta[g.columns[Friction::kViscous]] = identified.judged_linear.viscous[g.joint];
+    }
+  return theta;
 }
 
-DeclaredFit fit_declared(const ModelX& model, const BaseParameters& base,
-                         const EffectDesign& declared, const JointSamples& s,
-                         FitSelection selection, const RobotFileInertiaPrior* prior,
-                         double given_strength) {
-  const DesignGrams grams = declared.accumulate(s, 4);
-  Eigen::VectorXd theta = fit_columns(grams, declared.declared_columns(), selection);
-  DeclaredFit fit;
-  fit.joint_weights = moving_residual_weights(grams, theta);
-  selection.joint_weights = fit.joint_weights;
-  if (prior) {
-    declared_prior_strength(model, base, declared, s, grams, selection, *prior, given_strength,
-                            fit);
-    selection.prior = prior->prior;
-    selection.prior.strength = fit.prior_strength;
-  }
-  theta = fit_columns(grams, declared.declared_columns(), selection);
-  std::vector<Eigen::MatrixXd> predictions =
-      declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
-  fit.residual = std::move(predictions[0]);  // in place: effort − prediction
-  fit.residual = s.effort - fit.residual;
-  fit.viscous.resize(declared.joints());
-  for (const FeatureGroup& g : declared.groups())
-    if (g.key == JointFrictionColumns::key)
-      fit.viscous[g.joint] = std::max(theta[g.columns[JointFrictionColumns::kViscous]], 0.0);
-  fit.rigid_prediction = std::move(predictions[1]);
-  return fit;
+/// Throws tpf::Error unless `identified` was identified on `s` with the rigid-body base `base`.
+void require_identified_on(const Identification& identified, const JointSamples& s,
+                           const BaseParameters& base) {
+  const NominalModelX& judged = identified.judged;
+  bool same_base = judged.base_count == base.size();
+  for (int i = 0; same_base && i < base.size(); ++i)
+    same_base = judged.base_columns[i] == base.independent[static_cast<std::size_t>(i)];
+  if (identified.residual.rows() != s.size() || identified.residual.cols() != s.joints() ||
+      !same_base)
+    throw Error(s.source + ": diagnose was handed an identification of other samples (" +
+                std::to_string(identified.residual.rows()) + " × " +
+                std::to_string(identified.residual.cols()) + " residual for " +
+                std::to_string(s.size()) + " samples of " + std::to_string(s.joints()) +
+                " joints) or of another rigid-body base; identify on the setup diagnose takes");
 }
 
 CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup& setup,
                                  const JointSamples& s, const ResidualAnalysis& analysis,
-                                 const DeclaredFit& fit) {
+                                 const Identification& identified) {
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
@@ -125,7 +88,7 @@ CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup&
       s.temperature.cols() == s.joints()
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
           : 25.0;
-  inputs.viscous = fit.viscous;
+  inputs.viscous = identified.judged_linear.viscous.cwiseMax(0.0);
   return inputs;
 }
 
@@ -232,12 +195,13 @@ struct EffectPredictions {
   Eigen::MatrixXd selected, declared;  ///< the selected and the declared linear models
   std::vector<Eigen::MatrixXd> terms;  ///< per selected effect, as the written model has it
   Eigen::MatrixXd non_friction;        ///< written, outside the friction (curves fit it)
-  Eigen::MatrixXd declared_rigid;      ///< the declared rigid body (its curves fit it)
   Eigen::MatrixXd final_non_friction;  ///< non_friction of the model refitted on every row
 };
 
+/// `written`: the written model adds effects to the declared one (else it is identify's, and
+/// `non_friction` is not predicted); `refitted`: it is refitted on every row.
 EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagnosis& d,
-                                  const EffectSelection& sel, bool refitted) {
+                                  const EffectSelection& sel, bool written, bool refitted) {
   std::vector<Eigen::VectorXd> thetas{sel.theta_selected, sel.theta_before};
   for (std::size_t e = 0; e < d.selected.size(); ++e) {
     // A written effect's term as the written model holds it; the others as selected.
@@ -247,9 +211,8 @@ EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagno
       part[c] = from[c];
     thetas.push_back(part);
   }
-  thetas.push_back(non_friction_part(d.groups, sel.theta_written));
-  thetas.push_back(only_family<RigidBodyColumns>(d.groups, sel.theta_declared));
-  if (refitted) thetas.push_back(non_friction_part(d.groups, sel.theta_final));
+  if (written) thetas.push_back(non_friction_part(d.groups, sel.theta_written));
+  if (written && refitted) thetas.push_back(non_friction_part(d.groups, sel.theta_final));
   std::vector<Eigen::MatrixXd> p = design.predict_each(d.samples, thetas);
   EffectPredictions out;
   out.selected = std::move(p[0]);
@@ -257,9 +220,8 @@ EffectPredictions predict_effects(const EffectDesign& design, const EffectDiagno
   for (std::size_t e = 0; e < d.selected.size(); ++e)
     out.terms.push_back(std::move(p[e + 2]));
   const std::size_t next = d.selected.size() + 2;
-  out.non_friction = std::move(p[next]);
-  out.declared_rigid = std::move(p[next + 1]);
-  if (refitted) out.final_non_friction = std::move(p[next + 2]);
+  if (written) out.non_friction = std::move(p[next]);
+  if (written && refitted) out.final_non_friction = std::move(p[next + 1]);
   return out;
 }
 
@@ -285,21 +247,6 @@ StribeckParametersX write_effects(const std::vector<FeatureGroup>& groups,
   return linear;
 }
 
-/// The declared model as identify fits it: the declared rigid body and friction curves, nothing
-/// added.
-NominalModelX declared_nominal(const ModelX& model, const EffectDesign& design,
-                               const Eigen::VectorXd& theta_declared, const BaseParameters& base,
-                               const JointSamples& s,
-                               const Eigen::MatrixXd& declared_rigid_prediction,
-                               const CandidateInputs& inputs) {
-  const LinearNominal fit = linear_nominal(model, design, base, theta_declared);
-  NominalModelX declared = fit.nominal;
-  declared.friction = fit_friction_curves(s, declared_rigid_prediction, inputs.abs_gravity,
-                                          fit.linear, false, 20000)
-                          .parameters;
-  return declared;
-}
-
 /// The written model refitted on every row, held-out ones included (EffectSelection::theta_final,
 /// `non_friction` its prediction outside the friction), each joint's friction curve or linear
 /// fit as chosen on the held-out rows (`judged`): what the parameter file gets once the
@@ -308,7 +255,8 @@ NominalModelX refitted_on_every_row(const std::vector<FeatureGroup>& groups,
                                     const Eigen::VectorXd& theta_final,
                                     const Eigen::MatrixXd& non_friction, const BaseParameters& base,
                                     const CandidateInputs& inputs, const JointSamples& s,
-                                    const ModelX& model, const FrictionCurves& judged) {
+                                    const ModelX& model, const FrictionCurves& judged,
+                                    bool fit_load, int samples_per_joint) {
   NominalModelX final_model;
   final_model.model = model;
   final_model.resize(model.joint_count());
@@ -316,8 +264,9 @@ NominalModelX refitted_on_every_row(const std::vector<FeatureGroup>& groups,
   bool load_selected = false;
   const StribeckParametersX linear =
       write_effects(groups, theta_final, base, inputs, final_model, load_selected);
-  final_model.friction = refit_friction_curves(s, non_friction, inputs.abs_gravity, linear,
-                                               load_selected, 20000, judged);
+  final_model.friction =
+      refit_friction_curves(s, non_friction, inputs.abs_gravity, linear, fit_load || load_selected,
+                            samples_per_joint, judged);
   return final_model;
 }
 
@@ -355,13 +304,30 @@ IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
 }
 
 Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options) {
-  IdentificationSetup setup = prepare_identification(log, model, options.samples);
-  return diagnose(log, model, std::move(setup), options);
+  return diagnose(log, model, prepare_diagnosis(log, model, options.samples), options);
 }
 
 Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
                    const DiagnoseOptions& options) {
+  if (!setup.regressors) setup.regressors = diagnosis_regressors(model, setup.base, setup.samples);
+  if (!setup.abs_gravity)
+    setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(gravity_load(model, setup.samples));
+  const BaseParameters base = setup.base;
+  const auto regressors = setup.regressors;
+  const auto abs_gravity = setup.abs_gravity;
+  IdentifyOptions identify_options;
+  identify_options.samples = options.samples;
+  identify_options.inertia_prior = options.inertia_prior;
+  identify_options.progress = options.progress;
+  Identification identified = identify(log, model, std::move(setup), identify_options);
+  return diagnose(log, model, {std::move(identified.samples), base, regressors, abs_gravity},
+                  identified, options);
+}
+
+Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
+                   const Identification& identified, const DiagnoseOptions& options) {
   require_uncoupled_drives(model, "diagnose");
+  require_identified_on(identified, setup.samples, setup.base);
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
@@ -376,57 +342,62 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
     training[k] = !s.heldout[k];
   out.fit_range = position_range(s, training);
   const double threshold = options.samples.regimes.static_velocity;
+
+  // Identify's declared fit: its joint weights, inertia prior and linear fit θ.
+  say("diagnose: pass 1/4: identify's declared model");
   FitSelection selection;  // fit on moving samples: friction at rest has memory
   selection.regimes = {false, true, true};
-
-  say("diagnose: pass 1/4: declared model");
-  const auto regressors =
-      setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
-  const EffectDesign declared(model, setup.base, s, regressors, {}, threshold);
-  const RobotFileInertiaPrior declared_prior =
-      options.inertia_prior ? robot_file_inertia_prior(model, declared, setup.base)
-                            : RobotFileInertiaPrior{};
-  const DeclaredFit fit = fit_declared(model, setup.base, declared, s, selection,
-                                       options.inertia_prior ? &declared_prior : nullptr,
-                                       options.inertia_prior_strength);
-  selection.joint_weights = fit.joint_weights;
-  out.inertia_prior_strength = fit.prior_strength;
-  out.min_mass_eigenvalue_without_prior = fit.min_mass_eigenvalue_without_prior;
-  out.inertia_prior_choice = fit.prior_choice;
-  if (options.inertia_prior && !(declared_prior.floor > 0))
+  selection.joint_weights = identified.joint_weights;
+  out.inertia_prior = identified.inertia_prior;
+  if (out.inertia_prior.asked && !(out.inertia_prior.floor > 0))
     out.notes.push_back(
         "inertia prior not applied: the robot file's own M(q) is not positive "
         "definite (smallest eigenvalue " +
-        format_number(10 * declared_prior.floor, 4) +
+        format_number(10 * out.inertia_prior.floor, 4) +
         " kg·m²), so it sets no floor to lift the fit's to");
+  const auto regressors =
+      setup.regressors ? setup.regressors : diagnosis_regressors(model, setup.base, s);
+  const EffectDesign declared(model, setup.base, s, regressors, {}, threshold);
+  // The residual of the linear fit the selection starts from (its standard errors are that
+  // fit's: Identification::residual, with the friction curves, is less autocorrelated) and its
+  // rigid-body part, in one pass.
+  const Eigen::VectorXd theta =
+      identified_theta(declared.groups(), declared.features(), identified);
+  std::vector<Eigen::MatrixXd> linear =
+      declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
+  linear[0] = s.effort - linear[0];
 
   say("diagnose: pass 2/4: residual analysis");
-  const ResidualAnalysis analysis =
-      analyse_residual(s, fit.residual, fit.rigid_prediction, model.gear_ratio,
-                       options.samples.acceleration_cutoff_hz);
+  const ResidualAnalysis analysis = analyse_residual(s, linear[0], linear[1], model.gear_ratio,
+                                                     options.samples.acceleration_cutoff_hz);
   out.noise_floor = analysis.noise_floor;
   out.motion_noise = analysis.motion_noise;
   out.model_band_hz = options.samples.acceleration_cutoff_hz;
-  out.notes = analysis.notes;
+  out.notes.insert(out.notes.end(), analysis.notes.begin(), analysis.notes.end());
   if (s.temperature.cols() != joints)
     out.notes.push_back("temperature-dependent friction not checked: the log has no temp<j>");
   if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
   const EffectDesign design(model, setup.base, s, regressors,
-                            candidate_inputs(model, setup, s, analysis, fit), threshold);
+                            candidate_inputs(model, setup, s, analysis, identified), threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   const DesignGrams grams = design.accumulate(s);
-  if (fit.prior_strength > 0) {  // the declared fit's strength for every fit from here on
+  FitSelection every = selection;  // the written model's final refit
+  every.heldout_rows = true;
+  if (out.inertia_prior.judged_strength > 0 || out.inertia_prior.written_strength > 0) {
     selection.prior = robot_file_prior(model, design, setup.base);
-    selection.prior.strength = fit.prior_strength;
+    every.prior = selection.prior;
+    selection.prior.strength = out.inertia_prior.judged_strength;
+    every.prior.strength = out.inertia_prior.written_strength;
   }
   out.groups = design.groups();
   std::vector<TransferFold> transfer;
   std::vector<OutsideFold> outside;
   held_out_folds(log, design, s, transfer, outside);
   EffectSelection sel =
-      select_effects(grams, transfer, outside, out.groups, design.declared_columns(), selection,
+      select_effects(grams, transfer, outside, out.groups, design.declared_columns(),
+                     identified_theta(out.groups, design.features(), identified), selection, every,
                      analysis.variance_inflation, options);
   out.trials = std::move(sel.trials);
   out.selected = sel.selected;
@@ -435,46 +406,47 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   out.after = sel.after;
 
   say("diagnose: pass 4/4: refit with the selected effects");
-  out.refitted = holds_rows_out(s);
-  EffectPredictions p = predict_effects(design, out, sel, out.refitted);
+  out.refitted = identified.refitted;
+  const bool adds =
+      std::any_of(out.claims.begin(), out.claims.end(), [](const Claim& c) { return c.written; });
+  EffectPredictions p = predict_effects(design, out, sel, adds, out.refitted);
   out.residual_after = std::move(p.selected);  // in place: effort − prediction
   out.residual_after = s.effort - out.residual_after;
   out.residual_before = std::move(p.declared);
   out.residual_before = s.effort - out.residual_before;
   out.effect_terms = std::move(p.terms);
-  NominalModelX& nominal = out.nominal;
-  nominal.model = model;
-  nominal.resize(joints);
-  nominal.base_count = setup.base.size();
-  bool load_selected = false;
-  const StribeckParametersX linear =
-      write_effects(out.groups, sel.theta_written, setup.base, inputs, nominal, load_selected);
-  // The written models on the held-out samples: the extended one (what --params holds) and the
-  // declared model as identify fits it: independent fits at once, then both residuals in one
-  // pass (one forward kinematics per sample).
-  FrictionCurves curves;
-  parallel_jobs(2, [&](int job) {
-    if (job == 0)
-      curves =
-          fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, load_selected, 20000);
-    else
-      out.declared = declared_nominal(model, design, sel.theta_declared, setup.base, s,
-                                      p.declared_rigid, inputs);
-  });
-  nominal.friction = curves.parameters;
-  for (const std::string& note : curves.notes)
-    out.notes.push_back("friction curve: " + note);
-  std::vector<Eigen::MatrixXd> residuals = nominal_residuals({&nominal, &out.declared}, s);
-  out.residual_written = std::move(residuals[0]);
-  parallel_jobs(2, [&](int job) {
-    (job == 0 ? out.written_after : out.written_before) =
-        split_regime_stats(s, job == 0 ? out.residual_written : residuals[1], true);
-  });
-
-  out.judged = out.nominal;
-  if (out.refitted)
-    out.nominal = refitted_on_every_row(out.groups, sel.theta_final, p.final_non_friction,
-                                        setup.base, inputs, s, model, curves);
+  // The declared model as identify fits it, and what it scores held out.
+  out.declared = identified.judged;
+  out.written_before = identified.heldout;
+  if (!adds) {  // nothing to write beside the declared model: identify's is the written model
+    out.nominal = identified.nominal;
+    out.judged = identified.judged;
+    out.residual_written = identified.residual;
+    out.written_after = identified.heldout;
+  } else {
+    NominalModelX& judged = out.judged;
+    judged.model = model;
+    judged.resize(joints);
+    judged.base_count = setup.base.size();
+    bool load_selected = false;
+    const StribeckParametersX linear =
+        write_effects(out.groups, sel.theta_written, setup.base, inputs, judged, load_selected);
+    // The friction curves fitted as identify fits the declared model's.
+    const bool fit_load = identified.fit_load_friction || load_selected;
+    const FrictionCurves curves =
+        fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, fit_load,
+                            identified.friction_samples_per_joint);
+    judged.friction = curves.parameters;
+    for (const std::string& note : curves.notes)
+      out.notes.push_back("friction curve: " + note);
+    out.residual_written = nominal_residual(judged, s);
+    out.written_after = split_regime_stats(s, out.residual_written, true);
+    out.nominal = judged;
+    if (out.refitted)
+      out.nominal = refitted_on_every_row(out.groups, sel.theta_final, p.final_non_friction,
+                                          setup.base, inputs, s, model, curves, fit_load,
+                                          identified.friction_samples_per_joint);
+  }
 
   out.cad_payload = judge_cad_payload(
       grams, out.groups, cad_rigid_body(model, setup.base, out.groups, design.features()),

@@ -2,8 +2,8 @@
 // selection, the CAD payload check, findings, report), on the samples and held-out split of
 // samples/, the column families of effects/ and identify/'s design, fitted with fit/.
 //
-// `tpf diagnose`: fit the declared model, trace the residual to the physical effects it lacks,
-// add them, refit, and compare on held-out data.
+// `tpf diagnose`: from identify's fit of the declared model, trace the residual to the physical
+// effects it lacks, add them, refit, and compare on held-out data.
 #pragma once
 
 #include <array>
@@ -39,14 +39,10 @@ struct DiagnoseOptions {
   /// A claimed coefficient must be this many standard errors from zero (Wald statistic per
   /// column, standard errors inflated for the residual's autocorrelation).
   double min_standard_errors = 3.0;
-  /// IdentifyOptions::inertia_prior for diagnose's fits: one strength holds for every fit of the
-  /// selection and the written model, `inertia_prior_strength` where it is given, else the one
-  /// identify would write for the declared model (choose_inertia_prior on the training rows, kept
-  /// or raised for every row by refit_with_inertia_prior). Off: every fit plain, whatever M(q).
+  /// IdentifyOptions::inertia_prior of the identify diagnose runs when it is not handed one's
+  /// result. Every fit of the diagnosis has identify's strengths: the judged one for the
+  /// selection on the training rows, the written one for the written model's refit on every row.
   bool inertia_prior = true;
-  /// The strength identify chose for this log (Identification::inertia_prior.written_strength),
-  /// so that diagnose's written model is fitted as identify's is; NaN: diagnose chooses it.
-  double inertia_prior_strength = std::numeric_limits<double>::quiet_NaN();
   ProgressLine progress;
 };
 
@@ -179,11 +175,9 @@ struct EffectDiagnosis {
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
   std::vector<std::string> notes;     ///< skipped candidates and why
   CadPayloadCheck cad_payload;
-  /// DiagnoseOptions::inertia_prior: the prior strength of every fit (0: none was needed) and
-  /// the smallest eigenvalue of M(q) of the declared model's fit without it [kg·m²].
-  double inertia_prior_strength = 0;
-  double min_mass_eigenvalue_without_prior = 0;
-  std::string inertia_prior_choice;  ///< why that strength, in a sentence
+  /// Identify's inertia prior, which every fit of the diagnosis has: judged_strength the
+  /// selection's (training rows), written_strength the written model's refit on every row.
+  Identification::InertiaPrior inertia_prior;
 
   int joints() const { return static_cast<int>(noise_floor.size()); }
 };
@@ -191,26 +185,37 @@ struct EffectDiagnosis {
 /// The diagnosis of an arm: what was found and the nominal model it writes.
 struct Diagnosis : EffectDiagnosis {
   /// The declared model plus the selected effects, refitted on every row once judged
-  /// (`refitted`; the held-out tables are of its fit on the training rows).
+  /// (`refitted`; the held-out tables are of its fit on the training rows). With no effect
+  /// written: identify's model (Identification::nominal).
   NominalModelX nominal;
   bool refitted = false;
   /// The same model fitted on the training rows: what residual_written, written_after and
   /// effect_terms are of (equal to `nominal` when nothing is held out).
   NominalModelX judged;
-  /// The declared model as identify fits it (rigid body and friction curves, nothing added):
-  /// what `written_before` scores; beside `nominal` it shows what a folded payload does.
+  /// Identify's model fitted on the training rows (Identification::judged: rigid body and
+  /// friction curves, nothing added): what `written_before` scores; beside `nominal` it shows
+  /// what a folded payload does.
   NominalModelX declared;
 };
 
 /// Runs the diagnosis of `log` for the arm of `model` (robot file, any joint count; the log must
-/// have as many joints). Never hands ground truth (gt_* columns) to the fit.
+/// have as many joints): identify (IdentifyOptions with options.samples and
+/// options.inertia_prior, its defaults otherwise), then the diagnosis from its result. Never
+/// hands ground truth (gt_* columns) to the fit.
 Diagnosis diagnose(const Log& log, const ModelX& model, const DiagnoseOptions& options = {});
 
-/// The same from samples already prepared by prepare_diagnosis (with `options.samples`): for a
-/// caller that first identifies on them (identify takes the same setup and gives the samples
-/// back in Identification::samples), so that the log is read and its regressors computed once.
+/// The same from samples already prepared (prepare_diagnosis, with `options.samples`).
 Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
                    const DiagnoseOptions& options);
+
+/// The diagnosis from identify's result: `identified` = identify(log, model, setup', …) on a
+/// setup' whose base, regressors and gravity load `setup` shares (prepare_diagnosis), its samples
+/// handed back (Identification::samples, moved into `setup`). Its declared fit on the training
+/// rows is the selection's start, its residual the one analysed, its joint weights and inertia
+/// prior strengths those of every fit; with no effect written, its model is the written one.
+/// tpf::Error when `identified` is not of these samples.
+Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
+                   const Identification& identified, const DiagnoseOptions& options);
 
 /// prepare_identification with the regressors diagnose reads (a superset of identify's) and the
 /// gravity load both read.

@@ -39,10 +39,12 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   j["simulated"] = d.samples.simulated;
   j["effort_unit"] = u.name();
   j["heldout_method"] = d.heldout_method;
-  if (d.inertia_prior_strength > 0)
-    j["inertia_prior"] = {{"strength", d.inertia_prior_strength},
-                          {"min_mass_eigenvalue_without", d.min_mass_eigenvalue_without_prior},
-                          {"choice", d.inertia_prior_choice}};
+  const Identification::InertiaPrior& prior = d.inertia_prior;
+  if (prior.judged_strength > 0 || prior.written_strength > 0)
+    j["inertia_prior"] = {{"strength", prior.judged_strength},
+                          {"written_strength", prior.written_strength},
+                          {"min_mass_eigenvalue_without", prior.judged_min_eigenvalue},
+                          {"choice", prior.choice}};
   nlohmann::json joints = nlohmann::json::array();
   for (int i = 0; i < N; ++i) {
     nlohmann::json joint;

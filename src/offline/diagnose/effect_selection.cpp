@@ -45,7 +45,8 @@ class ForwardSelection {
  public:
   ForwardSelection(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
                    const std::vector<OutsideFold>& outside, const std::vector<FeatureGroup>& groups,
-                   const std::vector<int>& declared_columns, const FitSelection& selection,
+                   const std::vector<int>& declared_columns, const Eigen::VectorXd& theta_declared,
+                   const FitSelection& selection, const FitSelection& every,
                    const Eigen::VectorXd& inflation, const DiagnoseOptions& options)
       : grams_(grams),
         transfer_(transfer),
@@ -53,18 +54,19 @@ class ForwardSelection {
         groups_(groups),
         declared_columns_(declared_columns),
         selection_(selection),
+        every_(every),
         inflation_(inflation),
         options_(options),
         A_(training_gram(grams, selection)),
         used_(groups.size(), false),
-        columns_(declared_columns) {
+        columns_(declared_columns),
+        theta_(theta_declared) {
     for (std::size_t g = 0; g < groups.size(); ++g)
       if (groups[g].declared) in_model_.push_back(static_cast<int>(g));
   }
 
   EffectSelection run() {
     EffectSelection out;
-    theta_ = fit_columns(grams_, columns_, selection_);
     out.theta_declared = theta_;
     out.theta_before = with_held_friction(theta_, columns_);
     out.before = heldout_table(grams_, out.theta_before);
@@ -73,10 +75,11 @@ class ForwardSelection {
     out.theta_selected = with_held_friction(theta_, columns_);
     out.after = heldout_table(grams_, out.theta_selected);
     const std::vector<int> written = written_columns(out);
-    out.theta_written = with_held_friction(fit_columns(grams_, written, selection_), written);
-    FitSelection every = selection_;
-    every.heldout_rows = true;
-    out.theta_final = with_held_friction(fit_columns(grams_, written, every), written, every);
+    // Nothing written: the declared model as given, not refitted.
+    out.theta_written = written.size() == declared_columns_.size()
+                            ? out.theta_before
+                            : with_held_friction(fit_columns(grams_, written, selection_), written);
+    out.theta_final = with_held_friction(fit_columns(grams_, written, every_), written, every_);
     return out;
   }
 
@@ -432,6 +435,7 @@ class ForwardSelection {
   const std::vector<FeatureGroup>& groups_;
   const std::vector<int>& declared_columns_;
   const FitSelection& selection_;
+  const FitSelection& every_;  ///< the final refit's rows (every one) and prior
   const Eigen::VectorXd& inflation_;
   const DiagnoseOptions& options_;
   const Eigen::MatrixXd A_;  ///< the weighted training Gram of the selected regimes
@@ -447,11 +451,11 @@ EffectSelection select_effects(const DesignGrams& grams, const std::vector<Trans
                                const std::vector<OutsideFold>& outside,
                                const std::vector<FeatureGroup>& groups,
                                const std::vector<int>& declared_columns,
-                               const FitSelection& selection,
-                               const Eigen::VectorXd& variance_inflation,
+                               const Eigen::VectorXd& theta_declared, const FitSelection& selection,
+                               const FitSelection& every, const Eigen::VectorXd& variance_inflation,
                                const DiagnoseOptions& options) {
-  return ForwardSelection(grams, transfer, outside, groups, declared_columns, selection,
-                          variance_inflation, options)
+  return ForwardSelection(grams, transfer, outside, groups, declared_columns, theta_declared,
+                          selection, every, variance_inflation, options)
       .run();
 }
 

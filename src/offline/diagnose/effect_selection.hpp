@@ -47,7 +47,7 @@ struct EffectSelection {
   std::vector<int> selected;  ///< indices into the groups, in selection order
   std::vector<Claim> claims;  ///< one per selected group
   RegimeTable before, after;  ///< held-out, declared / selected (with the friction held at rest)
-  Eigen::VectorXd theta_declared;  ///< the declared columns fitted on motion
+  Eigen::VectorXd theta_declared;  ///< the declared columns fitted on motion (identify's fit)
   Eigen::VectorXd theta_before;    ///< … plus the friction held at rest, fitted at rest
   Eigen::VectorXd theta_selected;  ///< declared + selected, plus the held friction
   /// What the parameter file gets: declared + the written effects, refitted without those not
@@ -55,20 +55,23 @@ struct EffectSelection {
   /// held friction.
   Eigen::VectorXd theta_written;
   /// theta_written's columns refitted on every row, held-out ones included (and the held
-  /// friction with them): what the parameter file gets once the selection is judged.
+  /// friction with them), with the final fit's prior: what the parameter file gets once the
+  /// selection is judged.
   Eigen::VectorXd theta_final;
 };
 
-/// Selection on `grams` over `groups` (declared ones first), fitting on `selection`'s rows with
-/// its joint weights; standard errors inflated per joint by `variance_inflation`. A candidate
+/// Selection on `grams` over `groups` (declared ones first), starting from `theta_declared` (the
+/// declared columns' fit on `selection`'s rows: identify's) and fitting on `selection`'s rows
+/// with its joint weights and prior; theta_final on `every`'s (every row, the written model's
+/// prior strength). Standard errors inflated per joint by `variance_inflation`. A candidate
 /// must also lower the held-out error of every fold in `transfer` (none for a one-file log), and
 /// one that extrapolates in q that of every fold in `outside` with samples outside the range.
 EffectSelection select_effects(const DesignGrams& grams, const std::vector<TransferFold>& transfer,
                                const std::vector<OutsideFold>& outside,
                                const std::vector<FeatureGroup>& groups,
                                const std::vector<int>& declared_columns,
-                               const FitSelection& selection,
-                               const Eigen::VectorXd& variance_inflation,
+                               const Eigen::VectorXd& theta_declared, const FitSelection& selection,
+                               const FitSelection& every, const Eigen::VectorXd& variance_inflation,
                                const DiagnoseOptions& options);
 
 }  // namespace tpf::offline

@@ -167,9 +167,8 @@ std::vector<char> EffectDesign::groups_in_use(const std::vector<Eigen::VectorXd>
   return used;
 }
 
-DesignGrams EffectDesign::accumulate(const JointSamples& s, int stride) const {
+DesignGrams EffectDesign::accumulate(const JointSamples& s) const {
   check_samples(s);
-  stride = std::max(stride, 1);
   constexpr int kBlock = 256;
   const Eigen::Index n = s.size();
   auto work = [&](Eigen::Index begin, Eigen::Index end, DesignGrams& out) {
@@ -185,7 +184,7 @@ DesignGrams EffectDesign::accumulate(const JointSamples& s, int stride) const {
         buffer.emplace_back(width, kBlock);
       }
     auto flush = [&](int slot) { buffer[slot].add_to_lower(gram[slot]); };
-    for (Eigen::Index k = begin; k < end; k += stride) {
+    for (Eigen::Index k = begin; k < end; ++k) {
       if (!s.valid[k]) continue;
       fill(s, k, ws);
       for (int j = 0; j < joints_; ++j) {

@@ -61,9 +61,8 @@ class EffectDesign {
   /// Columns of the declared model.
   std::vector<int> declared_columns() const;
 
-  /// One pass over the samples (two threads): the Gram matrices per joint, regime and split,
-  /// of every `stride`-th sample (1 = all; a first, rough fit can afford fewer).
-  DesignGrams accumulate(const JointSamples& samples, int stride = 1) const;
+  /// One pass over the samples (two threads): the Gram matrices per joint, regime and split.
+  DesignGrams accumulate(const JointSamples& samples) const;
   /// Prediction φᵀθ per sample and joint (NaN where the sample is invalid).
   Eigen::MatrixXd predict(const JointSamples& samples, const Eigen::VectorXd& theta) const;
   /// φᵀθ_i for several parameter vectors in one pass over the samples (one regressor per sample).

@@ -478,6 +478,9 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   Eigen::MatrixXd computed_load;  // |G(q)| unless prepare_diagnosis computed it for both
   if (!setup.abs_gravity) computed_load = gravity_load(model, s);
   const Eigen::MatrixXd& load = setup.abs_gravity ? *setup.abs_gravity : computed_load;
+  out.judged_linear = fit.linear;  // on the effort, before a sensor's friction replaces it
+  out.fit_load_friction = options.fit_load_friction;
+  out.friction_samples_per_joint = options.friction_samples_per_joint;
   Eigen::MatrixXd sensor_reference;
   const Eigen::MatrixXd& reference =
       friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);
@@ -488,7 +491,7 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   NominalModelX nominal = fit.nominal;
   nominal.friction = curves.parameters;
   const StribeckParametersX& linear = fit.linear;
-  out.nominal = nominal;
+  out.nominal = out.judged = nominal;
   if (out.refitted) {
     std::vector<std::string> unused;
     Eigen::MatrixXd final_sensor_reference;

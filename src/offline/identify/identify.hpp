@@ -66,6 +66,17 @@ struct Identification {
   /// then refitted on every row (`refitted`) where rows were held out.
   NominalModelX nominal;
   bool refitted = false;
+  /// The model fitted on the training rows: what `residual`, `heldout` and `training` score
+  /// (equal to `nominal` when nothing is held out).
+  NominalModelX judged;
+  /// The linear friction of that fit on the effort (Coulomb, viscous per joint), where its
+  /// curves start: with judged.base_values, the declared model's linear fit that diagnose
+  /// starts its selection from.
+  StribeckParametersX judged_linear;
+  /// IdentifyOptions::fit_load_friction and friction_samples_per_joint: how the curves were
+  /// fitted (diagnose fits those of its written model so).
+  bool fit_load_friction = true;
+  int friction_samples_per_joint = 20000;
   JointSamples samples;
   /// effort − prediction of the model fitted on the training rows, per sample and joint (NaN
   /// invalid): what `heldout` and `training` score.

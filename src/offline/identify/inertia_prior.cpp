@@ -259,18 +259,4 @@ PriorFit refit_with_inertia_prior(const ModelX& model, const EffectDesign& desig
   return out;
 }
 
-PriorFit fit_with_inertia_prior_strength(const ModelX& model, const EffectDesign& design,
-                                         const BaseParameters& base, const DesignGrams& grams,
-                                         const std::vector<int>& columns, FitSelection selection,
-                                         const RobotFileInertiaPrior* prior, double strength) {
-  PriorFits fits{model, design, base, grams, columns, selection};
-  PriorFit out;
-  out.fit = fits.nominal(fits.theta(prior, 0));
-  if (!prior) return out;
-  out.min_eigenvalue_without = min_mass_eigenvalue(out.fit.nominal);
-  if (strength > 0) out.fit = fits.nominal(fits.theta(prior, strength));
-  out.strength = strength;
-  return out;
-}
-
 }  // namespace tpf::offline

@@ -89,11 +89,4 @@ PriorFit refit_with_inertia_prior(const ModelX& model, const EffectDesign& desig
                                   const std::vector<int>& columns, FitSelection selection,
                                   const RobotFileInertiaPrior* prior, const PriorFit& judged);
 
-/// A fit with a given strength of the prior (none: the plain fit), its M(q)'s smallest
-/// eigenvalue without the prior in min_eigenvalue_without (with a prior).
-PriorFit fit_with_inertia_prior_strength(const ModelX& model, const EffectDesign& design,
-                                         const BaseParameters& base, const DesignGrams& grams,
-                                         const std::vector<int>& columns, FitSelection selection,
-                                         const RobotFileInertiaPrior* prior, double strength);
-
 }  // namespace tpf::offline

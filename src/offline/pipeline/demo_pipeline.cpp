@@ -109,16 +109,25 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   say("[2/7] identify: declared model (base parameters, armature, Stribeck + load friction) on "
       "the training log");
   const ModelX model = load_robot<double, Eigen::Dynamic>(data_file("arm4.robot.json"));
-  IdentifyOptions identify_options;
-  identify_options.progress = say;
-  const Identification identified = identify(training_log, model, identify_options);
-  save_nominal_model(o.out / "identified.params.json", identified.nominal, training_log.source);
-
-  // 3. Diagnose: name and add what the declared model misses; the result is the nominal model.
-  say("[3/7] diagnose: candidate effects on the training log's held-out blocks");
   DiagnoseOptions diagnose_options;
   diagnose_options.progress = say;
-  const Diagnosis diagnosis = diagnose(training_log, model, diagnose_options);
+  IdentifyOptions identify_options;
+  identify_options.samples = diagnose_options.samples;
+  identify_options.progress = say;
+  // The samples and their regressors once, for identify and then diagnose.
+  IdentificationSetup prepared = prepare_diagnosis(training_log, model, diagnose_options.samples);
+  const BaseParameters base = prepared.base;
+  const auto regressors = prepared.regressors;
+  const auto abs_gravity = prepared.abs_gravity;
+  Identification identified = identify(training_log, model, std::move(prepared), identify_options);
+  save_nominal_model(o.out / "identified.params.json", identified.nominal, training_log.source);
+
+  // 3. Diagnose from identify's fit: name and add what the declared model misses; the result is
+  // the nominal model.
+  say("[3/7] diagnose: candidate effects on the training log's held-out blocks");
+  const Diagnosis diagnosis =
+      diagnose(training_log, model, {std::move(identified.samples), base, regressors, abs_gravity},
+               identified, diagnose_options);
   for (const std::string& f : diagnosis.findings)
     say("diagnose: " + f);
   save_nominal_model(o.out / "nominal.params.json", diagnosis.nominal, training_log.source);

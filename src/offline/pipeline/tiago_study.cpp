@@ -230,9 +230,7 @@ std::pair<NominalModelX, NominalModelX> fit_models(const TiagoOptions& o, const 
   r.rest_factor = checks.rest_factor;
 
   say("tiago: diagnose on the fitted part (its own held-out blocks)");
-  DiagnoseOptions dio;
-  dio.inertia_prior_strength = identified.inertia_prior.written_strength;
-  const Diagnosis diagnosis = diagnose(fit, model, dio);
+  const Diagnosis diagnosis = diagnose(fit, model);
   r.diagnosis_findings = diagnosis.findings;
   save_nominal_model(o.out / "tiago.nominal.params.json", diagnosis.nominal, fit.source);
   return {identified.nominal, diagnosis.nominal};
