@@ -6,7 +6,7 @@
 #
 #   bench/compare_trees.sh <revision> [log seconds = 3600] [repetitions = 2]
 #
-# Prints the wall and CPU seconds of `tpf identify` + `tpf diagnose` per repetition and tree, the
+# Prints the wall and CPU seconds of identify + diagnose per repetition and tree, the
 # medians and new/old ratios, then what each tree's identify and diagnose printed (the figures).
 # The log: data/scenarios/excitation-undeclared.json (the 4-joint arm with undeclared effects,
 # seed 3), simulated by this tree's `tpf`.
@@ -42,14 +42,14 @@ echo "compare: simulating ${seconds} s of log"
 "$new_tpf" simulate --scenario "$root/data/scenarios/excitation-undeclared.json" --seed 3 \
   --duration "$seconds" --out "$log" >/dev/null
 
-# Wall and CPU (user + system) seconds of identify + diagnose with one tpf binary.
+# Wall and CPU (user + system) seconds of identify + diagnose with one tpf binary: one
+# `tpf diagnose --identify-out` (both from one reading of the log, as the tool offers them).
 run_tree() {
   local tpf=$1 out=$2
-  /usr/bin/time -f "%e %U %S" -o "$work/t1" "$tpf" identify --log "$log" --robot "$robot" \
-    --out "$work/$out.params.json" >"$work/$out.identify.txt" 2>/dev/null
-  /usr/bin/time -f "%e %U %S" -o "$work/t2" "$tpf" diagnose --log "$log" --robot "$robot" \
-    --json "$work/$out.diagnosis.json" >"$work/$out.diagnose.txt" 2>/dev/null
-  awk '{w += $1; c += $2 + $3} END {printf "%.1f %.1f\n", w, c}' "$work/t1" "$work/t2"
+  /usr/bin/time -f "%e %U %S" -o "$work/t" "$tpf" diagnose --log "$log" --robot "$robot" \
+    --identify-out "$work/$out.params.json" --json "$work/$out.diagnosis.json" \
+    >"$work/$out.txt" 2>/dev/null
+  awk '{printf "%.1f %.1f\n", $1, $2 + $3}' "$work/t"
 }
 
 printf '%-4s %-6s %9s %9s\n' rep tree wall_s cpu_s
@@ -71,6 +71,6 @@ awk -v wo="$wo" -v wn="$wn" -v co="$co" -v cn="$cn" 'BEGIN {
   printf "median  old %.1f s wall %.1f s CPU · new %.1f s wall %.1f s CPU · new/old %.3f wall, %.3f CPU\n",
     wo, co, wn, cn, wn / wo, cn / co }'
 for tree in old new; do
-  echo "--- $tree tree: tpf identify, then tpf diagnose"
-  cat "$work/$tree.identify.txt" "$work/$tree.diagnose.txt"
+  echo "--- $tree tree: tpf diagnose --identify-out"
+  cat "$work/$tree.txt"
 done
