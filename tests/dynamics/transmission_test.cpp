@@ -223,15 +223,15 @@ TEST(Transmission, ToolsThatTakeFrictionPerJointRefuseACoupledRobot) {
   const auto file = coupled_robot(dir, R"({"j2": 1.0})");
   const CoupledModel model = load_robot<double, Eigen::Dynamic>(file);
   try {
-    require_uncoupled_drives(model, "identify");
+    require_uncoupled_drives(model, "diagnose");
     ADD_FAILURE() << "a coupled robot was accepted";
   } catch (const Error& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("three"), std::string::npos) << m;
     EXPECT_NE(m.find("coupled_to"), std::string::npos) << m;
-    EXPECT_NE(m.find("identify"), std::string::npos) << m;
+    EXPECT_NE(m.find("diagnose"), std::string::npos) << m;
   }
-  EXPECT_NO_THROW(require_uncoupled_drives(random_arm(3, 1), "identify"));
+  EXPECT_NO_THROW(require_uncoupled_drives(random_arm(3, 1), "diagnose"));
 }
 
 }  // namespace

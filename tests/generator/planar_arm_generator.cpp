@@ -91,8 +91,11 @@ Eigen::Vector2d PlanarArm::inverse_dynamics(const Eigen::Vector2d& q, const Eige
                                             const Eigen::Vector2d& ddq) const {
   const Forearm f = forearm(*this);
   const double c = std::cos(q[1] + f.psi), s = std::sin(q[1] + f.psi);
-  const double m11 = I1 + m1 * c1 * c1 + f.inertia + f.mass * L1 * L1 + 2 * L1 * f.h * c + armature;
-  const double m12 = f.inertia + L1 * f.h * c;
+  // Armature Cᵀ·diag(I_a)·C with C = [1 0; k 1]: motor 2 turns with q̇₂ + k·q̇₁.
+  const double k = motor2_coupling;
+  const double m11 =
+      I1 + m1 * c1 * c1 + f.inertia + f.mass * L1 * L1 + 2 * L1 * f.h * c + armature * (1 + k * k);
+  const double m12 = f.inertia + L1 * f.h * c + k * armature;
   const double m22 = f.inertia + armature;
   const double h = L1 * f.h * s;
   Eigen::Vector2d tau;
@@ -105,6 +108,10 @@ std::string planar_robot_file() {
   return std::string(TPF_TEST_SOURCE_DIR) + "/planar2/planar2.robot.json";
 }
 
+std::string planar_coupled_robot_file() {
+  return std::string(TPF_TEST_SOURCE_DIR) + "/planar2/planar2_coupled.robot.json";
+}
+
 offline::Log generate_planar_log(const PlanarArmPlant& p) {
   std::mt19937_64 rng(p.seed);
   std::uniform_real_distribution<double> frequency(0.5, 1.3), phase(0.0, 2 * M_PI);
@@ -112,6 +119,7 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
   PlanarArm arm;
   arm.payload_mass = p.payload_mass;
   arm.payload_com = p.payload_com;
+  arm.motor2_coupling = p.motor2_coupling;
   const double dt = 1.0 / p.rate_hz;
   const int lag = static_cast<int>(std::lround(p.delay_s * p.rate_hz));
   const int n = static_cast<int>(p.duration_s * p.rate_hz);
@@ -146,7 +154,8 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
     temperature[k] = p.temperature_start +
                      p.temperature_rise * (1 - std::exp(-t / p.temperature_time_constant_s));
     for (int j = 0; j < 2; ++j) {
-      const double v = dq[k][j];
+      // Drive j's friction on its motor's velocity (motor 2: q̇₂ + c·q̇₁), acting through Cᵀ.
+      const double v = j == 1 ? dq[k][1] + p.motor2_coupling * dq[k][0] : dq[k][j];
       double level = v >= 0 ? p.coulomb_positive[j] : p.coulomb_negative[j];
       level += p.own_load[j] * load[j];
       if (j == 0) level += p.neighbour_load * load[1];
@@ -157,7 +166,9 @@ offline::Log generate_planar_log(const PlanarArmPlant& p) {
         bristle[j] = steady + (bristle[j] - steady) *
                                   std::exp(-p.bristle_stiffness[j] * std::abs(v) * dt / level);
       }
-      effort[j] += p.bristle_stiffness[j] * bristle[j] + viscous * v + p.offset[j] +
+      const double motor_friction = p.bristle_stiffness[j] * bristle[j] + viscous * v;
+      if (j == 1 && p.motor2_coupling != 0.0) effort[0] += p.motor2_coupling * motor_friction;
+      effort[j] += motor_friction + p.offset[j] +
                    p.spring_stiffness[j] * (q[k][j] - p.spring_neutral[j]) +
                    p.ripple_amplitude[j] * std::sin(p.ripple_cycles[j] * q[k][j]) +
                    p.motor_ripple_amplitude[j] *

@@ -25,6 +25,10 @@ struct PlanarArmPlant {
   Eigen::Vector2d centre{0.3, 0.5};     ///< rad, middle of each joint's motion
   Eigen::Vector2d amplitude{1.2, 1.4};  ///< rad, half the range of motion
   bool random_stops = true;             ///< the motion pauses 0.5–2 s every few seconds
+  /// c: motor 2 turns with r·(q₂ + c·q₁) (a coupled wrist, planar2_coupled.robot.json has
+  /// c = 1); its friction (index 1 of the friction fields, on the motor's velocity q̇₂ + c·q̇₁)
+  /// and armature act through C = [1 0; c 1]: τ_joint = Cᵀ·τ_motor. 0: uncoupled.
+  double motor2_coupling = 0.0;
 
   // Friction (Dahl bristle with a direction-dependent sliding level; memory at reversals/rests).
   Eigen::Vector2d coulomb_positive{0.40, 0.25};  ///< N·m, sliding level for q̇ > 0
@@ -78,6 +82,7 @@ struct PlanarArm {
   double g = 9.81;
   double payload_mass = 0.0;              ///< kg
   Eigen::Vector2d payload_com{0.0, 0.0};  ///< (x, z) in the forearm's frame, m
+  double motor2_coupling = 0.0;  ///< c of PlanarArmPlant: motor 2's armature on q̈₂ + c·q̈₁
 
   /// Rigid-body torque (incl. armature) the drives must produce, closed form.
   Eigen::Vector2d inverse_dynamics(const Eigen::Vector2d& q, const Eigen::Vector2d& dq,
@@ -88,6 +93,8 @@ struct PlanarArm {
 
 /// Path of planar2.robot.json.
 std::string planar_robot_file();
+/// Path of planar2_coupled.robot.json (motor 2 coupled_to joint1 with c = 1).
+std::string planar_coupled_robot_file();
 
 /// Generates the log of `plant`.
 offline::Log generate_planar_log(const PlanarArmPlant& plant);

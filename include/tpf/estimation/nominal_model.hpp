@@ -44,7 +44,9 @@ struct NominalModel {
                      std::array<int, std::size_t(N < 0 ? 0 : regressor_columns<N>)>>
       base_columns{};
   DynamicParameters<S, N> base_values = zero_or_empty<DynamicParameters<S, N>>();
-  /// Stribeck + viscous + load dependence (α_c, α_v on |G_j(q)| of `model`), N·m.
+  /// Stribeck + viscous + load dependence (α_c, α_v on |G_j(q)| of `model`), N·m. Per motor:
+  /// where model.coupled, entry m is motor m's curve on its velocity (C·q̇)_m at the output scale
+  /// (its load terms on |G_m|), acting on the joints through Cᵀ.
   StribeckParameters<S, N> friction;
   /// The memoryless effects diagnosis added (tpf/effects/added_effects.hpp). An unmodelled
   /// payload is folded into the base parameters; load-dependent, direction-asymmetric and
@@ -169,7 +171,15 @@ void predict_effort_at_pose(const NominalModel<S, N>& nominal, const NominalLink
   }
   // stribeck_friction(nominal.friction, dq, |G|), or own_load_stribeck_friction without
   // neighbour load, element by element into `friction`.
-  if (links.neighbour_load) {
+  if (nominal.model.coupled) {  // motor m's curve on its velocity (C·q̇)_m, through Cᵀ
+    friction.setZero();
+    for (int m = 0; m < n; ++m) {
+      const S v = nominal.model.motor_rate(m, dq);
+      S f = stribeck_friction(nominal.friction, m, v, abs_gravity[m]);
+      if (links.neighbour_load) f += neighbour_load_friction(nominal.friction, m, v, abs_gravity);
+      nominal.model.add_motor_torque(m, f, friction);
+    }
+  } else if (links.neighbour_load) {
     for (int j = 0; j < n; ++j)
       friction[j] = stribeck_friction(nominal.friction, j, dq[j], abs_gravity[j]) +
                     neighbour_load_friction(nominal.friction, j, dq[j], abs_gravity);
@@ -237,7 +247,13 @@ void predict_effort_by_regressor(const NominalModel<S, N>& nominal, Data<S, N>& 
   Regressor<S, N> Y;
   rigid = rigid_body_torque(nominal, data, Y, q, dq, ddq) + added_effort(nominal, q, dq, ddq);
   const JointVector<S, N> abs_gravity = compute_gravity(nominal.model, data, q).cwiseAbs();
-  friction = stribeck_friction(nominal.friction, dq, abs_gravity);
+  if (!nominal.model.coupled) {
+    friction = stribeck_friction(nominal.friction, dq, abs_gravity);
+    return;
+  }
+  const JointVector<S, N> motor_dq = nominal.model.coupling * dq;
+  friction = nominal.model.coupling.transpose() *
+             stribeck_friction(nominal.friction, motor_dq, abs_gravity);
 }
 
 /// Name of standard regressor column c (0-based) of an N-joint arm: per link k (1..N) "m<k>",

@@ -75,16 +75,16 @@ struct RobotDescription {
 };
 
 /// Refuses a model whose motors are coupled where `what` (a tool or model part) takes each
-/// drive's friction on its own joint: the coupling is carried by the dynamics and the regressor,
-/// not yet by the friction model, the estimator, the twin or the fits. Throws tpf::Error naming
-/// the robot and coupled_to.
+/// drive's friction on its own joint: the coupling is carried by the dynamics, the regressor, the
+/// nominal model and identify, not yet by diagnose or the twin. Throws tpf::Error naming the
+/// robot and coupled_to.
 template <typename S, int N>
 void require_uncoupled_drives(const Model<S, N>& model, std::string_view what) {
   if (!model.coupled) return;
   throw Error::at(model.name + " (robot file)", 0, "coupled_to",
                   std::string(what) +
                       " takes each drive's friction on its own joint; coupled motors are "
-                      "modelled by the dynamics and the regressor only");
+                      "modelled by the dynamics, the nominal model and identify only");
 }
 
 /// The ends of the chain to cut from a URDF: empty names take the URDF's root link and the end of

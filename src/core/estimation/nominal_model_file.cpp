@@ -139,7 +139,6 @@ NominalModelX load_nominal_model(const std::filesystem::path& params_file,
   require_robot(top, description);
   NominalModelX nominal;
   nominal.model = make_model<double, X>(description);
-  require_uncoupled_drives(nominal.model, "the nominal model");
   const int n = nominal.model.joint_count();
   if (joints > 0 && joints != n)
     throw Error::at(description.source, 0, "joints",

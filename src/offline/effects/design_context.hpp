@@ -14,6 +14,7 @@ struct DesignContext {
   const std::vector<int>& base_columns;  ///< regressor columns of the base parameters
   const CandidateInputs& inputs;
   bool has_temperature = false;  ///< the samples hold temp<j> of every joint
+  bool coupled = false;          ///< the model's motors are coupled (Model::coupled)
 };
 
 /// A family as an effect type offers it for one joint (or every joint); the design adds its key,

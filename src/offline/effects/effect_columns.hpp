@@ -22,6 +22,7 @@
 #include "offline/effects/delay_columns.hpp"
 #include "offline/effects/joint_friction_columns.hpp"
 #include "offline/effects/load_friction_columns.hpp"
+#include "offline/effects/motor_friction_columns.hpp"
 #include "offline/effects/motor_ripple_columns.hpp"
 #include "offline/effects/neighbour_load_columns.hpp"
 #include "offline/effects/offset_columns.hpp"
@@ -35,7 +36,7 @@
 namespace tpf::offline {
 
 /// Always in the design, in this order.
-using DeclaredColumns = std::tuple<RigidBodyColumns, JointFrictionColumns>;
+using DeclaredColumns = std::tuple<RigidBodyColumns, JointFrictionColumns, MotorFrictionColumns>;
 
 /// The candidate library, in this order: the shared groups that come first (kSharedGroupFirst),
 /// then per joint each type's group, then the other shared groups (joint −1).

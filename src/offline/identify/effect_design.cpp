@@ -79,7 +79,7 @@ EffectDesign::EffectDesign(const ModelX& model, const BaseParameters& base,
       candidates_(std::move(candidates)),
       static_velocity_(static_velocity),
       has_temperature_(samples.temperature.cols() == joints_) {
-  const DesignContext context{joints_, base_columns_, candidates_, has_temperature_};
+  const DesignContext context{joints_, base_columns_, candidates_, has_temperature_, model.coupled};
   check_samples(samples);
   add_families<DeclaredColumns>(context);
   if (candidates_.enabled) {
@@ -106,8 +106,11 @@ void EffectDesign::index_joint_groups() {
 }
 
 std::vector<int> EffectDesign::regressor_columns(int joints, const std::vector<int>& base_columns,
-                                                 bool candidates) {
+                                                 bool candidates, bool motor_friction) {
   std::vector<int> columns = base_columns;
+  if (motor_friction)
+    for (int c = 11 * joints; c < 13 * joints; ++c)
+      columns.push_back(c);
   if (candidates)
     for (int p = 0; p < PayloadColumns::kColumns; ++p)
       columns.push_back(10 * (joints - 1) + p);

@@ -48,10 +48,11 @@ class EffectDesign {
                double static_velocity);
 
   /// The columns of Y the families read for a `joints`-joint arm: the base columns, and the last
-  /// link's (a payload) when the candidates are offered. The SampleRegressors of a design must
-  /// hold them.
+  /// link's (a payload) when the candidates are offered, and the motors' friction columns with
+  /// `motor_friction` (a coupled model: MotorFrictionColumns). The SampleRegressors of a design
+  /// must hold them.
   static std::vector<int> regressor_columns(int joints, const std::vector<int>& base_columns,
-                                            bool candidates);
+                                            bool candidates, bool motor_friction = false);
 
   int joints() const { return joints_; }
   int features() const { return features_; }

@@ -186,8 +186,34 @@ JointStribeck joint_stribeck(const StribeckParametersX& p, int j) {
 FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rigid_prediction,
                                const Eigen::MatrixXd& abs_gravity,
                                const StribeckParametersX& linear, bool fit_load,
-                               int samples_per_joint, const FrictionCurves* judged) {
+                               int samples_per_joint, const FrictionCurves* judged,
+                               const Eigen::MatrixXd* coupling) {
   const int joints = s.joints();
+  // A coupled model: motor m's curve on its velocity (C·q̇)_m against the motor-side target
+  // (C⁻ᵀ·(effort − rigid))_m; rows as samples, so velocity = q̇·Cᵀ and target = residual·C⁻¹.
+  const bool coupled = coupling && !coupling->isIdentity(0.0);
+  Eigen::MatrixXd motor_dq, motor_residual;
+  std::vector<std::vector<int>> motor_joints(static_cast<std::size_t>(joints));
+  if (coupled) {
+    const Eigen::MatrixXd inverse = coupling->inverse();
+    motor_dq = s.dq * coupling->transpose();
+    motor_residual = (s.effort - rigid_prediction) * inverse;
+    for (int m = 0; m < joints; ++m)
+      for (int j = 0; j < joints; ++j)
+        if ((*coupling)(m, j) != 0.0 || inverse(j, m) != 0.0)
+          motor_joints[static_cast<std::size_t>(m)].push_back(j);
+  }
+  const Eigen::MatrixXd& velocity = coupled ? motor_dq : s.dq;
+  // Motor j moves at sample k (the joint's regime where each joint is its own motor).
+  auto moving = [&](int j, Eigen::Index k) {
+    if (!coupled)
+      return s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid &&
+             std::isfinite(rigid_prediction(k, j));
+    if (!(std::abs(motor_dq(k, j)) >= 1e-4) || !std::isfinite(motor_residual(k, j))) return false;
+    for (int i : motor_joints[static_cast<std::size_t>(j)])
+      if (s.regimes[i][k] == Regime::Invalid) return false;
+    return true;
+  };
   FrictionCurves out;
   out.parameters = linear;
   out.linear_written.assign(static_cast<std::size_t>(joints), 0);
@@ -209,18 +235,16 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
   auto fit_joint = [&](int j) {
     std::vector<Eigen::Index> rows, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
-      if (s.valid[k] && s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid &&
-          std::isfinite(rigid_prediction(k, j)))
-        (s.heldout[k] && !judged ? heldout : rows).push_back(k);
+      if (s.valid[k] && moving(j, k)) (s.heldout[k] && !judged ? heldout : rows).push_back(k);
     // Friction target without the held terms (asymmetry, neighbour load), and the linear curve.
     Eigen::VectorXd abs_g(joints);  // sized once, assigned per sample
     auto target_at = [&](Eigen::Index k) {
       abs_g = abs_gravity.row(k).transpose();
-      const double dq = s.dq(k, j);
+      const double dq = velocity(k, j);
       const double held = clamped.coulomb_asymmetry[j] * (dq != 0.0) +
                           clamped.viscous_asymmetry[j] * std::abs(dq) +
                           neighbour_load_friction(clamped, j, dq, abs_g);
-      return s.effort(k, j) - rigid_prediction(k, j) - held;
+      return (coupled ? motor_residual(k, j) : s.effort(k, j) - rigid_prediction(k, j)) - held;
     };
     if (rows.size() < 50) {
       out.linear_written[static_cast<std::size_t>(j)] = 1;
@@ -240,7 +264,7 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
       Eigen::MatrixXd x(m, 3);  // q̇, |G|, target
       for (Eigen::Index i = 0; i < m; ++i) {
         const Eigen::Index k = rows[static_cast<std::size_t>(i) * step];
-        x.row(i) << s.dq(k, j), abs_gravity(k, j), target_at(k);
+        x.row(i) << velocity(k, j), abs_gravity(k, j), target_at(k);
       }
       return x;
     };
@@ -288,7 +312,7 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
     double sse_curve = 0, sse_linear = 0;
     // The symmetric part of a curve (the asymmetry is held, the same in both).
     auto symmetric = [&](const StribeckParametersX& p, Eigen::Index k) {
-      const double v = s.dq(k, j);
+      const double v = velocity(k, j);
       return stribeck_friction(p, j, v, abs_gravity(k, j)) - p.coulomb_asymmetry[j] * (v != 0.0) -
              p.viscous_asymmetry[j] * std::abs(v);
     };
@@ -298,7 +322,7 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
       sse_linear += std::pow(t - symmetric(linear_fit, k), 2);
     }
     const std::string joint = "joint " + std::to_string(j + 1) + ": ";
-    note_non_dissipative_linear(all, heldout, target_at, s.dq.col(j),
+    note_non_dissipative_linear(all, heldout, target_at, velocity.col(j),
                                 std::min(sse_curve, sse_linear), joint, notes[j]);
     if (!heldout.empty()) {
       out.heldout_rms_curve[j] = std::sqrt(sse_curve / static_cast<double>(heldout.size()));
@@ -339,18 +363,19 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
 FrictionCurves fit_friction_curves(const JointSamples& s, const Eigen::MatrixXd& rigid_prediction,
                                    const Eigen::MatrixXd& abs_gravity,
                                    const StribeckParametersX& linear, bool fit_load,
-                                   int samples_per_joint) {
+                                   int samples_per_joint, const Eigen::MatrixXd* coupling) {
   return friction_curves(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
-                         nullptr);
+                         nullptr, coupling);
 }
 
 StribeckParametersX refit_friction_curves(const JointSamples& s,
                                           const Eigen::MatrixXd& rigid_prediction,
                                           const Eigen::MatrixXd& abs_gravity,
                                           const StribeckParametersX& linear, bool fit_load,
-                                          int samples_per_joint, const FrictionCurves& judged) {
+                                          int samples_per_joint, const FrictionCurves& judged,
+                                          const Eigen::MatrixXd* coupling) {
   return friction_curves(s, rigid_prediction, abs_gravity, linear, fit_load, samples_per_joint,
-                         &judged)
+                         &judged, coupling)
       .parameters;
 }
 
@@ -374,6 +399,13 @@ LinearNominal linear_nominal(const ModelX& model, const EffectDesign& design,
       out.linear.coulomb[g.joint] = out.linear.static_friction[g.joint] =
           theta[g.columns[Friction::kCoulomb]];
       out.linear.viscous[g.joint] = theta[g.columns[Friction::kViscous]];
+    } else if (g.key == MotorFrictionColumns::key) {  // coupled motors: after their joints'
+      for (int m = 0; m < model.joint_count(); ++m)
+        if (motor_is_coupled(model, m)) {
+          out.linear.coulomb[m] = out.linear.static_friction[m] =
+              theta[g.columns[2 * m + MotorFrictionColumns::kCoulomb]];
+          out.linear.viscous[m] = theta[g.columns[2 * m + MotorFrictionColumns::kViscous]];
+        }
     }
   }
   return out;
@@ -416,7 +448,6 @@ Identification identify(const Log& log, const ModelX& model, const IdentifyOptio
 
 Identification identify(const Log& log, const ModelX& model, IdentificationSetup setup,
                         const IdentifyOptions& options) {
-  require_uncoupled_drives(model, "identify");
   auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
@@ -427,11 +458,13 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   const BaseParameters& base = setup.base;
 
   say("identify: pass 1/3: regressors of " + std::to_string(s.size()) + " samples");
+  // A coupled model also reads the motors' friction columns of Y (MotorFrictionColumns).
   const auto regressors =
-      setup.regressors
+      setup.regressors && (!model.coupled || setup.regressors->holds(11 * joints))
           ? setup.regressors
           : std::make_shared<const SampleRegressors>(
-                model, EffectDesign::regressor_columns(joints, base.independent, false), s);
+                model,
+                EffectDesign::regressor_columns(joints, base.independent, false, model.coupled), s);
   const EffectDesign design(model, base, s, regressors, {},
                             options.samples.regimes.static_velocity);
   const DesignGrams grams = design.accumulate(s);
@@ -441,8 +474,13 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   for (const FeatureGroup& g : design.groups())
     if (g.key == RigidBodyColumns::key)
       columns.insert(columns.end(), g.columns.begin(), g.columns.end());
-    else if (g.key == JointFrictionColumns::key)  // the sliding levels, not the friction at rest
+    else if (g.key == JointFrictionColumns::key && !motor_is_coupled(model, g.joint))
+      // the sliding levels, not the friction at rest
       columns.insert(columns.end(), g.columns.begin(), g.columns.begin() + 2);
+    else if (g.key == MotorFrictionColumns::key)  // a coupled motor's, on every joint it drives
+      for (int m = 0; m < joints; ++m)
+        if (motor_is_coupled(model, m))
+          columns.insert(columns.end(), g.columns.begin() + 2 * m, g.columns.begin() + 2 * m + 2);
   Eigen::VectorXd theta = fit_columns(grams, columns, selection);
   out.joint_weights = moving_residual_weights(grams, theta);
   selection.joint_weights = out.joint_weights;
@@ -484,9 +522,10 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   Eigen::MatrixXd sensor_reference;
   const Eigen::MatrixXd& reference =
       friction_reference(log, s, rigid, options, fit, out.friction_notes, sensor_reference);
+  const Eigen::MatrixXd* coupling = model.coupled ? &model.coupling : nullptr;
   const FrictionCurves curves =
       fit_friction_curves(s, reference, load, fit.linear, options.fit_load_friction,
-                          options.friction_samples_per_joint);
+                          options.friction_samples_per_joint, coupling);
   out.friction_notes.insert(out.friction_notes.end(), curves.notes.begin(), curves.notes.end());
   NominalModelX nominal = fit.nominal;
   nominal.friction = curves.parameters;
@@ -500,7 +539,7 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
     out.nominal = final_fit.nominal;
     out.nominal.friction =
         refit_friction_curves(s, final_reference, load, final_fit.linear, options.fit_load_friction,
-                              options.friction_samples_per_joint, curves);
+                              options.friction_samples_per_joint, curves, coupling);
   }
 
   say("identify: pass 3/3: validation on held-out blocks");
@@ -516,6 +555,19 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
       }
       for (int j = 0; j < joints; ++j)
         abs_g[j] = load(k, j);  // element-wise: no resize path (GCC 12 warns on Eigen's)
+      if (model.coupled) {      // motor m's curve on (C·q̇)_m, through Cᵀ
+        Eigen::VectorXd dq = s.dq.row(k).transpose(), friction = Eigen::VectorXd::Zero(joints);
+        for (int m = 0; m < joints; ++m) {
+          const double v = model.motor_rate(m, dq);
+          model.add_motor_torque(m,
+                                 stribeck_friction(nominal.friction, m, v, abs_g[m]) +
+                                     neighbour_load_friction(nominal.friction, m, v, abs_g),
+                                 friction);
+        }
+        for (int j = 0; j < joints; ++j)
+          out.residual(k, j) = s.effort(k, j) - rigid(k, j) - friction[j];
+        continue;
+      }
       // stribeck_friction of every joint, term by term without a vector per sample.
       for (int j = 0; j < joints; ++j) {
         const double dq = s.dq(k, j);

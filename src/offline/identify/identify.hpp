@@ -158,11 +158,17 @@ std::vector<RegimeStats> split_regime_stats(const JointSamples& samples,
 /// must do at least as well as `linear` (its Coulomb and viscous clamped at ≥ 0): where it does
 /// not, the linear fit is kept and a note says so; parameters that end at a bound are noted.
 /// Samples where rigid_prediction is NaN are left out.
+/// With a coupled `coupling` (Model::coupling, motors × joints; null or the identity: each joint
+/// its own motor), entry m is motor m's curve, fitted on the motor side: on its velocity
+/// (C·q̇)_m against the target (C⁻ᵀ·(effort − rigid_prediction))_m (the joint-side residual holds
+/// Cᵀ·f(C·q̇)), on the samples where that velocity is at least 1e-4 and no joint of the motor's
+/// row of C or C⁻ᵀ is invalid.
 FrictionCurves fit_friction_curves(const JointSamples& samples,
                                    const Eigen::MatrixXd& rigid_prediction,
                                    const Eigen::MatrixXd& abs_gravity,
                                    const StribeckParametersX& linear, bool fit_load,
-                                   int samples_per_joint);
+                                   int samples_per_joint,
+                                   const Eigen::MatrixXd* coupling = nullptr);
 
 class EffectDesign;
 
@@ -184,6 +190,7 @@ StribeckParametersX refit_friction_curves(const JointSamples& samples,
                                           const Eigen::MatrixXd& rigid_prediction,
                                           const Eigen::MatrixXd& abs_gravity,
                                           const StribeckParametersX& linear, bool fit_load,
-                                          int samples_per_joint, const FrictionCurves& judged);
+                                          int samples_per_joint, const FrictionCurves& judged,
+                                          const Eigen::MatrixXd* coupling = nullptr);
 
 }  // namespace tpf::offline

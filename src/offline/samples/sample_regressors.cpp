@@ -10,9 +10,11 @@ namespace tpf::offline {
 namespace {
 
 /// Whether compute_regressor can write a non-zero to Y(row, column) of an N-joint arm.
-bool structurally_nonzero(int joints, int row, int column) {
+bool structurally_nonzero(const ModelX& model, int row, int column) {
+  const int joints = model.joint_count();
   if (column < 10 * joints) return row <= column / 10;  // link column/10 + 1 moves joints ≤ it
-  return row == (column - 10 * joints) % joints;        // armature and friction: own joint only
+  const int motor = (column - 10 * joints) % joints;    // armature and friction: motor's joints
+  return model.coupled ? model.coupling(motor, row) != 0.0 : row == motor;
 }
 
 }  // namespace
@@ -25,7 +27,7 @@ SampleRegressors::SampleRegressors(const ModelX& model, std::vector<int> columns
   columns_.erase(std::unique(columns_.begin(), columns_.end()), columns_.end());
   for (int column : columns_)
     for (int row = 0; row < joints; ++row)
-      if (structurally_nonzero(joints, row, column)) entries_.push_back({row, column});
+      if (structurally_nonzero(model, row, column)) entries_.push_back({row, column});
 
   values_.resize(static_cast<Eigen::Index>(entries_.size()), s.size());
   parallel_halves(s.size(), [&](Eigen::Index begin, Eigen::Index end) {
