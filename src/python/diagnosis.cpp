@@ -9,6 +9,7 @@
 #include "nominal_model.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
+#include "offline/log/log_joint_count.hpp"
 #include "results.hpp"
 #include "tpf/model/load_robot.hpp"
 
@@ -29,11 +30,8 @@ DiagnoseResult diagnose_logs(const py::object& logs, const std::string& robot,
   const LogArgument read(logs, true);
   const offline::Log& log = *read;
   const offline::ModelX model = load_robot<double, Eigen::Dynamic>(robot);
-  if (log.joint_count() != model.joint_count())
-    throw Error::at(log.source, 0, "",
-                    "the log has " + std::to_string(log.joint_count()) +
-                        " joints, the robot file " + robot + " " +
-                        std::to_string(model.joint_count()));
+  offline::require_log_joint_count(log.joint_count(), log.source, model.joint_count(), robot,
+                                   "give the robot file of the arm that made the log (robot=)");
   if (!(min_improvement >= 0 && min_improvement < 1))
     throw py::value_error("min_improvement must be in [0, 1)");
   offline::DiagnoseOptions options;

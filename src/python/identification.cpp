@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "nominal_model.hpp"
 #include "offline/identify/identify.hpp"
+#include "offline/log/log_joint_count.hpp"
 #include "offline/log/unit_check.hpp"
 #include "offline/samples/sample_unit_check.hpp"
 #include "results.hpp"
@@ -97,11 +98,8 @@ IdentifyResult identify_logs(const py::object& logs, const std::string& robot,
   const LogArgument read(logs, true);
   const offline::Log& log = *read;
   const offline::ModelX model = load_robot<double, Eigen::Dynamic>(robot);
-  if (log.joint_count() != model.joint_count())
-    throw Error::at(log.source, 0, "",
-                    "the log has " + std::to_string(log.joint_count()) +
-                        " joints, the robot file " + robot + " " +
-                        std::to_string(model.joint_count()));
+  offline::require_log_joint_count(log.joint_count(), log.source, model.joint_count(), robot,
+                                   "give the robot file of the arm that made the log (robot=)");
   offline::IdentifyOptions options;
   options.samples.regimes.static_velocity = static_velocity;
   options.samples.hold_out = hold_out;
