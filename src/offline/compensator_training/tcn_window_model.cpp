@@ -37,8 +37,8 @@ std::vector<std::ptrdiff_t>& lagged_offsets(const TcnArchitecture& a, int level,
 /// Whether float_gemm16's reads of B(i, t) = b[t·stride + offset[i]], t < n, stay inside b's
 /// `size` elements. The kernels are not instrumented in the sanitized build (src/offline/
 /// CMakeLists.txt): each call's range is checked here, with the shapes of its other operands.
-bool lagged_reads_fit(const std::vector<std::ptrdiff_t>& offsets, std::ptrdiff_t stride,
-                      Eigen::Index n, Eigen::Index size) {
+[[maybe_unused]] bool lagged_reads_fit(const std::vector<std::ptrdiff_t>& offsets,
+                                       std::ptrdiff_t stride, Eigen::Index n, Eigen::Index size) {
   if (offsets.empty() || n < 1) return false;
   const std::ptrdiff_t top = *std::max_element(offsets.begin(), offsets.end());
   const std::ptrdiff_t low = *std::min_element(offsets.begin(), offsets.end());
