@@ -161,6 +161,24 @@ bool float_gemm16_available() {
 
 #endif
 
+namespace {
+
+template <typename S>
+void mask_by_positive(const S* __restrict y, S* __restrict g, std::ptrdiff_t n) {
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+    g[i] = y[i] > S(0) ? g[i] : S(0);
+}
+
+}  // namespace
+
+void relu_gradient_mask(const float* y, float* g, std::ptrdiff_t n) {
+  mask_by_positive(y, g, n);
+}
+
+void relu_gradient_mask(const double* y, double* g, std::ptrdiff_t n) {
+  mask_by_positive(y, g, n);
+}
+
 }  // namespace tpf::offline
 
 #undef TPF_FLOAT_GEMM16_AVX2  // file-local (unity builds)

@@ -1,5 +1,7 @@
 // The three float products of a 16-channel TCN block's training pass, in AVX2 registers when the
-// CPU has them (chosen at run time; the rest of the build stays at the default x86-64 flags).
+// CPU has them (chosen at run time; the rest of the build stays at the default x86-64 flags), and
+// the ReLU's gradient mask: the training's inner loops over plain arrays, which a sanitized build
+// compiles without instrumentation (src/offline/CMakeLists.txt; callers check the ranges).
 #pragma once
 
 #include <cstddef>
@@ -31,5 +33,10 @@ void float_gemm16_times_transpose(const float* d, const float* s, const std::ptr
 /// X (k × n) = A (16 × k)ᵀ · D (16 × n), given At = Aᵀ (k × 16); k a multiple of 8.
 void float_gemm16_transpose_times(const float* at, std::ptrdiff_t k, const float* d,
                                   std::ptrdiff_t n, float* x);
+
+/// g[i] ← g[i] where y[i] > 0, else +0, for i < n (∂L/∂z = ∂L/∂y ⊙ [y > 0]; Eigen's select, bit
+/// for bit), as a plain loop that the compiler turns into compare-and-mask vector code.
+void relu_gradient_mask(const float* y, float* g, std::ptrdiff_t n);
+void relu_gradient_mask(const double* y, double* g, std::ptrdiff_t n);
 
 }  // namespace tpf::offline

@@ -252,7 +252,7 @@ double TcnTrainer::sum_loss_in(const BasicTcnParameters<S>& parameters,
   }
 
   auto run_chunk = [&](int c) {
-    BasicTcnWindowWorkspace<S> workspace;
+    BasicTcnWindowWorkspace<S>& workspace = workspaces<S>()[static_cast<std::size_t>(c)];
     const std::size_t begin = windows.size() * c / kChunks;
     const std::size_t end = windows.size() * (c + 1) / kChunks;
     for (std::size_t i = begin; i < end; ++i) {

@@ -2,10 +2,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "offline/compensator_training/adam.hpp"
@@ -176,8 +178,21 @@ class TcnTrainer {
   static double weight_sum(const std::vector<Window>& windows);
 
   static constexpr int kChunks = 4;
+  /// Chunk c's window buffers, kept from one batch to the next so that a batch allocates
+  /// nothing for its windows. Each chunk runs on one thread at a time; sum_loss is not for
+  /// concurrent calls on one trainer.
+  template <typename S>
+  std::array<BasicTcnWindowWorkspace<S>, kChunks>& workspaces() const {
+    if constexpr (std::is_same_v<S, float>) {
+      return float_workspaces_;
+    } else {
+      return workspaces_;
+    }
+  }
 
   TcnTrainOptions options_;
+  mutable std::array<BasicTcnWindowWorkspace<double>, kChunks> workspaces_;
+  mutable std::array<BasicTcnWindowWorkspace<float>, kChunks> float_workspaces_;
   std::vector<Segment<double>> segments_;
   std::vector<Segment<float>> float_segments_;  ///< copies for single_precision
   std::vector<Window> training_;

@@ -45,17 +45,6 @@ std::vector<std::ptrdiff_t>& lagged_offsets(const TcnArchitecture& a, int level,
   return low >= 0 && (n - 1) * stride + top < size;
 }
 
-/// g ← g ⊙ [y > 0] (g where y > 0, else +0: Eigen's select, bit for bit), as a plain loop that
-/// the compiler turns into compare-and-mask vector code (Eigen's select branches per element).
-template <typename Matrix>
-void mask_by_positive(const Matrix& y, Matrix& g) {
-  using S = typename Matrix::Scalar;
-  const S* __restrict positive = y.data();
-  S* __restrict values = g.data();
-  for (Eigen::Index i = 0; i < g.size(); ++i)
-    values[i] = positive[i] > S(0) ? values[i] : S(0);
-}
-
 /// [W_0 … W_{K−1}] of block `b` into `out` (C_out × K·C_in).
 template <typename S, typename Matrix>
 void stack_taps(const BasicTcnBlockParameters<S>& b, Matrix& out) {
@@ -71,8 +60,10 @@ template <typename S>
 void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>& inputs,
                         BasicTcnWindowWorkspace<S>& ws) {
   const TcnArchitecture& a = p.architecture;
-  ws.activations.resize(a.levels + 1);
-  ws.stacked_inputs.resize(a.levels);
+  const auto levels = static_cast<std::size_t>(a.levels);
+  ws.activations.resize(levels + 1);
+  ws.stacked_inputs.resize(levels);
+  ws.stacked_weights.resize(levels);
   ws.activations[0] = inputs;
   for (int l = 0; l < a.levels; ++l) {
     const BasicTcnBlockParameters<S>& b = p.blocks[l];
@@ -94,18 +85,18 @@ void tcn_window_forward(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>
       z = x.rightCols(t_out);
     }
     z.colwise() += b.bias;
-    stack_taps(b, ws.stacked_weights);
+    auto& weights = ws.stacked_weights[l];
+    stack_taps(b, weights);
     if (avx2) {
       if constexpr (std::is_same_v<S, float>) {
         lagged_offsets(a, l, ws.offsets);
-        eigen_assert(ws.stacked_weights.rows() == 16 &&
-                     ws.stacked_weights.cols() == a.kernel * in && z.rows() == 16 &&
+        eigen_assert(weights.rows() == 16 && weights.cols() == a.kernel * in && z.rows() == 16 &&
                      z.cols() == t_out && lagged_reads_fit(ws.offsets, in, t_out, x.size()));
-        float_gemm16_accumulate(ws.stacked_weights.data(), a.kernel * in, x.data(),
-                                ws.offsets.data(), in, t_out, z.data());
+        float_gemm16_accumulate(weights.data(), a.kernel * in, x.data(), ws.offsets.data(), in,
+                                t_out, z.data());
       }
     } else {
-      z.noalias() += ws.stacked_weights * stack;
+      z.noalias() += weights * stack;
     }
     z = z.cwiseMax(S(0));
   }
@@ -147,61 +138,72 @@ double tcn_window_loss(const BasicTcnParameters<S>& p, const TcnWindowMatrix<S>&
   g.low_bias += ws.low.rowwise().sum();
   g.high_weight.noalias() += ws.high * last.transpose();
   g.high_bias += ws.high.rowwise().sum();
-  ws.upstream.noalias() = p.low_weight.transpose() * ws.low;
-  ws.upstream.noalias() += p.high_weight.transpose() * ws.high;
+  const auto levels = static_cast<std::size_t>(a.levels);
+  ws.input_gradients.resize(levels + 1);
+  ws.weight_gradients.resize(levels);
+  ws.stack_gradients.resize(levels);
+  ws.transposed_weights.resize(levels);
+  auto& top = ws.input_gradients[levels];
+  top.noalias() = p.low_weight.transpose() * ws.low;
+  top.noalias() += p.high_weight.transpose() * ws.high;
 
   for (int l = a.levels - 1; l >= 0; --l) {
     const BasicTcnBlockParameters<S>& b = p.blocks[l];
     BasicTcnBlockParameters<S>& gb = g.blocks[l];
     const auto& x = ws.activations[l];
     const int d = a.dilation(l);
-    const Eigen::Index t_out = ws.upstream.cols();
+    auto& upstream = ws.input_gradients[l + 1];
+    const Eigen::Index t_out = upstream.cols();
     // ∂L/∂z = ∂L/∂y ⊙ [y > 0].
-    mask_by_positive(ws.activations[l + 1], ws.upstream);
-    const auto& dz = ws.upstream;
+    const auto& y = ws.activations[l + 1];
+    eigen_assert(y.rows() == upstream.rows() && y.cols() == upstream.cols());
+    relu_gradient_mask(y.data(), upstream.data(), upstream.size());
+    const auto& dz = upstream;
     gb.bias += dz.rowwise().sum();
     const Eigen::Index in = x.rows();
     const bool avx2 = use_float_gemm16<S>(a, l, t_out);
+    auto& weight_gradient = ws.weight_gradients[l];
     if (avx2) {
-      ws.stacked_gradient.resize(dz.rows(), a.kernel * in);
+      weight_gradient.resize(dz.rows(), a.kernel * in);
       if constexpr (std::is_same_v<S, float>) {
         lagged_offsets(a, l, ws.offsets);
         eigen_assert(dz.rows() == 16 && dz.cols() == t_out &&
                      lagged_reads_fit(ws.offsets, in, t_out, x.size()));
         float_gemm16_times_transpose(dz.data(), x.data(), ws.offsets.data(), in, a.kernel * in,
-                                     t_out, ws.stacked_gradient.data());
+                                     t_out, weight_gradient.data());
       }
     } else {
-      ws.stacked_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
+      weight_gradient.noalias() = dz * ws.stacked_inputs[l].transpose();
     }
     for (int j = 0; j < a.kernel; ++j)
-      gb.taps[j] += ws.stacked_gradient.middleCols(j * in, in);
+      gb.taps[j] += weight_gradient.middleCols(j * in, in);
     if (b.projection.size() > 0) gb.projection.noalias() += dz * x.rightCols(t_out).transpose();
     if (l == 0) break;
 
-    stack_taps(b, ws.stacked_weights);
-    if (avx2 && ws.stacked_weights.cols() % 8 == 0) {
-      ws.transposed_weights = ws.stacked_weights.transpose();
-      ws.stacked_gradient.resize(ws.stacked_weights.cols(), t_out);
+    const auto& weights = ws.stacked_weights[l];  // stacked by the forward pass
+    auto& stack_gradient = ws.stack_gradients[l];
+    if (avx2 && weights.cols() % 8 == 0) {
+      auto& transposed = ws.transposed_weights[l];
+      transposed = weights.transpose();
+      stack_gradient.resize(weights.cols(), t_out);
       if constexpr (std::is_same_v<S, float>) {
-        eigen_assert(ws.transposed_weights.cols() == 16 && dz.rows() == 16 && dz.cols() == t_out);
-        float_gemm16_transpose_times(ws.transposed_weights.data(), ws.stacked_weights.cols(),
-                                     dz.data(), t_out, ws.stacked_gradient.data());
+        eigen_assert(transposed.cols() == 16 && dz.rows() == 16 && dz.cols() == t_out);
+        float_gemm16_transpose_times(transposed.data(), weights.cols(), dz.data(), t_out,
+                                     stack_gradient.data());
       }
     } else {
-      ws.stacked_gradient.noalias() = ws.stacked_weights.transpose() * dz;
+      stack_gradient.noalias() = weights.transpose() * dz;
     }
-    ws.downstream.setZero(x.rows(), x.cols());
+    auto& downstream = ws.input_gradients[l];
+    downstream.setZero(x.rows(), x.cols());
     for (int j = 0; j < a.kernel; ++j) {
-      ws.downstream.middleCols((a.kernel - 1 - j) * d, t_out) +=
-          ws.stacked_gradient.middleRows(j * in, in);
+      downstream.middleCols((a.kernel - 1 - j) * d, t_out) += stack_gradient.middleRows(j * in, in);
     }
     if (b.projection.size() > 0) {
-      ws.downstream.rightCols(t_out).noalias() += b.projection.transpose() * dz;
+      downstream.rightCols(t_out).noalias() += b.projection.transpose() * dz;
     } else {
-      ws.downstream.rightCols(t_out) += dz;
+      downstream.rightCols(t_out) += dz;
     }
-    ws.upstream.swap(ws.downstream);
   }
   return loss;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <type_traits>
 #include <vector>
 
@@ -10,6 +11,8 @@
 namespace tpf::offline {
 
 /// Buffers of one window's forward and backward pass; reused across windows to avoid allocation.
+/// Each block level has its own buffers (their shapes differ between levels), so a window of the
+/// length of the previous one allocates nothing.
 template <typename S>
 struct BasicTcnWindowWorkspace {
   using Matrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
@@ -17,15 +20,15 @@ struct BasicTcnWindowWorkspace {
   /// Per block, the K lagged copies of its input stacked (K·C_in × T_out), so that one GEMM
   /// [W_0 … W_{K−1}]·stack does all taps (not filled where float_gemm16 reads them in place).
   std::vector<Matrix> stacked_inputs;
-  Matrix stacked_weights;     ///< [W_0 … W_{K−1}] of the current block, C_out × K·C_in
-  Matrix transposed_weights;  ///< its transpose, for the AVX2 float products (float_gemm16)
+  std::vector<Matrix> stacked_weights;     ///< per block, [W_0 … W_{K−1}]: C_out × K·C_in
+  std::vector<Matrix> transposed_weights;  ///< their transposes, for float_gemm16
   /// Where float_gemm16 reads a block's lagged inputs (no stacked copy; stacked_inputs unused).
   std::vector<std::ptrdiff_t> offsets;
-  Matrix stacked_gradient;  ///< ∂L/∂[W_0 … W_{K−1}] or ∂L/∂stack
-  Matrix low;               ///< Out × M
-  Matrix high;              ///< Out × M
-  Matrix upstream;          ///< ∂L/∂X_{l+1} during the backward pass
-  Matrix downstream;        ///< ∂L/∂X_l during the backward pass
+  std::vector<Matrix> weight_gradients;  ///< per block, ∂L/∂[W_0 … W_{K−1}]
+  std::vector<Matrix> stack_gradients;   ///< per block, ∂L/∂stack
+  Matrix low;                            ///< Out × M
+  Matrix high;                           ///< Out × M
+  std::vector<Matrix> input_gradients;   ///< ∂L/∂X_0 … ∂L/∂X_L during the backward pass
 };
 using TcnWindowWorkspace = BasicTcnWindowWorkspace<double>;
 
