@@ -9,6 +9,7 @@
 #include "compensator_gate_printout.hpp"
 #include "model_file_options.hpp"
 #include "offline/calibrate/estimator_calibration.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/read_log.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
@@ -16,6 +17,8 @@
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/load_estimator.hpp"
 #include "tpf/model/effort_unit.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -124,3 +127,5 @@ void register_calibrate_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"
@@ -14,6 +15,8 @@
 #include "offline/report/text_format.hpp"
 #include "option_validators.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::cli {
 
@@ -110,3 +113,5 @@ void register_demo_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

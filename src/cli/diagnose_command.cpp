@@ -12,6 +12,7 @@
 #include "core/common/atomic_file.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/log/read_logs.hpp"
@@ -23,6 +24,8 @@
 #include "robot_joint_count.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -229,3 +232,5 @@ void register_diagnose_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -15,6 +15,7 @@
 #include "compensator_gate_printout.hpp"
 #include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/log_writer.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/replay/contact_episodes.hpp"
@@ -27,6 +28,8 @@
 #include "robot_joint_count.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/estimator_status.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -233,3 +236,5 @@ void register_estimate_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/log/read_log.hpp"
@@ -20,6 +21,8 @@
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
 #include "tpf/estimation/load_estimator.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -176,3 +179,5 @@ void register_evaluate_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

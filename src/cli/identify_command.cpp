@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
@@ -19,6 +20,8 @@
 #include "robot_joint_count.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/load_robot.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -102,3 +105,5 @@ void register_identify_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

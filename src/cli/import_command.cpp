@@ -7,12 +7,15 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/import_log.hpp"
 #include "offline/log/log_writer.hpp"
 #include "offline/log/torque_sensor.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -145,3 +148,5 @@ void register_import_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -8,8 +8,11 @@
 #include "model_file_options.hpp"
 #include "offline/common/data_files.hpp"
 #include "offline/common/run_time_types.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "option_validators.hpp"
 #include "tpf/core.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::cli {
 
@@ -99,3 +102,5 @@ void register_info_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

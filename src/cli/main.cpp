@@ -4,7 +4,10 @@
 
 #include "commands.hpp"
 #include "core/common/atomic_file.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -40,3 +43,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

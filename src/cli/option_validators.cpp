@@ -7,6 +7,10 @@
 #include <system_error>
 #include <vector>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
+
 namespace tpf::cli {
 namespace {
 
@@ -88,3 +92,5 @@ CLI::Validator weights_path() {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -3,8 +3,11 @@
 #include <filesystem>
 #include <system_error>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::cli {
 namespace {
@@ -104,3 +107,5 @@ PathOptions written_weight_files(const std::string& option, const std::string& p
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

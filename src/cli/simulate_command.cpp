@@ -9,10 +9,13 @@
 #include <string>
 
 #include "commands.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -98,3 +101,5 @@ void register_simulate_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/compensator_training/held_out_score.hpp"
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/log/read_log.hpp"
@@ -27,6 +28,8 @@
 #include "read_command_logs.hpp"
 #include "robot_joint_count.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -394,3 +397,5 @@ void register_train_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -6,9 +6,12 @@
 #include <string>
 
 #include "commands.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/upgrade/upgrade_files.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::cli {
 
@@ -47,3 +50,5 @@ void register_upgrade_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "compensator_gate_printout.hpp"
 #include "core/common/atomic_file.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/samples/joint_samples.hpp"
 #include "offline/validate/validation.hpp"
@@ -17,6 +18,8 @@
 #include "robot_joint_count.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/estimation/nominal_model.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace {
 
@@ -134,3 +137,5 @@ void register_validate_command(CLI::App& app) {
 }
 
 }  // namespace tpf::cli
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

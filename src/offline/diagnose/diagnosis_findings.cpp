@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/samples/joint_samples.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -343,3 +346,5 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/regimes/regime_stats.hpp"
@@ -11,6 +12,8 @@
 #include "offline/report/line_plot.hpp"
 #include "offline/report/scatter_plot.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -231,3 +234,5 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <map>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -126,3 +129,5 @@ Table diagnosis_summary_table(const EffectDiagnosis& d, const DiagnoseOptions& o
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

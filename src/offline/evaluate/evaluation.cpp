@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "offline/calibrate/estimator_calibration.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
 
@@ -197,6 +198,7 @@ Evaluation evaluate(ReplaySetup& setup, const EvaluationLogs& logs,
   return ev;
 }
 
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 std::string evaluation_json(const Evaluation& ev) {
   using nlohmann::json;
   const auto vec = [](const auto& v) {
@@ -283,5 +285,6 @@ std::string evaluation_json(const Evaluation& ev) {
                              {"onset", ev.teaching.onset_rows}};
   return j.dump(2);
 }
+TPF_UNOPTIMISED_WHEN_SANITIZED_END
 
 }  // namespace tpf::offline

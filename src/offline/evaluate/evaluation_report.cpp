@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/histogram.hpp"
 #include "offline/report/line_plot.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -406,3 +409,5 @@ std::string evaluation_headline(const Evaluation& ev, bool simulated) {
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

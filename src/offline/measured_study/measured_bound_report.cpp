@@ -4,8 +4,11 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/scatter_plot.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -248,3 +251,5 @@ std::string measured_bound_json(const MeasuredBound& b) {
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/torque_sensor.hpp"
 #include "offline/report/text_format.hpp"
 
@@ -136,6 +137,7 @@ std::vector<double> outside_range_share(const JointSamples& fit, const JointSamp
   return share;
 }
 
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
   std::vector<std::string> lines;
   const MeasuredFactsOptions& o = facts.options;
@@ -232,5 +234,6 @@ std::vector<std::string> measured_fact_lines(const MeasuredFacts& facts) {
   }
   return lines;
 }
+TPF_UNOPTIMISED_WHEN_SANITIZED_END
 
 }  // namespace tpf::offline

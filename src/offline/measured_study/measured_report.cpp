@@ -8,11 +8,14 @@
 #include <string>
 
 #include "core/common/atomic_file.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/measured_study/measured_bound_report.hpp"
 #include "offline/report/bar_chart.hpp"
 #include "offline/report/line_plot.hpp"
 #include "offline/report/scatter_plot.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -709,3 +712,5 @@ std::string measured_json(const MeasuredResult& r, double target) {
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -1,10 +1,13 @@
 #include "offline/pipeline/demo_index.hpp"
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/tiago_report.hpp"
 #include "offline/report/html_report.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -108,3 +111,5 @@ void write_demo_index(const std::filesystem::path& out, const DemoOptions& o, co
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -10,6 +10,7 @@
 
 #include "core/common/atomic_file.hpp"
 #include "offline/common/data_files.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
@@ -24,6 +25,8 @@
 #include "offline/sim/simulate.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
 #include "tpf/model/load_robot.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 
@@ -257,3 +260,5 @@ DemoResult run_demo(const DemoOptions& o, const std::function<void(const std::st
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

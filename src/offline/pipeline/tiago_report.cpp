@@ -5,7 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/common/atomic_file.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -306,3 +309,5 @@ std::string tiago_json(const TiagoResult& r, const TiagoOptions& o) {
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

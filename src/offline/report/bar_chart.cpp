@@ -3,8 +3,11 @@
 #include <cmath>
 #include <limits>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -68,3 +71,5 @@ std::string bar_chart(const PlotOptions& options, const std::vector<std::string>
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

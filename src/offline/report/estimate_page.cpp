@@ -4,8 +4,11 @@
 #include <cstdio>
 #include <limits>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/log.hpp"
 #include "offline/report/line_plot.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 
@@ -96,3 +99,5 @@ HtmlReport estimate_page(const EstimatePageData& d) {
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

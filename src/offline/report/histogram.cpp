@@ -4,6 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
+
 namespace tpf::offline {
 
 std::vector<std::size_t> bin_counts(const Eigen::VectorXd& samples, double lo, double hi,
@@ -66,3 +70,5 @@ std::string histogram(const PlotOptions& options, const std::vector<HistogramSer
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

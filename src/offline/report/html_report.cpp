@@ -5,9 +5,12 @@
 #include <string_view>
 
 #include "core/common/atomic_file.hpp"
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/plot_canvas.hpp"
 #include "offline/report/text_format.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -257,3 +260,5 @@ void HtmlReport::write(const std::filesystem::path& path) const {
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -3,8 +3,11 @@
 #include <cmath>
 #include <limits>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -94,3 +97,5 @@ std::string line_plot(const PlotOptions& options, const std::vector<Series>& ser
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

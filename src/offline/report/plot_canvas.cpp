@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 
@@ -234,3 +237,5 @@ std::string PlotCanvas::svg() const {
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -4,7 +4,10 @@
 #include <limits>
 #include <vector>
 
+#include "offline/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::offline {
 namespace {
@@ -73,3 +76,5 @@ std::string scatter_plot(const PlotOptions& options, const std::vector<Series>& 
 }
 
 }  // namespace tpf::offline
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END
