@@ -92,8 +92,8 @@ TEST(DiagnoseCoupled, NamesTheUndeclaredCoupledMotorAndItsRatio) {
   print(d, "uncoupled robot file");
   ASSERT_EQ(d.coupled_motors.size(), 1u);
   const offline::CoupledMotorCandidate& m = d.coupled_motors[0];
-  std::printf("  fitted: motor %d turns with q%d + %.4f·q%d\n", m.own() + 1, m.own() + 1, m.ratio(),
-              m.other() + 1);
+  std::printf("  fitted: motor %d rotates with q%d + %.4f·q%d\n", m.own() + 1, m.own() + 1,
+              m.ratio(), m.other() + 1);
   EXPECT_EQ(m.own(), 1);
   EXPECT_NEAR(m.ratio(), kCoupling, 0.05 * kCoupling);
   ASSERT_EQ(d.claims.size(), 1u);

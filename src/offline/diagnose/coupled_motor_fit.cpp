@@ -21,9 +21,6 @@ namespace {
 struct PairRow {
   double dq[2], sign[2], r[2];
   bool moving[2];
-  double robust[2] = {1.0, 1.0};
-  double e[2] = {0.0, 0.0};  ///< residual of the last fit  ///< Cauchy weight of each joint's row
-                             ///< (1 in the first pass)
 };
 
 double direction_of(double v, double threshold) {
@@ -49,10 +46,9 @@ double pair_sse(const std::vector<PairRow>& rows, double phi, const double weigh
       x[1] = share[j] * rate;
       x[2 + 2 * j] = p.sign[j];
       x[3 + 2 * j] = p.dq[j];
-      const double w = weight[j];
-      G.selfadjointView<Eigen::Lower>().rankUpdate(x, w);
-      h += w * p.r[j] * x;
-      yy += w * p.r[j] * p.r[j];
+      G.selfadjointView<Eigen::Lower>().rankUpdate(x, weight[j]);
+      h += weight[j] * p.r[j] * x;
+      yy += weight[j] * p.r[j] * p.r[j];
     }
   }
   G.triangularView<Eigen::StrictlyUpper>() = G.transpose();
@@ -61,8 +57,7 @@ double pair_sse(const std::vector<PairRow>& rows, double phi, const double weigh
   Eigen::Matrix<double, 6, 6> S = d.asDiagonal() * G * d.asDiagonal();
   S.diagonal().array() += 1e-9;
   const Eigen::Matrix<double, 6, 1> hs = d.cwiseProduct(h);
-  const Eigen::Matrix<double, 6, 1> solution = S.ldlt().solve(hs);
-  return yy - hs.dot(solution);
+  return yy - hs.dot(S.ldlt().solve(hs));
 }
 
 /// The direction φ of least pair_sse: the grid's best point refined by golden-section search

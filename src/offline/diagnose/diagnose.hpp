@@ -83,6 +83,9 @@ struct CandidateTrial {
   /// smallest gain on one of them alone. A motor that drives two joints acts on both through Cᵀ,
   /// so it must lower each one's held-out error by min_improvement; NaN for other groups.
   double weakest_joint_improvement = std::numeric_limits<double>::quiet_NaN();
+  /// A friction whose Coulomb or viscous coefficient came out negative (FeatureGroup::
+  /// dissipative): no drive's friction pushes the motion, so it is not claimed.
+  bool negative_friction = false;
   /// A several-file log: the smallest improvement on the other files, each held out in turn
   /// (fitted on the rest), and that file; NaN for a one-file log. A candidate is claimed only if
   /// this too reaches min_improvement: it lowers the held-out error of every file, not of one.
@@ -100,7 +103,8 @@ struct CandidateTrial {
   /// Passes the tests on the selection's held-out file alone.
   bool passes_heldout(const DiagnoseOptions& o) const {
     return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors &&
-           !fails_alone(o) && !(weakest_joint_improvement < o.min_improvement);
+           !fails_alone(o) && !(weakest_joint_improvement < o.min_improvement) &&
+           !negative_friction;
   }
   /// Explains the residual beside the columns it is judged with, but added to the model alone
   /// (what would be written) lowers the held-out error by less than min_improvement.

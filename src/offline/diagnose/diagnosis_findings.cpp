@@ -145,7 +145,7 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
     text +=
         " Not written to the parameter file: a motor coupling is the robot file's to declare "
         "(the drive's coupled_to, then identify again); the friction cannot tell this motor from "
-        "the other joint's turning with the reciprocal ratio, only the robot's drawings can; the "
+        "the other joint's rotating with the reciprocal ratio, only the robot's drawings can; the "
         "'written' table leaves it out.";
   else if (!c.written && g.written_to == WrittenTo::kNothing)
     text +=

@@ -91,6 +91,8 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
   for (std::size_t i = 0; i < d.trials.size(); ++i)  // a group of several joints: each one's
     if (std::isfinite(d.trials[i].weakest_joint_improvement))
       trials[i]["weakest_joint_improvement_percent"] = 100 * d.trials[i].weakest_joint_improvement;
+  for (std::size_t i = 0; i < d.trials.size(); ++i)
+    if (d.trials[i].negative_friction) trials[i]["negative_friction"] = true;
   j["trials"] = trials;
   nlohmann::json selected = nlohmann::json::array();
   for (int g : d.selected)

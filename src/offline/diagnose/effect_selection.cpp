@@ -162,6 +162,8 @@ class ForwardSelection {
     trial.joint = group.joint;
     trial.round = round;
     trial.improvement = sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
+    for (int c : group.dissipative)
+      trial.negative_friction = trial.negative_friction || trial_theta[group.columns[c]] < 0.0;
     if (group.joints.size() > 1)
       for (int j : group.joints) {
         const double joint_sse0 = heldout_sse(now, j, selection_.joint_weights).first;

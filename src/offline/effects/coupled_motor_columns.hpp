@@ -32,13 +32,14 @@ struct CoupledMotorColumns {
     const CoupledMotorCandidate& m = c.inputs.coupled_motors[static_cast<std::size_t>(variant)];
     const std::string own = joint_suffix(m.own()), other = joint_suffix(m.other());
     const double ratio = m.ratio();
-    GroupSpec spec{"coupled motor: motor " + own + " turns with q" + own +
+    GroupSpec spec{"coupled motor: motor " + own + " rotates with q" + own +
                        (ratio < 0 ? " − " : " + ") + format_number(std::abs(ratio), 3) + "·q" +
                        other + ", joints " + joint_suffix(m.joint) + "–" +
                        joint_suffix(m.joint + 1),
                    {"fc_coupled" + own + "_" + other, "fv_coupled" + own + "_" + other}};
     if (m.armature) spec.column_names.push_back("Ia_coupled" + own + "_" + other);
     spec.joints = {m.joint, m.joint + 1};
+    spec.dissipative = {kCoulomb, kViscous};
     return spec;
   }
   static void fill(const SampleRow& row, int joint, int variant, double* out) {

@@ -33,6 +33,7 @@ struct GroupSpec {
   std::vector<std::string> judged_beside;
   bool indistinct_from_beside = false;  ///< FeatureGroup::indistinct_from_beside
   std::vector<int> joints;              ///< FeatureGroup::joints
+  std::vector<int> dissipative;         ///< FeatureGroup::dissipative
 };
 
 /// "joint 3" of 0-based joint 2.

@@ -39,6 +39,9 @@ struct FeatureGroup {
   /// The joints a group of joint −1 acts on, when not every joint (a coupled motor: its pair);
   /// its gain is scored on their weighted held-out SSE. Empty: `joint`'s, or every joint.
   std::vector<int> joints;
+  /// Indices in `columns` of a friction's Coulomb and viscous coefficients, which must come out
+  /// ≥ 0 for the group to be claimed (friction dissipates): a coupled motor's.
+  std::vector<int> dissipative;
 };
 
 /// Whether group g's columns act on joint j's effort.

@@ -69,7 +69,8 @@ void EffectDesign::add_families(const DesignContext& context) {
                    std::move(spec.column_names),
                    false,
                    spec.indistinct_from_beside,
-                   std::move(spec.joints)},
+                   std::move(spec.joints),
+                   std::move(spec.dissipative)},
                   &Family::fill, v);
       }
     } else {
@@ -88,7 +89,8 @@ void EffectDesign::add_families(const DesignContext& context) {
                  std::move(spec.column_names),
                  extrapolates,
                  spec.indistinct_from_beside,
-                 std::move(spec.joints)},
+                 std::move(spec.joints),
+                 std::move(spec.dissipative)},
                 &fill_family<Family>);
     }
   };
