@@ -27,48 +27,78 @@ double direction_of(double v, double threshold) {
   return std::abs(v) >= threshold ? (v > 0 ? 1.0 : -1.0) : 0.0;
 }
 
+/// The part of pair_sse's normal equations that does not depend on the direction: the Gram of
+/// each joint's own Coulomb and viscous columns and of the residual.
+struct PairGram {
+  Eigen::Matrix4d beside = Eigen::Matrix4d::Zero();  ///< [s_i, q̇_i, s_{i+1}, q̇_{i+1}]
+  Eigen::Vector4d target = Eigen::Vector4d::Zero();  ///< their products with the residual
+  double residual = 0;                               ///< weighted Σ r²
+};
+
+PairGram pair_gram(const std::vector<PairRow>& rows, const double weight[2]) {
+  PairGram g;
+  for (const PairRow& p : rows)
+    for (int j = 0; j < 2; ++j) {
+      if (!p.moving[j]) continue;
+      const double w = weight[j], s = p.sign[j], v = p.dq[j];
+      g.beside(2 * j, 2 * j) += w * s * s;
+      g.beside(2 * j, 2 * j + 1) += w * s * v;
+      g.beside(2 * j + 1, 2 * j + 1) += w * v * v;
+      g.target[2 * j] += w * s * p.r[j];
+      g.target[2 * j + 1] += w * v * p.r[j];
+      g.residual += w * p.r[j] * p.r[j];
+    }
+  for (int j = 0; j < 2; ++j)
+    g.beside(2 * j + 1, 2 * j) = g.beside(2 * j, 2 * j + 1);
+  return g;
+}
+
 /// Weighted SSE of the pair's residual after least squares on the motor of direction φ
-/// (a = cos φ, b = sin φ) beside each joint's own Coulomb and viscous columns.
-double pair_sse(const std::vector<PairRow>& rows, double phi, const double weight[2],
-                double threshold) {
+/// (a = cos φ, b = sin φ) beside each joint's own Coulomb and viscous columns (`fixed`: their
+/// part of the normal equations).
+double pair_sse(const std::vector<PairRow>& rows, const PairGram& fixed, double phi,
+                const double weight[2], double threshold) {
   const double share[2] = {std::cos(phi), std::sin(phi)};
   Eigen::Matrix<double, 6, 6> G = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> h = Eigen::Matrix<double, 6, 1>::Zero();
-  double yy = 0;
-  Eigen::Matrix<double, 6, 1> x;
   for (const PairRow& p : rows) {
     const double rate = share[0] * p.dq[0] + share[1] * p.dq[1];
     const double sign = direction_of(rate, threshold);
     for (int j = 0; j < 2; ++j) {
       if (!p.moving[j]) continue;
-      x.setZero();
-      x[0] = share[j] * sign;
-      x[1] = share[j] * rate;
-      x[2 + 2 * j] = p.sign[j];
-      x[3 + 2 * j] = p.dq[j];
-      G.selfadjointView<Eigen::Lower>().rankUpdate(x, weight[j]);
-      h += weight[j] * p.r[j] * x;
-      yy += weight[j] * p.r[j] * p.r[j];
+      const double w = weight[j], m0 = share[j] * sign, m1 = share[j] * rate;
+      G(0, 0) += w * m0 * m0;
+      G(1, 0) += w * m1 * m0;
+      G(1, 1) += w * m1 * m1;
+      G(2 + 2 * j, 0) += w * p.sign[j] * m0;
+      G(3 + 2 * j, 0) += w * p.dq[j] * m0;
+      G(2 + 2 * j, 1) += w * p.sign[j] * m1;
+      G(3 + 2 * j, 1) += w * p.dq[j] * m1;
+      h[0] += w * p.r[j] * m0;
+      h[1] += w * p.r[j] * m1;
     }
   }
+  G.bottomRightCorner<4, 4>() = fixed.beside;
+  h.tail<4>() = fixed.target;
   G.triangularView<Eigen::StrictlyUpper>() = G.transpose();
   // Equilibrated, with a tiny ridge: at a joint's own direction the motor's columns repeat it.
   Eigen::Matrix<double, 6, 1> d = G.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
   Eigen::Matrix<double, 6, 6> S = d.asDiagonal() * G * d.asDiagonal();
   S.diagonal().array() += 1e-9;
   const Eigen::Matrix<double, 6, 1> hs = d.cwiseProduct(h);
-  return yy - hs.dot(S.ldlt().solve(hs));
+  return fixed.residual - hs.dot(S.ldlt().solve(hs));
 }
 
 /// The direction φ of least pair_sse: the grid's best point refined by golden-section search
 /// between its neighbours.
 double best_direction(const std::vector<PairRow>& rows, const double weight[2], double threshold) {
+  const PairGram fixed = pair_gram(rows, weight);
   constexpr int kGrid = 180;
   const double step = std::numbers::pi / kGrid;
   int best = 0;
   double best_sse = std::numeric_limits<double>::infinity();
   for (int g = 0; g < kGrid; ++g) {
-    const double sse = pair_sse(rows, g * step, weight, threshold);
+    const double sse = pair_sse(rows, fixed, g * step, weight, threshold);
     if (sse < best_sse) {
       best_sse = sse;
       best = g;
@@ -77,21 +107,21 @@ double best_direction(const std::vector<PairRow>& rows, const double weight[2], 
   const double ratio = (std::sqrt(5.0) - 1) / 2;
   double lo = (best - 1) * step, hi = (best + 1) * step;
   double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-  double f1 = pair_sse(rows, x1, weight, threshold);
-  double f2 = pair_sse(rows, x2, weight, threshold);
+  double f1 = pair_sse(rows, fixed, x1, weight, threshold);
+  double f2 = pair_sse(rows, fixed, x2, weight, threshold);
   for (int it = 0; it < 24; ++it) {
     if (f1 < f2) {
       hi = x2;
       x2 = x1;
       f2 = f1;
       x1 = hi - ratio * (hi - lo);
-      f1 = pair_sse(rows, x1, weight, threshold);
+      f1 = pair_sse(rows, fixed, x1, weight, threshold);
     } else {
       lo = x1;
       x1 = x2;
       f1 = f2;
       x2 = lo + ratio * (hi - lo);
-      f2 = pair_sse(rows, x2, weight, threshold);
+      f2 = pair_sse(rows, fixed, x2, weight, threshold);
     }
   }
   return f1 < f2 ? x1 : x2;
