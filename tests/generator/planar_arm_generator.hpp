@@ -26,7 +26,7 @@ struct PlanarArmPlant {
   Eigen::Vector2d amplitude{1.2, 1.4};  ///< rad, half the range of motion
   bool random_stops = true;             ///< the motion pauses 0.5–2 s every few seconds
   /// c: motor 2 turns with r·(q₂ + c·q₁) (a coupled wrist, planar2_coupled.robot.json has
-  /// c = 1); its friction (index 1 of the friction fields, on the motor's velocity q̇₂ + c·q̇₁)
+  /// c = 0.5); its friction (index 1 of the friction fields, on the motor's velocity q̇₂ + c·q̇₁)
   /// and armature act through C = [1 0; c 1]: τ_joint = Cᵀ·τ_motor. 0: uncoupled.
   double motor2_coupling = 0.0;
 
@@ -93,7 +93,7 @@ struct PlanarArm {
 
 /// Path of planar2.robot.json.
 std::string planar_robot_file();
-/// Path of planar2_coupled.robot.json (motor 2 coupled_to joint1 with c = 1).
+/// Path of planar2_coupled.robot.json (motor 2 coupled_to joint1 with c = 0.5).
 std::string planar_coupled_robot_file();
 
 /// Generates the log of `plant`.

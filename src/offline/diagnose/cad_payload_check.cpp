@@ -113,6 +113,8 @@ CadPayloadCheck judge_cad_payload(const DesignGrams& grams, const std::vector<Fe
   std::vector<int> friction, payload;
   for (const FeatureGroup& g : groups) {
     if (g.key == JointFrictionColumns::key) friction = concatenated(friction, moving_columns(g));
+    // A coupled model's: its motors' friction on their velocities (repeats rank-safe)
+    if (g.key == MotorFrictionColumns::key) friction = concatenated(friction, g.columns);
     if (g.key == PayloadColumns::key) payload = g.columns;
   }
   std::vector<int> effects;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "offline/diagnose/cad_payload_check.hpp"
+#include "offline/diagnose/coupled_motor_fit.hpp"
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
 #include "offline/diagnose/residual_analysis.hpp"
@@ -37,21 +38,48 @@ Eigen::VectorXd only_family(const std::vector<FeatureGroup>& groups, const Eigen
 }
 
 /// θ of `groups`' columns (`features` of them) of identify's declared fit on the training rows:
-/// its rigid body (Identification::judged) and sliding friction levels (judged_linear), zero
-/// elsewhere (the friction held at rest is fitted at rest, on top of it).
-Eigen::VectorXd identified_theta(const std::vector<FeatureGroup>& groups, int features,
-                                 const Identification& identified) {
+/// its rigid body (Identification::judged) and sliding friction levels (judged_linear: a coupled
+/// motor's in its motor friction columns, the others' in their joints'), zero elsewhere (the
+/// friction held at rest is fitted at rest, on top of it).
+Eigen::VectorXd identified_theta(const ModelX& model, const std::vector<FeatureGroup>& groups,
+                                 int features, const Identification& identified) {
   using Friction = JointFrictionColumns;
+  using Motor = MotorFrictionColumns;
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(features);
   for (const FeatureGroup& g : groups)
     if (g.key == RigidBodyColumns::key) {
       for (std::size_t i = 0; i < g.columns.size(); ++i)
         theta[g.columns[i]] = identified.judged.base_values[static_cast<Eigen::Index>(i)];
-    } else if (g.key == Friction::key) {
+    } else if (g.key == Friction::key && !motor_is_coupled(model, g.joint)) {
       theta[g.columns[Friction::kCoulomb]] = identified.judged_linear.coulomb[g.joint];
       theta[g.columns[Friction::kViscous]] = identified.judged_linear.viscous[g.joint];
+    } else if (g.key == Motor::key) {
+      for (int m = 0; m < model.joint_count(); ++m)
+        if (motor_is_coupled(model, m)) {
+          theta[g.columns[2 * m + Motor::kCoulomb]] = identified.judged_linear.coulomb[m];
+          theta[g.columns[2 * m + Motor::kViscous]] = identified.judged_linear.viscous[m];
+        }
     }
   return theta;
+}
+
+/// The declared columns identify fits (and the friction held at rest): with coupled motors,
+/// their friction on the motor's velocity instead of their joint's, as identify has it.
+std::vector<int> fitted_declared_columns(const ModelX& model,
+                                         const std::vector<FeatureGroup>& groups) {
+  std::vector<int> columns;
+  for (const FeatureGroup& g : groups) {
+    if (!g.declared) continue;
+    if (g.key == JointFrictionColumns::key && motor_is_coupled(model, g.joint))
+      columns.push_back(g.columns[JointFrictionColumns::kHeldAtRest]);
+    else if (g.key == MotorFrictionColumns::key) {
+      for (int m = 0; m < model.joint_count(); ++m)
+        if (motor_is_coupled(model, m))
+          columns.insert(columns.end(), g.columns.begin() + 2 * m, g.columns.begin() + 2 * m + 2);
+    } else
+      columns.insert(columns.end(), g.columns.begin(), g.columns.end());
+  }
+  return columns;
 }
 
 /// Throws tpf::Error unless `identified` was identified on `s` with the rigid-body base `base`.
@@ -72,7 +100,8 @@ void require_identified_on(const Identification& identified, const JointSamples&
 
 CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup& setup,
                                  const JointSamples& s, const ResidualAnalysis& analysis,
-                                 const Identification& identified) {
+                                 const Identification& identified,
+                                 const Eigen::MatrixXd& declared_residual, double static_velocity) {
   CandidateInputs inputs;
   inputs.enabled = true;
   inputs.ripple_cycles = analysis.ripple_cycles;
@@ -89,6 +118,8 @@ CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup&
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
           : 25.0;
   inputs.viscous = identified.judged_linear.viscous.cwiseMax(0.0);
+  inputs.coupled_motors = fit_coupled_motors(model, setup.base, s, declared_residual,
+                                             identified.joint_weights, static_velocity);
   return inputs;
 }
 
@@ -184,7 +215,8 @@ Eigen::VectorXd non_friction_part(const std::vector<FeatureGroup>& groups,
                                   const Eigen::VectorXd& theta) {
   Eigen::VectorXd part = theta;
   for (const FeatureGroup& g : groups)
-    if (g.written_to == WrittenTo::kFriction || g.written_to == WrittenTo::kNothing)
+    if (g.written_to == WrittenTo::kFriction || g.written_to == WrittenTo::kNothing ||
+        g.written_to == WrittenTo::kRobotFile)
       for (int c : g.columns)
         part[c] = 0.0;
   return part;
@@ -257,6 +289,7 @@ NominalModelX refitted_on_every_row(const std::vector<FeatureGroup>& groups,
                                     const CandidateInputs& inputs, const JointSamples& s,
                                     const ModelX& model, const FrictionCurves& judged,
                                     bool fit_load, int samples_per_joint) {
+  const Eigen::MatrixXd* coupling = model.coupled ? &model.coupling : nullptr;
   NominalModelX final_model;
   final_model.model = model;
   final_model.resize(model.joint_count());
@@ -266,7 +299,7 @@ NominalModelX refitted_on_every_row(const std::vector<FeatureGroup>& groups,
       write_effects(groups, theta_final, base, inputs, final_model, load_selected);
   final_model.friction =
       refit_friction_curves(s, non_friction, inputs.abs_gravity, linear, fit_load || load_selected,
-                            samples_per_joint, judged);
+                            samples_per_joint, judged, coupling);
   return final_model;
 }
 
@@ -290,7 +323,9 @@ std::shared_ptr<const SampleRegressors> diagnosis_regressors(const ModelX& model
                                                              const BaseParameters& base,
                                                              const JointSamples& s) {
   return std::make_shared<const SampleRegressors>(
-      model, EffectDesign::regressor_columns(model.joint_count(), base.independent, true), s);
+      model,
+      EffectDesign::regressor_columns(model.joint_count(), base.independent, true, model.coupled),
+      s);
 }
 
 }  // namespace
@@ -326,7 +361,6 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
 
 Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
                    const Identification& identified, const DiagnoseOptions& options) {
-  require_uncoupled_drives(model, "diagnose");
   require_identified_on(identified, setup.samples, setup.base);
   const auto say = [&](const std::string& line) {
     if (options.progress) options.progress(line);
@@ -362,7 +396,7 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   // fit's: Identification::residual, with the friction curves, is less autocorrelated) and its
   // rigid-body part, in one pass.
   const Eigen::VectorXd theta =
-      identified_theta(declared.groups(), declared.features(), identified);
+      identified_theta(model, declared.groups(), declared.features(), identified);
   std::vector<Eigen::MatrixXd> linear =
       declared.predict_each(s, {theta, only_family<RigidBodyColumns>(declared.groups(), theta)});
   linear[0] = s.effort - linear[0];
@@ -379,9 +413,11 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const EffectDesign design(model, setup.base, s, regressors,
-                            candidate_inputs(model, setup, s, analysis, identified), threshold);
+  const EffectDesign design(
+      model, setup.base, s, regressors,
+      candidate_inputs(model, setup, s, analysis, identified, linear[0], threshold), threshold);
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
+  out.coupled_motors = inputs.coupled_motors;
   const DesignGrams grams = design.accumulate(s);
   FitSelection every = selection;  // the written model's final refit
   every.heldout_rows = true;
@@ -395,10 +431,10 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   std::vector<TransferFold> transfer;
   std::vector<OutsideFold> outside;
   held_out_folds(log, design, s, transfer, outside);
-  EffectSelection sel =
-      select_effects(grams, transfer, outside, out.groups, design.declared_columns(),
-                     identified_theta(out.groups, design.features(), identified), selection, every,
-                     analysis.variance_inflation, options);
+  EffectSelection sel = select_effects(
+      grams, transfer, outside, out.groups, fitted_declared_columns(model, out.groups),
+      identified_theta(model, out.groups, design.features(), identified), selection, every,
+      analysis.variance_inflation, options);
   out.trials = std::move(sel.trials);
   out.selected = sel.selected;
   out.claims = sel.claims;
@@ -433,9 +469,9 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
         write_effects(out.groups, sel.theta_written, setup.base, inputs, judged, load_selected);
     // The friction curves fitted as identify fits the declared model's.
     const bool fit_load = identified.fit_load_friction || load_selected;
-    const FrictionCurves curves =
-        fit_friction_curves(s, p.non_friction, inputs.abs_gravity, linear, fit_load,
-                            identified.friction_samples_per_joint);
+    const FrictionCurves curves = fit_friction_curves(
+        s, p.non_friction, inputs.abs_gravity, linear, fit_load,
+        identified.friction_samples_per_joint, model.coupled ? &model.coupling : nullptr);
     judged.friction = curves.parameters;
     for (const std::string& note : curves.notes)
       out.notes.push_back("friction curve: " + note);

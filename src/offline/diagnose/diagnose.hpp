@@ -79,6 +79,13 @@ struct CandidateTrial {
   /// offset and spring, FeatureGroup::judged_beside): `improvement` is its gain on top of them,
   /// this its gain added to the model alone, which is what a claim writes. NaN otherwise.
   double model_improvement = std::numeric_limits<double>::quiet_NaN();
+  /// A group acting on several joints (FeatureGroup::joints: a coupled motor on its pair): its
+  /// smallest gain on one of them alone. A motor that drives two joints acts on both through Cᵀ,
+  /// so it must lower each one's held-out error by min_improvement; NaN for other groups.
+  double weakest_joint_improvement = std::numeric_limits<double>::quiet_NaN();
+  /// A friction whose Coulomb or viscous coefficient came out negative (FeatureGroup::
+  /// dissipative): no drive's friction pushes the motion, so it is not claimed.
+  bool negative_friction = false;
   /// A several-file log: the smallest improvement on the other files, each held out in turn
   /// (fitted on the rest), and that file; NaN for a one-file log. A candidate is claimed only if
   /// this too reaches min_improvement: it lowers the held-out error of every file, not of one.
@@ -96,7 +103,8 @@ struct CandidateTrial {
   /// Passes the tests on the selection's held-out file alone.
   bool passes_heldout(const DiagnoseOptions& o) const {
     return improvement >= o.min_improvement && bic_change < 0 && wald >= o.min_standard_errors &&
-           !fails_alone(o);
+           !fails_alone(o) && !(weakest_joint_improvement < o.min_improvement) &&
+           !negative_friction;
   }
   /// Explains the residual beside the columns it is judged with, but added to the model alone
   /// (what would be written) lowers the held-out error by less than min_improvement.
@@ -175,6 +183,8 @@ struct EffectDiagnosis {
   std::vector<std::string> findings;  ///< plain sentences: what was found, what is left
   std::vector<std::string> notes;     ///< skipped candidates and why
   CadPayloadCheck cad_payload;
+  /// The coupled-motor candidates, each pair's ratio as fitted (CandidateInputs::coupled_motors).
+  std::vector<CoupledMotorCandidate> coupled_motors;
   /// Identify's inertia prior, which every fit of the diagnosis has: judged_strength the
   /// selection's (training rows), written_strength the written model's refit on every row.
   Identification::InertiaPrior inertia_prior;

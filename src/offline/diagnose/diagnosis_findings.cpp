@@ -97,6 +97,7 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
     text = "Found: " + g.title +
            format_sentence(" — removes %.1f %% of the held-out residual sum of squares",
                            100 * c.improvements[0]) +
+           (g.joints.empty() ? std::string() : " of " + joint_list(g.joints)) +
            (std::isfinite(c.beside_improvement)
                 ? format_sentence(" (%.1f %% beside an offset and a slope of its joint)",
                                   100 * c.beside_improvement)
@@ -143,7 +144,13 @@ std::string claim_finding(const EffectDiagnosis& d, const Claim& c) {
                       t->outside_file +
                       format_sentence(" outside the range of q the fit saw it removes %.1f %%.",
                                       100 * t->outside_improvement);
-  if (!c.written && g.written_to == WrittenTo::kNothing)
+  if (!c.written && g.written_to == WrittenTo::kRobotFile)
+    text +=
+        " Not written to the parameter file: a motor coupling is the robot file's to declare "
+        "(the drive's coupled_to, then identify again); the friction cannot tell this motor from "
+        "the other joint's rotating with the reciprocal ratio, only the robot's drawings can; the "
+        "'written' table leaves it out.";
+  else if (!c.written && g.written_to == WrittenTo::kNothing)
     text +=
         " Not written to the parameter file: the run-time nominal model cannot evaluate it "
         "(it keeps no past samples / has no temperature input); the 'written' table "

@@ -91,6 +91,11 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
          {"outside_range_samples", t.outside_samples},
          {"outside_range_file", t.outside_file},
          {"selected", t.selected}});
+  for (std::size_t i = 0; i < d.trials.size(); ++i)  // a group of several joints: each one's
+    if (std::isfinite(d.trials[i].weakest_joint_improvement))
+      trials[i]["weakest_joint_improvement_percent"] = 100 * d.trials[i].weakest_joint_improvement;
+  for (std::size_t i = 0; i < d.trials.size(); ++i)
+    if (d.trials[i].negative_friction) trials[i]["negative_friction"] = true;
   j["trials"] = trials;
   nlohmann::json selected = nlohmann::json::array();
   for (int g : d.selected)
@@ -217,7 +222,7 @@ void write_diagnosis_report(const EffectDiagnosis& d, const std::filesystem::pat
   }
   for (std::size_t e = 0; e < d.selected.size(); ++e) {
     const FeatureGroup& g = d.groups[d.selected[e]];
-    const int i = g.joint < 0 ? N - 1 : g.joint;
+    const int i = !g.joints.empty() ? g.joints.back() : g.joint < 0 ? N - 1 : g.joint;
     const Eigen::VectorXd term = d.effect_terms[e].col(i) / u.newton_metres_per_unit(i);
     page.figure(
         scatter_plot({g.title + ": residual against the fitted term", "fitted term [" + unit + "]",

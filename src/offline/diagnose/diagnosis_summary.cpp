@@ -40,6 +40,8 @@ std::string claim_reason(const EffectDiagnosis& d, const Claim& c) {
   const FeatureGroup& g = d.groups[c.groups[0]];
   if (!c.written && g.written_to == WrittenTo::kNothing)
     return "the run time cannot evaluate it (past samples, temperature)";
+  if (!c.written && g.written_to == WrittenTo::kRobotFile)
+    return "a motor coupling is the robot file's to declare (coupled_to)";
   if (!c.written && !c.scored_joints.empty()) return "the data cannot tell which joint it acts on";
   if (!c.written) return "ambiguous with another effect on this log";
   const bool untested = std::any_of(d.trials.begin(), d.trials.end(), [&](const CandidateTrial& t) {

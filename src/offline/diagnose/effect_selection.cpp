@@ -28,6 +28,24 @@ std::pair<double, double> heldout_sse(const RegimeTable& t, int joint, const Eig
   return {sse, count};
 }
 
+namespace {
+
+/// heldout_sse of the joints group g acts on: its joint's, its pair's (weighted) or every
+/// joint's (weighted).
+std::pair<double, double> group_sse(const RegimeTable& t, const FeatureGroup& g,
+                                    const Eigen::VectorXd& w) {
+  if (g.joints.empty()) return heldout_sse(t, g.joint, w);
+  double sse = 0, count = 0;
+  for (int j : g.joints) {
+    const auto [joint_sse, joint_count] = heldout_sse(t, j, w);
+    sse += w[j] * joint_sse;
+    count += joint_count;
+  }
+  return {sse, count};
+}
+
+}  // namespace
+
 Eigen::MatrixXd training_gram(const DesignGrams& grams, const FitSelection& selection) {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(grams.features + 2, grams.features + 2);
   for (int j = 0; j < grams.joints; ++j)
@@ -63,6 +81,9 @@ class ForwardSelection {
         theta_(theta_declared) {
     for (std::size_t g = 0; g < groups.size(); ++g)
       if (groups[g].declared) in_model_.push_back(static_cast<int>(g));
+    declared_fitted_.assign(static_cast<std::size_t>(grams.features), 0);
+    for (int c : declared_columns)
+      declared_fitted_[static_cast<std::size_t>(c)] = 1;
   }
 
   EffectSelection run() {
@@ -133,14 +154,23 @@ class ForwardSelection {
                                                       ? theta_
                                                       : fit_columns(grams_, reference, selection_));
     const RegimeTable with = heldout_table(grams_, trial_theta);
-    const auto [sse0, n] = heldout_sse(now, group.joint, selection_.joint_weights);
-    const auto [sse1, n1] = heldout_sse(with, group.joint, selection_.joint_weights);
+    const auto [sse0, n] = group_sse(now, group, selection_.joint_weights);
+    const auto [sse1, n1] = group_sse(with, group, selection_.joint_weights);
     CandidateTrial trial;
     trial.key = group.key;
     trial.title = group.title;
     trial.joint = group.joint;
     trial.round = round;
     trial.improvement = sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
+    for (int c : group.dissipative)
+      trial.negative_friction = trial.negative_friction || trial_theta[group.columns[c]] < 0.0;
+    if (group.joints.size() > 1)
+      for (int j : group.joints) {
+        const double joint_sse0 = heldout_sse(now, j, selection_.joint_weights).first;
+        const double joint_sse1 = heldout_sse(with, j, selection_.joint_weights).first;
+        const double gain = joint_sse0 > 0 ? 1.0 - joint_sse1 / joint_sse0 : 0.0;
+        if (!(gain >= trial.weakest_joint_improvement)) trial.weakest_joint_improvement = gain;
+      }
     trial.bic_change = n * std::log(std::max(sse1, 1e-300) / std::max(sse0, 1e-300)) +
                        static_cast<double>(group.columns.size()) * std::log(std::max(n, 2.0));
     const double sigma2 = residual_variance(trial_theta, trial_columns.size(), group.joint);
@@ -154,14 +184,14 @@ class ForwardSelection {
       std::vector<int> alone = columns_;
       alone.insert(alone.end(), own.begin(), own.end());
       const auto [sse_model, n_model] =
-          heldout_sse(heldout_table(grams_, theta_), group.joint, selection_.joint_weights);
+          group_sse(heldout_table(grams_, theta_), group, selection_.joint_weights);
       const auto [sse_alone, n_alone] =
-          heldout_sse(heldout_table(grams_, fit_columns(grams_, alone, selection_)), group.joint,
-                      selection_.joint_weights);
+          group_sse(heldout_table(grams_, fit_columns(grams_, alone, selection_)), group,
+                    selection_.joint_weights);
       trial.model_improvement = sse_model > 0 ? 1.0 - sse_alone / sse_model : 0.0;
     }
     for (const TransferFold& fold : transfer_) {
-      const double gain = fold_improvement(fold.grams, reference, trial_columns, group.joint);
+      const double gain = fold_improvement(fold.grams, reference, trial_columns, group);
       if (!(gain >= trial.transfer_improvement)) {
         trial.transfer_improvement = gain;
         trial.transfer_file = fold.file;
@@ -172,7 +202,7 @@ class ForwardSelection {
       for (const OutsideFold& fold : outside_) {
         const double samples = moving_heldout_count(fold.grams, group.joint);
         if (samples <= 0) continue;  // the group never leaves the range: not a test
-        const double gain = fold_improvement(fold.grams, reference, trial_columns, group.joint);
+        const double gain = fold_improvement(fold.grams, reference, trial_columns, group);
         if (!(gain >= trial.outside_improvement)) {
           trial.outside_improvement = gain;
           trial.outside_samples = samples;
@@ -228,11 +258,11 @@ class ForwardSelection {
   /// Fraction of a fold's held-out SSE (on `joint`, or every joint) that `with` removes from
   /// `without`, both fitted on the fold's training rows.
   double fold_improvement(const DesignGrams& fold, const std::vector<int>& without,
-                          const std::vector<int>& with, int joint) const {
-    const auto [sse0, n0] = heldout_sse(heldout_table(fold, fit_columns(fold, without, selection_)),
-                                        joint, selection_.joint_weights);
-    const auto [sse1, n1] = heldout_sse(heldout_table(fold, fit_columns(fold, with, selection_)),
-                                        joint, selection_.joint_weights);
+                          const std::vector<int>& with, const FeatureGroup& group) const {
+    const auto [sse0, n0] = group_sse(heldout_table(fold, fit_columns(fold, without, selection_)),
+                                      group, selection_.joint_weights);
+    const auto [sse1, n1] = group_sse(heldout_table(fold, fit_columns(fold, with, selection_)),
+                                      group, selection_.joint_weights);
     return sse0 > 0 ? 1.0 - sse1 / sse0 : 0.0;
   }
 
@@ -361,7 +391,8 @@ class ForwardSelection {
   /// under one-directional motion, which predict differently once the joint reverses) — is
   /// reported, not written.
   bool writable(const Claim& claim) const {
-    return groups_[claim.groups[0]].written_to != WrittenTo::kNothing && !claim.ambiguous();
+    const WrittenTo to = groups_[claim.groups[0]].written_to;
+    return to != WrittenTo::kNothing && to != WrittenTo::kRobotFile && !claim.ambiguous();
   }
 
   std::vector<int> written_columns(const EffectSelection& out) const {
@@ -419,7 +450,9 @@ class ForwardSelection {
     for (int g : in_model_)
       if (g != except)
         for (int col : groups_[g].columns)
-          if (alive(col)) c.push_back(col);
+          if (alive(col) &&
+              (!groups_[g].declared || declared_fitted_[static_cast<std::size_t>(col)]))
+            c.push_back(col);
     return c;
   }
   std::vector<int> energetic(const FeatureGroup& group) const {
@@ -441,8 +474,11 @@ class ForwardSelection {
   const Eigen::MatrixXd A_;  ///< the weighted training Gram of the selected regimes
   std::vector<bool> used_;
   std::vector<int> in_model_;  ///< groups in the model (declared first), for naming partners
-  std::vector<int> columns_;   ///< the model's columns
-  Eigen::VectorXd theta_;      ///< the model fitted on motion
+  /// Per feature: a declared column the declared fit uses (a coupled model leaves out its
+  /// coupled motors' joint friction and its uncoupled motors' motor friction).
+  std::vector<char> declared_fitted_;
+  std::vector<int> columns_;  ///< the model's columns
+  Eigen::VectorXd theta_;     ///< the model fitted on motion
 };
 
 }  // namespace

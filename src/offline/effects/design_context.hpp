@@ -32,6 +32,8 @@ struct GroupSpec {
   int held_column;  ///< index in column_names of the friction held at rest, −1 = none
   std::vector<std::string> judged_beside;
   bool indistinct_from_beside = false;  ///< FeatureGroup::indistinct_from_beside
+  std::vector<int> joints;              ///< FeatureGroup::joints
+  std::vector<int> dissipative;         ///< FeatureGroup::dissipative
 };
 
 /// "joint 3" of 0-based joint 2.

@@ -7,6 +7,8 @@
 //   key, written_to, kSharedGroupFirst,
 //   offered(DesignContext, joint) / group(DesignContext, joint)   (joint −1: every joint at once),
 //   fill(SampleRow, joint, out)          its columns of one joint row of a sample,
+// or, for a family of several groups that act on chosen joints (a coupled motor per pair),
+//   variants(DesignContext), group(DesignContext, variant), fill(SampleRow, joint, variant, out),
 //   write(coefficients, joint, WrittenModel)  into the parameter file's model,
 //   remove(joint, NominalModelX)         its part of a written model set to zero.
 // Adding an effect = one header + one entry in CandidateColumns (and, when the run time evaluates
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "offline/effects/asymmetric_friction_columns.hpp"
+#include "offline/effects/coupled_motor_columns.hpp"
 #include "offline/effects/coupling_columns.hpp"
 #include "offline/effects/delay_columns.hpp"
 #include "offline/effects/joint_friction_columns.hpp"
@@ -43,7 +46,8 @@ using DeclaredColumns = std::tuple<RigidBodyColumns, JointFrictionColumns, Motor
 using CandidateColumns =
     std::tuple<PayloadColumns, LoadFrictionColumns, OutputRippleColumns, MotorRippleColumns,
                ThermalFrictionColumns, OffsetColumns, AsymmetricFrictionColumns, SpringColumns,
-               DelayColumns, CouplingColumns, NeighbourLoadColumns, RelativeThermalFrictionColumns>;
+               DelayColumns, CouplingColumns, NeighbourLoadColumns, RelativeThermalFrictionColumns,
+               CoupledMotorColumns>;
 
 /// Calls f.template operator()<Family>() for each type of the tuple `Families`, in order.
 template <typename Families, typename F>

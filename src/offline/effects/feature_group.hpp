@@ -2,6 +2,7 @@
 // effect's, for one joint or for every joint.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -12,7 +13,8 @@ enum class WrittenTo {
   kRigidBody,     ///< the base parameters (the rigid body; a payload folds into it)
   kFriction,      ///< the friction model (StribeckParameters)
   kAddedEffects,  ///< an added effect the run time evaluates (tpf/effects/added_effects.hpp)
-  kNothing        ///< not evaluated at run time (OfflineOnlyEffects): reported, not written
+  kNothing,       ///< not evaluated at run time (OfflineOnlyEffects): reported, not written
+  kRobotFile      ///< the robot file's to declare (a motor coupling): reported, not written
 };
 
 /// One named family of columns. Per-joint families act on that joint's effort only.
@@ -34,6 +36,18 @@ struct FeatureGroup {
   /// On this log it cannot be told from the families it is judged beside (a ripple with under one
   /// period in its joint's range of motion): a claim of it names them too, "ambiguous between".
   bool indistinct_from_beside = false;
+  /// The joints a group of joint −1 acts on, when not every joint (a coupled motor: its pair);
+  /// its gain is scored on their weighted held-out SSE. Empty: `joint`'s, or every joint.
+  std::vector<int> joints;
+  /// Indices in `columns` of a friction's Coulomb and viscous coefficients, which must come out
+  /// ≥ 0 for the group to be claimed (friction dissipates): a coupled motor's.
+  std::vector<int> dissipative;
 };
+
+/// Whether group g's columns act on joint j's effort.
+inline bool acts_on(const FeatureGroup& g, int j) {
+  if (!g.joints.empty()) return std::find(g.joints.begin(), g.joints.end(), j) != g.joints.end();
+  return g.joint == -1 || g.joint == j;
+}
 
 }  // namespace tpf::offline

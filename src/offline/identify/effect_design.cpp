@@ -30,33 +30,69 @@ struct EffectDesign::Workspace {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> local;  ///< N × max local
 };
 
-void EffectDesign::add_group(FeatureGroup group, FillColumns fill) {
+void EffectDesign::add_group(FeatureGroup group, FillColumns fill, int variant) {
   for (std::size_t c = 0; c < group.column_names.size(); ++c)
     group.columns.push_back(features_++);
   groups_.push_back(std::move(group));
   fills_.push_back(fill);
+  variants_.push_back(variant);
 }
+
+namespace {
+/// A family's fill() as EffectDesign's FillColumns (one group per joint or every joint).
+template <typename Family>
+void fill_family(const SampleRow& row, int joint, int, double* out) {
+  Family::fill(row, joint, out);
+}
+template <typename Family>
+concept SeveralGroups = requires(const DesignContext& c) {
+  Family::variants(c);
+};
+}  // namespace
 
 template <typename Families>
 void EffectDesign::add_families(const DesignContext& context) {
   const bool declared = std::is_same_v<Families, DeclaredColumns>;
   auto offer = [&]<typename Family>(int joint) {
-    if (!Family::offered(context, joint)) return;
-    GroupSpec spec = Family::group(context, joint);
-    bool extrapolates = false;
-    if constexpr (requires { Family::kExtrapolatesInQ; }) extrapolates = Family::kExtrapolatesInQ;
-    add_group({std::string(Family::key),
-               std::move(spec.title),
-               joint,
-               declared,
-               Family::written_to,
-               spec.held_column,
-               std::move(spec.judged_beside),
-               {},
-               std::move(spec.column_names),
-               extrapolates,
-               spec.indistinct_from_beside},
-              &Family::fill);
+    if constexpr (SeveralGroups<Family>) {
+      if (joint >= 0) return;
+      for (int v = 0; v < Family::variants(context); ++v) {
+        GroupSpec spec = Family::group(context, v);
+        add_group({std::string(Family::key),
+                   std::move(spec.title),
+                   -1,
+                   declared,
+                   Family::written_to,
+                   spec.held_column,
+                   std::move(spec.judged_beside),
+                   {},
+                   std::move(spec.column_names),
+                   false,
+                   spec.indistinct_from_beside,
+                   std::move(spec.joints),
+                   std::move(spec.dissipative)},
+                  &Family::fill, v);
+      }
+    } else {
+      if (!Family::offered(context, joint)) return;
+      GroupSpec spec = Family::group(context, joint);
+      bool extrapolates = false;
+      if constexpr (requires { Family::kExtrapolatesInQ; }) extrapolates = Family::kExtrapolatesInQ;
+      add_group({std::string(Family::key),
+                 std::move(spec.title),
+                 joint,
+                 declared,
+                 Family::written_to,
+                 spec.held_column,
+                 std::move(spec.judged_beside),
+                 {},
+                 std::move(spec.column_names),
+                 extrapolates,
+                 spec.indistinct_from_beside,
+                 std::move(spec.joints),
+                 std::move(spec.dissipative)},
+                &fill_family<Family>);
+    }
   };
   for_each_family<Families>([&]<typename Family>() {
     if (Family::kSharedGroupFirst) offer.template operator()<Family>(-1);
@@ -96,9 +132,9 @@ void EffectDesign::index_joint_groups() {
   joint_groups_.assign(static_cast<std::size_t>(joints_), {});
   for (int j = 0; j < joints_; ++j) {
     for (std::size_t g = 0; g < groups_.size(); ++g)
-      if (groups_[g].joint == -1 || groups_[g].joint == j) {
-        joint_groups_[j].push_back(
-            {static_cast<int>(g), fills_[g], static_cast<int>(groups_[g].columns.size())});
+      if (acts_on(groups_[g], j)) {
+        joint_groups_[j].push_back({static_cast<int>(g), fills_[g],
+                                    static_cast<int>(groups_[g].columns.size()), variants_[g]});
         local_[j].insert(local_[j].end(), groups_[g].columns.begin(), groups_[g].columns.end());
       }
     max_local_ = std::max<int>(max_local_, static_cast<int>(local_[j].size()));
@@ -155,7 +191,8 @@ void EffectDesign::fill(const JointSamples& s, Eigen::Index k, Workspace& ws,
   for (int j = 0; j < joints_; ++j) {
     double* out = &ws.local(j, 0);  // row-major workspace: this joint's local features
     for (const JointGroup& g : joint_groups_[j]) {
-      if (filled.empty() || filled[static_cast<std::size_t>(g.group)]) g.fill(row, j, out);
+      if (filled.empty() || filled[static_cast<std::size_t>(g.group)])
+        g.fill(row, j, g.variant, out);
       out += g.width;
     }
   }

@@ -37,6 +37,8 @@ namespace tpf::offline {
 ///   delay: d(rigid-body prediction_j)/dt (coefficient = the effort's lead over the motion, s),
 ///          one group per joint and one for every joint at once (one shared lead)
 ///   coupling: q̇_k, q̈_k for every k ≠ j
+///   coupled_motor (joints i and i + 1 only): share·s_θ, share·θ̇, share·θ̈ of a motor turning
+///          with θ = a q_i + b q_{i+1}, share a on joint i and b on joint i + 1
 /// Each family's columns are its effect type's fill(); those of an added effect are the basis
 /// functions of its run-time torque (tpf/effects/), so a fit and the run time agree.
 class EffectDesign {
@@ -72,8 +74,9 @@ class EffectDesign {
 
  private:
   struct Workspace;
-  /// Fills of one family: its columns of joint row `joint` of a sample.
-  using FillColumns = void (*)(const SampleRow&, int joint, double* out);
+  /// Fills of one family: its columns of joint row `joint` of a sample (`variant`: which of a
+  /// several-group family's groups, CoupledMotorColumns).
+  using FillColumns = void (*)(const SampleRow&, int joint, int variant, double* out);
   /// Fills the local features of every joint row of sample k into `ws.local` (N × max local):
   /// those of the groups `filled` marks (one entry per group; empty: every group). The features
   /// of the other groups are left as they are (zero in a workspace zeroed once).
@@ -84,7 +87,7 @@ class EffectDesign {
   /// Adds the groups the family types of the tuple `Families` offer, in registration order.
   template <typename Families>
   void add_families(const DesignContext& context);
-  void add_group(FeatureGroup group, FillColumns fill);
+  void add_group(FeatureGroup group, FillColumns fill, int variant = 0);
   /// local_, joint_groups_ and max_local_ of the groups.
   void index_joint_groups();
   /// Throws tpf::Error when `samples` are not the ones the regressors were computed for.
@@ -100,12 +103,14 @@ class EffectDesign {
   int features_ = 0;
   std::vector<FeatureGroup> groups_;
   std::vector<FillColumns> fills_;       ///< per group
+  std::vector<int> variants_;            ///< per group: its variant (0 for most families)
   std::vector<std::vector<int>> local_;  ///< per joint: local index → global feature
   /// A group acting on a joint: its index, fill and column count (read per sample and joint).
   struct JointGroup {
     int group;
     FillColumns fill;
     int width;
+    int variant;
   };
   std::vector<std::vector<JointGroup>> joint_groups_;  ///< per joint: the groups on it, in order
   int max_local_ = 0;
