@@ -145,9 +145,25 @@ PhaseSums rotated_phase_sums(const CentredResidual& c, Eigen::ArrayXd& re, Eigen
   return eigen_phase_sums(c, re, im);
 }
 
+/// re = cos θ, im = sin θ per sample: on glibc from one sincos call each (the values its sin and
+/// cos give, in one call instead of two), elsewhere from std::cos and std::sin.
+void phases(const Eigen::ArrayXd& theta, Eigen::ArrayXd& re, Eigen::ArrayXd& im) {
+  re.resize(theta.size());
+  im.resize(theta.size());
+  for (Eigen::Index k = 0; k < theta.size(); ++k) {
+#if defined(__GLIBC__)
+    ::sincos(theta[k], &im[k], &re[k]);
+#else
+    re[k] = std::cos(theta[k]);
+    im[k] = std::sin(theta[k]);
+#endif
+  }
+}
+
 PhaseSums exact_phase_sums(const CentredResidual& c, double n, double scale) {
   const Eigen::ArrayXd theta = n * scale * c.u;
-  Eigen::ArrayXd re = theta.cos(), im = theta.sin();
+  Eigen::ArrayXd re, im;
+  phases(theta, re, im);
   return phase_sums(c, re, im);
 }
 
@@ -208,7 +224,8 @@ double fitted_cycles(const Eigen::VectorXd& q, const Eigen::VectorXd& r, double 
   // e^(iθ) per sample, advanced by e^(i·step·scale·u) from one grid point to the next and
   // computed afresh every 64 points (the rounding of the products stays ~1e-14).
   const Eigen::ArrayXd advance = step * scale * c.u;
-  const Eigen::ArrayXd wr = advance.cos(), wi = advance.sin();
+  Eigen::ArrayXd wr, wi;
+  phases(advance, wr, wi);
   Eigen::ArrayXd re(m), im(m), next(m);
   Eigen::Index best = 0;
   double best_sum = -1;
@@ -216,8 +233,7 @@ double fitted_cycles(const Eigen::VectorXd& q, const Eigen::VectorXd& r, double 
     PhaseSums sums;
     if (i % 64 == 0) {
       const Eigen::ArrayXd theta = (lo + static_cast<double>(i) * step) * scale * c.u;
-      re = theta.cos();
-      im = theta.sin();
+      phases(theta, re, im);
       sums = phase_sums(c, re, im);
     } else {
       sums = rotated_phase_sums(c, re, im, wr, wi, next);
