@@ -72,15 +72,19 @@ std::array<double, 3> joint_thresholds(const UnitCheckView& in, const UnitCheckO
 /// Rows where every joint's |q̇| and |q̈| are below its rest thresholds and every value is finite.
 std::vector<Eigen::Index> rest_rows(const UnitCheckView& in, const UnitCheckOptions& o) {
   std::vector<Eigen::Index> rows;
+  const int joints = static_cast<int>(in.q.cols());
+  std::vector<std::array<double, 3>> limits;
+  for (int j = 0; j < joints; ++j)
+    limits.push_back(joint_thresholds(in, o, j));
   for (Eigen::Index r = 0; r < in.q.rows(); ++r) {
-    const bool finite = in.q.row(r).allFinite() && in.dq.row(r).allFinite() &&
-                        in.ddq.row(r).allFinite() && in.effort.row(r).allFinite() &&
-                        in.gravity.row(r).allFinite();
-    bool rests = finite;
-    for (int j = 0; rests && j < in.q.cols(); ++j) {
-      const std::array<double, 3> limit = joint_thresholds(in, o, j);
-      rests = std::abs(in.dq(r, j)) < limit[0] && std::abs(in.ddq(r, j)) < limit[1];
-    }
+    // The thresholds first (a NaN q̇ or q̈ fails them), then every value finite.
+    bool rests = true;
+    for (int j = 0; rests && j < joints; ++j)
+      rests = std::abs(in.dq(r, j)) < limits[static_cast<std::size_t>(j)][0] &&
+              std::abs(in.ddq(r, j)) < limits[static_cast<std::size_t>(j)][1];
+    rests = rests && in.q.row(r).allFinite() && in.dq.row(r).allFinite() &&
+            in.ddq.row(r).allFinite() && in.effort.row(r).allFinite() &&
+            in.gravity.row(r).allFinite();
     if (rests) rows.push_back(r);
   }
   return rows;
