@@ -45,7 +45,8 @@ tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
                                                const DiagnoseArgs& a) {
   using namespace tpf::offline;
   const auto start = std::chrono::steady_clock::now();
-  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples);
+  Eigen::MatrixXd gravity;  // G(q) of the samples: the gravity load and the unit checks read it
+  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples, &gravity);
   const tpf::BaseParameters base = setup.base;
   const auto regressors = setup.regressors;
   const auto abs_gravity = setup.abs_gravity;
@@ -57,7 +58,8 @@ tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
   identify_options.inertia_prior = a.inertia_prior;
   Identification id = identify(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
-                                          tpf::cli::check_log_units(model, id.samples), a.verbose);
+                                          tpf::cli::check_log_units(model, id.samples, gravity),
+                                          a.verbose);
   return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity}, id, options);
 }
 

@@ -4,16 +4,19 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
 #include "offline/common/unoptimised_when_sanitized.hpp"
+#include "offline/identify/identification_setup.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/log/torque_sensor.hpp"
 #include "offline/samples/joint_samples.hpp"
+#include "offline/samples/sample_unit_check.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"
 #include "read_command_logs.hpp"
@@ -45,9 +48,13 @@ void run(const tpf::offline::Log& log, const IdentifyArgs& a) {
   if (!a.quiet)
     options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const ModelX model = tpf::load_robot<double, Eigen::Dynamic>(a.robot);
-  const Identification id = identify(log, model, options);
+  IdentificationSetup setup = prepare_identification(log, model, options.samples);
+  // G(q) of the samples once: the gravity load of the friction fit and the unit checks read it.
+  const Eigen::MatrixXd gravity = gravity_torque(model, setup.samples);
+  setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(gravity_load(gravity, setup.samples));
+  const Identification id = identify(log, model, std::move(setup), options);
   print_and_save_identification(log, id, options.samples, a.out, start,
-                                tpf::cli::check_log_units(model, id.samples), a.verbose);
+                                tpf::cli::check_log_units(model, id.samples, gravity), a.verbose);
 }
 
 }  // namespace

@@ -12,10 +12,12 @@
 
 namespace tpf::cli {
 
-/// The checks of `samples` with the robot file's `model` (offline::check_sample_units).
+/// The checks of `samples` with the robot file's `model` (offline::check_sample_units), with
+/// their gravity torque `gravity` where the caller has it (empty: computed).
 inline offline::LogChecks check_log_units(const offline::ModelX& model,
-                                          const offline::JointSamples& samples) {
-  return offline::check_sample_units(model, samples);
+                                          const offline::JointSamples& samples,
+                                          const Eigen::MatrixXd& gravity = {}) {
+  return offline::check_sample_units(model, samples, gravity);
 }
 
 /// Notes a default printout shows of a list (--verbose: all).

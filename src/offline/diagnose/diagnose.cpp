@@ -19,6 +19,7 @@
 #include "offline/report/text_format.hpp"
 #include "offline/samples/held_out_rows.hpp"
 #include "offline/samples/repeated_motion.hpp"
+#include "offline/samples/sample_unit_check.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/model/robot_description.hpp"
@@ -331,10 +332,12 @@ std::shared_ptr<const SampleRegressors> diagnosis_regressors(const ModelX& model
 }  // namespace
 
 IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
-                                      const SampleOptions& options) {
+                                      const SampleOptions& options, Eigen::MatrixXd* gravity) {
   IdentificationSetup setup = prepare_identification(log, model, options);
   setup.regressors = diagnosis_regressors(model, setup.base, setup.samples);
-  setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(gravity_load(model, setup.samples));
+  if (gravity) *gravity = gravity_torque(model, setup.samples);
+  setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(
+      gravity ? gravity_load(*gravity, setup.samples) : gravity_load(model, setup.samples));
   return setup;
 }
 

@@ -228,8 +228,10 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
                    const Identification& identified, const DiagnoseOptions& options);
 
 /// prepare_identification with the regressors diagnose reads (a superset of identify's) and the
-/// gravity load both read.
+/// gravity load both read. `gravity`, where given, receives the samples' gravity torque
+/// (gravity_torque, for check_sample_units) the load is then taken from.
 IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
-                                      const SampleOptions& options);
+                                      const SampleOptions& options,
+                                      Eigen::MatrixXd* gravity = nullptr);
 
 }  // namespace tpf::offline

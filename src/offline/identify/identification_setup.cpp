@@ -33,4 +33,14 @@ Eigen::MatrixXd gravity_load(const ModelX& model, const JointSamples& s) {
   return load;
 }
 
+Eigen::MatrixXd gravity_load(const Eigen::MatrixXd& gravity, const JointSamples& s) {
+  Eigen::MatrixXd load(s.size(), gravity.cols());
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if (s.valid[k])
+      load.row(k) = gravity.row(k).cwiseAbs();
+    else
+      load.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+  return load;
+}
+
 }  // namespace tpf::offline

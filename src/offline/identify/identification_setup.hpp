@@ -32,4 +32,8 @@ IdentificationSetup prepare_identification(const Log& log, const ModelX& model,
 /// load-dependent friction scales with. NaN where the sample is invalid. Two threads.
 Eigen::MatrixXd gravity_load(const ModelX& model, const JointSamples& samples);
 
+/// The same from the samples' gravity torque G (gravity_torque): |G| at the valid samples, NaN
+/// elsewhere, the same values without a second pass of G(q).
+Eigen::MatrixXd gravity_load(const Eigen::MatrixXd& gravity, const JointSamples& samples);
+
 }  // namespace tpf::offline

@@ -23,7 +23,7 @@ struct Reading {
 };
 
 /// The readings that would make the right effort `factor` times what it is.
-std::vector<Reading> effort_readings(const UnitCheckInput& in, int j) {
+std::vector<Reading> effort_readings(const UnitCheckView& in, int j) {
   const double r = std::abs(in.gear_ratio[j]);
   const double kt = std::abs(in.torque_constant[j]);
   std::vector<Reading> out = {
@@ -57,36 +57,40 @@ std::string matching_reading(const std::vector<Reading>& readings, double factor
   return {};
 }
 
-bool joint_is_prismatic(const UnitCheckInput& in, int j) {
+bool joint_is_prismatic(const UnitCheckView& in, int j) {
   return static_cast<std::size_t>(j) < in.prismatic.size() &&
          in.prismatic[static_cast<std::size_t>(j)];
 }
 
 /// Joint j's rest, rest-acceleration and moving thresholds (rad or m).
-std::array<double, 3> joint_thresholds(const UnitCheckInput& in, const UnitCheckOptions& o, int j) {
+std::array<double, 3> joint_thresholds(const UnitCheckView& in, const UnitCheckOptions& o, int j) {
   if (joint_is_prismatic(in, j))
     return {o.rest_linear_velocity, o.rest_linear_acceleration, o.moving_linear_velocity};
   return {o.rest_velocity, o.rest_acceleration, o.moving_velocity};
 }
 
 /// Rows where every joint's |q̇| and |q̈| are below its rest thresholds and every value is finite.
-std::vector<Eigen::Index> rest_rows(const UnitCheckInput& in, const UnitCheckOptions& o) {
+std::vector<Eigen::Index> rest_rows(const UnitCheckView& in, const UnitCheckOptions& o) {
   std::vector<Eigen::Index> rows;
+  const int joints = static_cast<int>(in.q.cols());
+  std::vector<std::array<double, 3>> limits;
+  for (int j = 0; j < joints; ++j)
+    limits.push_back(joint_thresholds(in, o, j));
   for (Eigen::Index r = 0; r < in.q.rows(); ++r) {
-    const bool finite = in.q.row(r).allFinite() && in.dq.row(r).allFinite() &&
-                        in.ddq.row(r).allFinite() && in.effort.row(r).allFinite() &&
-                        in.gravity.row(r).allFinite();
-    bool rests = finite;
-    for (int j = 0; rests && j < in.q.cols(); ++j) {
-      const std::array<double, 3> limit = joint_thresholds(in, o, j);
-      rests = std::abs(in.dq(r, j)) < limit[0] && std::abs(in.ddq(r, j)) < limit[1];
-    }
+    // The thresholds first (a NaN q̇ or q̈ fails them), then every value finite.
+    bool rests = true;
+    for (int j = 0; rests && j < joints; ++j)
+      rests = std::abs(in.dq(r, j)) < limits[static_cast<std::size_t>(j)][0] &&
+              std::abs(in.ddq(r, j)) < limits[static_cast<std::size_t>(j)][1];
+    rests = rests && in.q.row(r).allFinite() && in.dq.row(r).allFinite() &&
+            in.ddq.row(r).allFinite() && in.effort.row(r).allFinite() &&
+            in.gravity.row(r).allFinite();
     if (rests) rows.push_back(r);
   }
   return rows;
 }
 
-void check_rest(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks& out) {
+void check_rest(const UnitCheckView& in, const UnitCheckOptions& o, LogChecks& out) {
   const std::vector<Eigen::Index> rows = rest_rows(in, o);
   for (int j = 0; j < in.q.cols(); ++j) {
     if (std::find(out.dead_joints.begin(), out.dead_joints.end(), j + 1) != out.dead_joints.end())
@@ -141,7 +145,7 @@ void check_rest(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks& 
   }
 }
 
-void check_dead_channels(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks& out) {
+void check_dead_channels(const UnitCheckView& in, const UnitCheckOptions& o, LogChecks& out) {
   for (int j = 0; j < in.effort.cols(); ++j) {
     std::set<double> distinct;
     std::size_t finite = 0, zeros = 0;
@@ -169,7 +173,7 @@ void check_dead_channels(const UnitCheckInput& in, const UnitCheckOptions& o, Lo
   }
 }
 
-void check_limits(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks& out) {
+void check_limits(const UnitCheckView& in, const UnitCheckOptions& o, LogChecks& out) {
   for (int j = 0; j < in.q.cols(); ++j) {
     if (!std::isfinite(in.lower[j]) || !std::isfinite(in.upper[j])) continue;
     std::size_t outside = 0, finite = 0;
@@ -193,7 +197,7 @@ void check_limits(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks
 }
 
 /// q̇ against the central difference of q over samples that move.
-void check_velocity(const UnitCheckInput& in, const UnitCheckOptions& o, LogChecks& out) {
+void check_velocity(const UnitCheckView& in, const UnitCheckOptions& o, LogChecks& out) {
   for (int j = 0; j < in.q.cols(); ++j) {
     double vd = 0, dd = 0;
     for (Eigen::Index r = 1; r + 1 < in.q.rows(); ++r) {
@@ -228,6 +232,13 @@ void check_velocity(const UnitCheckInput& in, const UnitCheckOptions& o, LogChec
 }  // namespace
 
 LogChecks check_log_units(const UnitCheckInput& in, const UnitCheckOptions& options) {
+  return check_log_units(
+      UnitCheckView{in.t, in.q, in.dq, in.ddq, in.effort, in.gravity, in.gear_ratio,
+                    in.torque_constant, in.effort_is_current, in.lower, in.upper, in.prismatic},
+      options);
+}
+
+LogChecks check_log_units(const UnitCheckView& in, const UnitCheckOptions& options) {
   LogChecks out;
   out.rest_factor.assign(static_cast<std::size_t>(in.q.cols()), std::nan(""));
   check_dead_channels(in, options, out);

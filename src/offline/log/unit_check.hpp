@@ -24,6 +24,17 @@ struct UnitCheckInput {
   std::vector<bool> prismatic;
 };
 
+/// UnitCheckInput's members by reference: the checks of a long log without a copy of its columns.
+struct UnitCheckView {
+  const Eigen::VectorXd& t;
+  const Eigen::MatrixXd &q, &dq, &ddq, &effort;
+  const Eigen::MatrixXd& gravity;
+  const Eigen::VectorXd &gear_ratio, &torque_constant;
+  bool effort_is_current;
+  const Eigen::VectorXd &lower, &upper;
+  const std::vector<bool>& prismatic;
+};
+
 /// What the checks found, per finding one line "joint j: …".
 struct LogChecks {
   std::vector<std::string> problems;  ///< units that do not fit, dead channels
@@ -62,5 +73,8 @@ struct UnitCheckOptions {
 /// would fit ("joint 2 rests at 32× the gravity torque: is the effort joint torque read as motor
 /// torque (× the gear ratio 32)?").
 LogChecks check_log_units(const UnitCheckInput& in, const UnitCheckOptions& options = {});
+
+/// The same checks of the columns `in` refers to.
+LogChecks check_log_units(const UnitCheckView& in, const UnitCheckOptions& options = {});
 
 }  // namespace tpf::offline

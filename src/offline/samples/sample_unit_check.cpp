@@ -2,33 +2,40 @@
 
 #include <limits>
 
+#include "offline/fit/parallel_halves.hpp"
 #include "tpf/dynamics/rnea.hpp"
 
 namespace tpf::offline {
 
-LogChecks check_sample_units(const ModelX& model, const JointSamples& samples) {
-  UnitCheckInput in;
-  in.t = samples.t;
-  in.q = samples.q;
-  in.dq = samples.dq;
-  in.ddq = samples.ddq;
-  in.effort = samples.effort;
-  in.gravity.setConstant(samples.size(), samples.joints(),
-                         std::numeric_limits<double>::quiet_NaN());
-  DataX data(model);
-  Eigen::VectorXd q(model.joint_count());  // sized once, assigned per sample
-  for (Eigen::Index r = 0; r < samples.size(); ++r) {
-    q = samples.q.row(r).transpose();
-    if (q.allFinite()) in.gravity.row(r) = compute_gravity(model, data, q).transpose();
-  }
-  in.gear_ratio = model.gear_ratio;
-  in.torque_constant = model.torque_constant;
-  in.effort_is_current = samples.units.unit == EffortUnit::Milliampere;
-  in.lower = model.lower;
-  in.upper = model.upper;
+Eigen::MatrixXd gravity_torque(const ModelX& model, const JointSamples& samples) {
+  const int joints = model.joint_count();
+  Eigen::MatrixXd gravity(samples.size(), joints);
+  parallel_halves(samples.size(), [&](Eigen::Index begin, Eigen::Index end) {
+    DataX data(model);
+    Eigen::VectorXd q(joints);  // sized once: assigned per sample
+    for (Eigen::Index k = begin; k < end; ++k) {
+      for (int j = 0; j < joints; ++j)
+        q[j] = samples.q(k, j);  // element-wise: no resize path (GCC 12 warns on Eigen's)
+      if (q.allFinite())
+        gravity.row(k) = compute_gravity(model, data, q).transpose();
+      else
+        gravity.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+  });
+  return gravity;
+}
+
+LogChecks check_sample_units(const ModelX& model, const JointSamples& samples,
+                             const Eigen::MatrixXd& gravity) {
+  const Eigen::MatrixXd computed =
+      gravity.size() == 0 ? gravity_torque(model, samples) : Eigen::MatrixXd();
+  std::vector<bool> prismatic;
   for (int j = 0; j < model.joint_count(); ++j)
-    in.prismatic.push_back(model.is_prismatic(j));
-  return check_log_units(in);
+    prismatic.push_back(model.is_prismatic(j));
+  return check_log_units(UnitCheckView{
+      samples.t, samples.q, samples.dq, samples.ddq, samples.effort,
+      gravity.size() == 0 ? computed : gravity, model.gear_ratio, model.torque_constant,
+      samples.units.unit == EffortUnit::Milliampere, model.lower, model.upper, prismatic});
 }
 
 }  // namespace tpf::offline

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <complex>
 
+#include "offline/fit/eigen_order_kernels.hpp"
+
 namespace tpf::offline {
 namespace {
 
@@ -30,16 +32,139 @@ struct PhaseSums {
   std::complex<double> z, uz, rz, zz;
 };
 
-PhaseSums phase_sums(const CentredResidual& c, const Eigen::ArrayXd& re, const Eigen::ArrayXd& im) {
+PhaseSums eigen_phase_sums(const CentredResidual& c, const Eigen::ArrayXd& re,
+                           const Eigen::ArrayXd& im) {
   return {{re.sum(), im.sum()},
           {(c.u * re).sum(), (c.u * im).sum()},
           {(c.r * re).sum(), (c.r * im).sum()},
           {(re.square() - im.square()).sum(), 2 * (re * im).sum()}};
 }
 
+#if TPF_EIGEN_ORDER_AVX
+
+// The kernel whose order is reproduced: 2-double packets, two of them per step.
+constexpr bool kSumOrderKnown = Eigen::internal::packet_traits<double>::size == 2 &&
+                                !Eigen::internal::packet_traits<double>::HasHalfPacket;
+
+/// One sum of fused_phase_sums: its four lanes, and its terms of the `rest` (< 4) samples after
+/// them, added as Eigen's sum() adds them.
+__attribute__((target("avx"))) double total(__m256d lanes, const double* tail, Eigen::Index rest) {
+  alignas(32) double l[4];
+  _mm256_store_pd(l, lanes);
+  double p0 = l[0] + l[2], p1 = l[1] + l[3];
+  if (rest >= 2) {
+    p0 += tail[0];
+    p1 += tail[1];
+  }
+  double sum = p0 + p1;
+  if (rest == 1) sum += tail[0];
+  if (rest == 3) sum += tail[2];
+  return sum;
+}
+
+/// The eight sums of eigen_phase_sums in one pass over the samples (with `rotate`, each e^(iθ)
+/// first advanced by w = wr + i·wi in place, as fitted_cycles' step does it), each added in the
+/// order Eigen's SSE2 sum() adds it: four lanes (the samples k mod 4 of the whole quadruples),
+/// lanes 0 + 2 and 1 + 3, the next pair, the two lanes, the last odd sample. Bit for bit Eigen's.
+__attribute__((target("avx"))) PhaseSums fused_phase_sums(const CentredResidual& c, double* re,
+                                                          double* im, const double* wr,
+                                                          const double* wi, bool rotate) {
+  const Eigen::Index m = c.u.size();
+  const double* u = c.u.data();
+  const double* r = c.r.data();
+  const Eigen::Index quads = m / 4 * 4;
+  __m256d z_re = _mm256_setzero_pd(), z_im = z_re, uz_re = z_re, uz_im = z_re, rz_re = z_re,
+          rz_im = z_re, zz_re = z_re, zz_im = z_re;
+  for (Eigen::Index k = 0; k < quads; k += 4) {
+    __m256d a = _mm256_loadu_pd(re + k), b = _mm256_loadu_pd(im + k);
+    if (rotate) {
+      const __m256d cw = _mm256_loadu_pd(wr + k), sw = _mm256_loadu_pd(wi + k);
+      const __m256d next = _mm256_sub_pd(_mm256_mul_pd(a, cw), _mm256_mul_pd(b, sw));
+      b = _mm256_add_pd(_mm256_mul_pd(a, sw), _mm256_mul_pd(b, cw));
+      a = next;
+      _mm256_storeu_pd(re + k, a);
+      _mm256_storeu_pd(im + k, b);
+    }
+    const __m256d uk = _mm256_loadu_pd(u + k), rk = _mm256_loadu_pd(r + k);
+    z_re = _mm256_add_pd(z_re, a);
+    z_im = _mm256_add_pd(z_im, b);
+    uz_re = _mm256_add_pd(uz_re, _mm256_mul_pd(uk, a));
+    uz_im = _mm256_add_pd(uz_im, _mm256_mul_pd(uk, b));
+    rz_re = _mm256_add_pd(rz_re, _mm256_mul_pd(rk, a));
+    rz_im = _mm256_add_pd(rz_im, _mm256_mul_pd(rk, b));
+    zz_re = _mm256_add_pd(zz_re, _mm256_sub_pd(_mm256_mul_pd(a, a), _mm256_mul_pd(b, b)));
+    zz_im = _mm256_add_pd(zz_im, _mm256_mul_pd(a, b));
+  }
+  // The samples after the quadruples, each sum's terms of them.
+  double tail[8][3] = {};
+  for (Eigen::Index k = quads; k < m; ++k) {
+    if (rotate) {
+      const double next = re[k] * wr[k] - im[k] * wi[k];
+      im[k] = re[k] * wi[k] + im[k] * wr[k];
+      re[k] = next;
+    }
+    const double a = re[k], b = im[k];
+    const double terms[8] = {a, b, u[k] * a, u[k] * b, r[k] * a, r[k] * b, a * a - b * b, a * b};
+    for (int q = 0; q < 8; ++q)
+      tail[q][k - quads] = terms[q];
+  }
+  const Eigen::Index rest = m - quads;
+  return {{total(z_re, tail[0], rest), total(z_im, tail[1], rest)},
+          {total(uz_re, tail[2], rest), total(uz_im, tail[3], rest)},
+          {total(rz_re, tail[4], rest), total(rz_im, tail[5], rest)},
+          {total(zz_re, tail[6], rest), 2 * total(zz_im, tail[7], rest)}};
+}
+
+/// Whether fused_phase_sums runs here (the CPU has AVX, Eigen sums as assumed, enough samples
+/// for Eigen's two-packet loop).
+bool fused_sums_run(Eigen::Index m) {
+  return kSumOrderKnown && m >= 8 && cpu_runs_eigen_order_kernels();
+}
+
+#endif  // TPF_EIGEN_ORDER_AVX
+
+PhaseSums phase_sums(const CentredResidual& c, Eigen::ArrayXd& re, Eigen::ArrayXd& im) {
+#if TPF_EIGEN_ORDER_AVX
+  if (fused_sums_run(c.u.size()))
+    return fused_phase_sums(c, re.data(), im.data(), nullptr, nullptr, false);
+#endif
+  return eigen_phase_sums(c, re, im);
+}
+
+/// e^(iθ) advanced by w = wr + i·wi, then its phase sums.
+PhaseSums rotated_phase_sums(const CentredResidual& c, Eigen::ArrayXd& re, Eigen::ArrayXd& im,
+                             const Eigen::ArrayXd& wr, const Eigen::ArrayXd& wi,
+                             Eigen::ArrayXd& next) {
+#if TPF_EIGEN_ORDER_AVX
+  if (fused_sums_run(c.u.size()))
+    return fused_phase_sums(c, re.data(), im.data(), wr.data(), wi.data(), true);
+#endif
+  next = re * wr - im * wi;
+  im = re * wi + im * wr;
+  re = next;
+  return eigen_phase_sums(c, re, im);
+}
+
+/// re = cos θ, im = sin θ per sample: on glibc from one sincos call each (the values its sin and
+/// cos give, in one call instead of two), elsewhere from std::cos and std::sin.
+void phases(const Eigen::ArrayXd& theta, Eigen::ArrayXd& re, Eigen::ArrayXd& im) {
+  re.resize(theta.size());
+  im.resize(theta.size());
+  for (Eigen::Index k = 0; k < theta.size(); ++k) {
+#if defined(__GLIBC__)
+    ::sincos(theta[k], &im[k], &re[k]);
+#else
+    re[k] = std::cos(theta[k]);
+    im[k] = std::sin(theta[k]);
+#endif
+  }
+}
+
 PhaseSums exact_phase_sums(const CentredResidual& c, double n, double scale) {
   const Eigen::ArrayXd theta = n * scale * c.u;
-  return phase_sums(c, theta.cos(), theta.sin());
+  Eigen::ArrayXd re, im;
+  phases(theta, re, im);
+  return phase_sums(c, re, im);
 }
 
 /// The sum of squares of r that cos θ and sin θ explain beside an offset and a slope in q: b'G⁻¹b,
@@ -99,21 +224,21 @@ double fitted_cycles(const Eigen::VectorXd& q, const Eigen::VectorXd& r, double 
   // e^(iθ) per sample, advanced by e^(i·step·scale·u) from one grid point to the next and
   // computed afresh every 64 points (the rounding of the products stays ~1e-14).
   const Eigen::ArrayXd advance = step * scale * c.u;
-  const Eigen::ArrayXd wr = advance.cos(), wi = advance.sin();
+  Eigen::ArrayXd wr, wi;
+  phases(advance, wr, wi);
   Eigen::ArrayXd re(m), im(m), next(m);
   Eigen::Index best = 0;
   double best_sum = -1;
   for (Eigen::Index i = 0; i < points; ++i) {
+    PhaseSums sums;
     if (i % 64 == 0) {
       const Eigen::ArrayXd theta = (lo + static_cast<double>(i) * step) * scale * c.u;
-      re = theta.cos();
-      im = theta.sin();
+      phases(theta, re, im);
+      sums = phase_sums(c, re, im);
     } else {
-      next = re * wr - im * wi;
-      im = re * wi + im * wr;
-      re = next;
+      sums = rotated_phase_sums(c, re, im, wr, wi, next);
     }
-    const double e = explained_sum(phase_sums(c, re, im), samples, c);
+    const double e = explained_sum(sums, samples, c);
     if (e > best_sum) {
       best_sum = e;
       best = i;
