@@ -23,13 +23,13 @@
 namespace tpf::test {
 namespace {
 
-constexpr double kCoupling = 0.5;
+constexpr double kPlantedCoupling = 0.5;
 
-PlanarArmPlant coupled_plant(std::uint64_t seed = 11) {
+PlanarArmPlant coupled_file_plant(std::uint64_t seed = 11) {
   PlanarArmPlant plant;
   plant.seed = seed;
   plant.duration_s = 40.0;
-  plant.motor2_coupling = kCoupling;
+  plant.motor2_coupling = kPlantedCoupling;
   return plant;
 }
 
@@ -42,7 +42,7 @@ const offline::Log& coupled_log() {
       paths.push_back(
           std::filesystem::temp_directory_path() /
           ("tpf_coupled_" + std::to_string(f + 1) + "_" + std::to_string(::getpid()) + ".csv"));
-      offline::write_log(paths.back(), generate_planar_log(coupled_plant(11 + f)));
+      offline::write_log(paths.back(), generate_planar_log(coupled_file_plant(11 + f)));
     }
     offline::Log read = offline::read_logs(paths);
     for (const auto& p : paths)
@@ -77,7 +77,7 @@ TEST(DiagnoseCoupled, TheCoupledRobotFileLeavesNothingToClaim) {
   EXPECT_TRUE(d.coupled_motors.empty());  // no pair of uncoupled motors to try
   // The coupled model as identify fits it: motor 2's friction on q̇₂ + 0.5·q̇₁.
   EXPECT_TRUE(d.nominal.model.coupled);
-  const PlanarArmPlant plant = coupled_plant();
+  const PlanarArmPlant plant = coupled_file_plant();
   std::printf("  motor 2: τ_c %.4f b %.4f; held-out moving RMSE %.4f %.4f N·m\n",
               d.nominal.friction.coulomb[1], d.nominal.friction.viscous[1],
               written_moving(d.written_after, 0), written_moving(d.written_after, 1));
@@ -95,7 +95,7 @@ TEST(DiagnoseCoupled, NamesTheUndeclaredCoupledMotorAndItsRatio) {
   std::printf("  fitted: motor %d rotates with q%d + %.4f·q%d\n", m.own() + 1, m.own() + 1,
               m.ratio(), m.other() + 1);
   EXPECT_EQ(m.own(), 1);
-  EXPECT_NEAR(m.ratio(), kCoupling, 0.05 * kCoupling);
+  EXPECT_NEAR(m.ratio(), kPlantedCoupling, 0.05 * kPlantedCoupling);
   ASSERT_EQ(d.claims.size(), 1u);
   const offline::Claim& c = d.claims[0];
   EXPECT_FALSE(c.ambiguous());
@@ -117,7 +117,7 @@ TEST(DiagnoseCoupled, NamesTheUndeclaredCoupledMotorAndItsRatio) {
   EXPECT_TRUE(transferred);
   EXPECT_TRUE(each_joint);
   // Its Coulomb and viscous coefficients: motor 2's planted friction.
-  const PlanarArmPlant plant = coupled_plant();
+  const PlanarArmPlant plant = coupled_file_plant();
   std::printf("  claim: removes %.1f %%, τ_c %.4f ± %.4f, b %.4f ± %.4f\n", 100 * c.improvements[0],
               c.coefficients[0], c.standard_errors[0], c.coefficients[1], c.standard_errors[1]);
   EXPECT_NEAR(c.coefficients[0], plant.coulomb_positive[1], 0.15 * plant.coulomb_positive[1]);
