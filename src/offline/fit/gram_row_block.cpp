@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "offline/fit/eigen_order_kernels.hpp"
+#include "offline/common/eigen_order_kernels.hpp"
 
 namespace tpf::offline {
 namespace {

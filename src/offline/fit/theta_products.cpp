@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "offline/fit/eigen_order_kernels.hpp"
+#include "offline/common/eigen_order_kernels.hpp"
 
 namespace tpf::offline {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <complex>
 
-#include "offline/fit/eigen_order_kernels.hpp"
+#include "offline/common/eigen_order_kernels.hpp"
 
 namespace tpf::offline {
 namespace {
