@@ -10,7 +10,9 @@ constexpr double kMinimumPush = 2.0;  // N, the hand always presses into the pad
 
 HumanHand::HumanHand(const TeachingConfig& config, const TwinVector& lower, const TwinVector& upper,
                      Random rng)
-    : config_(config), lower_(lower), upper_(upper), rng_(std::move(rng)) {}
+    : config_(config), lower_(lower), upper_(upper), rng_(std::move(rng)) {
+  frame_.linear_jacobian.setZero(3, lower.size());
+}
 
 void HumanHand::start_stroke(const TwinArm& arm, double t, const TwinVector& q) {
   // Grab a pad on links 2..N (link 1 barely moves the rest of the arm).
@@ -42,7 +44,8 @@ HandForce HumanHand::update(const TwinArm& arm, double t, const TwinVector& q,
   }
   HandForce out;
   if (!holding_) return out;
-  const PadFrame pad = arm.pad_frame(q, pad_);
+  arm.pad_frame(q, pad_, frame_);
+  const PadFrame& pad = frame_;
   const Vector3<double> path = target_ - start_;
   const double length = path.norm();
   const double travelled = std::min(length, config_.goal_speed * (t - stroke_start_));

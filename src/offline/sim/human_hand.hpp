@@ -35,6 +35,7 @@ class HumanHand {
   double area_ = 1.0;
   double stroke_start_ = 0.0;
   Vector3<double> start_ = Vector3<double>::Zero(), target_ = Vector3<double>::Zero();
+  PadFrame frame_;  ///< update's pad frame, reused: no allocation per step
 };
 
 }  // namespace tpf::offline

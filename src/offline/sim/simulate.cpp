@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <optional>
 #include <sstream>
 
@@ -233,9 +232,12 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
   SampleClock clock(scenario.sensors, ratio, root.split());
   std::vector<double> pad_force(pads, 0.0), pad_area(pads, 1.0);
 
-  // Delay line between the drive's current and the torque it produces (undeclared effect).
+  // Delay line between the drive's current and the torque it produces (undeclared effect): a ring
+  // of delay_steps + 1 currents, the one pushed delay_steps steps ago (the first, until then).
   const long delay_steps = fx.delay.enabled ? std::lround(fx.delay.delay_s / h) : 0;
-  std::deque<TwinVector> delay_line;
+  std::vector<TwinVector> delay_line(
+      static_cast<std::size_t>(delay_steps > 0 ? delay_steps + 1 : 0), TwinVector::Zero(joints));
+  long delay_pushed = 0;
   TwinVector temperature = TwinVector::Constant(joints, fx.thermal.initial_c);
   const TwinMatrix coupling =
       TwinMatrix::Identity(joints, joints) +
@@ -246,6 +248,12 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
   SimulationSummary summary;
   TwinVector q_ref = scenario.initial_q, dq_ref = TwinVector::Zero(joints);
   double last_host_update = 0.0;
+  // The loop's vectors, sized once: a step allocates nothing (plant and drive included).
+  TwinVector tau_ext(joints), q_meas(joints), dq_meas(joints), i_meas(joints);
+  TwinVector q_drive(joints), dq_drive(joints), current(joints), motor_current(joints);
+  TwinVector tau_motor(joints), tau_in(joints), viscous_scale(joints);
+  PadFrame frame;
+  frame.linear_jacobian.setZero(3, joints);
 
   for (long n = 0; n <= total_steps; ++n) {
     const double t = n * h;
@@ -260,7 +268,8 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
       const ContactSample c = contacts->at(t);
       if (c.pad >= 0) {
         contact_pad = c.pad;
-        force = arm.pad_frame(q, c.pad).rotation * c.force_contact;
+        arm.pad_frame(q, c.pad, frame);
+        force = frame.rotation * c.force_contact;
         area = c.area_cm2;
       }
     } else if (hand) {
@@ -269,10 +278,10 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
       force = f.force_world;
       area = f.area_cm2;
     }
-    TwinVector tau_ext = TwinVector::Zero(joints);
+    tau_ext.setZero();
     if (contact_pad >= 0) {
-      const PadFrame frame = arm.pad_frame(q, contact_pad);
-      tau_ext = multiply_transposed(frame.linear_jacobian, force);
+      arm.pad_frame(q, contact_pad, frame);
+      multiply_transposed(frame.linear_jacobian, force, tau_ext);
       std::fill(pad_force.begin(), pad_force.end(), 0.0);
       pad_force[contact_pad] = -force.dot(frame.rotation.col(2));
       pad_area[contact_pad] = area;
@@ -284,7 +293,6 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     // The host's cycle: what the drives and the pad board report.
     if (n == clock.next_step()) {
       const double stamp = clock.stamp(t);
-      TwinVector q_meas(joints), dq_meas(joints), i_meas(joints);
       for (int j = 0; j < joints; ++j) {
         q_meas[j] = quantise_position(q[j]);
         dq_meas[j] = quantise_velocity(dq[j]);
@@ -335,29 +343,28 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     } else if (admittance) {
       admittance->goal(t - last_host_update, q_ref, dq_ref);  // first-order hold, see goal()
     }
-    TwinVector q_drive(joints), dq_drive(joints);
     for (int j = 0; j < joints; ++j) {
       q_drive[j] = quantise_position(q[j]);
       dq_drive[j] = quantise_velocity(dq[j]);
     }
-    TwinVector current = drive.update(q_ref, dq_ref, q_drive, dq_drive, h);
+    current = drive.update(q_ref, dq_ref, q_drive, dq_drive, h);
     if (delay_steps > 0) {
-      delay_line.push_back(current);
-      if (static_cast<long>(delay_line.size()) > delay_steps) {
-        current = delay_line.front();
-        delay_line.pop_front();
-      } else {
-        current = delay_line.front();
-      }
+      const auto slots = static_cast<long>(delay_line.size());
+      delay_line[static_cast<std::size_t>(delay_pushed % slots)] = current;
+      current = delay_line[static_cast<std::size_t>(
+          delay_pushed >= delay_steps ? (delay_pushed - delay_steps) % slots : 0)];
+      ++delay_pushed;
     }
-    const TwinVector tau_motor = multiply(coupling, arm.torque_constant().cwiseProduct(current));
-    TwinVector viscous_scale = TwinVector::Ones(joints);
+    motor_current = arm.torque_constant().cwiseProduct(current);
+    multiply(coupling, motor_current, tau_motor);
+    viscous_scale.setOnes();
     if (fx.thermal.enabled)
       viscous_scale = (TwinVector::Ones(joints) +
                        fx.thermal.viscous_per_k *
                            (temperature - TwinVector::Constant(joints, fx.thermal.initial_c)))
                           .cwiseMax(0.1);
-    plant.step(tau_motor + tau_ext, viscous_scale);
+    tau_in = tau_motor + tau_ext;
+    plant.step(tau_in, viscous_scale);
     if (!plant.q().allFinite() || !plant.dq().allFinite())
       throw Error::at(scenario.robot_file, 0, "",
                       "the twin's state is no longer finite at t = " + std::to_string(n * h) +

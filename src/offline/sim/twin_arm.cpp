@@ -45,39 +45,49 @@ TwinArm::TwinArm(const Scenario& scenario) {
   model_.update_constants();
   if (!scenario.effects.gravity) model_.gravity.setZero();
   data_ = Data<double, Eigen::Dynamic>(model_);
+  zero_ = TwinVector::Zero(n);
+  jacobian_.setZero(6, n);
   if (!scenario.pads_file.empty()) pads_ = load_pads(scenario.pads_file, model_);
   current_limit_a_ = model_.current_limit / 1000.0;
 }
 
 TwinVector TwinArm::forward_dynamics(const TwinVector& q, const TwinVector& dq,
                                      const TwinVector& tau) const {
-  // tpf::forward_dynamics's steps, with the twin's Cholesky solve.
-  compute_mass_matrix(model_, data_, q);
-  detail::newton_euler_passes(model_, data_, dq, TwinVector::Zero(model_.joint_count()),
-                              Vector3<double>(-model_.gravity));
-  mass_factor_.compute(data_.M);
-  TwinVector ddq = tau - data_.tau;
-  mass_factor_.solve_in_place(ddq);
+  TwinVector ddq(model_.joint_count());
+  forward_dynamics(q, dq, tau, ddq);
   return ddq;
 }
-TwinMatrix TwinArm::mass_matrix(const TwinVector& q) const {
+void TwinArm::forward_dynamics(const TwinVector& q, const TwinVector& dq, const TwinVector& tau,
+                               TwinVector& ddq) const {
+  // tpf::forward_dynamics's steps, with the twin's Cholesky solve.
+  compute_mass_matrix(model_, data_, q);
+  detail::newton_euler_passes(model_, data_, dq, zero_, Vector3<double>(-model_.gravity));
+  mass_factor_.compute(data_.M);
+  ddq = tau - data_.tau;
+  mass_factor_.solve_in_place(ddq);
+}
+const TwinMatrix& TwinArm::mass_matrix(const TwinVector& q) const {
   return compute_mass_matrix(model_, data_, q);
 }
-TwinVector TwinArm::gravity(const TwinVector& q) const {
+const TwinVector& TwinArm::gravity(const TwinVector& q) const {
   return compute_gravity(model_, data_, q);
 }
 double TwinArm::energy(const TwinVector& q, const TwinVector& dq) const {
   return kinetic_energy(model_, data_, q, dq) + potential_energy(model_, data_, q);
 }
 PadFrame TwinArm::pad_frame(const TwinVector& q, int k) const {
+  PadFrame f;
+  pad_frame(q, k, f);
+  return f;
+}
+void TwinArm::pad_frame(const TwinVector& q, int k, PadFrame& f) const {
   const Pad& pad = pads_.at(static_cast<std::size_t>(k));
   forward_kinematics(model_, data_, q);
-  PadFrame f;
   f.link = pad.link;
   f.centre = world_point(data_, pad.link, pad.center);
   f.rotation = contact_frame_in_world(data_, pad.link, pad.normal);
-  f.linear_jacobian = point_jacobian(model_, data_, pad.link, f.centre).topRows<3>();
-  return f;
+  point_jacobian(model_, data_, pad.link, f.centre, jacobian_);
+  f.linear_jacobian = jacobian_.topRows<3>();
 }
 Vector3<double> TwinArm::pad_velocity(const PadFrame& frame, const TwinVector& dq) const {
   return multiply(frame.linear_jacobian, dq);

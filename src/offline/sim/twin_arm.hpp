@@ -36,14 +36,23 @@ class TwinArm {
   /// q̈ = M⁻¹(τ − C(q,q̇)q̇ − G(q)).
   TwinVector forward_dynamics(const TwinVector& q, const TwinVector& dq,
                               const TwinVector& tau) const;
-  /// M(q), armature on the diagonal.
-  TwinMatrix mass_matrix(const TwinVector& q) const;
-  /// G(q), N·m.
-  TwinVector gravity(const TwinVector& q) const;
+  /// q̈ = M⁻¹(τ − C(q,q̇)q̇ − G(q)) into `ddq` (resized to N): the same values as the by-value
+  /// call, allocation-free once `ddq` has N entries and the arm has made one such call. `ddq`
+  /// must not be `q`, `dq` or `tau`.
+  void forward_dynamics(const TwinVector& q, const TwinVector& dq, const TwinVector& tau,
+                        TwinVector& ddq) const;
+  /// M(q), armature on the diagonal. The reference is to the arm's workspace: the next dynamics
+  /// call on this arm (mass_matrix, gravity, forward_dynamics, energy, pad_frame) overwrites it,
+  /// so copy what you keep. Allocation-free.
+  const TwinMatrix& mass_matrix(const TwinVector& q) const;
+  /// G(q), N·m; in the arm's workspace like mass_matrix (copy what you keep). Allocation-free.
+  const TwinVector& gravity(const TwinVector& q) const;
   /// T + V, J.
   double energy(const TwinVector& q, const TwinVector& dq) const;
   /// Pad k (0-based) at q.
   PadFrame pad_frame(const TwinVector& q, int k) const;
+  /// Pad k at q into `frame`: allocation-free once `frame` has been filled for this arm.
+  void pad_frame(const TwinVector& q, int k, PadFrame& frame) const;
   /// Velocity of a pad's centre, J_v·q̇ (world frame, m/s).
   Vector3<double> pad_velocity(const PadFrame& frame, const TwinVector& dq) const;
   int pad_count() const;
@@ -62,8 +71,10 @@ class TwinArm {
 
  private:
   Model<double, Eigen::Dynamic> model_;
-  mutable Data<double, Eigen::Dynamic> data_;  ///< workspace of the dynamics calls
-  mutable TwinCholesky mass_factor_;           ///< of M(q), forward_dynamics
+  mutable Data<double, Eigen::Dynamic> data_;          ///< workspace of the dynamics calls
+  mutable TwinCholesky mass_factor_;                   ///< of M(q), forward_dynamics
+  mutable Jacobian<double, Eigen::Dynamic> jacobian_;  ///< pad_frame's 6×N point Jacobian
+  TwinVector zero_;  ///< N zeros: forward_dynamics's q̈ of the RNEA
   std::vector<Pad> pads_;
   TwinVector current_limit_a_;
 };

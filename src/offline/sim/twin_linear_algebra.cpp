@@ -22,9 +22,14 @@ double sum_in_sequence(int count, const Term& term) {
 
 TwinVector multiply(const TwinMatrix& a, const TwinVector& x) {
   TwinVector y(a.rows());
-  for (Eigen::Index i = 0; i < a.rows(); ++i)
-    y[i] = sum_in_sequence(static_cast<int>(a.cols()), [&](int k) { return a(i, k) * x[k]; });
+  multiply(a, x, y);
   return y;
+}
+
+void multiply(const TwinMatrix& a, const TwinVector& x, TwinVector& out) {
+  out.resize(a.rows());
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    out[i] = sum_in_sequence(static_cast<int>(a.cols()), [&](int k) { return a(i, k) * x[k]; });
 }
 
 Vector3<double> multiply(const TwinJacobian& jacobian, const TwinVector& x) {
@@ -40,9 +45,14 @@ Vector3<double> multiply(const TwinJacobian& jacobian, const TwinVector& x) {
 
 TwinVector multiply_transposed(const TwinJacobian& jacobian, const Vector3<double>& f) {
   TwinVector y(jacobian.cols());
-  for (Eigen::Index j = 0; j < jacobian.cols(); ++j)
-    y[j] = sum_in_lanes(0, 3, [&](int r) { return jacobian(r, j) * f[r]; });
+  multiply_transposed(jacobian, f, y);
   return y;
+}
+
+void multiply_transposed(const TwinJacobian& jacobian, const Vector3<double>& f, TwinVector& out) {
+  out.resize(jacobian.cols());
+  for (Eigen::Index j = 0; j < jacobian.cols(); ++j)
+    out[j] = sum_in_lanes(0, 3, [&](int r) { return jacobian(r, j) * f[r]; });
 }
 
 bool TwinCholesky::compute(const TwinMatrix& a) {
@@ -83,7 +93,8 @@ void TwinLdlt::compute(const TwinMatrix& a) {
   for (int k = 0; k < n; ++k)
     transpositions_[static_cast<std::size_t>(k)] = k;
   if (n <= 1) return;
-  TwinVector temp(n);
+  temp_.resize(n);
+  TwinVector& temp = temp_;
   for (int k = 0; k < n; ++k) {
     int biggest = k;  // the first of the largest |D| in the trailing corner
     for (int i = k + 1; i < n; ++i)
@@ -118,9 +129,14 @@ void TwinLdlt::compute(const TwinMatrix& a) {
 }
 
 TwinVector TwinLdlt::solve(const TwinVector& b) const {
+  TwinVector x = b;
+  solve_in_place(x);
+  return x;
+}
+
+void TwinLdlt::solve_in_place(TwinVector& x) const {
   const TwinMatrix& m = factor_;
   const int n = static_cast<int>(m.rows());
-  TwinVector x = b;
   for (int k = 0; k < n; ++k)  // P·b
     std::swap(x[k], x[transpositions_[static_cast<std::size_t>(k)]]);
   for (int i = 1; i < n; ++i)  // unit L, rows summed in halves
@@ -131,7 +147,6 @@ TwinVector TwinLdlt::solve(const TwinVector& b) const {
     x[i] -= sum_in_lanes(i + 1, n - 1 - i, [&](int k) { return m(k, i) * x[k]; });
   for (int k = n - 1; k >= 0; --k)  // Pᵀ
     std::swap(x[k], x[transpositions_[static_cast<std::size_t>(k)]]);
-  return x;
 }
 
 }  // namespace tpf::offline

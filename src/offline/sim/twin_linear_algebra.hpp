@@ -63,18 +63,24 @@ double sum_in_lanes(int first, int count, const Term& term) {
 
 /// A·x, each coefficient summed sequentially over the columns (an N×N matrix times a vector).
 TwinVector multiply(const TwinMatrix& a, const TwinVector& x);
+/// A·x into `out` (resized to A's rows: allocation-free once it has that size). `out` must not be
+/// `x`.
+void multiply(const TwinMatrix& a, const TwinVector& x, TwinVector& out);
 
 /// J·x for a 3×N Jacobian, as Eigen's fixed-size Matrix<double, 3, N> times a vector of N.
 Vector3<double> multiply(const TwinJacobian& jacobian, const TwinVector& x);
 
 /// Jᵀ·f for a 3×N Jacobian, each joint's three terms summed as in Eigen's Jᵀ·f of a fixed-size J.
 TwinVector multiply_transposed(const TwinJacobian& jacobian, const Vector3<double>& f);
+/// Jᵀ·f into `out` (resized to N: allocation-free once it has that size).
+void multiply_transposed(const TwinJacobian& jacobian, const Vector3<double>& f, TwinVector& out);
 
 /// Cholesky factor L (A = L·Lᵀ) of a symmetric positive definite matrix and solves with it, as
 /// Eigen::LLT of a fixed-size matrix. Only the lower triangle of A is read.
 class TwinCholesky {
  public:
-  /// Factors A; false (and the factor unusable) when A is not positive definite.
+  /// Factors A; false (and the factor unusable) when A is not positive definite. Allocation-free
+  /// from the second call at the same size on.
   bool compute(const TwinMatrix& a);
   /// x = A⁻¹·b in place.
   void solve_in_place(TwinVector& b) const;
@@ -87,13 +93,17 @@ class TwinCholesky {
 /// symmetric matrix that is only semi-definite too). Only the lower triangle of A is read.
 class TwinLdlt {
  public:
+  /// Factors A; allocation-free from the second call at the same size on.
   void compute(const TwinMatrix& a);
   /// A⁻¹·b (the pseudo-inverse of D where a pivot is zero).
   TwinVector solve(const TwinVector& b) const;
+  /// b ← A⁻¹·b, as solve(b) and allocation-free.
+  void solve_in_place(TwinVector& b) const;
 
  private:
   TwinMatrix factor_;                ///< L below the diagonal, D on it
   std::vector<int> transpositions_;  ///< row k was swapped with row transpositions_[k]
+  TwinVector temp_;                  ///< compute's workspace: D·(row k of L)
 };
 
 }  // namespace tpf::offline

@@ -28,6 +28,11 @@ TwinPlant::TwinPlant(const TwinArm& arm, const TwinFriction& friction, const Eff
     }
   }
   reset(TwinVector::Zero(n_), TwinVector::Zero(n_));
+  for (TwinVector* v : {&q0_, &dq0_, &a1_, &a2_, &a3_, &a4_, &v2_, &v3_, &v4_, &q_stage_,
+                        &tau_stage_, &abs_gravity_, &v0_, &delta_, &force_, &slope_, &newton_step_})
+    v->setZero(n_);
+  mass_.setZero(n_, n_);
+  newton_matrix_.setZero(n_, n_);
 }
 
 void TwinPlant::reset(const TwinVector& q, const TwinVector& dq) {
@@ -39,19 +44,26 @@ void TwinPlant::reset(const TwinVector& q, const TwinVector& dq) {
 }
 
 TwinVector TwinPlant::position_torque(const TwinVector& q) const {
-  TwinVector tau = TwinVector::Zero(n_);
+  TwinVector tau(n_);
+  position_torque(q, tau);
+  return tau;
+}
+
+void TwinPlant::position_torque(const TwinVector& q, TwinVector& tau) const {
+  tau.setZero(n_);
   if (effects_.ripple.enabled)
     for (int j = 0; j < n_; ++j)
       tau[j] += effects_.ripple.amplitude[j] *
                 std::sin(effects_.ripple.cycles_per_rev[j] * q[j] + effects_.ripple.phase[j]);
   if (effects_.spring.enabled)
     tau -= effects_.spring.stiffness.cwiseProduct(q - effects_.spring.neutral);
-  return tau;
 }
 
-TwinVector TwinPlant::acceleration(const TwinVector& q, const TwinVector& dq,
-                                   const TwinVector& tau_in) {
-  return arm_.forward_dynamics(q, dq, tau_in + position_torque(q));
+void TwinPlant::acceleration(const TwinVector& q, const TwinVector& dq, const TwinVector& tau_in,
+                             TwinVector& ddq) {
+  position_torque(q, tau_stage_);
+  tau_stage_ = tau_in + tau_stage_;  // coefficient-wise: τ_in[j] + τ_pos[j], as before
+  arm_.forward_dynamics(q, dq, tau_stage_, ddq);
 }
 
 double TwinPlant::joint_friction(int j, double v, double abs_gravity, double viscous_scale,
@@ -71,26 +83,39 @@ double TwinPlant::joint_friction(int j, double v, double abs_gravity, double vis
 }
 
 void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) {
+  // The expressions of the by-value formulation, evaluated into the members: same values, same
+  // order of operations, bit for bit (the twin's logs are pinned to its rounding).
   const double h = dt_;
-  const TwinVector q0 = q_, dq0 = dq_;
+  q0_ = q_;
+  dq0_ = dq_;
+  const TwinVector &q0 = q0_, &dq0 = dq0_;
   // 1. RK4 of the smooth dynamics.
-  const TwinVector a1 = acceleration(q0, dq0, tau_in);
-  const TwinVector v2 = dq0 + 0.5 * h * a1;
-  const TwinVector a2 = acceleration(q0 + 0.5 * h * dq0, v2, tau_in);
-  const TwinVector v3 = dq0 + 0.5 * h * a2;
-  const TwinVector a3 = acceleration(q0 + 0.5 * h * v2, v3, tau_in);
-  const TwinVector v4 = dq0 + h * a3;
-  const TwinVector a4 = acceleration(q0 + h * v3, v4, tau_in);
-  TwinVector q = q0 + (h / 6.0) * (dq0 + 2.0 * v2 + 2.0 * v3 + v4);
-  TwinVector dq = dq0 + (h / 6.0) * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+  acceleration(q0, dq0, tau_in, a1_);
+  v2_ = dq0 + 0.5 * h * a1_;
+  q_stage_ = q0 + 0.5 * h * dq0;
+  acceleration(q_stage_, v2_, tau_in, a2_);
+  v3_ = dq0 + 0.5 * h * a2_;
+  q_stage_ = q0 + 0.5 * h * v2_;
+  acceleration(q_stage_, v3_, tau_in, a3_);
+  v4_ = dq0 + h * a3_;
+  q_stage_ = q0 + h * v3_;
+  acceleration(q_stage_, v4_, tau_in, a4_);
+  TwinVector& q = q_;
+  TwinVector& dq = dq_;
+  q = q0 + (h / 6.0) * (dq0 + 2.0 * v2_ + 2.0 * v3_ + v4_);
+  dq = dq0 + (h / 6.0) * (a1_ + 2.0 * a2_ + 2.0 * a3_ + a4_);
 
   // 2. Implicit friction impulse.
   if (effects_.friction != EffectsConfig::Friction::kNone) {
-    TwinVector abs_gravity = TwinVector::Zero(n_);
+    TwinVector& abs_gravity = abs_gravity_;
+    abs_gravity.setZero();
     if (effects_.load_dependent_friction) abs_gravity = arm_.gravity(q0).cwiseAbs();
-    const TwinMatrix M = arm_.mass_matrix(q);
-    const TwinVector v0 = (q - q0) / h;
-    TwinVector delta = TwinVector::Zero(n_), force(n_), slope(n_);
+    mass_ = arm_.mass_matrix(q);
+    const TwinMatrix& M = mass_;
+    v0_ = (q - q0) / h;
+    const TwinVector& v0 = v0_;
+    TwinVector &delta = delta_, &force = force_, &slope = slope_;
+    delta.setZero();
     for (int it = 0; it < kNewtonIterations; ++it) {
       for (int j = 0; j < n_; ++j) {
         const double v = v0[j] + 0.5 * delta[j];
@@ -102,11 +127,14 @@ void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) 
       }
       // M·δ by twin_linear_algebra.hpp, then the sum: in one expression Eigen would accumulate
       // M·δ into h·F, and the twin's logs must not depend on Eigen's kernels.
-      const TwinVector residual = multiply(M, delta) + h * force;
-      TwinMatrix J = M;
+      TwinVector& step = newton_step_;  // the residual M·δ + h·F, then the Newton step
+      multiply(M, delta, step);
+      step += h * force;
+      TwinMatrix& J = newton_matrix_;
+      J = M;
       J.diagonal() += 0.5 * h * slope.cwiseMax(0.0);
       newton_factor_.compute(J);
-      const TwinVector step = newton_factor_.solve(residual);
+      newton_factor_.solve_in_place(step);
       delta -= step;
       if (step.cwiseAbs().maxCoeff() < 1e-13 * (1.0 + v0.cwiseAbs().maxCoeff())) break;
     }
@@ -119,8 +147,6 @@ void TwinPlant::step(const TwinVector& tau_in, const TwinVector& viscous_scale) 
     friction_.setZero();
   }
   ddq_ = (dq - dq0) / h;
-  q_ = q;
-  dq_ = dq;
 }
 
 }  // namespace tpf::offline

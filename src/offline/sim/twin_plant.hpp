@@ -31,6 +31,7 @@ class TwinPlant {
   void reset(const TwinVector& q, const TwinVector& dq);
 
   /// Advances one step with τ_in (N·m) held; `viscous_scale` multiplies b (temperature drift).
+  /// Allocation-free after the first step: its vectors and matrices are members, sized once.
   void step(const TwinVector& tau_in, const TwinVector& viscous_scale);
 
   const TwinVector& q() const { return q_; }
@@ -42,12 +43,17 @@ class TwinPlant {
   const TwinVector& bristles() const { return bristles_; }
   /// Torque of the position-dependent undeclared effects (ripple + spring) at q, N·m.
   TwinVector position_torque(const TwinVector& q) const;
+  /// position_torque(q) into `tau` (resized to N; allocation-free at that size). `tau` must not
+  /// be `q`.
+  void position_torque(const TwinVector& q, TwinVector& tau) const;
   /// Total mechanical energy T + V (J).
   double energy() const { return arm_.energy(q_, dq_); }
   const TwinArm& arm() const { return arm_; }
 
  private:
-  TwinVector acceleration(const TwinVector& q, const TwinVector& dq, const TwinVector& tau_in);
+  /// q̈ at (q, q̇) under τ_in + τ_pos(q), into `ddq`; uses tau_stage_.
+  void acceleration(const TwinVector& q, const TwinVector& dq, const TwinVector& tau_in,
+                    TwinVector& ddq);
   double joint_friction(int j, double v, double abs_gravity, double viscous_scale,
                         double* z_out) const;
 
@@ -59,6 +65,11 @@ class TwinPlant {
   TwinVector q_, dq_, ddq_, friction_;
   TwinVector bristles_;     ///< LuGre deflection z per joint, rad
   TwinLdlt newton_factor_;  ///< of the friction step's Newton matrix M + ½h·∂F/∂v
+  // step()'s workspace, sized once (the names of step's quantities).
+  TwinVector q0_, dq0_, a1_, a2_, a3_, a4_, v2_, v3_, v4_;
+  TwinVector q_stage_, tau_stage_;  ///< an RK4 stage's q and τ_in + τ_pos(q)
+  TwinVector abs_gravity_, v0_, delta_, force_, slope_, newton_step_;
+  TwinMatrix mass_, newton_matrix_;  ///< M(q*) and M + ½h·max(∂F/∂v, 0)
 };
 
 }  // namespace tpf::offline

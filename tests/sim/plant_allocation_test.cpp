@@ -1,0 +1,134 @@
+// The twin's plant allocates nothing per step after the first (its workspace is sized once): on
+// the 4-joint arm with each friction model and the position-dependent effects, and on the 9-joint
+// arm of tests/sim/arm9; nor does the simulation loop between two logged rows (excitation with
+// undeclared effects and a current delay, static contacts). Under AddressSanitizer, heap traffic
+// per step was a third of the simulation's time.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <span>
+#include <string>
+
+#include "offline/sim/scenario.hpp"
+#include "offline/sim/simulate.hpp"
+#include "offline/sim/twin_arm.hpp"
+#include "offline/sim/twin_plant.hpp"
+#include "support/allocation_counter.hpp"
+
+// Eigen's heap memory comes from std::malloc, which AllocationCounter (operator new) does not see.
+// On Linux this program is linked with --wrap=malloc (tests/sim/CMakeLists.txt): every malloc call
+// of its own code and of the libraries it links statically comes here first. Elsewhere
+// __real_malloc stays null and this is never called.
+extern "C" {
+void* __real_malloc(std::size_t size) __attribute__((weak));
+void* __wrap_malloc(std::size_t size);
+}
+
+namespace {
+thread_local std::size_t g_sim_mallocs = 0;
+}  // namespace
+
+extern "C" void* __wrap_malloc(std::size_t size) {
+  ++g_sim_mallocs;
+  return __real_malloc(size);
+}
+
+namespace {
+
+using namespace tpf::offline;
+
+/// Heap allocations of this thread so far: operator new and (where counted) malloc.
+std::size_t heap_allocations() {
+  // The compiler takes malloc for a function that leaves other globals alone: read afresh.
+  std::atomic_signal_fence(std::memory_order_seq_cst);
+  return tpf::test::allocation_count() + g_sim_mallocs;
+}
+
+bool mallocs_are_counted() {
+  const std::size_t before = heap_allocations();
+  void* volatile p = std::malloc(16);
+  std::free(p);
+  return heap_allocations() != before;
+}
+
+/// Heap allocations of `steps` plant steps after a first one, from the scenario's initial pose.
+std::size_t allocations_after_first_step(const Scenario& s, int steps) {
+  const TwinArm arm(s);
+  const int n = arm.joints();
+  TwinFriction friction{std::vector<JointFriction>(static_cast<std::size_t>(n))};
+  if (s.effects.friction != EffectsConfig::Friction::kNone)
+    friction = load_twin_friction(s.friction_file, n);
+  TwinPlant plant(arm, friction, s.effects, 1.0 / s.inner_rate_hz);
+  plant.reset(s.initial_q, TwinVector::Constant(n, 0.3));
+  const TwinVector tau = TwinVector::Constant(n, 0.5), viscous_scale = TwinVector::Ones(n);
+  plant.step(tau, viscous_scale);
+  const std::size_t before = heap_allocations();
+  for (int k = 0; k < steps; ++k)
+    plant.step(tau, viscous_scale);
+  const std::size_t count = heap_allocations() - before;
+  EXPECT_TRUE(plant.q().allFinite());
+  return count;
+}
+
+Scenario with_position_effects(Scenario s) {
+  const int n = static_cast<int>(s.initial_q.size());
+  s.effects.ripple.enabled = true;
+  s.effects.ripple.amplitude = TwinVector::Constant(n, 0.05);
+  s.effects.ripple.cycles_per_rev = TwinVector::Constant(n, 12.0);
+  s.effects.ripple.phase = TwinVector::Zero(n);
+  s.effects.spring.enabled = true;
+  s.effects.spring.stiffness = TwinVector::Constant(n, 0.2);
+  s.effects.spring.neutral = TwinVector::Zero(n);
+  return s;
+}
+
+TEST(TwinPlantAllocation, StepsAfterTheFirstAllocateNothing) {
+  if (!mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
+  const Scenario base = with_position_effects(
+      load_scenario(TPF_TEST_DATA_DIR "/scenarios/excitation-undeclared.json"));
+  for (const auto friction : {EffectsConfig::Friction::kLuGre, EffectsConfig::Friction::kStribeck,
+                              EffectsConfig::Friction::kNone}) {
+    for (const bool load_dependent : {true, false}) {
+      Scenario s = base;
+      s.effects.friction = friction;
+      s.effects.load_dependent_friction = load_dependent;
+      EXPECT_EQ(allocations_after_first_step(s, 200), 0u)
+          << "friction model " << static_cast<int>(friction) << ", load-dependent "
+          << load_dependent;
+    }
+  }
+}
+
+TEST(TwinPlantAllocation, NineJointStepsAfterTheFirstAllocateNothing) {
+  if (!mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
+  const Scenario s = load_scenario(std::string(TPF_SIM_TEST_DIR "/arm9/arm9-excitation.json"));
+  ASSERT_EQ(s.initial_q.size(), 9);
+  EXPECT_EQ(allocations_after_first_step(s, 200), 0u);
+}
+
+/// Heap allocations of the simulation loop between logged rows, summed over the rows after the
+/// first two (10 inner steps each at the scenario's 4 kHz and 400 Hz).
+std::size_t allocations_between_rows(const Scenario& s, double duration_s) {
+  std::size_t rows = 0, previous = 0, between = 0;
+  simulate(s, 11, duration_s, [&](std::span<const double>) {
+    const std::size_t now = heap_allocations();
+    if (rows >= 2) between += now - previous;
+    ++rows;
+    previous = heap_allocations();
+  });
+  EXPECT_GT(rows, 100u);
+  return between;
+}
+
+TEST(TwinPlantAllocation, SimulationStepsAllocateNothing) {
+  if (!mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
+  Scenario undeclared = load_scenario(TPF_TEST_DATA_DIR "/scenarios/excitation-undeclared.json");
+  undeclared.effects.delay.enabled = true;
+  undeclared.effects.delay.delay_s = 0.002;
+  EXPECT_EQ(allocations_between_rows(undeclared, 3.0), 0u) << "excitation, undeclared effects";
+  const Scenario contacts = load_scenario(TPF_TEST_DATA_DIR "/scenarios/static-contacts.json");
+  EXPECT_EQ(allocations_between_rows(contacts, 3.0), 0u) << "static contacts";
+}
+
+}  // namespace
