@@ -232,22 +232,18 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
   // A joint whose gravity torque stays negligible (a vertical axis) has no load column to fit:
   // α·|G| there would fit noise in |G| with an absurd α.
   const double arm_gravity = abs_gravity.array().isFinite().select(abs_gravity, 0.0).maxCoeff();
-  const bool neighbour_load = has_neighbour_load(clamped);
   auto fit_joint = [&](int j) {
     std::vector<Eigen::Index> rows, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
       if (s.valid[k] && moving(j, k)) (s.heldout[k] && !judged ? heldout : rows).push_back(k);
     // Friction target without the held terms (asymmetry, neighbour load), and the linear curve.
-    // The neighbour-load term only where it has a coefficient (else it adds zeros).
     Eigen::VectorXd abs_g(joints);  // sized once, assigned per sample
     auto target_at = [&](Eigen::Index k) {
+      abs_g = abs_gravity.row(k).transpose();
       const double dq = velocity(k, j);
-      double held =
-          clamped.coulomb_asymmetry[j] * (dq != 0.0) + clamped.viscous_asymmetry[j] * std::abs(dq);
-      if (neighbour_load) {
-        abs_g = abs_gravity.row(k).transpose();
-        held += neighbour_load_friction(clamped, j, dq, abs_g);
-      }
+      const double held = clamped.coulomb_asymmetry[j] * (dq != 0.0) +
+                          clamped.viscous_asymmetry[j] * std::abs(dq) +
+                          neighbour_load_friction(clamped, j, dq, abs_g);
       return (coupled ? motor_residual(k, j) : s.effort(k, j) - rigid_prediction(k, j)) - held;
     };
     if (rows.size() < 50) {
@@ -550,7 +546,6 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
   // Same as nominal_residual(nominal, s) (the rigid part is the prediction above, the model has
   // no added effects), without a third regressor pass.
   out.residual.resize(s.size(), joints);
-  const bool neighbour_load = has_neighbour_load(nominal.friction);
   parallel_halves(s.size(), [&](Eigen::Index begin, Eigen::Index end) {
     Eigen::VectorXd abs_g(joints);  // sized once, assigned per sample
     for (Eigen::Index k = begin; k < end; ++k) {
@@ -573,12 +568,11 @@ Identification identify(const Log& log, const ModelX& model, IdentificationSetup
           out.residual(k, j) = s.effort(k, j) - rigid(k, j) - friction[j];
         continue;
       }
-      // stribeck_friction of every joint, term by term without a vector per sample; the
-      // neighbour-load terms where they have a coefficient (else they add zeros).
+      // stribeck_friction of every joint, term by term without a vector per sample.
       for (int j = 0; j < joints; ++j) {
         const double dq = s.dq(k, j);
-        double friction = stribeck_friction(nominal.friction, j, dq, abs_g[j]);
-        if (neighbour_load) friction += neighbour_load_friction(nominal.friction, j, dq, abs_g);
+        const double friction = stribeck_friction(nominal.friction, j, dq, abs_g[j]) +
+                                neighbour_load_friction(nominal.friction, j, dq, abs_g);
         out.residual(k, j) = s.effort(k, j) - rigid(k, j) - friction;
       }
     }
