@@ -9,7 +9,7 @@
 #include "compensator_gate_printout.hpp"
 #include "model_file_options.hpp"
 #include "offline/calibrate/estimator_calibration.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/read_log.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"

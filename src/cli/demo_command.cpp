@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/demo_pipeline.hpp"

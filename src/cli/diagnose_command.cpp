@@ -12,7 +12,7 @@
 #include "core/common/atomic_file.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/log/read_logs.hpp"

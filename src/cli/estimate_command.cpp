@@ -15,7 +15,7 @@
 #include "compensator_gate_printout.hpp"
 #include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/log_writer.hpp"
 #include "offline/log/read_log.hpp"
 #include "offline/replay/contact_episodes.hpp"

@@ -10,7 +10,7 @@
 #include "commands.hpp"
 #include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/evaluate/evaluation.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/log/read_log.hpp"

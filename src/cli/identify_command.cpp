@@ -10,7 +10,7 @@
 #include "commands.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"

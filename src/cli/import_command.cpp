@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/import_log.hpp"
 #include "offline/log/log_writer.hpp"
 #include "offline/log/torque_sensor.hpp"

@@ -8,7 +8,7 @@
 #include "model_file_options.hpp"
 #include "offline/common/data_files.hpp"
 #include "offline/common/run_time_types.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "option_validators.hpp"
 #include "tpf/core.hpp"
 

@@ -4,7 +4,7 @@
 
 #include "commands.hpp"
 #include "core/common/atomic_file.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN

@@ -7,7 +7,7 @@
 #include <system_error>
 #include <vector>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/compensator_weight_files.hpp"
 

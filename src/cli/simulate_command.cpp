@@ -9,7 +9,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
 #include "option_validators.hpp"

@@ -15,7 +15,7 @@
 #include "commands.hpp"
 #include "core/common/atomic_file.hpp"
 #include "model_file_options.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/compensator_training/held_out_score.hpp"
 #include "offline/compensator_training/train_compensator.hpp"
 #include "offline/log/read_log.hpp"

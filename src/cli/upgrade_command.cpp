@@ -6,7 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/upgrade/upgrade_files.hpp"
 #include "option_validators.hpp"
 #include "output_collisions.hpp"

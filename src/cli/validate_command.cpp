@@ -9,7 +9,7 @@
 #include "commands.hpp"
 #include "compensator_gate_printout.hpp"
 #include "core/common/atomic_file.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/samples/joint_samples.hpp"
 #include "offline/validate/validation.hpp"

@@ -6,7 +6,10 @@
 #include <sstream>
 
 #include "core/common/json_parse.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::json {
 
@@ -214,3 +217,5 @@ void Object::finish() const {
 }
 
 }  // namespace tpf::json
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -7,7 +7,10 @@
 #include <string>
 #include <string_view>
 
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf::json {
 namespace {
@@ -87,3 +90,5 @@ nlohmann::json parse_file(const std::filesystem::path& path) {
 }
 
 }  // namespace tpf::json
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

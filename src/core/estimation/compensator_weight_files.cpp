@@ -3,9 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/compensator.hpp"
 #include "tpf/nn/tcn_weight_file.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 namespace {
@@ -88,3 +91,5 @@ std::string describe(const CompensatorWeightFiles& w) {
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -9,6 +9,9 @@
 
 #include "core/common/atomic_file.hpp"
 #include "core/common/json_object.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 namespace {
@@ -189,3 +192,5 @@ void save_estimator_parameters(const std::filesystem::path& file,
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

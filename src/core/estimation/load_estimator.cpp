@@ -1,7 +1,10 @@
 #include "tpf/estimation/load_estimator.hpp"
 
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/estimator_parameter_file.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 
@@ -20,3 +23,5 @@ EstimatorSetup<Eigen::Dynamic> load_estimator_setup(const EstimatorFiles& files,
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

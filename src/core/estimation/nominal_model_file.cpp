@@ -8,9 +8,12 @@
 
 #include "core/common/atomic_file.hpp"
 #include "core/common/json_object.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/model/load_robot.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 namespace {
@@ -260,3 +263,5 @@ void save_nominal_model(const std::filesystem::path& params_file, const NominalM
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

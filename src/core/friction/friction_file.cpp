@@ -2,6 +2,9 @@
 #include "tpf/friction/friction_file.hpp"
 
 #include "core/common/json_object.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 namespace {
@@ -71,3 +74,5 @@ std::string friction_effort_unit(const std::string& path) {
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

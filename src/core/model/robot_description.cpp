@@ -5,7 +5,10 @@
 #include <limits>
 
 #include "core/common/json_object.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 namespace {
@@ -36,8 +39,9 @@ Eigen::MatrixXd coupling_matrix(const RobotDescription& robot, json::Object& top
   if (n > 0 && !c.isIdentity(0.0)) {
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(c);
     if (lu.rank() < n)
-      top.fail("joints", "the motors' coupled_to make a singular coupling: the motors cannot "
-                         "move every joint on its own");
+      top.fail("joints",
+               "the motors' coupled_to make a singular coupling: the motors cannot "
+               "move every joint on its own");
   }
   return c;
 }
@@ -89,3 +93,5 @@ RobotDescription load_robot_description(const std::filesystem::path& robot_file)
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -14,8 +14,11 @@
 #include <sstream>
 #include <vector>
 
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 #include "tpf/model/robot_description.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 namespace {
@@ -425,3 +428,5 @@ ChainDescription load_urdf_chain(const std::filesystem::path& urdf_file, const C
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

@@ -14,7 +14,10 @@
 #include "core/common/atomic_file.hpp"
 #include "core/common/json_object.hpp"
 #include "core/common/json_parse.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 namespace {
@@ -279,3 +282,5 @@ void write_tcn_weight_file(const std::string& path, const TcnWeightFile& file) {
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

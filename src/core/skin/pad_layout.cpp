@@ -4,7 +4,10 @@
 #include <map>
 
 #include "core/common/json_object.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 
 namespace tpf {
 
@@ -41,3 +44,5 @@ std::vector<Pad> load_pads(const std::filesystem::path& pads_file,
 }
 
 }  // namespace tpf
+
+TPF_UNOPTIMISED_WHEN_SANITIZED_END

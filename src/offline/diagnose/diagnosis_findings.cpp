@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/report/text_format.hpp"
 #include "offline/samples/joint_samples.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/regimes/regime.hpp"
 #include "offline/regimes/regime_stats.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <map>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN

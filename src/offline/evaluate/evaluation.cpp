@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "offline/calibrate/estimator_calibration.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/replay/estimator_samples.hpp"
 #include "tpf/common/error.hpp"
 

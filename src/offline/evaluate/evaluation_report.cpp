@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/histogram.hpp"
 #include "offline/report/line_plot.hpp"
 #include "offline/report/text_format.hpp"

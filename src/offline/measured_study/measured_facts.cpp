@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/torque_sensor.hpp"
 #include "offline/report/text_format.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/common/atomic_file.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/measured_study/measured_bound_report.hpp"
 #include "offline/report/bar_chart.hpp"
 #include "offline/report/line_plot.hpp"

@@ -1,6 +1,6 @@
 #include "offline/pipeline/demo_index.hpp"
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/evaluate/evaluation_report.hpp"
 #include "offline/measured_study/measured_report.hpp"
 #include "offline/pipeline/tiago_report.hpp"

@@ -10,7 +10,7 @@
 
 #include "core/common/atomic_file.hpp"
 #include "offline/common/data_files.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"

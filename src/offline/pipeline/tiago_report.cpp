@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/common/atomic_file.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN

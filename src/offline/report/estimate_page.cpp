@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/log/log.hpp"
 #include "offline/report/line_plot.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN
 

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "core/common/atomic_file.hpp"
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/plot_canvas.hpp"
 #include "offline/report/text_format.hpp"
 #include "tpf/common/error.hpp"

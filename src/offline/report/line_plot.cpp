@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
 #include "tpf/common/error.hpp"
 

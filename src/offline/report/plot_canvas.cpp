@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN

@@ -4,7 +4,7 @@
 #include <limits>
 #include <vector>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "tpf/common/error.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN

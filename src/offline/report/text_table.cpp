@@ -4,7 +4,7 @@
 #include <cctype>
 #include <vector>
 
-#include "offline/common/unoptimised_when_sanitized.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/report/text_format.hpp"
 
 TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN

@@ -1,5 +1,6 @@
-// Code that runs once per command or report (text, JSON, HTML and SVG writers, the commands'
-// option handling and printouts) is compiled without optimisation in the sanitized build:
+// Code that runs once per command, file or report (the core's file loaders; the offline tools'
+// text, JSON, HTML and SVG writers; the commands' option handling and printouts) is compiled
+// without optimisation in the sanitized build:
 // TPF_UNOPTIMISED_WHEN_SANITIZED_BEGIN after a file's includes, ..._END at its end or around
 // such functions in a file that also computes. Their functions are long chains of string and JSON
 // temporaries inlined into large bodies: optimised and instrumented they took a third of
