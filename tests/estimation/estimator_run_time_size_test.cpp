@@ -20,46 +20,14 @@
 #include "tpf/estimation/load_estimator.hpp"
 #include "twin_fixture.hpp"
 
-// Eigen's heap memory comes from std::malloc, which AllocationCounter (operator new) does not see.
-// On Linux this program is linked with --wrap=malloc (tests/CMakeLists.txt): every malloc call of
-// its own code comes here first. Elsewhere __real_malloc stays null and this is never called.
-extern "C" {
-void* __real_malloc(std::size_t size) __attribute__((weak));
-void* __wrap_malloc(std::size_t size);
-}
-
-namespace {
-thread_local std::size_t g_run_time_size_mallocs = 0;
-}  // namespace
-
-extern "C" void* __wrap_malloc(std::size_t size) {
-  ++g_run_time_size_mallocs;
-  return __real_malloc(size);
-}
-
 namespace tpf::test {
 namespace {
-
-/// Heap allocations of this thread so far: operator new and (where counted) malloc.
-std::size_t heap_allocations() {
-  // The compiler takes malloc for a function that leaves other globals alone: read afresh.
-  std::atomic_signal_fence(std::memory_order_seq_cst);
-  return allocation_count() + g_run_time_size_mallocs;
-}
-
-/// Whether malloc calls are counted (the program was linked with --wrap=malloc).
-bool mallocs_are_counted() {
-  const std::size_t before = heap_allocations();
-  void* volatile p = std::malloc(16);
-  std::free(p);
-  return heap_allocations() != before;
-}
 
 /// Counts heap allocations (operator new and malloc) made while it is alive.
 class HeapAllocationCounter {
  public:
-  HeapAllocationCounter() : start_(heap_allocations()) {}
-  std::size_t count() const { return heap_allocations() - start_; }
+  HeapAllocationCounter() : start_(heap_allocation_count()) {}
+  std::size_t count() const { return heap_allocation_count() - start_; }
 
  private:
   std::size_t start_;

@@ -16,41 +16,9 @@
 #include "offline/sim/twin_plant.hpp"
 #include "support/allocation_counter.hpp"
 
-// Eigen's heap memory comes from std::malloc, which AllocationCounter (operator new) does not see.
-// On Linux this program is linked with --wrap=malloc (tests/sim/CMakeLists.txt): every malloc call
-// of its own code and of the libraries it links statically comes here first. Elsewhere
-// __real_malloc stays null and this is never called.
-extern "C" {
-void* __real_malloc(std::size_t size) __attribute__((weak));
-void* __wrap_malloc(std::size_t size);
-}
-
-namespace {
-thread_local std::size_t g_sim_mallocs = 0;
-}  // namespace
-
-extern "C" void* __wrap_malloc(std::size_t size) {
-  ++g_sim_mallocs;
-  return __real_malloc(size);
-}
-
 namespace {
 
 using namespace tpf::offline;
-
-/// Heap allocations of this thread so far: operator new and (where counted) malloc.
-std::size_t heap_allocations() {
-  // The compiler takes malloc for a function that leaves other globals alone: read afresh.
-  std::atomic_signal_fence(std::memory_order_seq_cst);
-  return tpf::test::allocation_count() + g_sim_mallocs;
-}
-
-bool mallocs_are_counted() {
-  const std::size_t before = heap_allocations();
-  void* volatile p = std::malloc(16);
-  std::free(p);
-  return heap_allocations() != before;
-}
 
 /// Heap allocations of `steps` plant steps after a first one, from the scenario's initial pose.
 std::size_t allocations_after_first_step(const Scenario& s, int steps) {
@@ -63,10 +31,10 @@ std::size_t allocations_after_first_step(const Scenario& s, int steps) {
   plant.reset(s.initial_q, TwinVector::Constant(n, 0.3));
   const TwinVector tau = TwinVector::Constant(n, 0.5), viscous_scale = TwinVector::Ones(n);
   plant.step(tau, viscous_scale);
-  const std::size_t before = heap_allocations();
+  const std::size_t before = tpf::test::heap_allocation_count();
   for (int k = 0; k < steps; ++k)
     plant.step(tau, viscous_scale);
-  const std::size_t count = heap_allocations() - before;
+  const std::size_t count = tpf::test::heap_allocation_count() - before;
   EXPECT_TRUE(plant.q().allFinite());
   return count;
 }
@@ -84,7 +52,7 @@ Scenario with_position_effects(Scenario s) {
 }
 
 TEST(TwinPlantAllocation, StepsAfterTheFirstAllocateNothing) {
-  if (!mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
+  if (!tpf::test::mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
   const Scenario base = with_position_effects(
       load_scenario(TPF_TEST_DATA_DIR "/scenarios/excitation-undeclared.json"));
   for (const auto friction : {EffectsConfig::Friction::kLuGre, EffectsConfig::Friction::kStribeck,
@@ -101,7 +69,7 @@ TEST(TwinPlantAllocation, StepsAfterTheFirstAllocateNothing) {
 }
 
 TEST(TwinPlantAllocation, NineJointStepsAfterTheFirstAllocateNothing) {
-  if (!mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
+  if (!tpf::test::mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
   const Scenario s = load_scenario(std::string(TPF_SIM_TEST_DIR "/arm9/arm9-excitation.json"));
   ASSERT_EQ(s.initial_q.size(), 9);
   EXPECT_EQ(allocations_after_first_step(s, 200), 0u);
@@ -112,17 +80,17 @@ TEST(TwinPlantAllocation, NineJointStepsAfterTheFirstAllocateNothing) {
 std::size_t allocations_between_rows(const Scenario& s, double duration_s) {
   std::size_t rows = 0, previous = 0, between = 0;
   simulate(s, 11, duration_s, [&](std::span<const double>) {
-    const std::size_t now = heap_allocations();
+    const std::size_t now = tpf::test::heap_allocation_count();
     if (rows >= 2) between += now - previous;
     ++rows;
-    previous = heap_allocations();
+    previous = tpf::test::heap_allocation_count();
   });
   EXPECT_GT(rows, 100u);
   return between;
 }
 
 TEST(TwinPlantAllocation, SimulationStepsAllocateNothing) {
-  if (!mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
+  if (!tpf::test::mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
   Scenario undeclared = load_scenario(TPF_TEST_DATA_DIR "/scenarios/excitation-undeclared.json");
   undeclared.effects.delay.enabled = true;
   undeclared.effects.delay.delay_s = 0.002;

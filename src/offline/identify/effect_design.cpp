@@ -53,45 +53,36 @@ concept SeveralGroups = requires(const DesignContext& c) {
 template <typename Families>
 void EffectDesign::add_families(const DesignContext& context) {
   const bool declared = std::is_same_v<Families, DeclaredColumns>;
+  // One group of the family's spec: for `joint` (−1: every joint or several), filled by `fill`.
+  auto add_spec = [&]<typename Family>(GroupSpec spec, int joint, bool extrapolates,
+                                       FillColumns fill, int variant) {
+    add_group({std::string(Family::key),
+               std::move(spec.title),
+               joint,
+               declared,
+               Family::written_to,
+               spec.held_column,
+               std::move(spec.judged_beside),
+               {},
+               std::move(spec.column_names),
+               extrapolates,
+               spec.indistinct_from_beside,
+               std::move(spec.joints),
+               std::move(spec.dissipative)},
+              fill, variant);
+  };
   auto offer = [&]<typename Family>(int joint) {
     if constexpr (SeveralGroups<Family>) {
       if (joint >= 0) return;
-      for (int v = 0; v < Family::variants(context); ++v) {
-        GroupSpec spec = Family::group(context, v);
-        add_group({std::string(Family::key),
-                   std::move(spec.title),
-                   -1,
-                   declared,
-                   Family::written_to,
-                   spec.held_column,
-                   std::move(spec.judged_beside),
-                   {},
-                   std::move(spec.column_names),
-                   false,
-                   spec.indistinct_from_beside,
-                   std::move(spec.joints),
-                   std::move(spec.dissipative)},
-                  &Family::fill, v);
-      }
+      for (int v = 0; v < Family::variants(context); ++v)
+        add_spec.template operator()<Family>(Family::group(context, v), -1, false, &Family::fill,
+                                             v);
     } else {
       if (!Family::offered(context, joint)) return;
-      GroupSpec spec = Family::group(context, joint);
       bool extrapolates = false;
       if constexpr (requires { Family::kExtrapolatesInQ; }) extrapolates = Family::kExtrapolatesInQ;
-      add_group({std::string(Family::key),
-                 std::move(spec.title),
-                 joint,
-                 declared,
-                 Family::written_to,
-                 spec.held_column,
-                 std::move(spec.judged_beside),
-                 {},
-                 std::move(spec.column_names),
-                 extrapolates,
-                 spec.indistinct_from_beside,
-                 std::move(spec.joints),
-                 std::move(spec.dissipative)},
-                &fill_family<Family>);
+      add_spec.template operator()<Family>(Family::group(context, joint), joint, extrapolates,
+                                           &fill_family<Family>, 0);
     }
   };
   for_each_family<Families>([&]<typename Family>() {
