@@ -2,9 +2,8 @@
 
 #include <limits>
 
-#include "offline/fit/parallel_halves.hpp"
+#include "offline/samples/sample_unit_check.hpp"
 #include "tpf/common/error.hpp"
-#include "tpf/dynamics/rnea.hpp"
 
 namespace tpf::offline {
 
@@ -16,21 +15,7 @@ IdentificationSetup prepare_identification(const Log& log, const ModelX& model,
 }
 
 Eigen::MatrixXd gravity_load(const ModelX& model, const JointSamples& s) {
-  const int joints = model.joint_count();
-  Eigen::MatrixXd load(s.size(), joints);
-  parallel_halves(s.size(), [&](Eigen::Index begin, Eigen::Index end) {
-    DataX data(model);
-    Eigen::VectorXd q(joints);  // sized once: assigned per sample
-    for (Eigen::Index k = begin; k < end; ++k)
-      if (s.valid[k]) {
-        for (int j = 0; j < joints; ++j)
-          q[j] = s.q(k, j);  // element-wise: no resize path (GCC 12 warns on Eigen's)
-        load.row(k) = compute_gravity(model, data, q).cwiseAbs().transpose();
-      } else {
-        load.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
-      }
-  });
-  return load;
+  return gravity_load(gravity_torque(model, s), s);
 }
 
 Eigen::MatrixXd gravity_load(const Eigen::MatrixXd& gravity, const JointSamples& s) {
