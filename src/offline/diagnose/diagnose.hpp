@@ -99,6 +99,12 @@ struct CandidateTrial {
   double outside_samples = 0;
   std::string outside_file;
   bool extrapolates = false;
+  /// Passed every test itself, but stands in for a stronger candidate of its joint that failed
+  /// the transfer test (stand_in_for, its title): beside that candidate's columns it lowers the
+  /// held-out error by beside_failed_improvement < min_improvement, so it explains the residual
+  /// the failed one explained and is not claimed in its place. Empty otherwise.
+  std::string stand_in_for;
+  double beside_failed_improvement = std::numeric_limits<double>::quiet_NaN();
   bool selected = false;
   /// Passes the tests on the selection's held-out file alone.
   bool passes_heldout(const DiagnoseOptions& o) const {
@@ -121,6 +127,10 @@ struct CandidateTrial {
   bool fails_outside(const DiagnoseOptions& o) const {
     return passes_heldout(o) && !fails_transfer(o) && extrapolates &&
            !(outside_improvement >= o.min_improvement || std::isnan(outside_improvement));
+  }
+  /// Passed every test but stands in for a stronger candidate that failed the transfer test.
+  bool stands_in(const DiagnoseOptions& o) const {
+    return passes_heldout(o) && !fails_transfer(o) && !fails_outside(o) && !stand_in_for.empty();
   }
   /// Extrapolates in q and no held-out group left the range of q it was fitted on.
   bool outside_untested() const { return extrapolates && std::isnan(outside_improvement); }

@@ -252,6 +252,25 @@ void add_untransferred(const EffectDiagnosis& d, const DiagnoseOptions& options,
   }
 }
 
+// Candidates that passed every test but explain only what a stronger candidate that failed the
+// transfer test explained, once each: one explanation of that residual did not hold on another
+// file, so no weaker one is claimed in its place.
+void add_stand_ins(const EffectDiagnosis& d, const DiagnoseOptions& options,
+                   std::vector<std::string>& findings) {
+  const auto stands_in = [&](const CandidateTrial& t) { return t.stands_in(options); };
+  for (const CandidateTrial* trial : refused_once(d, stands_in)) {
+    const CandidateTrial& t = *trial;
+    findings.push_back(
+        "Not claimed: " + t.title +
+        format_sentence(" — removes %.1f %% of the held-out residual sum of squares, but beside ",
+                        100 * t.improvement) +
+        t.stand_in_for +
+        format_sentence(" it removes %.1f %%: it explains the residual that one explains, and "
+                        "that one does not transfer between files (above), so neither is claimed.",
+                        100 * t.beside_failed_improvement));
+  }
+}
+
 // Candidates that passed on the held-out files but, extrapolated outside the fit's range of q,
 // made the held-out samples there worse, once each.
 void add_not_extrapolating(const EffectDiagnosis& d, const DiagnoseOptions& options,
@@ -346,6 +365,7 @@ std::vector<std::string> diagnosis_findings(const EffectDiagnosis& d,
     findings.push_back(claim_finding(d, c));
   add_not_alone(d, options, findings);
   add_untransferred(d, options, findings);
+  add_stand_ins(d, options, findings);
   add_not_extrapolating(d, options, findings);
   add_worsened_regimes(d, findings);
   add_unexplained(d, findings);

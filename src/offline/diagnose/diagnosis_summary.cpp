@@ -64,6 +64,7 @@ std::string rejection_reason(const CandidateTrial& t, double best, const Diagnos
     return "alone on the model it removes less than " + percent(o.min_improvement);
   if (t.fails_transfer(o)) return "another held-out file gets worse";
   if (t.fails_outside(o)) return "fails outside the range of q it was fitted on";
+  if (t.stands_in(o)) return "stands in for " + t.stand_in_for + ", which does not transfer";
   return "passes, but the selection stopped at its limit";
 }
 

@@ -108,17 +108,23 @@ class ForwardSelection {
   /// One round: every candidate tried on the model so far; the best that passes joins it.
   bool select_one(int round, EffectSelection& out) {
     const std::vector<int> model = model_columns(-1);
-    std::vector<int> eligible;
+    std::vector<int> eligible, untransferred;
     std::vector<double> gain(groups_.size(), 0.0);
+    std::vector<std::size_t> trial_of(groups_.size(), 0);
     for (std::size_t g = 0; g < groups_.size(); ++g) {
       if (groups_[g].declared || used_[g] || energetic(groups_[g]).empty()) continue;
       const CandidateTrial trial = try_candidate(static_cast<int>(g), round, model);
       gain[g] = trial.improvement;
+      trial_of[g] = out.trials.size();
       out.trials.push_back(trial);
+      if (trial.fails_transfer(options_)) untransferred.push_back(static_cast<int>(g));
       if (trial.passes_heldout(options_) && !trial.fails_transfer(options_) &&
           !trial.fails_outside(options_))
         eligible.push_back(static_cast<int>(g));
     }
+    drop_stand_ins(eligible, untransferred, gain, model, [&](int g) -> CandidateTrial& {
+      return out.trials[trial_of[static_cast<std::size_t>(g)]];
+    });
     if (eligible.empty()) return false;
     const int best = best_candidate(eligible, gain);
     Claim claim = name_claim(best, eligible, gain, model);
@@ -139,6 +145,48 @@ class ForwardSelection {
     claim.written = writable(claim);
     out.claims.push_back(std::move(claim));
     return true;
+  }
+
+  /// Takes out of `eligible` each candidate that stands in for a stronger one of its joint that
+  /// failed the transfer test: beside the failed one's columns it removes less than
+  /// min_improvement, so its gain is the residual the failed candidate explained on this split,
+  /// which does not hold on another file. Its trial records which one it stands in for.
+  template <typename TrialOf>
+  void drop_stand_ins(std::vector<int>& eligible, const std::vector<int>& untransferred,
+                      const std::vector<double>& gain, const std::vector<int>& model,
+                      TrialOf&& trial_of) const {
+    const auto stands_in = [&](int g) {
+      for (int f : untransferred) {
+        if (gain[f] <= gain[g] || !same_residual(groups_[f], groups_[g])) continue;
+        const double beside = gain_beside(g, f, model);
+        if (beside >= options_.min_improvement) continue;
+        CandidateTrial& t = trial_of(g);
+        t.stand_in_for = groups_[f].title;
+        t.beside_failed_improvement = beside;
+        return true;
+      }
+      return false;
+    };
+    eligible.erase(std::remove_if(eligible.begin(), eligible.end(), stands_in), eligible.end());
+  }
+
+  /// Two groups that act on a joint in common (an effect of every joint acts on all).
+  bool same_residual(const FeatureGroup& a, const FeatureGroup& b) const {
+    for (int j = 0; j < grams_.joints; ++j)
+      if (acts_on(a, j) && acts_on(b, j)) return true;
+    return false;
+  }
+
+  /// Held-out gain of candidate g on top of its reference model and candidate f's columns, on
+  /// g's joints.
+  double gain_beside(int g, int f, const std::vector<int>& model) const {
+    std::vector<int> without = reference_for(groups_[g], model).first;
+    for (int c : energetic(groups_[f]))
+      if (std::find(without.begin(), without.end(), c) == without.end()) without.push_back(c);
+    std::vector<int> with = without;
+    for (int c : energetic(groups_[g]))
+      if (std::find(with.begin(), with.end(), c) == with.end()) with.push_back(c);
+    return fold_improvement(grams_, without, with, groups_[g]);
   }
 
   /// Candidate g on top of the model: held-out gain and BIC, Wald distance from zero, share of

@@ -25,6 +25,7 @@ namespace {
 // that never appears, zero diagonal, stays zero).
 Eigen::VectorXd solve_normal_equations(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
   const Eigen::Index m = A.rows();
+  if (m == 0) return Eigen::VectorXd();  // no column to fit (Eigen's QR of 0×0 reads past it)
   Eigen::VectorXd d(m);
   for (Eigen::Index a = 0; a < m; ++a)
     d[a] = A(a, a) > 0 ? 1.0 / std::sqrt(A(a, a)) : 0.0;
