@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "kinova_logs.hpp"
+#include "support/kinova_logs.hpp"
 #include "offline/identify/identification_setup.hpp"
 #include "offline/identify/identify.hpp"
 #include "offline/log/read_logs.hpp"

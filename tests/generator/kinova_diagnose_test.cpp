@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "kinova_logs.hpp"
+#include "support/kinova_logs.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/log/read_logs.hpp"
 

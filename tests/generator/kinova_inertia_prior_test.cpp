@@ -15,7 +15,7 @@
 #include <string>
 #include <utility>
 
-#include "kinova_logs.hpp"
+#include "support/kinova_logs.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/effect_design.hpp"
