@@ -90,6 +90,7 @@ std::string diagnosis_json(const EffectDiagnosis& d) {
                                                    : nlohmann::json(100 * t.outside_improvement)},
          {"outside_range_samples", t.outside_samples},
          {"outside_range_file", t.outside_file},
+         {"stand_in_for", t.stand_in_for},
          {"selected", t.selected}});
   for (std::size_t i = 0; i < d.trials.size(); ++i)  // a group of several joints: each one's
     if (std::isfinite(d.trials[i].weakest_joint_improvement))
