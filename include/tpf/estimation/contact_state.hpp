@@ -7,7 +7,8 @@
 namespace tpf {
 
 /// (i) every joint static, no pad in contact; (ii) every joint static, a pad in contact;
-/// (iii) at least one joint moving. "Static" is |q̇_j| < StaticFrictionSettings::static_velocity.
+/// (iii) at least one joint moving. "Static" is |q̇_j| < StaticFrictionSettings::static_velocity
+/// (with a coupled transmission: every motor acting on the joint, |(C·q̇)_m| below it).
 enum class ContactState : std::uint8_t { StaticFree, StaticContact, Dynamic };
 
 /// "static-free", "static-contact", "dynamic".

@@ -37,7 +37,10 @@ namespace tpf {
 ///     (the link poses are computed in step 7, up to the contacted pad's link, only with a
 ///     contact); τ_res = τ_meas − τ_dyn − τ_fric;
 ///  3. skin: filtered pressure, hysteresis, contact flags and onset times (Skin);
-///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker);
+///  4. state machine and static-friction baseline τ̂_fric,s (StaticFrictionTracker); a joint is
+///     at rest when every motor acting on it is: |(C·q̇)_m| < static_velocity for each m with
+///     C(m, j) ≠ 0 (Model::coupling; |q̇_j| on an uncoupled arm), since a still joint that a
+///     turning motor acts on feels that motor's kinetic friction, not a held one;
 ///  5. compensator: τ_TCN = C(q, q̇, q̈, τ̂_fric,s, τ_fric) (compensator_input; τ_fric is step 2's);
 ///  6. two estimates (TorqueEstimator), each with its dead band, and the combined one (Fused
 ///     is the nominal residual on joints outside the compensator's speed or acceleration domain,
@@ -85,6 +88,7 @@ class Estimator {
         compensator_(std::move(compensator)) {
     const int n = nominal_.model.joint_count();
     parameters_.check_joint_count(n);
+    if (nominal_.model.coupled) tracker_.set_coupling(nominal_.model.coupling);  // rest per motor
     resize_compensator(compensator_, n);
     compensated_joints_ = every_joint_mask(n);
     jacobian_ = Jacobian<S, N>::Zero(6, n);
@@ -297,7 +301,9 @@ class Estimator {
     return status;
   }
 
-  /// 4. State machine, holding the last combined estimate for joints that stop in contact.
+  /// 4. State machine, holding the last combined estimate for joints that stop in contact. The
+  /// tracker has the model's coupling (constructor): at rest means every motor acting on the
+  /// joint at rest.
   void update_state_machine(const Sample& sample) noexcept {
     tracker_.update(sample.t, sample.dq, output_.residual, skin_.any_contact(),
                     skin_.earliest_new_onset(), held_residual_);

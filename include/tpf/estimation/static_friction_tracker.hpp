@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -26,10 +27,11 @@ enum class StopPolicy : std::uint8_t {
 /// Settings of StaticFrictionTracker (times in s, velocity in rad/s).
 template <typename S>
 struct StaticFrictionSettings {
-  /// |q̇_j| below this is static. The PH54 reports velocity in 0.01 rev/min = 1.047e-3 rad/s
-  /// steps, so any threshold in (0, 1.047e-3) means "the reported velocity is exactly zero"; the
-  /// original's 1e-4 works as is. Raise it (e.g. 2.2e-3, two steps) only if the drive's velocity
-  /// flickers by one step at rest.
+  /// |q̇_j| below this is static (with a coupled transmission: |(C·q̇)_m| of every motor m
+  /// acting on joint j, StaticFrictionTracker::set_coupling). The PH54 reports velocity in
+  /// 0.01 rev/min = 1.047e-3 rad/s steps, so any threshold in (0, 1.047e-3) means "the reported
+  /// velocity is exactly zero"; the original's 1e-4 works as is. Raise it (e.g. 2.2e-3, two steps)
+  /// only if the drive's velocity flickers by one step at rest.
   S static_velocity = S(1e-4);
   /// The onset baseline averages τ_res over [t_on − lead − window, t_on − lead).
   S baseline_lead_s = S(0.005);
@@ -38,7 +40,10 @@ struct StaticFrictionSettings {
 };
 
 /// Per joint j, with r = τ_res = τ_meas − τ_dyn − τ_fric(nominal) in N·m
-/// and static_j = |q̇_j| < v_s:
+/// and static_j = |q̇_j| < v_s — with a coupled transmission (set_coupling, C motors × joints:
+/// motor m turns with (C·q̇)_m and its friction acts on joint j through C(m, j)) static_j means
+/// every motor m with C(m, j) ≠ 0 is at rest, |(C·q̇)_m| < v_s: a still joint that a moving motor
+/// acts on feels that motor's kinetic friction, so no baseline is held on it:
 ///  - moving joint: τ̂_fric,s = 0, no baseline;
 ///  - static, no pad in contact: the baseline tracks r (mean over the last baseline_window_s);
 ///  - static, a pad switches on at t_on: baseline frozen at the mean of r over the window that
@@ -50,8 +55,9 @@ struct StaticFrictionSettings {
 /// τ̂_fric,s = baseline on static joints, 0 on moving ones; the static estimate of the external
 /// residual is Δr = r − baseline on static joints (model-free: only a noise dead band is needed).
 ///
-/// Trainer use (contact-free logs), row by row in time order:
-///   tracker.reset();
+/// Trainer use (contact-free logs), row by row in time order (the offline tools replay the
+/// Estimator itself, which sets the model's coupling here):
+///   tracker.reset();  // after set_coupling(model.coupling) where model.coupled
 ///   for each row: tracker.update(t, dq, residual, false, +inf, zero);  // residual = τ_res
 ///                 input = compensator_input(q, dq, ddq, tracker.friction_estimate(),
 ///                                           friction);  // friction: predict_effort's
@@ -90,6 +96,29 @@ class StaticFrictionTracker {
       return N;
   }
 
+  /// Start-up (allocates at Eigen::Dynamic): the transmission's coupling C (motors × joints,
+  /// Model::coupling; joint_count() × joint_count()). From now on joint j is static only when
+  /// every motor m with C(m, j) ≠ 0 has |(C·q̇)_m| < static_velocity. The identity gives the
+  /// same masks and outputs as no coupling (the Estimator sets C only where Model::coupled, so an
+  /// uncoupled arm keeps the per-joint test without the motor loop).
+  void set_coupling(const JointMatrix<S, N>& coupling) noexcept(N != Eigen::Dynamic) {
+    const int n = joint_count();
+    assert(coupling.rows() == n && coupling.cols() == n);
+    coupling_ = coupling;
+    motors_on_.fill(0);
+    joints_of_.fill(0);
+    for (int j = 0; j < n; ++j)
+      for (int m = 0; m < n; ++m)
+        if (coupling(m, j) != S(0)) {
+          motors_on_[static_cast<std::size_t>(j)] |= Mask(1) << m;
+          joints_of_[static_cast<std::size_t>(m)] |= Mask(1) << j;
+        }
+    coupled_ = true;
+  }
+  /// Back to the per-joint test |q̇_j| < static_velocity.
+  void clear_coupling() noexcept { coupled_ = false; }
+  bool coupled() const noexcept { return coupled_; }
+
   /// Forgets everything: no history, every joint moving, no baseline.
   void reset() noexcept {
     count_ = 0;
@@ -105,7 +134,8 @@ class StaticFrictionTracker {
     state_ = ContactState::Dynamic;
   }
 
-  /// One cycle. t [s], q̇ [rad/s], r = τ_res [N·m], `contact`: a pad is in contact,
+  /// One cycle. t [s], q̇ [rad/s] (joint velocities; the motors' are C·q̇ where coupled),
+  /// r = τ_res [N·m], `contact`: a pad is in contact,
   /// `new_onset`: the earliest onset time [s] of pads that switched on at this cycle (+inf if
   /// none), `held_external`: the moving estimator's last external residual r̂_ext [N·m],
   /// used by HoldLastEstimate when a joint stops in contact).
@@ -114,8 +144,12 @@ class StaticFrictionTracker {
     using std::abs;
     const int n = joint_count();
     Mask now_static = 0;
-    for (int j = 0; j < n; ++j)
-      if (abs(dq[j]) < settings_.static_velocity) now_static |= Mask(1) << j;
+    if (coupled_) {
+      now_static = static_joints_of_motors(dq);
+    } else {
+      for (int j = 0; j < n; ++j)
+        if (abs(dq[j]) < settings_.static_velocity) now_static |= Mask(1) << j;
+    }
     push(t, residual, now_static);
 
     const bool onset = std::isfinite(new_onset);
@@ -196,6 +230,27 @@ class StaticFrictionTracker {
     Mask is_static;
   };
 
+  /// With the coupling: bit j set when every motor acting on joint j has |(C·q̇)_m| < v_s. The
+  /// rate sums over C(m, j) ≠ 0 only, in joint order (the identity gives q̇_m itself, NaN too; a
+  /// non-finite rate counts as moving, as a non-finite |q̇_j| does without coupling).
+  Mask static_joints_of_motors(const Vector& dq) const noexcept {
+    using std::abs;
+    const int n = joint_count();
+    Mask moving_motors = 0;
+    for (int m = 0; m < n; ++m) {
+      S rate = S(0);
+      for (Mask b = joints_of_[static_cast<std::size_t>(m)]; b != 0; b &= b - 1) {
+        const int j = std::countr_zero(b);
+        rate += coupling_(m, j) * dq[j];
+      }
+      if (!(abs(rate) < settings_.static_velocity)) moving_motors |= Mask(1) << m;
+    }
+    Mask still = 0;
+    for (int j = 0; j < n; ++j)
+      if (!(motors_on_[static_cast<std::size_t>(j)] & moving_motors)) still |= Mask(1) << j;
+    return still;
+  }
+
   void push(S t, const Vector& r, Mask s) noexcept {
     Entry& e = history_[head_];  // in place: at Eigen::Dynamic its residual keeps its storage
     e.t = t;
@@ -229,8 +284,12 @@ class StaticFrictionTracker {
   Mask static_ = 0;  ///< static at the last update
   Mask frozen_ = 0;
   Mask has_baseline_ = 0;
-  Mask stale_ = 0;       ///< a baseline value exists (for KeepStale)
-  Mask from_onset_ = 0;  ///< frozen at a tactile onset
+  Mask stale_ = 0;        ///< a baseline value exists (for KeepStale)
+  Mask from_onset_ = 0;   ///< frozen at a tactile onset
+  bool coupled_ = false;  ///< set_coupling was called: static per motor
+  JointMatrix<S, N> coupling_ = zero_or_empty<JointMatrix<S, N>>();
+  std::array<Mask, 32> motors_on_{};  ///< per joint j: bit m set where C(m, j) ≠ 0
+  std::array<Mask, 32> joints_of_{};  ///< per motor m: bit j set where C(m, j) ≠ 0
   Vector baseline_ = zero_or_empty<Vector>();
   Vector friction_ = zero_or_empty<Vector>();
   Vector external_ = zero_or_empty<Vector>();

@@ -24,9 +24,10 @@ struct TransitionSigma {
 
 /// Runs `estimator` (reset first) over `samples` of a contact-free log in time order. There the
 /// true external torque is zero, so every residual is estimation error. Joint j is in its
-/// static-to-kinetic transition from the first sample with |q̇_j| ≥ v_s (the estimator's static
-/// velocity) after a static sample, for `window_s` seconds (the original work's ≈70 ms) or until
-/// it is static again. Over those samples
+/// static-to-kinetic transition from the first sample where the estimator's tracker no longer
+/// has it at rest (|q̇_j| ≥ v_s, the estimator's static velocity; with a coupled transmission a
+/// motor acting on it turning, |(C·q̇)_m| ≥ v_s) after a sample at rest, for `window_s` seconds
+/// (the original work's ≈70 ms) or until it is at rest again. Over those samples
 ///   σ_nominal,j = √(mean τ_res,j²),   σ_fused,j = √(mean (τ_res,j − τ_TCN,j)²)
 /// (root mean square about zero: a bias is error too). Skipped samples (status bits non-finite /
 /// stale) are ignored. Store the result with estimator.set_transition_sigma(σ.nominal, σ.fused).
@@ -37,7 +38,6 @@ auto calibrate_transition_sigma(EstimatorT& estimator, const SampleRange& sample
   using Output = std::decay_t<decltype(estimator.output())>;
   using S = std::decay_t<decltype(Output{}.t)>;
   constexpr int N = decltype(Output{}.residual)::RowsAtCompileTime;
-  const S threshold = estimator.parameters().static_friction.static_velocity;
   const int n = estimator.nominal().model.joint_count();
 
   TransitionSigma<S, N> sigma;
@@ -55,7 +55,7 @@ auto calibrate_transition_sigma(EstimatorT& estimator, const SampleRange& sample
     const Output& out = estimator.update(sample);
     if (out.status & (kStatusNonFiniteInput | kStatusStaleTime)) continue;
     for (int j = 0; j < n; ++j) {
-      const bool is_static = std::abs(sample.dq[j]) < threshold;
+      const bool is_static = estimator.tracker().is_static(j);  // rest per motor where coupled
       if (!first && was_static[j] && !is_static) {
         in_window[j] = true;
         start[j] = out.t;
