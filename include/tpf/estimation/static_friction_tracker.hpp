@@ -42,8 +42,8 @@ struct StaticFrictionSettings {
 /// Per joint j, with r = τ_res = τ_meas − τ_dyn − τ_fric(nominal) in N·m
 /// and static_j = |q̇_j| < v_s — with a coupled transmission (set_coupling, C motors × joints:
 /// motor m turns with (C·q̇)_m and its friction acts on joint j through C(m, j)) static_j means
-/// every motor m with C(m, j) ≠ 0 is at rest, |(C·q̇)_m| < v_s: a still joint that a moving motor
-/// acts on feels that motor's kinetic friction, so no baseline is held on it:
+/// also every motor m with C(m, j) ≠ 0 is at rest, |(C·q̇)_m| < v_s: a still joint that a moving
+/// motor acts on feels that motor's kinetic friction, so no baseline is held on it:
 ///  - moving joint: τ̂_fric,s = 0, no baseline;
 ///  - static, no pad in contact: the baseline tracks r (mean over the last baseline_window_s);
 ///  - static, a pad switches on at t_on: baseline frozen at the mean of r over the window that
@@ -97,10 +97,10 @@ class StaticFrictionTracker {
   }
 
   /// Start-up (allocates at Eigen::Dynamic): the transmission's coupling C (motors × joints,
-  /// Model::coupling; joint_count() × joint_count()). From now on joint j is static only when
-  /// every motor m with C(m, j) ≠ 0 has |(C·q̇)_m| < static_velocity. The identity gives the
-  /// same masks and outputs as no coupling (the Estimator sets C only where Model::coupled, so an
-  /// uncoupled arm keeps the per-joint test without the motor loop).
+  /// Model::coupling; joint_count() × joint_count()). From now on joint j is static only when it
+  /// is still and every motor m with C(m, j) ≠ 0 has |(C·q̇)_m| < static_velocity. The identity
+  /// gives the same masks and outputs as no coupling (the Estimator sets C only where
+  /// Model::coupled, so an uncoupled arm keeps the per-joint test without the motor loop).
   void set_coupling(const JointMatrix<S, N>& coupling) noexcept(N != Eigen::Dynamic) {
     const int n = joint_count();
     assert(coupling.rows() == n && coupling.cols() == n);
@@ -144,12 +144,9 @@ class StaticFrictionTracker {
     using std::abs;
     const int n = joint_count();
     Mask now_static = 0;
-    if (coupled_) {
-      now_static = static_joints_of_motors(dq);
-    } else {
-      for (int j = 0; j < n; ++j)
-        if (abs(dq[j]) < settings_.static_velocity) now_static |= Mask(1) << j;
-    }
+    for (int j = 0; j < n; ++j)
+      if (abs(dq[j]) < settings_.static_velocity) now_static |= Mask(1) << j;
+    if (coupled_) now_static &= static_joints_of_motors(dq);
     push(t, residual, now_static);
 
     const bool onset = std::isfinite(new_onset);
