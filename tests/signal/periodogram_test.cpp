@@ -1,5 +1,5 @@
-// The periodogram diagnose and the measured loop pick ripple periods with, and the real-valued
-// frequency fit diagnose names a ripple with.
+// The real-valued frequency fit diagnose and the measured loop name a ripple with, and the
+// range of motion that decides whether its period is in view.
 #include "offline/signal/periodogram.hpp"
 
 #include <gtest/gtest.h>
@@ -12,17 +12,21 @@
 namespace tpf::offline {
 namespace {
 
-TEST(Periodogram, FindsThePlantedPeriodsPerRevolutionOnTheOutputAndTheMotor) {
+TEST(Periodogram, FindsTheOutputRippleAndItsPeriodsInTheRangeOfMotion) {
   const int n = 4000;
-  Eigen::VectorXd q(n), output(n), motor(n);
+  Eigen::VectorXd q(n), output(n);
   for (int k = 0; k < n; ++k) {
     q[k] = -1.5 + 3.0 * k / (n - 1.0);
     output[k] = 0.3 * std::sin(7 * q[k] + 0.4) + 0.1 * q[k] + 0.05 * std::sin(11 * q[k]);
-    motor[k] = 0.2 * std::cos(2 * 50.0 * q[k]);  // twice per motor revolution, gear ratio 50
   }
-  EXPECT_EQ(dominant_cycles(q, output, 3, 64, 1.0), 7.0);
-  EXPECT_EQ(dominant_cycles(q, motor, 1, 4, 50.0), 2.0);
-  EXPECT_EQ(dominant_cycles(Eigen::VectorXd(), Eigen::VectorXd(), 5, 9, 1.0), 5.0);  // no data
+  const OutputRipple ripple = output_ripple(q, output);
+  EXPECT_NEAR(ripple.range, 0.98 * 3.0, 1e-3);  // the central 98 %
+  EXPECT_NEAR(ripple.cycles, 7.0, 0.05);
+  EXPECT_NEAR(ripple.periods, ripple.cycles * ripple.range / (2 * M_PI), 1e-12);
+  // Over 0.05 rad not one period of 64/rev fits: nothing is searched.
+  const Eigen::VectorXd still = 0.05 / 3.0 * q;
+  EXPECT_EQ(output_ripple(still, output).cycles, 0.0);
+  EXPECT_EQ(output_ripple(Eigen::VectorXd(), Eigen::VectorXd()).cycles, 0.0);  // no data
 }
 
 TEST(Periodogram, ThePeriodMustFitInTheRangeOfMotion) {

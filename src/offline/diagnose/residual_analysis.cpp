@@ -66,15 +66,6 @@ double variance_inflation(const Eigen::VectorXd& residual,
   return (1 + rho) / (1 - rho);
 }
 
-// Central 98 % of q's range [rad].
-double range_of_motion(const Eigen::VectorXd& q) {
-  const Eigen::Index m = q.size();
-  std::vector<double> sorted(q.data(), q.data() + m);
-  std::sort(sorted.begin(), sorted.end());
-  return sorted[static_cast<std::size_t>(0.99 * (m - 1))] -
-         sorted[static_cast<std::size_t>(0.01 * (m - 1))];
-}
-
 /// Joint j's part of the analysis: its entries of `a`, and its notes into `notes`.
 void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
                             const Eigen::MatrixXd& rigid_prediction,
@@ -94,14 +85,11 @@ void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residu
     q[i] = s.q(moving[i * stride], j);
     r[i] = residual(moving[i * stride], j);
   }
-  const double range = range_of_motion(q);
-  // Output side: from half a period in the range (at least 3/rev: below, gravity's sin q and
-  // cos q) to 64/rev, when a period of 64/rev fits in it at all.
-  const double lowest = std::max(3.0, M_PI / range);
-  if (shortest_fitting_cycles(range) <= 64) {
-    a.ripple_cycles[j] = fitted_cycles(q, r, lowest, 64, 1.0);
-    a.ripple_periods[j] = a.ripple_cycles[j] * range / (2 * M_PI);
-  }
+  // Output side: from half a period in the range (at least 3/rev) to 64/rev (output_ripple).
+  const OutputRipple ripple = output_ripple(q, r, 64);
+  const double range = ripple.range;
+  a.ripple_cycles[j] = ripple.cycles;
+  a.ripple_periods[j] = ripple.periods;
   const double one_period = std::min(2 * M_PI / std::max(range, 1e-9), 1e6);
   if (one_period > 3)
     notes.push_back("joint " + std::to_string(j + 1) +

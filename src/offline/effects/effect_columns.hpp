@@ -1,6 +1,9 @@
 // Folder effects/: the typed registry of the design matrix's column families, one header each
-// (the declared model and every candidate effect), read by identify/ and diagnose/. It depends on
-// samples/ (SampleRow) and report/'s number format only.
+// (the declared model and every candidate effect), read by identify/ and diagnose/, and by the
+// measured study's candidates against the torque sensor (measured_study/sensor_candidates.cpp,
+// which also reads the families listed in neither tuple below: EffortScaleColumns,
+// ThermalCoulombColumns, and SelectedColumns of a family). It depends on samples/ (SampleRow) and
+// report/'s number format only.
 //
 // The registration of the design matrix's column families: the declared model, then the library
 // of candidate effects, each one type (see its header) with

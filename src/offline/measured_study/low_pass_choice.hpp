@@ -6,7 +6,7 @@
 #include <span>
 
 #include "offline/log/log.hpp"
-#include "offline/measured_study/sensor_candidates.hpp"
+#include "offline/measured_study/sensor_residual.hpp"
 #include "offline/samples/joint_samples.hpp"
 
 namespace tpf::offline {

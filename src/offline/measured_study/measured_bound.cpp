@@ -6,7 +6,7 @@
 #include "offline/measured_study/coverage_share.hpp"
 #include "offline/measured_study/low_pass_choice.hpp"
 #include "offline/measured_study/noise_floor.hpp"
-#include "offline/measured_study/sensor_candidates.hpp"
+#include "offline/measured_study/sensor_residual.hpp"
 
 namespace tpf::offline {
 namespace {

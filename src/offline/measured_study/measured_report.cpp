@@ -367,14 +367,18 @@ std::string candidate_summary(const MeasuredResult& r) {
   for (const SensorCandidate& c : r.candidates)
     if (std::find(keys.begin(), keys.end(), c.key) == keys.end()) keys.push_back(c.key);
   for (const std::string& key : keys) {
-    std::string title, joints;
+    std::string title, joints, ambiguous;
     for (const SensorCandidate& c : r.candidates) {
       if (c.key != key) continue;
       title = c.title;
-      if (c.supported) joints += (joints.empty() ? "" : ", ") + std::to_string(c.joint + 1);
+      if (!c.supported) continue;
+      joints += (joints.empty() ? "" : ", ") + std::to_string(c.joint + 1);
+      if (!c.ambiguous_with.empty())
+        ambiguous +=
+            "; joint " + std::to_string(c.joint + 1) + " ambiguous with the " + c.ambiguous_with;
     }
     (joints.empty() ? none : claimed)
-        .push_back(joints.empty() ? title : title + " (joints " + joints + ")");
+        .push_back(joints.empty() ? title : title + " (joints " + joints + ambiguous + ")");
   }
   return "Claimed, held out by file: " +
          (claimed.empty() ? std::string("none") : joined(claimed, "; ")) +
@@ -401,8 +405,10 @@ std::string measured_headline(const MeasuredResult& r, double target) {
   std::vector<std::string> claimed;
   for (const SensorCandidate& c : r.candidates)
     if (c.supported)
-      claimed.push_back(c.key + " j" + std::to_string(c.joint + 1) + " " +
-                        format_percent_change(c.heldout_before, c.heldout_after));
+      claimed.push_back(
+          c.key + " j" + std::to_string(c.joint + 1) + " " +
+          format_percent_change(c.heldout_before, c.heldout_after) +
+          (c.ambiguous_with.empty() ? "" : " (ambiguous with " + c.ambiguous_with + ")"));
   text += "candidate effects that lower the held-out error: " +
           (claimed.empty() ? std::string("none") : joined(claimed, ", ")) + "\n";
   return text;
@@ -668,6 +674,8 @@ std::string measured_json(const MeasuredResult& r, double target) {
                                {"title", c.title},
                                {"joint", c.joint + 1},
                                {"detail", c.detail},
+                               {"value", number(c.value)},
+                               {"ambiguous_with", c.ambiguous_with},
                                {"fit_before", number(c.fit_before)},
                                {"fit_after", number(c.fit_after)},
                                {"heldout_before", number(c.heldout_before)},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <vector>
 
 #include "offline/common/eigen_order_kernels.hpp"
 
@@ -193,21 +194,6 @@ double explained_sum(const PhaseSums& p, double m, const CentredResidual& c) {
 
 }  // namespace
 
-double dominant_cycles(const Eigen::VectorXd& q, const Eigen::VectorXd& r, int lo, int hi,
-                       double scale) {
-  double best = 0, best_power = -1;
-  for (int n = lo; n <= hi; ++n) {
-    std::complex<double> sum = 0;
-    for (Eigen::Index k = 0; k < q.size(); ++k)
-      sum += r[k] * std::polar(1.0, -n * scale * q[k]);
-    if (std::norm(sum) > best_power) {
-      best_power = std::norm(sum);
-      best = n;
-    }
-  }
-  return best;
-}
-
 double fitted_cycles(const Eigen::VectorXd& q, const Eigen::VectorXd& r, double lo, double hi,
                      double scale) {
   const Eigen::Index m = q.size();
@@ -282,6 +268,25 @@ double explained_share(const Eigen::VectorXd& q, const Eigen::VectorXd& r, doubl
 int shortest_fitting_cycles(double range) {
   // Bounded before the conversion: a joint that barely moves gives 2π/range beyond any int.
   return std::max(3, static_cast<int>(std::min(std::ceil(2 * M_PI / std::max(range, 1e-9)), 1e6)));
+}
+
+double range_of_motion(const Eigen::VectorXd& q) {
+  const Eigen::Index m = q.size();
+  if (m < 3) return 0;
+  std::vector<double> sorted(q.data(), q.data() + m);
+  std::sort(sorted.begin(), sorted.end());
+  return sorted[static_cast<std::size_t>(0.99 * (m - 1))] -
+         sorted[static_cast<std::size_t>(0.01 * (m - 1))];
+}
+
+OutputRipple output_ripple(const Eigen::VectorXd& q, const Eigen::VectorXd& r, int highest) {
+  OutputRipple out;
+  out.range = range_of_motion(q);
+  if (shortest_fitting_cycles(out.range) > highest) return out;
+  const double lowest = std::max(3.0, M_PI / out.range);
+  out.cycles = fitted_cycles(q, r, lowest, highest, 1.0);
+  out.periods = out.cycles * out.range / (2 * M_PI);
+  return out;
 }
 
 }  // namespace tpf::offline
