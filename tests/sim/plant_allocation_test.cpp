@@ -1,12 +1,14 @@
 // The twin's plant allocates nothing per step after the first (its workspace is sized once): on
-// the 4-joint arm with each friction model and the position-dependent effects, and on the 9-joint
+// the 4-joint arm with each friction model and the position-dependent effects, on the same arm
+// with a coupled wrist (motor 4 turns with q₄ + q₃: the coupled friction step), and on the 9-joint
 // arm of tests/sim/arm9; nor does the simulation loop between two logged rows (excitation with
-// undeclared effects and a current delay, static contacts). Under AddressSanitizer, heap traffic
-// per step was a third of the simulation's time.
+// undeclared effects and a current delay, static contacts; uncoupled and coupled). Under
+// AddressSanitizer, heap traffic per step was a third of the simulation's time.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cstdlib>
+#include <fstream>
 #include <span>
 #include <string>
 
@@ -15,6 +17,7 @@
 #include "offline/sim/twin_arm.hpp"
 #include "offline/sim/twin_plant.hpp"
 #include "support/allocation_counter.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
@@ -37,6 +40,26 @@ std::size_t allocations_after_first_step(const Scenario& s, int steps) {
   const std::size_t count = tpf::test::heap_allocation_count() - before;
   EXPECT_TRUE(plant.q().allFinite());
   return count;
+}
+
+// data/arm4.robot.json with a differential wrist: motor 4 coupled_to joint3 (c = 1), written to
+// `dir` (its URDF, pads and friction from data/).
+std::string coupled_arm4(const tpf::test::TempDir& dir) {
+  const std::string data = TPF_TEST_DATA_DIR;
+  const std::string path = (dir / "arm4_coupled.robot.json").string();
+  std::ofstream out(path);
+  out << R"({"format": "tpf-robot", "version": 1, "name": "arm4_coupled",)"
+      << R"( "urdf": ")" << data << R"(/arm4.urdf", "pads": ")" << data << R"(/arm4.pads.json",)"
+      << R"( "friction": ")" << data << R"(/arm4.friction.json", "joints": [)";
+  for (int j = 1; j <= 4; ++j) {
+    const bool big = j <= 2;  // PH54-200 on joints 1-2, PH54-100 on 3-4
+    out << (j > 1 ? ", " : "") << R"({"name": "joint)" << j
+        << R"(", "gear_ratio": 501.923, "rotor_inertia": )" << (big ? "3.33e-6" : "0.89e-6")
+        << R"(, "torque_constant": )" << (big ? "4.81" : "4.60") << R"(, "current_limit": )"
+        << (big ? "22740" : "15900") << (j == 4 ? R"(, "coupled_to": {"joint3": 1.0})" : "") << "}";
+  }
+  out << "]}";
+  return path;
 }
 
 Scenario with_position_effects(Scenario s) {
@@ -65,6 +88,21 @@ TEST(TwinPlantAllocation, StepsAfterTheFirstAllocateNothing) {
           << "friction model " << static_cast<int>(friction) << ", load-dependent "
           << load_dependent;
     }
+  }
+}
+
+TEST(TwinPlantAllocation, CoupledStepsAfterTheFirstAllocateNothing) {
+  if (!tpf::test::mallocs_are_counted()) GTEST_SKIP() << "malloc is not counted on this platform";
+  const tpf::test::TempDir dir("coupled_allocation");
+  const Scenario base = with_position_effects(
+      load_scenario(TPF_TEST_DATA_DIR "/scenarios/excitation-undeclared.json", coupled_arm4(dir)));
+  ASSERT_TRUE(TwinArm(base).coupled());
+  for (const auto friction :
+       {EffectsConfig::Friction::kLuGre, EffectsConfig::Friction::kStribeck}) {
+    Scenario s = base;
+    s.effects.friction = friction;
+    EXPECT_EQ(allocations_after_first_step(s, 200), 0u)
+        << "friction model " << static_cast<int>(friction);
   }
 }
 
@@ -97,6 +135,18 @@ TEST(TwinPlantAllocation, SimulationStepsAllocateNothing) {
   EXPECT_EQ(allocations_between_rows(undeclared, 3.0), 0u) << "excitation, undeclared effects";
   const Scenario contacts = load_scenario(TPF_TEST_DATA_DIR "/scenarios/static-contacts.json");
   EXPECT_EQ(allocations_between_rows(contacts, 3.0), 0u) << "static contacts";
+
+  const tpf::test::TempDir dir("coupled_simulation_allocation");
+  const std::string coupled = coupled_arm4(dir);
+  Scenario coupled_undeclared =
+      load_scenario(TPF_TEST_DATA_DIR "/scenarios/excitation-undeclared.json", coupled);
+  coupled_undeclared.effects.delay.enabled = true;
+  coupled_undeclared.effects.delay.delay_s = 0.002;
+  EXPECT_EQ(allocations_between_rows(coupled_undeclared, 3.0), 0u) << "coupled wrist, excitation";
+  EXPECT_EQ(allocations_between_rows(
+                load_scenario(TPF_TEST_DATA_DIR "/scenarios/static-contacts.json", coupled), 3.0),
+            0u)
+      << "coupled wrist, static contacts";
 }
 
 }  // namespace

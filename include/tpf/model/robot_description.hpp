@@ -75,9 +75,8 @@ struct RobotDescription {
 };
 
 /// Refuses a model whose motors are coupled where `what` (a tool or model part) takes each
-/// drive's friction on its own joint: the coupling is carried by the dynamics, the regressor, the
-/// nominal model and identify, not yet by diagnose or the twin. Throws tpf::Error naming the
-/// robot and coupled_to.
+/// drive's friction on its own joint (the dynamics, the regressor, the nominal model, identify
+/// and the twin carry the coupling). Throws tpf::Error naming the robot and coupled_to.
 template <typename S, int N>
 void require_uncoupled_drives(const Model<S, N>& model, std::string_view what) {
   if (!model.coupled) return;

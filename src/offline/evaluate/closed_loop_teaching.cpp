@@ -11,22 +11,30 @@
 namespace tpf::offline {
 namespace {
 
-/// Column indices of a simulated log row (currents i<j> in mA) for an estimator sample of
-/// `joints` joints and `pads` pads; the current becomes torque with the model's K_t.
+/// Column indices of a simulated log row (currents i<j> in mA, or the joint torques tau<j> in
+/// N·m of a robot with coupled motors) for an estimator sample of `joints` joints and `pads` pads;
+/// a current becomes torque with the model's K_t.
 struct RowLayout {
   int t = 0;
   std::vector<int> q, dq, i, p;
+  bool torque = false;  ///< the effort columns are tau<j> (N·m)
   RowLayout(const std::vector<std::string>& columns, int joints, int pads) {
-    const auto at = [&](const std::string& name) {
+    const auto find = [&](const std::string& name) {
       for (std::size_t c = 0; c < columns.size(); ++c)
         if (columns[c] == name) return static_cast<int>(c);
-      throw Error::at("simulated row", 0, name, "column missing");
+      return -1;
+    };
+    const auto at = [&](const std::string& name) {
+      const int c = find(name);
+      if (c < 0) throw Error::at("simulated row", 0, name, "column missing");
+      return c;
     };
     t = at("t");
+    torque = find("i1") < 0 && find("tau1") >= 0;
     for (int j = 0; j < joints; ++j) {
       q.push_back(at(indexed_name("q", j + 1)));
       dq.push_back(at(indexed_name("dq", j + 1)));
-      i.push_back(at(indexed_name("i", j + 1)));
+      i.push_back(at(indexed_name(torque ? "tau" : "i", j + 1)));
     }
     for (int k = 0; k < pads; ++k)
       p.push_back(at(indexed_name("p", k + 1)));
@@ -42,7 +50,7 @@ struct RowLayout {
       s.dq[e] = row[static_cast<std::size_t>(dq[j])];
       s.effort[e] = row[static_cast<std::size_t>(i[j])];
     }
-    s.effort = torque_from_current(model, s.effort);
+    if (!torque) s.effort = torque_from_current(model, s.effort);
     for (std::size_t k = 0; k < p.size(); ++k)
       s.pressure[static_cast<Eigen::Index>(k)] = row[static_cast<std::size_t>(p[k])];
     return s;

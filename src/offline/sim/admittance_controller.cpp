@@ -42,8 +42,17 @@ TwinVector AdmittanceController::nominal_friction(const TwinVector& dq) const {
 
 void AdmittanceController::update(const TwinArm& nominal, const TwinVector& q, const TwinVector& dq,
                                   const TwinVector& current_ma, double max_pad_kpa, double dt) {
-  const TwinVector motor = nominal.torque_constant().cwiseProduct(current_ma) / 1000.0;
-  const TwinVector raw = -(motor - nominal.gravity(q) - nominal_friction(dq));
+  TwinVector motor = nominal.torque_constant().cwiseProduct(current_ma) / 1000.0;
+  TwinVector friction;
+  if (nominal.coupled()) {
+    // Coupled motors: their torques and their curves on their velocities, through Cᵀ.
+    const TwinMatrix& c = nominal.coupling();
+    motor = c.transpose() * motor;
+    friction = c.transpose() * nominal_friction(c * dq);
+  } else {
+    friction = nominal_friction(dq);
+  }
+  const TwinVector raw = -(motor - nominal.gravity(q) - friction);
   const bool contact = max_pad_kpa > kContactThresholdKpa;
   if (!baseline_ready_) {
     baseline_ = raw;

@@ -5,7 +5,8 @@
 // The drive receives the goal as a first-order hold over the host cycle (`goal`), as a PH54 run
 // with a profile velocity moves its set-point between writes.
 // F_nom is the memoryless smooth Stribeck curve of the friction file, so this controller is
-// deliberately the "nominal model" kind a user would start with.
+// deliberately the "nominal model" kind a user would start with. With coupled motors (the
+// nominal arm's coupling C) the currents are the motors': τ = Cᵀ·K_t·i and F_nom = Cᵀ·F(C·q̇).
 #pragma once
 
 #include "offline/sim/scenario.hpp"

@@ -1,4 +1,20 @@
 // The digital twin's main loop (see simulate.hpp and docs/twin.md).
+//
+// Coupled drives (a robot file's coupled_to, TwinArm::coupling C, motors × joints): each PH54
+// drive servoes its own motor, as a real drive does with its motor's encoder. Drive m sees its
+// motor's coordinate at the output scale, θ_m = (C·q)_m (reference (C·q_ref)_m, position and
+// velocity quantised at that coordinate), its gains from the inertia its motor sees,
+// (C⁻ᵀ·M·C⁻¹)_mm at the start pose, its clamps are its own current limit and its joint's
+// velocity limit (applied to the motor's rate), and it starts holding gravity's motor torques
+// C⁻ᵀ·G. Its current makes the motor torque K_t,m·i_m (output side), which acts on the joints
+// as Cᵀ·(K_t·i). Since C is invertible, servoing every motor angle servoes every joint angle: the
+// scripts stay in joint space (q_ref), and joint-space references become motor references
+// through C. The motors' friction is the plant's (twin_plant.hpp: Cᵀ·F(C·q̇)); temperature and
+// the undeclared coupling effect ((I + X)·K_t·i, then through Cᵀ) are per motor. Such a log
+// holds the joint torques tau<j> = Cᵀ·K_t·i of the reported motor currents (N·m; a motor's
+// current is no joint's, so no i<j>, as `tpf import` writes a coupled transmission's currents)
+// and gt_fric<j> = (Cᵀ·F)_j in N·m. Without a coupling every step is the uncoupled twin's, bit
+// for bit.
 #include "offline/sim/simulate.hpp"
 
 #include <algorithm>
@@ -118,9 +134,9 @@ TwinFriction true_friction(const Scenario& s, int joints) {
 
 }  // namespace
 
-std::vector<std::string> simulation_columns(int joints, int pad_count) {
+std::vector<std::string> simulation_columns(int joints, int pad_count, bool coupled) {
   std::vector<std::string> c{"t"};
-  for (const char* prefix : {"q", "dq", "i"})
+  for (const char* prefix : {"q", "dq", coupled ? "tau" : "i"})
     for (int j = 1; j <= joints; ++j)
       c.push_back(indexed_name(prefix, j));
   for (int k = 1; k <= pad_count; ++k)
@@ -134,7 +150,8 @@ std::vector<std::string> simulation_columns(int joints, int pad_count) {
 }
 
 std::vector<std::string> simulation_columns(const Scenario& scenario) {
-  return simulation_columns(scenario.joints, TwinArm(scenario).pad_count());
+  const TwinArm arm(scenario);
+  return simulation_columns(scenario.joints, arm.pad_count(), arm.coupled());
 }
 
 LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double duration_s) {
@@ -156,9 +173,17 @@ LogMetadata simulation_metadata(const Scenario& s, std::uint64_t seed, double du
   m.set("friction_file", s.effects.friction == EffectsConfig::Friction::kNone
                              ? std::string("none (effects.friction)")
                              : s.friction_file);
-  m.set("note",
-        "ground truth in gt_* columns; gt_fric in mA, gt_tau_ext in N*m (torque the "
-        "environment applies to the robot), gt_f* in N, world frame");
+  if (arm.coupled()) {
+    m.set("note",
+          "coupled drives (the robot file's coupled_to): tau<j> are the joint torques C^T*K_t*i "
+          "of the motors' currents, N*m; ground truth in gt_* columns; gt_fric in N*m on the "
+          "joints (C^T*F of the motors' friction), gt_tau_ext in N*m (torque the environment "
+          "applies to the robot), gt_f* in N, world frame");
+  } else {
+    m.set("note",
+          "ground truth in gt_* columns; gt_fric in mA, gt_tau_ext in N*m (torque the "
+          "environment applies to the robot), gt_f* in N, world frame");
+  }
   return m;
 }
 
@@ -202,9 +227,24 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
 
   TwinPlant plant(arm, friction, fx, h);
   plant.reset(scenario.initial_q, TwinVector::Zero(joints));
-  Ph54Drive drive(scenario.drive, arm.mass_matrix(scenario.initial_q).diagonal(),
-                  arm.torque_constant(), arm.current_limit(), arm.velocity_limit());
-  drive.reset(arm.gravity(scenario.initial_q).cwiseQuotient(arm.torque_constant()));
+  // Coupled drives servo their motors' coordinates C·q (see the file's header).
+  const bool coupled = arm.coupled();
+  const TwinMatrix& motor_coupling = arm.coupling();
+  std::optional<Ph54Drive> drive_storage;
+  if (coupled) {
+    const TwinMatrix inverse = motor_coupling.inverse();
+    const TwinMatrix motor_inertia =
+        inverse.transpose() * arm.mass_matrix(scenario.initial_q) * inverse;
+    drive_storage.emplace(scenario.drive, motor_inertia.diagonal(), arm.torque_constant(),
+                          arm.current_limit(), arm.velocity_limit());
+    drive_storage->reset((inverse.transpose() * arm.gravity(scenario.initial_q))
+                             .cwiseQuotient(arm.torque_constant()));
+  } else {
+    drive_storage.emplace(scenario.drive, arm.mass_matrix(scenario.initial_q).diagonal(),
+                          arm.torque_constant(), arm.current_limit(), arm.velocity_limit());
+    drive_storage->reset(arm.gravity(scenario.initial_q).cwiseQuotient(arm.torque_constant()));
+  }
+  Ph54Drive& drive = *drive_storage;
 
   std::optional<MinJerkSchedule> schedule;
   std::optional<ContactScript> contacts;
@@ -252,6 +292,8 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
   TwinVector tau_ext(joints), q_meas(joints), dq_meas(joints), i_meas(joints);
   TwinVector q_drive(joints), dq_drive(joints), current(joints), motor_current(joints);
   TwinVector tau_motor(joints), tau_in(joints), viscous_scale(joints);
+  TwinVector motor_ref(joints), motor_dref(joints), motor_q(joints), motor_dq(joints);
+  TwinVector effort(joints), tau_joint(joints);  // coupled: logged and applied joint torques
   PadFrame frame;
   frame.linear_jacobian.setZero(3, joints);
 
@@ -302,7 +344,15 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
       if (!clock.dropped()) {
         std::size_t c = 0;
         row[c++] = stamp;
-        for (const TwinVector* v : {&q_meas, &dq_meas, &i_meas})
+        if (coupled) {  // the joints' torques Cᵀ·K_t·i of the reported motor currents, N·m
+          for (int j = 0; j < joints; ++j) {
+            double sum = 0.0;
+            for (int m = 0; m < joints; ++m)
+              sum += motor_coupling(m, j) * arm.torque_constant()[m] * i_meas[m] / 1000.0;
+            effort[j] = sum;
+          }
+        }
+        for (const TwinVector* v : {&q_meas, &dq_meas, coupled ? &effort : &i_meas})
           for (int j = 0; j < joints; ++j)
             row[c++] = (*v)[j];
         double max_pad = 0.0;
@@ -313,7 +363,8 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
         for (int j = 0; j < joints; ++j)
           row[c++] = std::round(temperature[j]);
         for (int j = 0; j < joints; ++j)
-          row[c++] = plant.friction()[j] / arm.torque_constant()[j] * 1000.0;
+          row[c++] = coupled ? plant.friction()[j]
+                             : plant.friction()[j] / arm.torque_constant()[j] * 1000.0;
         for (int j = 0; j < joints; ++j)
           row[c++] = tau_ext[j];
         for (int j = 0; j < joints; ++j)
@@ -343,11 +394,23 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
     } else if (admittance) {
       admittance->goal(t - last_host_update, q_ref, dq_ref);  // first-order hold, see goal()
     }
-    for (int j = 0; j < joints; ++j) {
-      q_drive[j] = quantise_position(q[j]);
-      dq_drive[j] = quantise_velocity(dq[j]);
+    if (coupled) {  // each drive on its motor's coordinate (C·q)_m
+      multiply(motor_coupling, q_ref, motor_ref);
+      multiply(motor_coupling, dq_ref, motor_dref);
+      multiply(motor_coupling, q, motor_q);
+      multiply(motor_coupling, dq, motor_dq);
+      for (int m = 0; m < joints; ++m) {
+        q_drive[m] = quantise_position(motor_q[m]);
+        dq_drive[m] = quantise_velocity(motor_dq[m]);
+      }
+      current = drive.update(motor_ref, motor_dref, q_drive, dq_drive, h);
+    } else {
+      for (int j = 0; j < joints; ++j) {
+        q_drive[j] = quantise_position(q[j]);
+        dq_drive[j] = quantise_velocity(dq[j]);
+      }
+      current = drive.update(q_ref, dq_ref, q_drive, dq_drive, h);
     }
-    current = drive.update(q_ref, dq_ref, q_drive, dq_drive, h);
     if (delay_steps > 0) {
       const auto slots = static_cast<long>(delay_line.size());
       delay_line[static_cast<std::size_t>(delay_pushed % slots)] = current;
@@ -363,7 +426,17 @@ SimulationSummary simulate(const Scenario& scenario, std::uint64_t seed, double 
                        fx.thermal.viscous_per_k *
                            (temperature - TwinVector::Constant(joints, fx.thermal.initial_c)))
                           .cwiseMax(0.1);
-    tau_in = tau_motor + tau_ext;
+    if (coupled) {  // the motors' torques on the joints, Cᵀ·τ_motor
+      for (int j = 0; j < joints; ++j) {
+        double sum = 0.0;
+        for (int m = 0; m < joints; ++m)
+          sum += motor_coupling(m, j) * tau_motor[m];
+        tau_joint[j] = sum;
+      }
+      tau_in = tau_joint + tau_ext;
+    } else {
+      tau_in = tau_motor + tau_ext;
+    }
     plant.step(tau_in, viscous_scale);
     if (!plant.q().allFinite() || !plant.dq().allFinite())
       throw Error::at(scenario.robot_file, 0, "",

@@ -33,8 +33,10 @@ struct SimulationSummary {
 
 /// Columns of a simulated log of `joints` joints (j = 1..joints) and `pad_count` pads (k, none
 /// without skin): t, q<j>, dq<j>, i<j>, p<k>, temp<j>, then ground truth gt_fric<j> (mA),
-/// gt_tau_ext<j> (N·m), gt_ddq<j> (rad/s²), gt_contact, gt_fx, gt_fy, gt_fz (N).
-std::vector<std::string> simulation_columns(int joints, int pad_count);
+/// gt_tau_ext<j> (N·m), gt_ddq<j> (rad/s²), gt_contact, gt_fx, gt_fy, gt_fz (N). A robot with
+/// `coupled` motors (coupled_to) logs the joint torques tau<j> = Cᵀ·K_t·i (N·m) in place of
+/// i<j>, and its gt_fric<j> is in N·m (simulate.cpp).
+std::vector<std::string> simulation_columns(int joints, int pad_count, bool coupled = false);
 /// The columns simulate() emits for `scenario` (its robot's joints and pads).
 std::vector<std::string> simulation_columns(const Scenario& scenario);
 
@@ -44,7 +46,8 @@ LogMetadata simulation_metadata(const Scenario& scenario, std::uint64_t seed, do
 
 /// Runs `scenario` for `duration_s` (the scenario's duration when ≤ 0) with `seed`.
 /// Sign convention of the ground truth: gt_tau_ext = Jᵀ·F with F the force the environment (the
-/// hand) applies to the robot, so at rest K_t·i ≈ G(q) + friction − gt_tau_ext.
+/// hand) applies to the robot, so at rest K_t·i ≈ G(q) + friction − gt_tau_ext (coupled motors:
+/// tau ≈ G(q) + gt_fric − gt_tau_ext, all N·m).
 /// With `external_torque` set, a teaching scenario's admittance controller follows its estimate
 /// (one value per joint). Throws tpf::Error when a per-joint vector of `scenario` does not have
 /// one entry per joint of its robot, or a teaching scenario's robot has no pads.

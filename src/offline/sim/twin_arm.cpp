@@ -32,7 +32,6 @@ Inertia<double> with_point_mass(const Inertia<double>& body, double m_p, const V
 
 TwinArm::TwinArm(const Scenario& scenario) {
   const RobotDescription robot = load_robot_description(scenario.robot_file);
-  require_uncoupled_drives(make_model<double, Eigen::Dynamic>(robot), "the twin");
   if (robot.chain.joints.empty())
     throw Error::at(robot.source, 0, "joints",
                     "the twin simulates arms of 1 or more joints; this "
@@ -119,6 +118,12 @@ const TwinVector& TwinArm::lower() const {
 }
 const TwinVector& TwinArm::upper() const {
   return model_.upper;
+}
+const TwinMatrix& TwinArm::coupling() const {
+  return model_.coupling;
+}
+bool TwinArm::coupled() const {
+  return model_.coupled;
 }
 
 }  // namespace tpf::offline

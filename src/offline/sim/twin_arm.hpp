@@ -1,5 +1,8 @@
 // The true rigid-body arm of the twin: the scenario's robot model (with armature), optionally an
 // undeclared payload on the last link, its pads, and the dynamics calls the simulator needs.
+// A robot file that couples motors (coupled_to) gives the model's coupling C (motors × joints):
+// the core's M(q) then holds the rotors as Cᵀ·diag(armature)·C (armature = J_m·r², reflected to
+// the output), and the plant and drives take each motor on its coordinate (C·q)_m.
 // A thin adapter over tpf::core's model and algorithms at a run-time joint count
 // (N = Eigen::Dynamic): one compiled twin for robots of any joint count. Its solves and 3×N
 // products are the twin's own (twin_linear_algebra.hpp), which round as Eigen does at a fixed
@@ -68,6 +71,12 @@ class TwinArm {
   const TwinVector& velocity_limit() const;   ///< rad/s
   const TwinVector& lower() const;
   const TwinVector& upper() const;
+  /// The transmission's coupling C (motors × joints, Model::coupling): motor m turns with
+  /// (C·q)_m at the output scale and its torque acts on the joints through Cᵀ. The identity
+  /// unless the robot file couples motors.
+  const TwinMatrix& coupling() const;
+  /// Whether C differs from the identity (a coupled_to in the robot file).
+  bool coupled() const;
 
  private:
   Model<double, Eigen::Dynamic> model_;
