@@ -48,9 +48,9 @@ struct LogColumns {
 LogColumns log_columns(const offline::Log& log, int joints) {
   LogColumns c;
   for (int j = 1; j <= joints; ++j) {
-    c.q.push_back(log.column("q" + std::to_string(j)));
-    c.dq.push_back(log.column("dq" + std::to_string(j)));
-    c.i.push_back(log.column("i" + std::to_string(j)));
+    c.q.push_back(log.column(offline::indexed_name("q", j)));
+    c.dq.push_back(log.column(offline::indexed_name("dq", j)));
+    c.i.push_back(log.column(offline::indexed_name("i", j)));
   }
   return c;
 }
@@ -81,10 +81,19 @@ double moving_range(int j) {
   return hi - lo;
 }
 
+/// "key@joint" (1-based joint), built piece by piece (a chain of string + string trips GCC 12's
+/// -Wrestrict).
+std::string planted_name(const std::string& key, int joint) {
+  std::string name = key;
+  name += '@';
+  name += std::to_string(joint);
+  return name;
+}
+
 std::set<std::string> planted_names(const offline::Diagnosis& d, const offline::Claim& c) {
   std::set<std::string> names;
   for (int g : c.groups)
-    names.insert(d.groups[g].key + "@" + std::to_string(d.groups[g].joint + 1));
+    names.insert(planted_name(d.groups[g].key, d.groups[g].joint + 1));
   return names;
 }
 
@@ -124,7 +133,7 @@ const offline::Diagnosis& unplanted_diagnosis() {
 /// Whether the claims name `key` on `joint` (1-based) alone.
 bool named_alone(const offline::Diagnosis& d, const std::string& key, int joint) {
   for (const offline::Claim& c : d.claims)
-    if (!c.ambiguous() && planted_names(d, c).count(key + "@" + std::to_string(joint))) return true;
+    if (!c.ambiguous() && planted_names(d, c).count(planted_name(key, joint))) return true;
   return false;
 }
 
