@@ -4,9 +4,11 @@
 // unmodelled effects, sensor noise), not a model's. On the unplanted log nothing is claimed; with
 // a spring on joint 6, a position ripple of 3 periods in joint 7's range of motion and a
 // motor-side ripple (2 periods per motor revolution) on joint 3, each is named on its joint, the
-// ripples' frequencies within 3 %, and nothing else is claimed.
+// ripples' frequencies within 3 %, and nothing else is claimed; a ripple of 2 periods in joint 5's
+// range is searched within 3 % too.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -147,6 +149,18 @@ double written_cycles(const offline::Diagnosis& d, int joint, bool motor_side) {
   return 0.0;
 }
 
+/// The output-ripple frequency diagnose tried on `joint` (1-based), read off its candidate's title
+/// ("position ripple, joint 5 (3.538 periods/rev of q)"); 0 = none.
+double searched_cycles(const offline::Diagnosis& d, int joint) {
+  for (const offline::FeatureGroup& g : d.groups)
+    if (g.key == "ripple" && g.joint == joint - 1) {
+      const std::size_t open = g.title.rfind('(');
+      if (open != std::string::npos && std::isdigit(g.title[open + 1]))
+        return std::stod(g.title.substr(open + 1));
+    }
+  return 0.0;
+}
+
 TEST(MeasuredBackground, TheUnplantedLogClaimsNothing) {
   EXPECT_TRUE(unplanted_diagnosis().claims.empty()) << planted_describe(unplanted_diagnosis());
 }
@@ -155,15 +169,22 @@ TEST(MeasuredBackground, PlantedSpringAndRipplesAreNamedOnTheirJoints) {
   const PlantedModel& model = background_model();
   const LogColumns c = log_columns(background_log(), model.joint_count());
   const double ripple_cycles = 3 * 2 * M_PI / moving_range(6);  // 3 periods in joint 7's range
+  const double few_cycles = 2 * 2 * M_PI / moving_range(4);     // 2 periods in joint 5's
   const offline::Log log = with_planted([&](const offline::Log& l, Eigen::Index k) {
     Eigen::VectorXd t = Eigen::VectorXd::Zero(model.joint_count());
     t[2] = 2.5 * std::sin(2 * model.gear_ratio[2] * at(l, k, c.q[2]) + 0.7);
+    t[4] = 0.8 * std::sin(few_cycles * at(l, k, c.q[4]) + 0.4);
     t[5] = 1.5 * (at(l, k, c.q[5]) - 0.2);
     t[6] = 1.0 * std::sin(ripple_cycles * at(l, k, c.q[6]) + 1.1);
     return t;
   });
   const offline::Diagnosis d = planted_diagnosis(log, "motor ripple j3, spring j6, ripple j7");
-  std::printf("  planted: %.3f periods/rev on joint 7\n", ripple_cycles);
+  std::printf("  planted: %.3f periods/rev on joint 7, %.3f on joint 5\n", ripple_cycles,
+              few_cycles);
+  // Joint 5's ripple, 2 periods in view, is searched within 3 % (3.538/rev; the declared fit
+  // alone absorbs part of it and shows 3.886) but does not transfer to RecordTrajectory_quadratic
+  // held out (+16.9 %): not claimed, and nothing in its place.
+  EXPECT_NEAR(searched_cycles(d, 5), few_cycles, 0.03 * few_cycles);
   EXPECT_TRUE(named_alone(d, "spring", 6)) << planted_describe(d);
   EXPECT_TRUE(named_alone(d, "ripple", 7)) << planted_describe(d);
   EXPECT_TRUE(named_alone(d, "ripple_motor", 3)) << planted_describe(d);

@@ -12,6 +12,7 @@
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
 #include "offline/diagnose/residual_analysis.hpp"
+#include "offline/diagnose/ripple_refit.hpp"
 #include "offline/effects/effect_columns.hpp"
 #include "offline/fit/parallel_jobs.hpp"
 #include "offline/identify/identification_setup.hpp"
@@ -209,6 +210,39 @@ void held_out_folds(const Log& log, const EffectDesign& design, const JointSampl
           fold.regimes[j][k] = Regime::Invalid;
     outside.push_back({name, design.accumulate(fold)});
   }
+}
+
+/// The candidate library's design and Grams.
+struct CandidateDesign {
+  std::unique_ptr<EffectDesign> design;
+  DesignGrams grams;
+};
+
+/// The candidate design on `inputs`, made again with the refitted frequencies where an output
+/// ripple with few periods in view moves (refitted_ripple_frequencies: the declared columns
+/// fitted beside it with `selection`'s rows and weights and the robot file's inertia prior at
+/// `prior_strength`).
+CandidateDesign candidate_design(const ModelX& model, const IdentificationSetup& setup,
+                                 const JointSamples& s,
+                                 const std::shared_ptr<const SampleRegressors>& regressors,
+                                 CandidateInputs inputs, FitSelection selection,
+                                 double prior_strength, double threshold) {
+  CandidateDesign out{
+      std::make_unique<EffectDesign>(model, setup.base, s, regressors, inputs, threshold), {}};
+  out.grams = out.design->accumulate(s);
+  if (prior_strength > 0) {
+    selection.prior = robot_file_prior(model, *out.design, setup.base);
+    selection.prior.strength = prior_strength;
+  }
+  const RippleFrequencies refit = refitted_ripple_frequencies(
+      *out.design, out.grams, s, fitted_declared_columns(model, out.design->groups()), selection);
+  if (refit.cycles == inputs.ripple_cycles) return out;
+  inputs = out.design->candidates();
+  inputs.ripple_cycles = refit.cycles;
+  inputs.ripple_periods = refit.periods;
+  out.design = std::make_unique<EffectDesign>(model, setup.base, s, regressors, inputs, threshold);
+  out.grams = out.design->accumulate(s);
+  return out;
 }
 
 /// The part of `theta` outside the friction, which the friction curves are fitted beside.
@@ -416,12 +450,14 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   say("diagnose: pass 3/4: candidate effects");
-  const EffectDesign design(
-      model, setup.base, s, regressors,
-      candidate_inputs(model, setup, s, analysis, identified, linear[0], threshold), threshold);
+  const CandidateDesign candidates = candidate_design(
+      model, setup, s, regressors,
+      candidate_inputs(model, setup, s, analysis, identified, linear[0], threshold), selection,
+      out.inertia_prior.judged_strength, threshold);
+  const EffectDesign& design = *candidates.design;
+  const DesignGrams& grams = candidates.grams;
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   out.coupled_motors = inputs.coupled_motors;
-  const DesignGrams grams = design.accumulate(s);
   FitSelection every = selection;  // the written model's final refit
   every.heldout_rows = true;
   if (out.inertia_prior.judged_strength > 0 || out.inertia_prior.written_strength > 0) {

@@ -53,6 +53,23 @@ std::vector<Eigen::Index> moving_training_samples(const JointSamples& s, int j) 
   return moving;
 }
 
+// q_j and r at most 20 000 of the `moving` samples, evenly strided (the periodograms' input);
+// false when there are 100 or fewer.
+bool strided_moving_samples(const JointSamples& s, const Eigen::VectorXd& residual, int j,
+                            const std::vector<Eigen::Index>& moving, Eigen::VectorXd& q,
+                            Eigen::VectorXd& r) {
+  const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
+  const Eigen::Index m = static_cast<Eigen::Index>(moving.size() / stride);
+  if (m <= 100) return false;
+  q.resize(m);
+  r.resize(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    q[i] = s.q(moving[i * stride], j);
+    r[i] = residual[moving[i * stride]];
+  }
+  return true;
+}
+
 // (1 + ρ)/(1 − ρ) of the residual's lag-1 autocorrelation over consecutive moving samples.
 double variance_inflation(const Eigen::VectorXd& residual,
                           const std::vector<Eigen::Index>& moving) {
@@ -76,15 +93,8 @@ void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residu
   const std::vector<Eigen::Index> moving = moving_training_samples(s, j);
   a.variance_inflation[j] = variance_inflation(residual.col(j), moving);
   a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0, step);
-  // The periodograms on at most 20 000 of the moving samples.
-  const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
-  const Eigen::Index m = static_cast<Eigen::Index>(moving.size() / stride);
-  if (m <= 100) return;
-  Eigen::VectorXd q(m), r(m);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    q[i] = s.q(moving[i * stride], j);
-    r[i] = residual(moving[i * stride], j);
-  }
+  Eigen::VectorXd q, r;
+  if (!strided_moving_samples(s, residual.col(j), j, moving, q, r)) return;
   // Output side: from half a period in the range (at least 3/rev) to 64/rev (output_ripple).
   const OutputRipple ripple = output_ripple(q, r, 64);
   const double range = ripple.range;
@@ -104,6 +114,12 @@ void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residu
 }
 
 }  // namespace
+
+OutputRipple joint_output_ripple(const JointSamples& s, const Eigen::VectorXd& residual, int j) {
+  Eigen::VectorXd q, r;
+  if (!strided_moving_samples(s, residual, j, moving_training_samples(s, j), q, r)) return {};
+  return output_ripple(q, r, 64);
+}
 
 ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
                                   const Eigen::MatrixXd& rigid_prediction,

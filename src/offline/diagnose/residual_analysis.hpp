@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "offline/samples/joint_samples.hpp"
+#include "offline/signal/periodogram.hpp"
 
 namespace tpf::offline {
 
@@ -44,5 +45,11 @@ struct ResidualAnalysis {
 ResidualAnalysis analyse_residual(const JointSamples& samples, const Eigen::MatrixXd& residual,
                                   const Eigen::MatrixXd& rigid_prediction,
                                   const Eigen::VectorXd& gear_ratio, double model_band_hz);
+
+/// The output ripple `residual` (one joint's, per sample) holds over joint j's moving training
+/// samples (at most 20 000 of them, evenly strided): output_ripple up to 64 periods/rev; cycles 0
+/// when the joint has 100 such samples or fewer.
+OutputRipple joint_output_ripple(const JointSamples& samples, const Eigen::VectorXd& residual,
+                                 int j);
 
 }  // namespace tpf::offline
