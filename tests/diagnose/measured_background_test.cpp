@@ -18,6 +18,7 @@
 
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/log/read_logs.hpp"
+#include "support/claim_names.hpp"
 #include "support/kinova_logs.hpp"
 #include "tpf/model/joint_count_cast.hpp"
 
@@ -83,36 +84,9 @@ double moving_range(int j) {
   return hi - lo;
 }
 
-/// "key@joint" (1-based joint), built piece by piece (a chain of string + string trips GCC 12's
-/// -Wrestrict).
-std::string planted_name(const std::string& key, int joint) {
-  std::string name = key;
-  name += '@';
-  name += std::to_string(joint);
-  return name;
-}
-
-std::set<std::string> planted_names(const offline::Diagnosis& d, const offline::Claim& c) {
-  std::set<std::string> names;
-  for (int g : c.groups)
-    names.insert(planted_name(d.groups[g].key, d.groups[g].joint + 1));
-  return names;
-}
-
-std::string planted_describe(const offline::Diagnosis& d) {
-  std::string text;
-  for (const offline::Claim& c : d.claims) {
-    text += c.ambiguous() ? "ambiguous{" : "named{";
-    for (const std::string& n : planted_names(d, c))
-      text += n + " ";
-    text += "} ";
-  }
-  return text.empty() ? "nothing" : text;
-}
-
 offline::Diagnosis planted_diagnosis(const offline::Log& log, const char* label) {
   const offline::Diagnosis d = offline::diagnose(log, background_model());
-  std::printf("  [%s] %s\n", label, planted_describe(d).c_str());
+  std::printf("  [%s] %s\n", label, describe_claims(d).c_str());
   for (const auto& t : d.trials)
     if (t.improvement > 0.05 || t.selected)
       std::printf("    round %d %-62s %6.1f %% transfer %6.1f %%%s\n", t.round, t.title.c_str(),
@@ -135,7 +109,7 @@ const offline::Diagnosis& unplanted_diagnosis() {
 /// Whether the claims name `key` on `joint` (1-based) alone.
 bool named_alone(const offline::Diagnosis& d, const std::string& key, int joint) {
   for (const offline::Claim& c : d.claims)
-    if (!c.ambiguous() && planted_names(d, c).count(planted_name(key, joint))) return true;
+    if (!c.ambiguous() && claim_names(d, c).count(claim_name(key, joint))) return true;
   return false;
 }
 
@@ -162,7 +136,7 @@ double searched_cycles(const offline::Diagnosis& d, int joint) {
 }
 
 TEST(MeasuredBackground, TheUnplantedLogClaimsNothing) {
-  EXPECT_TRUE(unplanted_diagnosis().claims.empty()) << planted_describe(unplanted_diagnosis());
+  EXPECT_TRUE(unplanted_diagnosis().claims.empty()) << describe_claims(unplanted_diagnosis());
 }
 
 TEST(MeasuredBackground, PlantedSpringAndRipplesAreNamedOnTheirJoints) {
@@ -185,10 +159,10 @@ TEST(MeasuredBackground, PlantedSpringAndRipplesAreNamedOnTheirJoints) {
   // alone absorbs part of it and shows 3.886) but does not transfer to RecordTrajectory_quadratic
   // held out (+16.9 %): not claimed, and nothing in its place.
   EXPECT_NEAR(searched_cycles(d, 5), few_cycles, 0.03 * few_cycles);
-  EXPECT_TRUE(named_alone(d, "spring", 6)) << planted_describe(d);
-  EXPECT_TRUE(named_alone(d, "ripple", 7)) << planted_describe(d);
-  EXPECT_TRUE(named_alone(d, "ripple_motor", 3)) << planted_describe(d);
-  EXPECT_EQ(d.claims.size(), unplanted_diagnosis().claims.size() + 3) << planted_describe(d);
+  EXPECT_TRUE(named_alone(d, "spring", 6)) << describe_claims(d);
+  EXPECT_TRUE(named_alone(d, "ripple", 7)) << describe_claims(d);
+  EXPECT_TRUE(named_alone(d, "ripple_motor", 3)) << describe_claims(d);
+  EXPECT_EQ(d.claims.size(), unplanted_diagnosis().claims.size() + 3) << describe_claims(d);
   EXPECT_NEAR(written_cycles(d, 7, false), ripple_cycles, 0.03 * ripple_cycles);
   EXPECT_NEAR(written_cycles(d, 3, true), 2.0, 0.06);
   for (const offline::Claim& claim : d.claims)

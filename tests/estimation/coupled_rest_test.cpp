@@ -317,20 +317,6 @@ std::string coupled_arm4_robot_file(const TempDir& dir) {
   return path;
 }
 
-/// A fixed-size sample as one of run-time size (joints and pads).
-EstimatorSample<double, Eigen::Dynamic, Eigen::Dynamic> any_size_sample(const ArmSample& s) {
-  EstimatorSample<double, Eigen::Dynamic, Eigen::Dynamic> a;
-  a.resize(kJoints, kPads);
-  a.t = s.t;
-  a.q = s.q;
-  a.dq = s.dq;
-  a.effort = s.effort;
-  a.pressure = s.pressure;
-  a.ddq = s.ddq;
-  a.has_ddq = s.has_ddq;
-  return a;
-}
-
 // The shipped arm4 files with a coupled robot file, loaded as a controller (4 joints, 11 pads)
 // and as the offline replay does (load_estimator at Eigen::Dynamic, what training and evaluation
 // traces come from): both apply the rule per motor, agree, and allocate nothing per cycle.
@@ -349,7 +335,7 @@ TEST(CoupledRest, FixedAndRunTimeJointCountsAgreeAndAllocateNothing) {
   const std::vector<ArmSample> samples = coupled_push_samples();
   std::vector<EstimatorSample<double, Eigen::Dynamic, Eigen::Dynamic>> any_samples;
   for (const ArmSample& s : samples)
-    any_samples.push_back(any_size_sample(s));
+    any_samples.push_back(any_count_sample<Eigen::Dynamic>(s));
   std::size_t fixed_allocations = 0, any_allocations = 0;
   int joint3_not_at_rest = 0;
   for (std::size_t r = 0; r < samples.size(); ++r) {

@@ -48,21 +48,6 @@ EstimatorFiles shipped_arm4_files(bool with_networks) {
   return f;
 }
 
-/// A fixed-size sample as one of run-time size (pads too when P is Eigen::Dynamic).
-template <int P>
-EstimatorSample<double, kAnyCount, P> any_count_sample(const ArmSample& s) {
-  EstimatorSample<double, kAnyCount, P> a;
-  a.resize(kJoints, kPads);
-  a.t = s.t;
-  a.q = s.q;
-  a.dq = s.dq;
-  a.effort = s.effort;
-  a.pressure = s.pressure;
-  a.ddq = s.ddq;
-  a.has_ddq = s.has_ddq;
-  return a;
-}
-
 /// |a − b| ≤ 1e-12 element by element, with where it failed.
 template <typename A, typename B>
 void expect_near_1e12(const A& a, const B& b, const char* what, std::size_t row) {

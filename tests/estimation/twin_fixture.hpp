@@ -25,6 +25,22 @@ using TwinEstimator = Estimator<double, kJoints, kPads>;
 /// Current noise of the twin's drives (sensors.current_noise_ma) with 1 mA rounding.
 inline constexpr double kCurrentNoiseMa = 6.0;
 
+/// A fixed-size sample as one of run-time joint count (and pad count too when P is
+/// Eigen::Dynamic): what the offline replay hands an estimator loaded at Eigen::Dynamic.
+template <int P>
+EstimatorSample<double, Eigen::Dynamic, P> any_count_sample(const ArmSample& s) {
+  EstimatorSample<double, Eigen::Dynamic, P> a;
+  a.resize(kJoints, kPads);
+  a.t = s.t;
+  a.q = s.q;
+  a.dq = s.dq;
+  a.effort = s.effort;
+  a.pressure = s.pressure;
+  a.ddq = s.ddq;
+  a.has_ddq = s.has_ddq;
+  return a;
+}
+
 /// The simulated log of data/scenarios/<scenario>.json, cached per (scenario, seed, duration).
 inline const offline::Log& twin_log(const std::string& scenario, unsigned seed, double duration) {
   static std::map<std::tuple<std::string, unsigned, double>, offline::Log> cache;

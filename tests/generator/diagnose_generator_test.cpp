@@ -20,6 +20,7 @@
 #include "offline/log/log_writer.hpp"
 #include "offline/log/read_logs.hpp"
 #include "planar_arm_generator.hpp"
+#include "support/claim_names.hpp"
 #include "tpf/dynamics/rnea.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/model/inertia.hpp"
@@ -43,29 +44,10 @@ const Model<double, Eigen::Dynamic>& planar_model_x() {
   return model;
 }
 
-// What one claim names: its group's key and joint and, when ambiguous, the alternatives'.
-std::set<std::string> claim_names(const Diagnosis& d, const offline::Claim& c) {
-  std::set<std::string> names;
-  for (int g : c.groups)
-    names.insert(d.groups[g].key + "@" + std::to_string(d.groups[g].joint + 1));
-  return names;
-}
-
-std::string describe(const Diagnosis& d) {
-  std::string text;
-  for (const offline::Claim& c : d.claims) {
-    text += c.ambiguous() ? "ambiguous{" : "named{";
-    for (const std::string& n : claim_names(d, c))
-      text += n + " ";
-    text += "} ";
-  }
-  return text.empty() ? "nothing" : text;
-}
-
 Diagnosis run(const PlanarArmPlant& plant, const char* label) {
   const offline::Log log = generate_planar_log(plant);
   auto d = offline::diagnose(log, planar_model_x());
-  std::printf("  [%s] %s\n", label, describe(d).c_str());
+  std::printf("  [%s] %s\n", label, describe_claims(d).c_str());
   for (const auto& t : d.trials)
     if (t.improvement > 0.03 || t.selected || std::getenv("TPF_GENERATOR_TRIALS"))
       std::printf("    round %d %-62s %6.1f %% BIC %8.0f %5.1f SE share %.3f%s\n", t.round,
@@ -112,10 +94,10 @@ void expect_only(const Diagnosis& d, const std::set<std::string>& allowed) {
         bool any = false;
         for (const std::string& n : claim_names(d, c))
           any = any || allowed.count(n) || allowed.count(n.substr(0, n.find('@')));
-        EXPECT_TRUE(any) << describe(d);
+        EXPECT_TRUE(any) << describe_claims(d);
       } else {
         EXPECT_TRUE(allowed.count(name) || allowed.count(key))
-            << "confident wrong name " << name << ": " << describe(d);
+            << "confident wrong name " << name << ": " << describe_claims(d);
       }
     }
 }
@@ -233,7 +215,7 @@ TEST(Generator, CleanLogClaimsNothing) {
     PlanarArmPlant plant;
     plant.seed = seed;
     const auto d = run(plant, "clean");
-    EXPECT_TRUE(d.claims.empty()) << describe(d);
+    EXPECT_TRUE(d.claims.empty()) << describe_claims(d);
     // Nor a payload against the robot file's inertias (the robot file is the generator's arm).
     EXPECT_FALSE(d.cad_payload.claimed) << d.cad_payload.mass << " kg";
   }
@@ -248,7 +230,7 @@ TEST(Generator, ALogShorterThanTheFirstHeldOutBlockSaysSoInsteadOfNoGain) {
   plant.duration_s = 10.0;
   plant.offset = {0.0, 0.3};
   const auto d = run(plant, "10 s, nothing held out");
-  EXPECT_TRUE(d.claims.empty()) << describe(d);
+  EXPECT_TRUE(d.claims.empty()) << describe_claims(d);
   bool said = false;
   for (const auto& f : d.findings) {
     said = said || f.find("nothing is held out") != std::string::npos;
@@ -263,7 +245,7 @@ TEST(Generator, OffsetUnderAShortRangeIsNeverARipple) {
   plant.amplitude = {1.2, 0.2};  // joint 2 moves over 0.4 rad: no ripple period fits
   plant.offset = {0.0, 0.3};
   const auto d = run(plant, "offset, short range");
-  EXPECT_NE(outcome(d, "offset", 2), Outcome::Missed) << describe(d);
+  EXPECT_NE(outcome(d, "offset", 2), Outcome::Missed) << describe_claims(d);
   expect_only(d, {"offset@2", "asymmetric_friction@2"});
   // A payload's gravity on the forearm is nearly constant over 0.4 rad of q2: without the selected
   // offset beside it, the CAD check took 0.093 kg for the offset (−79.6 %).
@@ -276,7 +258,7 @@ TEST(Generator, AsymmetricCoulombIsNotASpring) {
   plant.coulomb_positive = {0.60, 0.25};
   plant.coulomb_negative = {0.25, 0.25};
   const auto d = run(plant, "asymmetric Coulomb");
-  EXPECT_NE(outcome(d, "asymmetric_friction", 1), Outcome::Missed) << describe(d);
+  EXPECT_NE(outcome(d, "asymmetric_friction", 1), Outcome::Missed) << describe_claims(d);
   expect_only(d, {"asymmetric_friction@1", "offset@1"});
 }
 
@@ -285,7 +267,7 @@ TEST(Generator, DelayOnEveryJointIsOneDelay) {
   plant.seed = 23;
   plant.delay_s = 0.02;
   const auto d = run(plant, "delay 20 ms, all joints");
-  EXPECT_EQ(outcome(d, "delay", 0), Outcome::Named) << describe(d);
+  EXPECT_EQ(outcome(d, "delay", 0), Outcome::Named) << describe_claims(d);
   expect_only(d, {"delay"});
   for (const offline::Claim& c : d.claims)
     if (!c.ambiguous() && d.groups[c.groups[0]].joint == -1) {
@@ -298,7 +280,7 @@ TEST(Generator, FrictionGrowingWithTheNeighboursLoad) {
   plant.seed = 24;
   plant.neighbour_load = 0.25;  // joint 1's level grows by 0.25·|G_2| (up to 0.43 N·m)
   const auto d = run(plant, "neighbour-load friction");
-  EXPECT_EQ(outcome(d, "neighbour_load_friction", 1), Outcome::Named) << describe(d);
+  EXPECT_EQ(outcome(d, "neighbour_load_friction", 1), Outcome::Named) << describe_claims(d);
   expect_only(d, {"neighbour_load_friction@1"});
   for (const offline::Claim& c : d.claims)
     if (d.groups[c.groups[0]].key == "neighbour_load_friction") {
@@ -316,7 +298,7 @@ TEST(Generator, SpringBesideGravityIsNotClaimedConfidently) {
   const auto d = run(plant, "spring beside gravity");
   for (const offline::Claim& c : d.claims) {
     if (d.groups[c.groups[0]].key == "spring") {
-      EXPECT_TRUE(c.ambiguous()) << describe(d);
+      EXPECT_TRUE(c.ambiguous()) << describe_claims(d);
     }
   }
   expect_only(d, {"spring@2", "offset@2"});
@@ -337,8 +319,8 @@ TEST(Generator, RippleAndSpringOverAWideRange) {
   plant.spring_stiffness = {0.0, 1.5};
   plant.spring_neutral = {0.0, 0.3};
   const auto d = run(plant, "ripple j1, spring j2");
-  EXPECT_EQ(outcome(d, "ripple", 1), Outcome::Named) << describe(d);
-  EXPECT_NE(outcome(d, "spring", 2), Outcome::Missed) << describe(d);
+  EXPECT_EQ(outcome(d, "ripple", 1), Outcome::Named) << describe_claims(d);
+  EXPECT_NE(outcome(d, "spring", 2), Outcome::Missed) << describe_claims(d);
   expect_only(d, {"ripple@1", "spring@2", "offset@2"});
   expect_written_model_runs(d);
 }
@@ -360,7 +342,7 @@ TEST(Generator, RippleFrequencyIsARealNumber) {
   plant.ripple_amplitude = {0.12, 0.0};
   plant.ripple_cycles = {30.65, 8};
   const auto d = run(plant, "ripple 30.65/rev j1");
-  EXPECT_EQ(outcome(d, "ripple", 1), Outcome::Named) << describe(d);
+  EXPECT_EQ(outcome(d, "ripple", 1), Outcome::Named) << describe_claims(d);
   expect_only(d, {"ripple@1"});
   const double f = written_ripple_cycles(d, 1, false);
   std::printf("    written: %.4f periods/rev (planted 30.65)\n", f);
@@ -381,11 +363,11 @@ TEST(Generator, RippleUnderOnePeriodNamesNoFrequency) {
   plant.ripple_amplitude = {0.0, 1.0};
   plant.ripple_cycles = {8, 12};
   const auto d = run(plant, "ripple 12/rev j2 over 0.4 rad");
-  EXPECT_EQ(outcome(d, "ripple", 2), Outcome::Ambiguous) << describe(d);
+  EXPECT_EQ(outcome(d, "ripple", 2), Outcome::Ambiguous) << describe_claims(d);
   for (const offline::Claim& c : d.claims)
     if (d.groups[c.groups[0]].key == "ripple") {
       const auto names = claim_names(d, c);
-      EXPECT_TRUE(names.count("offset@2") && names.count("spring@2")) << describe(d);
+      EXPECT_TRUE(names.count("offset@2") && names.count("spring@2")) << describe_claims(d);
     }
   for (const offline::FeatureGroup& g : d.groups)
     if (g.key == "ripple" && g.joint == 1) {
@@ -436,10 +418,10 @@ TEST(Generator, AnOffsetMissingFromOneFileIsNotClaimed) {
   // Not a property of the arm: nothing is claimed, and the findings say why.
   const offline::Log log = three_file_log({0.4, 0.0, 0.4});
   const auto d = offline::diagnose(log, planar_model_x());
-  std::printf("  [offset missing from one file] %s\n", describe(d).c_str());
+  std::printf("  [offset missing from one file] %s\n", describe_claims(d).c_str());
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
-  EXPECT_TRUE(d.claims.empty()) << describe(d);
+  EXPECT_TRUE(d.claims.empty()) << describe_claims(d);
   // Nor as a payload against the robot file's inertias: a payload that absorbs the offset
   // (0.058 ± 0.009 kg, −43.9 % on file 3) does not transfer to file 2 either.
   EXPECT_FALSE(d.cad_payload.claimed) << d.cad_payload.mass << " kg";
@@ -466,8 +448,8 @@ TEST(Generator, AnOffsetMissingFromOneFileIsNotClaimed) {
 TEST(Generator, AnOffsetInEveryFileIsClaimedAcrossFiles) {
   const offline::Log log = three_file_log({0.3, 0.3, 0.3});
   const auto d = offline::diagnose(log, planar_model_x());
-  std::printf("  [offset in every file] %s\n", describe(d).c_str());
-  EXPECT_NE(outcome(d, "offset", 2), Outcome::Missed) << describe(d);
+  std::printf("  [offset in every file] %s\n", describe_claims(d).c_str());
+  EXPECT_NE(outcome(d, "offset", 2), Outcome::Missed) << describe_claims(d);
   expect_only(d, {"offset@2", "asymmetric_friction@2"});
   const offline::CandidateTrial* offset = first_trial(d, "offset", 2);
   ASSERT_NE(offset, nullptr);
@@ -513,13 +495,13 @@ TEST(Generator, AnEffectOfTwoRepeatedRunsIsNotClaimed) {
   // file does not lower their error, and fitted on them it does not transfer to file 1.
   const offline::Log log = several_file_log(repeated_run_plants({0.0, 1.5, 1.5}), "repeat");
   const auto d = offline::diagnose(log, planar_model_x());
-  std::printf("  [spring in two repeated runs only] %s\n", describe(d).c_str());
+  std::printf("  [spring in two repeated runs only] %s\n", describe_claims(d).c_str());
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
   expect_heldout_files(log, d, {1, 2});
   EXPECT_NE(d.heldout_split.find("repeat2_"), std::string::npos) << d.heldout_split;
   EXPECT_NE(d.heldout_split.find("repeats the motion of"), std::string::npos) << d.heldout_split;
-  EXPECT_EQ(outcome(d, "spring", 2), Outcome::Missed) << describe(d);
+  EXPECT_EQ(outcome(d, "spring", 2), Outcome::Missed) << describe_claims(d);
 }
 
 TEST(Generator, FilesThatAllRepeatOneMotionAreNotHeldOutByFile) {
@@ -529,7 +511,8 @@ TEST(Generator, FilesThatAllRepeatOneMotionAreNotHeldOutByFile) {
   plants.erase(plants.begin());
   const offline::Log log = several_file_log(plants, "alike");
   const auto d = offline::diagnose(log, planar_model_x());
-  std::printf("  [one motion twice] %s\n    %s\n", describe(d).c_str(), d.heldout_split.c_str());
+  std::printf("  [one motion twice] %s\n    %s\n", describe_claims(d).c_str(),
+              d.heldout_split.c_str());
   EXPECT_EQ(d.samples.heldout_file, 0);
   EXPECT_NE(d.heldout_split.find("Not held out by file"), std::string::npos) << d.heldout_split;
   for (std::size_t f = 0; f < log.file_count(); ++f) {
@@ -547,11 +530,11 @@ TEST(Generator, ASpringOfEveryFileIsClaimedAndTestedOutsideTheRange) {
   // extrapolated k·q must lower the error too.
   const offline::Log log = several_file_log(repeated_run_plants({1.5, 1.5, 1.5}), "spring");
   const auto d = offline::diagnose(log, planar_model_x());
-  std::printf("  [spring in every file] %s\n", describe(d).c_str());
+  std::printf("  [spring in every file] %s\n", describe_claims(d).c_str());
   for (const auto& f : d.findings)
     std::printf("    %s\n", f.c_str());
   expect_heldout_files(log, d, {1, 2});
-  EXPECT_NE(outcome(d, "spring", 2), Outcome::Missed) << describe(d);
+  EXPECT_NE(outcome(d, "spring", 2), Outcome::Missed) << describe_claims(d);
   expect_only(d, {"spring@2", "offset@2"});
   bool tested = false;
   for (const offline::CandidateTrial& t : d.trials)
@@ -560,7 +543,7 @@ TEST(Generator, ASpringOfEveryFileIsClaimedAndTestedOutsideTheRange) {
       EXPECT_GE(t.outside_improvement, 0.10);
       EXPECT_GT(t.outside_samples, 100);
     }
-  EXPECT_TRUE(tested) << describe(d);
+  EXPECT_TRUE(tested) << describe_claims(d);
   // The declared model diagnose keeps beside its written one (nothing added, as identify fits
   // it) misses the spring: its held-out error on joint 2 is well above the written model's.
   const offline::JointSamples& s = d.samples;
@@ -587,7 +570,7 @@ TEST(Generator, APayloadIsFoundAgainstTheRobotFilesInertias) {
   const offline::CadPayloadCheck& c = d.cad_payload;
   std::printf("    CAD check: %.3f kg at (%.3f, %.3f, %.3f) m, %.1f %% of the held-out SSE\n",
               c.mass, c.centre.x(), c.centre.y(), c.centre.z(), 100 * c.improvement);
-  EXPECT_TRUE(d.claims.empty()) << describe(d);
+  EXPECT_TRUE(d.claims.empty()) << describe_claims(d);
   EXPECT_TRUE(c.claimed);
   EXPECT_NEAR(c.mass, 0.5, 0.05);
   EXPECT_NEAR(c.centre.x(), 0.25, 0.03);
@@ -599,7 +582,7 @@ TEST(Generator, FrictionGrowingWithTheJointsOwnLoad) {
   plant.seed = 52;
   plant.own_load = {0.05, 0.0};  // joint 1's level grows by 0.05·|G_1| (up to 0.5 N·m)
   const auto d = run(plant, "own-load friction j1");
-  EXPECT_NE(outcome(d, "load_friction", 1), Outcome::Missed) << describe(d);
+  EXPECT_NE(outcome(d, "load_friction", 1), Outcome::Missed) << describe_claims(d);
   expect_only(d, {"load_friction@1", "neighbour_load_friction@1"});
   for (const offline::Claim& c : d.claims)
     if (d.groups[c.groups[0]].key == "load_friction") {
@@ -618,7 +601,7 @@ TEST(Generator, TemperatureDependentFrictionOfOneJoint) {
   plant.temperature_rise = {12, 15};
   plant.thermal_viscous = {0.0, -0.03};
   const auto d = run(plant, "thermal j2");
-  EXPECT_EQ(outcome(d, "thermal", 2), Outcome::Named) << describe(d);
+  EXPECT_EQ(outcome(d, "thermal", 2), Outcome::Named) << describe_claims(d);
   expect_only(d, {"thermal@2"});
   // β = b_2·(−0.03/K) = −0.006 N·m·s/rad/K: the sign (friction falls as it warms) and size.
   if (!d.claims.empty()) {
@@ -641,7 +624,7 @@ TEST(Generator, TemperatureDependentFrictionOfEveryJoint) {
   const auto d = run(plant, "thermal, every joint");
   EXPECT_TRUE(outcome(d, "thermal", 0) == Outcome::Named ||
               outcome(d, "thermal", 2) == Outcome::Named)
-      << describe(d);
+      << describe_claims(d);
   expect_only(d, {"thermal"});
 }
 
@@ -651,7 +634,7 @@ TEST(Generator, ALoggedTemperatureAloneClaimsNothing) {
   plant.seed = 55;
   plant.log_temperature = true;
   const auto d = run(plant, "temperature logged, no thermal friction");
-  EXPECT_TRUE(d.claims.empty()) << describe(d);
+  EXPECT_TRUE(d.claims.empty()) << describe_claims(d);
 }
 
 TEST(Generator, MotionCouplingBetweenTheJoints) {
@@ -661,7 +644,7 @@ TEST(Generator, MotionCouplingBetweenTheJoints) {
   plant.seed = 56;
   plant.coupling_velocity(0, 1) = 0.15;
   const auto d = run(plant, "coupling j1 <- dq2");
-  EXPECT_EQ(outcome(d, "coupling", 1), Outcome::Named) << describe(d);
+  EXPECT_EQ(outcome(d, "coupling", 1), Outcome::Named) << describe_claims(d);
   expect_only(d, {"coupling@1"});
   if (!d.claims.empty()) {
     EXPECT_NEAR(d.claims[0].coefficients[0], 0.15, 0.05);  // C_v,12
@@ -677,7 +660,7 @@ TEST(Generator, MotorSideRipple) {
   plant.seed = 57;
   plant.motor_ripple_amplitude = {0.0, 0.08};
   const auto d = run(plant, "motor ripple j2");
-  EXPECT_EQ(outcome(d, "ripple_motor", 2), Outcome::Named) << describe(d);
+  EXPECT_EQ(outcome(d, "ripple_motor", 2), Outcome::Named) << describe_claims(d);
   expect_only(d, {"ripple_motor@2"});
   if (!d.claims.empty()) {  // a·sin(n r q + 0.7) = a cos 0.7·sin + a sin 0.7·cos
     EXPECT_NEAR(d.claims[0].coefficients[0], 0.08 * std::cos(0.7), 0.01);
@@ -696,7 +679,7 @@ TEST(Generator, DirectionAsymmetricViscousFriction) {
   plant.viscous = {0.30, 0.20};
   plant.viscous_asymmetry = {0.0, 0.10};
   const auto d = run(plant, "asymmetric viscous j2");
-  EXPECT_NE(outcome(d, "asymmetric_friction", 2), Outcome::Missed) << describe(d);
+  EXPECT_NE(outcome(d, "asymmetric_friction", 2), Outcome::Missed) << describe_claims(d);
   expect_only(d, {"asymmetric_friction@2", "offset@2"});
   // Ambiguous with the offset by construction: the family's Coulomb column |sgn q̇| is the
   // offset's column on moving samples (their smallest principal angle is nearly zero), although
@@ -716,7 +699,7 @@ TEST(Generator, DirectionAsymmetricViscousFriction) {
 // confident name of joint 1 alone.
 void expect_acceleration_coupling_of_joint_2(const Diagnosis& d,
                                              const std::set<std::string>& planted) {
-  EXPECT_NE(outcome(d, "coupling", 2), Outcome::Missed) << describe(d);
+  EXPECT_NE(outcome(d, "coupling", 2), Outcome::Missed) << describe_claims(d);
   expect_only(d, planted);
   for (const offline::Claim& c : d.claims)
     for (std::size_t i = 0; i < c.groups.size(); ++i)

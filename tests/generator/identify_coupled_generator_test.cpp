@@ -17,6 +17,7 @@
 
 #include "offline/identify/identify.hpp"
 #include "planar_arm_generator.hpp"
+#include "support/heldout_moving_rms.hpp"
 #include "support/temp_dir.hpp"
 #include "tpf/estimation/nominal_model.hpp"
 #include "tpf/friction/stribeck.hpp"
@@ -38,10 +39,6 @@ PlanarArmPlant coupled_plant() {
   return plant;
 }
 
-bool moving(const offline::JointSamples& s, int j, Eigen::Index k) {
-  return s.valid[k] && s.regimes[j][k] != Regime::Static && s.regimes[j][k] != Regime::Invalid;
-}
-
 // Rows of the generator's model class, linear in θ = [A, D, B, I_a2, P1, P2, fc1, fv1, fc2, fv2]
 // (tests/generator/planar_arm_generator.cpp with C = [1 0; c 1], no payload): M11 = A + 2B cos q₂
 // + c²I_a2, M12 = D + B cos q₂ + c I_a2, M22 = D + I_a2, h = B sin q₂, G = −P1 cos q₁ −
@@ -59,22 +56,6 @@ Eigen::Matrix<double, 2, 10> reference_rows(const offline::JointSamples& s, Eige
   return rows;
 }
 
-// Held-out RMS per joint, over the held-out moving samples where `residual` is finite.
-Eigen::Vector2d heldout_rms(const offline::JointSamples& s, const Eigen::MatrixXd& residual) {
-  Eigen::Vector2d rms;
-  for (int j = 0; j < 2; ++j) {
-    double sse = 0;
-    int n = 0;
-    for (Eigen::Index k = 0; k < s.size(); ++k)
-      if (s.heldout[k] && moving(s, j, k) && std::isfinite(residual(k, j))) {
-        sse += residual(k, j) * residual(k, j);
-        ++n;
-      }
-    rms[j] = std::sqrt(sse / std::max(n, 1));
-  }
-  return rms;
-}
-
 // Plain least squares of the model class on the training moving rows: its residual per sample
 // and its θ.
 Eigen::MatrixXd reference_residual(const offline::JointSamples& s, double c,
@@ -85,7 +66,7 @@ Eigen::MatrixXd reference_residual(const offline::JointSamples& s, double c,
     if (s.heldout[k]) continue;
     const Eigen::Matrix<double, 2, 10> rows = reference_rows(s, k, c);
     for (int j = 0; j < 2; ++j)
-      if (moving(s, j, k)) {
+      if (moving_sample(s, j, k)) {
         a.push_back(rows.row(j));
         b.push_back(s.effort(k, j));
       }
@@ -139,8 +120,8 @@ TEST(IdentifyCoupled, RecoversTheCoupledMotorAndMatchesTheModelClassHeldOut) {
   EXPECT_NEAR(f.coulomb[0], theta[6], 0.05 * theta[6]);
   EXPECT_NEAR(f.viscous[0], theta[7], 0.05 * theta[7]);
 
-  const Eigen::Vector2d fitted = heldout_rms(s, id.residual);
-  const Eigen::Vector2d reference = heldout_rms(s, reference_fit);
+  const Eigen::Vector2d fitted = heldout_moving_rms(s, id.residual).rms;
+  const Eigen::Vector2d reference = heldout_moving_rms(s, reference_fit).rms;
   std::printf("held-out moving RMS: identify %.4f %.4f, model-class least squares %.4f %.4f\n",
               fitted[0], fitted[1], reference[0], reference[1]);
   for (int j = 0; j < 2; ++j)
@@ -149,7 +130,7 @@ TEST(IdentifyCoupled, RecoversTheCoupledMotorAndMatchesTheModelClassHeldOut) {
   // The same log fitted as if each motor drove its own joint: joint 2 is clearly worse.
   const auto uncoupled = load_robot<double, Eigen::Dynamic>(planar_robot_file());
   const offline::Identification plain = offline::identify(log, uncoupled);
-  const Eigen::Vector2d without = heldout_rms(plain.samples, plain.residual);
+  const Eigen::Vector2d without = heldout_moving_rms(plain.samples, plain.residual).rms;
   std::printf("held-out moving RMS without the coupling: %.4f %.4f\n", without[0], without[1]);
   EXPECT_GT(without[1], 2.0 * fitted[1]);
 }

@@ -28,6 +28,7 @@
 #include "offline/identify/identify.hpp"
 #include "offline/sim/scenario.hpp"
 #include "offline/sim/simulate.hpp"
+#include "support/heldout_moving_rms.hpp"
 #include "support/temp_dir.hpp"
 #include "tpf/dynamics/regressor.hpp"
 #include "tpf/estimation/nominal_model.hpp"
@@ -75,26 +76,12 @@ void write_wrist_arm_files(const TempDir& dir) {
   std::ofstream(dir / "wrist6.robot.json") << robot(false);
 }
 
-bool wrist_moving(const offline::JointSamples& s, int j, Eigen::Index k) {
-  return s.valid[k] && s.regimes[j][k] != offline::Regime::Static &&
-         s.regimes[j][k] != offline::Regime::Invalid;
-}
-
 // Held-out RMS per joint over the held-out moving samples where `residual` is finite.
 WristVector wrist_heldout_rms(const offline::JointSamples& s, const Eigen::MatrixXd& residual) {
-  WristVector rms;
-  for (int j = 0; j < kWristArmJoints; ++j) {
-    double sse = 0;
-    long n = 0;
-    for (Eigen::Index k = 0; k < s.size(); ++k)
-      if (s.heldout[k] && wrist_moving(s, j, k) && std::isfinite(residual(k, j))) {
-        sse += residual(k, j) * residual(k, j);
-        ++n;
-      }
-    EXPECT_GT(n, 1000) << "joint " << j + 1 << ": too few held-out moving samples";
-    rms[j] = std::sqrt(sse / static_cast<double>(std::max(n, 1L)));
-  }
-  return rms;
+  const HeldOutMovingRms heldout = heldout_moving_rms(s, residual);
+  for (int j = 0; j < kWristArmJoints; ++j)
+    EXPECT_GT(heldout.samples[j], 1000) << "joint " << j + 1 << ": too few held-out moving samples";
+  return heldout.rms;
 }
 
 // Plain least squares of the model class with the coupling on the training moving rows of
@@ -124,7 +111,7 @@ Eigen::MatrixXd wrist_reference_residual(const offline::JointSamples& s,
     if (!s.valid[k] || s.heldout[k]) continue;
     rows_at(k);
     for (int j = 0; j < n; ++j)
-      if (wrist_moving(s, j, k)) {
+      if (moving_sample(s, j, k)) {
         a.push_back(r.row(j).transpose());
         b.push_back(s.effort(k, j));
       }

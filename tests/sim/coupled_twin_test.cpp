@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -42,27 +43,13 @@ constexpr double kCoupling = 0.5;  // motor 2 turns with q₂ + 0.5·q₁
 constexpr double kCoulomb[2] = {0.40, 0.25};
 constexpr double kViscous[2] = {0.30, 0.20};
 
-// Writes planar.urdf, planar.friction.json, planar_coupled.robot.json and planar.robot.json (the
-// same drives without coupled_to) into `dir`.
+// Writes planar.urdf (a copy of the generator's planar2.urdf), planar.friction.json,
+// planar_coupled.robot.json and planar.robot.json (the same drives without coupled_to) into `dir`.
 void write_planar_files(const TempDir& dir) {
-  std::ofstream(dir / "planar.urdf") << R"(<?xml version="1.0"?>
-<robot name="planar_twin">
-  <link name="base"/>
-  <link name="upper">
-    <inertial><origin xyz="0.2 0 0"/><mass value="2.0"/>
-      <inertia ixx="0.002" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.03"/></inertial>
-  </link>
-  <link name="fore">
-    <inertial><origin xyz="0.15 0 0"/><mass value="1.2"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.012" iyz="0" izz="0.012"/></inertial>
-  </link>
-  <joint name="joint1" type="revolute"><parent link="base"/><child link="upper"/>
-    <axis xyz="0 1 0"/><limit lower="-3" upper="3" velocity="3" effort="50"/></joint>
-  <joint name="joint2" type="revolute"><parent link="upper"/><child link="fore"/>
-    <origin xyz="0.4 0 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" velocity="3" effort="50"/>
-  </joint>
-</robot>
-)";
+  // The independent generator's arm (tests/generator/planar2), its drives written here.
+  std::filesystem::copy_file(std::filesystem::path(TPF_TEST_DATA_DIR).parent_path() /
+                                 "tests/generator/planar2/planar2.urdf",
+                             dir / "planar.urdf");
   std::ofstream(dir / "planar.friction.json") << R"({
   "effort_unit": "N*m",
   "coulomb": [0.40, 0.25], "static": [0.44, 0.275], "stribeck_velocity": [0.05, 0.06],
