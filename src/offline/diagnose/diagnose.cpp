@@ -11,6 +11,7 @@
 #include "offline/diagnose/coupled_motor_fit.hpp"
 #include "offline/diagnose/diagnosis_findings.hpp"
 #include "offline/diagnose/effect_selection.hpp"
+#include "offline/diagnose/neighbour_load_choice.hpp"
 #include "offline/diagnose/residual_analysis.hpp"
 #include "offline/diagnose/ripple_refit.hpp"
 #include "offline/effects/effect_columns.hpp"
@@ -103,9 +104,13 @@ void require_identified_on(const Identification& identified, const JointSamples&
 CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup& setup,
                                  const JointSamples& s, const ResidualAnalysis& analysis,
                                  const Identification& identified,
-                                 const Eigen::MatrixXd& declared_residual, double static_velocity) {
+                                 const Eigen::MatrixXd& declared_residual,
+                                 const std::vector<int>& dead_joints, double static_velocity) {
   CandidateInputs inputs;
   inputs.enabled = true;
+  inputs.dead_joints.assign(static_cast<std::size_t>(model.joint_count()), 0);
+  for (int j : dead_joints)
+    inputs.dead_joints[static_cast<std::size_t>(j - 1)] = 1;
   inputs.ripple_cycles = analysis.ripple_cycles;
   inputs.ripple_motor_cycles = analysis.ripple_motor_cycles;
   inputs.ripple_periods = analysis.ripple_periods;
@@ -113,8 +118,10 @@ CandidateInputs candidate_inputs(const ModelX& model, const IdentificationSetup&
   // Ripple is periodic in an angle: a prismatic joint (q in m) has no revolution to count over.
   for (int j = 0; j < model.joint_count(); ++j)
     if (model.is_prismatic(j)) inputs.ripple_cycles[j] = inputs.ripple_motor_cycles[j] = 0.0;
-  inputs.prediction_rate = analysis.prediction_rate;
+  inputs.prediction_rate = analysis.effort_lag.column;
+  inputs.effort_lag_s = analysis.effort_lag.lag_s;
   inputs.abs_gravity = setup.abs_gravity ? *setup.abs_gravity : gravity_load(model, s);
+  inputs.neighbour_load_source = choose_neighbour_loads(s, declared_residual, inputs.abs_gravity);
   inputs.reference_temperature =
       s.temperature.cols() == s.joints()
           ? s.temperature.col(0).array().isFinite().select(s.temperature.col(0).array(), 0).mean()
@@ -449,15 +456,23 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
     out.notes.push_back("temperature-dependent friction not checked: the log has no temp<j>");
   if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
+  // A dead effort channel (mostly exact zeros) is kept out of every candidate of its joint.
+  const LogChecks checks = check_sample_units(model, s);
+  for (const std::string& problem : checks.problems)
+    if (problem.find("dead effort channel") != std::string::npos)
+      out.notes.push_back(problem + ": no candidate effect is tried on it");
+
   say("diagnose: pass 3/4: candidate effects");
-  const CandidateDesign candidates = candidate_design(
-      model, setup, s, regressors,
-      candidate_inputs(model, setup, s, analysis, identified, linear[0], threshold), selection,
-      out.inertia_prior.judged_strength, threshold);
+  const CandidateDesign candidates =
+      candidate_design(model, setup, s, regressors,
+                       candidate_inputs(model, setup, s, analysis, identified, linear[0],
+                                        checks.dead_joints, threshold),
+                       selection, out.inertia_prior.judged_strength, threshold);
   const EffectDesign& design = *candidates.design;
   const DesignGrams& grams = candidates.grams;
   const CandidateInputs& inputs = design.candidates();  // not copied: |G(q)| of every sample
   out.coupled_motors = inputs.coupled_motors;
+  out.effort_lag_s = inputs.effort_lag_s;
   FitSelection every = selection;  // the written model's final refit
   every.heldout_rows = true;
   if (out.inertia_prior.judged_strength > 0 || out.inertia_prior.written_strength > 0) {

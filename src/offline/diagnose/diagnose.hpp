@@ -195,6 +195,9 @@ struct EffectDiagnosis {
   CadPayloadCheck cad_payload;
   /// The coupled-motor candidates, each pair's ratio as fitted (CandidateInputs::coupled_motors).
   std::vector<CoupledMotorCandidate> coupled_motors;
+  /// The lag of the effort behind the rigid-body prediction the delay candidate differences over
+  /// (search_effort_lag, s; 0 = none searched).
+  double effort_lag_s = 0.0;
   /// Identify's inertia prior, which every fit of the diagnosis has: judged_strength the
   /// selection's (training rows), written_strength the written model's refit on every row.
   Identification::InertiaPrior inertia_prior;

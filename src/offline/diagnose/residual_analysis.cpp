@@ -85,14 +85,12 @@ double variance_inflation(const Eigen::VectorXd& residual,
 
 /// Joint j's part of the analysis: its entries of `a`, and its notes into `notes`.
 void analyse_joint_residual(const JointSamples& s, const Eigen::MatrixXd& residual,
-                            const Eigen::MatrixXd& rigid_prediction,
                             const Eigen::VectorXd& gear_ratio, double step, double band_hz, int j,
                             ResidualAnalysis& a, std::vector<std::string>& notes) {
   a.noise_floor[j] = static_noise(s, j);
   a.motion_noise[j] = motion_noise(s, j, band_hz, step);
   const std::vector<Eigen::Index> moving = moving_training_samples(s, j);
   a.variance_inflation[j] = variance_inflation(residual.col(j), moving);
-  a.prediction_rate.col(j) = derive_acceleration(s.t, rigid_prediction.col(j), 15.0, step);
   Eigen::VectorXd q, r;
   if (!strided_moving_samples(s, residual.col(j), j, moving, q, r)) return;
   // Output side: from half a period in the range (at least 3/rev) to 64/rev (output_ripple).
@@ -133,15 +131,15 @@ ResidualAnalysis analyse_residual(const JointSamples& s, const Eigen::MatrixXd& 
   a.ripple_motor_cycles = Eigen::VectorXd::Zero(joints);
   a.ripple_periods = Eigen::VectorXd::Zero(joints);
   a.ripple_motor_periods = Eigen::VectorXd::Zero(joints);
-  a.prediction_rate.resize(s.size(), joints);
   // Joints are independent: each thread takes the next (same result as serial, notes in joint
   // order).
   std::vector<std::vector<std::string>> notes(static_cast<std::size_t>(joints));
   const double step = median_step(s.t);  // once for every joint's filter
   parallel_jobs(joints, [&](int j) {
-    analyse_joint_residual(s, residual, rigid_prediction, gear_ratio, step, model_band_hz, j, a,
+    analyse_joint_residual(s, residual, gear_ratio, step, model_band_hz, j, a,
                            notes[static_cast<std::size_t>(j)]);
   });
+  a.effort_lag = search_effort_lag(s, rigid_prediction, residual, 0.1);
   for (const std::vector<std::string>& joint_notes : notes)
     a.notes.insert(a.notes.end(), joint_notes.begin(), joint_notes.end());
   return a;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "offline/diagnose/effort_lag.hpp"
 #include "offline/samples/joint_samples.hpp"
 #include "offline/signal/periodogram.hpp"
 
@@ -30,18 +31,18 @@ struct ResidualAnalysis {
   Eigen::VectorXd ripple_periods;
   Eigen::VectorXd ripple_motor_cycles;   ///< the same per motor revolution (θ = |G|·q), 0 = none
   Eigen::VectorXd ripple_motor_periods;  ///< its periods of θ within the range of motion
-  Eigen::MatrixXd prediction_rate;       ///< d(rigid-body prediction)/dt per sample and joint
-  std::vector<std::string> notes;        ///< candidates limited by the data, and why
+  EffortLag effort_lag;            ///< the delay candidate's lag and column (search_effort_lag)
+  std::vector<std::string> notes;  ///< candidates limited by the data, and why
 };
 
 /// `residual` = effort − declared prediction (fitted on motion), `rigid_prediction` its rigid-body
-/// part (the delay candidate shifts that: the friction's own lag at a reversal is memory, not a
-/// delay), `gear_ratio` per joint. Output ripple is searched from half a period in the joint's
-/// range of motion (and 3 periods/rev) to 64 periods/rev, motor ripple from 0.5 to 4.5 periods
-/// per motor revolution; one with under one period in the range cannot be told from an offset
-/// or a slope (ripple_periods).
-/// `model_band_hz`: the acceleration filter's cutoff (SampleOptions::acceleration_cutoff_hz),
-/// above which the model predicts nothing (motion_noise).
+/// part (the delay candidate shifts that, over the lag search_effort_lag finds within ±0.1 s: the
+/// friction's own lag at a reversal is memory, not a delay), `gear_ratio` per joint. Output ripple
+/// is searched from half a period in the joint's range of motion (and 3 periods/rev) to 64
+/// periods/rev, motor ripple from 0.5 to 4.5 periods per motor revolution; one with under one
+/// period in the range cannot be told from an offset or a slope (ripple_periods). `model_band_hz`:
+/// the acceleration filter's cutoff (SampleOptions::acceleration_cutoff_hz), above which the model
+/// predicts nothing (motion_noise).
 ResidualAnalysis analyse_residual(const JointSamples& samples, const Eigen::MatrixXd& residual,
                                   const Eigen::MatrixXd& rigid_prediction,
                                   const Eigen::VectorXd& gear_ratio, double model_band_hz);

@@ -33,12 +33,21 @@ struct CandidateInputs {
   /// motion; under 1 the candidate names no frequency and is ambiguous with its joint's offset
   /// and spring. Empty: every period in view.
   Eigen::VectorXd ripple_periods, ripple_motor_periods;
-  Eigen::MatrixXd prediction_rate;  ///< d(declared prediction)/dt per sample and joint, or empty
-  Eigen::MatrixXd abs_gravity;      ///< |G_j(q)| per sample and joint [N·m] (gravity_load)
+  /// The delay candidate's column per sample and joint, the declared prediction's difference
+  /// quotient over effort_lag_s (search_effort_lag), or empty.
+  Eigen::MatrixXd prediction_rate;
+  double effort_lag_s = 0.0;
+  Eigen::MatrixXd abs_gravity;  ///< |G_j(q)| per sample and joint [N·m] (gravity_load)
+  /// Per joint: the other joint whose load |G_k| its neighbour-load candidate takes
+  /// (choose_neighbour_loads), −1 = none; empty = no neighbour-load candidate.
+  Eigen::VectorXi neighbour_load_source;
   double reference_temperature = 25.0;  ///< °C
   /// Per joint: the declared fit's viscous coefficient b_j [N·m·s/rad], which the
   /// every-joint thermal candidate scales; empty = no every-joint thermal candidate.
   Eigen::VectorXd viscous;
+  /// Per joint: 1 when its effort channel is dead (LogChecks::dead_joints): no candidate of that
+  /// joint, nor of a pair holding it, is offered. Empty: none.
+  std::vector<char> dead_joints;
   /// Coupled-motor candidates (CoupledMotorColumns), one per adjacent pair of uncoupled motors.
   std::vector<CoupledMotorCandidate> coupled_motors;
 };

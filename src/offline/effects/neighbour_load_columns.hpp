@@ -1,6 +1,7 @@
 // Candidate: friction of joint j growing with another joint's gravity load, |G_k|s, |G_k|q̇_j for
-// every k ≠ j (written into the friction model: neighbour_load_coulomb β, neighbour_load_viscous
-// γ).
+// the joint k ≠ j chosen on the declared model's residual (CandidateInputs::neighbour_load_source,
+// choose_neighbour_loads) (written into the friction model: neighbour_load_coulomb β,
+// neighbour_load_viscous γ).
 #pragma once
 
 #include <string_view>
@@ -17,32 +18,27 @@ struct NeighbourLoadColumns {
   static constexpr WrittenTo written_to = WrittenTo::kFriction;
   static constexpr bool kSharedGroupFirst = false;
 
-  static bool offered(const DesignContext& c, int joint) { return joint >= 0 && c.joints > 1; }
+  static int source(const CandidateInputs& inputs, int joint) {
+    return inputs.neighbour_load_source[joint];
+  }
+  static bool offered(const DesignContext& c, int joint) {
+    return joint >= 0 && c.inputs.neighbour_load_source.size() == c.joints &&
+           source(c.inputs, joint) >= 0;
+  }
   static GroupSpec group(const DesignContext& c, int joint) {
-    GroupSpec spec{"friction growing with the other joints' load |G_k|, " + joint_title(joint), {}};
-    const std::string n = joint_suffix(joint);
-    for (int k = 0; k < c.joints; ++k)
-      if (k != joint) {
-        spec.column_names.push_back("beta" + n + "_" + joint_suffix(k));
-        spec.column_names.push_back("gamma" + n + "_" + joint_suffix(k));
-      }
-    return spec;
+    const std::string n = joint_suffix(joint), k = joint_suffix(source(c.inputs, joint));
+    return {"friction growing with joint " + k + "'s load |G" + k + "|, " + joint_title(joint),
+            {"beta" + n + "_" + k, "gamma" + n + "_" + k}};
   }
   static void fill(const SampleRow& row, int joint, double* out) {
-    const int joints = row.joints();
-    for (int k = 0; k < joints; ++k)
-      if (k != joint) {
-        *out++ = row.inputs.abs_gravity(row.k, k) * row.direction[joint];
-        *out++ = row.inputs.abs_gravity(row.k, k) * row.motion.dq[joint];
-      }
+    const double load = row.inputs.abs_gravity(row.k, source(row.inputs, joint));
+    out[0] = load * row.direction[joint];
+    out[1] = load * row.motion.dq[joint];
   }
   static void write(const double* coefficients, int joint, WrittenModel& out) {
-    const int joints = out.joints();
-    for (int k = 0; k < joints; ++k)
-      if (k != joint) {
-        out.linear.neighbour_load_coulomb(joint, k) = *coefficients++;
-        out.linear.neighbour_load_viscous(joint, k) = *coefficients++;
-      }
+    const int k = source(out.inputs, joint);
+    out.linear.neighbour_load_coulomb(joint, k) = coefficients[0];
+    out.linear.neighbour_load_viscous(joint, k) = coefficients[1];
   }
   static void remove(int joint, NominalModelX& nominal) {
     nominal.friction.neighbour_load_coulomb.row(joint).setZero();

@@ -71,14 +71,22 @@ void EffectDesign::add_families(const DesignContext& context) {
                std::move(spec.dissipative)},
               fill, variant);
   };
+  // A candidate on a joint whose effort channel is dead has nothing to be fitted to.
+  const auto dead = [&](int joint) {
+    return !declared && joint >= 0 &&
+           static_cast<std::size_t>(joint) < context.inputs.dead_joints.size() &&
+           context.inputs.dead_joints[static_cast<std::size_t>(joint)];
+  };
   auto offer = [&]<typename Family>(int joint) {
     if constexpr (SeveralGroups<Family>) {
       if (joint >= 0) return;
-      for (int v = 0; v < Family::variants(context); ++v)
-        add_spec.template operator()<Family>(Family::group(context, v), -1, false, &Family::fill,
-                                             v);
+      for (int v = 0; v < Family::variants(context); ++v) {
+        GroupSpec spec = Family::group(context, v);
+        if (std::none_of(spec.joints.begin(), spec.joints.end(), dead))
+          add_spec.template operator()<Family>(std::move(spec), -1, false, &Family::fill, v);
+      }
     } else {
-      if (!Family::offered(context, joint)) return;
+      if (dead(joint) || !Family::offered(context, joint)) return;
       bool extrapolates = false;
       if constexpr (requires { Family::kExtrapolatesInQ; }) extrapolates = Family::kExtrapolatesInQ;
       add_spec.template operator()<Family>(Family::group(context, joint), joint, extrapolates,

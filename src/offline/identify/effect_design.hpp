@@ -33,9 +33,10 @@ namespace tpf::offline {
 ///            relative coefficient: viscous friction × (1 + β(T − T_ref)))
 ///   spring: q_j    offset: 1
 ///   asymmetric_friction: |s|, |q̇_j| (level τ_c ± a_c and viscous b ± a_v by direction)
-///   neighbour_load_friction: |G_k|s, |G_k|q̇_j for every k ≠ j
-///   delay: d(rigid-body prediction_j)/dt (coefficient = the effort's lead over the motion, s),
-///          one group per joint and one for every joint at once (one shared lead)
+///   neighbour_load_friction: |G_k|s, |G_k|q̇_j for the k ≠ j chosen on the residual
+///   delay: (p_j(t) − p_j(t − lag))/lag of the rigid-body prediction over the searched lag
+///          (coefficient = the effort's lead over the motion, s), one group per joint and one
+///          for every joint at once (one shared lead)
 ///   coupling: q̇_k, q̈_k for every k ≠ j
 ///   coupled_motor (joints i and i + 1 only): share·s_θ, share·θ̇, share·θ̈ of a motor turning
 ///          with θ = a q_i + b q_{i+1}, share a on joint i and b on joint i + 1
