@@ -24,95 +24,90 @@ MobileArmDynamics::MobileArmDynamics()
       if (tree_[i].name == link) return static_cast<int>(i);
     return -1;
   };
-  for (const TreeLink& l : tree_) {
-    parent_.push_back(index_of(l.parent));
-    const auto it = std::find(chain.begin(), chain.end(), l.joint);
-    chain_index_.push_back(it == chain.end() ? -1 : static_cast<int>(it - chain.begin()));
-  }
+  const auto vector = [](const std::array<double, 3>& v) {
+    return Vector3<double>(v[0], v[1], v[2]);
+  };
   chain_link_.assign(chain.size(), -1);
-  for (std::size_t i = 0; i < tree_.size(); ++i)
-    if (chain_index_[i] >= 0)
-      chain_link_[static_cast<std::size_t>(chain_index_[i])] = static_cast<int>(i);
   for (const TreeLink& l : tree_) {
-    movers_.emplace_back();
-    for (std::size_t j = 0; j < chain.size(); ++j)
-      if (at_or_below(tree_, l.name, tree_[static_cast<std::size_t>(chain_link_[j])].name))
-        movers_.back().push_back(static_cast<int>(j));
+    Link link;
+    link.parent = index_of(l.parent);
+    const auto it = std::find(chain.begin(), chain.end(), l.joint);
+    if (it != chain.end()) {
+      link.joint = static_cast<int>(it - chain.begin());
+      chain_link_[static_cast<std::size_t>(link.joint)] = static_cast<int>(links_.size());
+    }
+    link.prismatic = l.type == "prismatic";
+    link.revolute = l.type == "revolute" || l.type == "continuous";
+    link.origin_R = rpy_rotation(l.rpy);
+    link.origin_p = vector(l.xyz);
+    link.axis = vector(l.axis).normalized();
+    link.com = vector(l.com);
+    link.com_R = rpy_rotation(l.com_rpy);
+    link.inertia << l.inertia[0], l.inertia[3], l.inertia[4], l.inertia[3], l.inertia[1],
+        l.inertia[5], l.inertia[4], l.inertia[5], l.inertia[2];
+    link.mass = l.mass;
+    links_.push_back(link);
   }
+  for (std::size_t i = 0; i < tree_.size(); ++i)
+    for (std::size_t j = 0; j < chain.size(); ++j)
+      if (at_or_below(tree_, tree_[i].name, tree_[static_cast<std::size_t>(chain_link_[j])].name))
+        links_[i].movers.push_back(static_cast<int>(j));
 }
 
-/// The tree's link frames (as TreePose) in vectors by link index.
-struct MobileArmDynamics::Pose {
-  std::vector<Transform<double>> link;
-  std::vector<Vector3<double>> joint_origin, joint_axis;
-};
-
-MobileArmDynamics::Pose MobileArmDynamics::pose(const MobileVector& q) const {
-  Pose p;
-  p.link.resize(tree_.size());
-  p.joint_origin.resize(tree_.size(), Vector3<double>::Zero());
-  p.joint_axis.resize(tree_.size(), Vector3<double>::Zero());
-  for (std::size_t i = 0; i < tree_.size(); ++i) {  // parents come before their children
-    const TreeLink& l = tree_[i];
-    if (parent_[i] < 0) continue;
-    const Transform<double>& parent = p.link[static_cast<std::size_t>(parent_[i])];
-    Transform<double> joint;
-    joint.R = parent.R * rpy_rotation(l.rpy);
-    joint.p = parent.p + parent.R * Vector3<double>(l.xyz[0], l.xyz[1], l.xyz[2]);
-    const Vector3<double> axis = Vector3<double>(l.axis[0], l.axis[1], l.axis[2]).normalized();
-    const double position = chain_index_[i] >= 0 ? q[chain_index_[i]] : 0.0;
-    p.joint_origin[i] = joint.p;
-    p.joint_axis[i] = joint.R * axis;
-    Transform<double> child = joint;
-    if (l.type == "prismatic")
-      child.p += position * p.joint_axis[i];
-    else if (l.type != "fixed")
-      child.R = joint.R * Eigen::AngleAxisd(position, axis).toRotationMatrix();
-    p.link[i] = child;
+std::vector<MobileArmDynamics::LinkPose> MobileArmDynamics::pose(const MobileVector& q) const {
+  std::vector<LinkPose> p(links_.size());
+  for (std::size_t i = 0; i < links_.size(); ++i) {  // parents come before their children
+    const Link& l = links_[i];
+    if (l.parent < 0) continue;  // the root: the world frame
+    const Transform<double>& parent = p[static_cast<std::size_t>(l.parent)].frame;
+    LinkPose& here = p[i];
+    here.frame = {parent.R * l.origin_R, parent.apply(l.origin_p)};
+    here.joint_origin = here.frame.p;
+    here.joint_axis = here.frame.R * l.axis;
+    const double position = l.joint >= 0 ? q[l.joint] : 0.0;  // the others held at zero
+    if (l.prismatic)
+      here.frame.p += position * here.joint_axis;
+    else if (l.revolute)
+      here.frame.R = here.frame.R * Eigen::AngleAxisd(position, l.axis).toRotationMatrix();
   }
   return p;
 }
 
 std::vector<MobileArmDynamics::LinkFrame> MobileArmDynamics::link_frames(
     const MobileVector& q) const {
-  const Pose p = pose(q);
+  const std::vector<LinkPose> p = pose(q);
   std::vector<LinkFrame> frames;
-  for (std::size_t i = 0; i < tree_.size(); ++i) {
-    const TreeLink& l = tree_[i];
-    frames.push_back({p.link[i].apply(Vector3<double>(l.com[0], l.com[1], l.com[2])),
-                      p.link[i].R * rpy_rotation(l.com_rpy)});
-  }
+  for (std::size_t i = 0; i < links_.size(); ++i)
+    frames.push_back({p[i].frame.apply(links_[i].com), p[i].frame.R * links_[i].com_R});
   return frames;
 }
 
 void MobileArmDynamics::mass_and_gravity(const MobileVector& q, MobileMatrix* M,
                                          MobileVector* G) const {
-  const Pose p = pose(q);
+  const std::vector<LinkPose> p = pose(q);
   if (M) *M = armature_.asDiagonal();
   if (G) G->setZero();
-  for (std::size_t i = 0; i < tree_.size(); ++i) {
-    const TreeLink& l = tree_[i];
-    const Vector3<double> c = p.link[i].apply(Vector3<double>(l.com[0], l.com[1], l.com[2]));
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    const Link& l = links_[i];
+    if (l.movers.empty()) continue;  // the base and what is fixed to it
+    const Vector3<double> c = p[i].frame.apply(l.com);
     Eigen::Matrix<double, 3, kMobileJoints> Jv = Eigen::Matrix<double, 3, kMobileJoints>::Zero();
     Eigen::Matrix<double, 3, kMobileJoints> Jw = Jv;
-    for (const int j : movers_[i]) {
-      const auto k = static_cast<std::size_t>(chain_link_[static_cast<std::size_t>(j)]);
-      const Vector3<double>& z = p.joint_axis[k];
-      if (tree_[k].type == "prismatic") {
-        Jv.col(j) = z;
+    for (const int j : l.movers) {
+      const LinkPose& joint = p[static_cast<std::size_t>(chain_link_[static_cast<std::size_t>(j)])];
+      if (links_[static_cast<std::size_t>(chain_link_[static_cast<std::size_t>(j)])].prismatic) {
+        Jv.col(j) = joint.joint_axis;
       } else {
-        Jv.col(j) = z.cross(c - p.joint_origin[k]);
-        Jw.col(j) = z;
+        Jv.col(j) = joint.joint_axis.cross(c - joint.joint_origin);
+        Jw.col(j) = joint.joint_axis;
       }
     }
     if (G) *G -= Jv.transpose() * (l.mass * gravity_);
     if (!M) continue;
-    Matrix3<double> local;
-    local << l.inertia[0], l.inertia[3], l.inertia[4], l.inertia[3], l.inertia[1], l.inertia[5],
-        l.inertia[4], l.inertia[5], l.inertia[2];
-    const Matrix3<double> R = p.link[i].R * rpy_rotation(l.com_rpy);
-    const Matrix3<double> I = R * local * R.transpose();
-    *M += l.mass * Jv.transpose() * Jv + Jw.transpose() * I * Jw;
+    const Matrix3<double> R = p[i].frame.R * l.com_R;
+    const Matrix3<double> I = R * l.inertia * R.transpose();
+    M->noalias() += l.mass * Jv.transpose() * Jv;
+    M->noalias() += Jw.transpose() * I * Jw;
   }
 }
 
@@ -131,8 +126,8 @@ MobileVector MobileArmDynamics::gravity(const MobileVector& q) const {
 double MobileArmDynamics::potential_energy(const MobileVector& q) const {
   const std::vector<LinkFrame> frames = link_frames(q);
   double V = 0;
-  for (std::size_t i = 0; i < tree_.size(); ++i)
-    V -= tree_[i].mass * gravity_.dot(frames[i].com);
+  for (std::size_t i = 0; i < links_.size(); ++i)
+    V -= links_[i].mass * gravity_.dot(frames[i].com);
   return V;
 }
 

@@ -56,16 +56,27 @@ class MobileArmDynamics {
   const MobileVector& armature() const { return armature_; }
 
  private:
-  struct Pose;
-  Pose pose(const MobileVector& q) const;
+  /// A tree link's constants, read once from its TreeLink.
+  struct Link {
+    int parent = -1;  ///< index of the parent link (−1: the root)
+    int joint = -1;   ///< index of its joint in the chain (−1: fixed, or a joint held at zero)
+    bool prismatic = false, revolute = false;
+    Matrix3<double> origin_R, com_R, inertia;  ///< joint origin, inertial frame, inertia in it
+    Vector3<double> origin_p, axis, com;
+    double mass = 0;
+    std::vector<int> movers;  ///< the chain joints that move it (its own and those above it)
+  };
+  /// A link's world frame at some q, and its joint's world origin and axis.
+  struct LinkPose {
+    Transform<double> frame;
+    Vector3<double> joint_origin, joint_axis;
+  };
+  std::vector<LinkPose> pose(const MobileVector& q) const;
   void mass_and_gravity(const MobileVector& q, MobileMatrix* M, MobileVector* G) const;
 
   std::vector<TreeLink> tree_;
-  std::vector<int> parent_;       ///< per tree link, its parent's index (−1: the root)
-  std::vector<int> chain_index_;  ///< per tree link, its joint's index in the chain (−1: none)
-  std::vector<int> chain_link_;   ///< per chain joint, the tree link it moves
-  /// Per tree link, the chain joints that move it (its own and those above it).
-  std::vector<std::vector<int>> movers_;
+  std::vector<Link> links_;
+  std::vector<int> chain_link_;  ///< per chain joint, the index of the link it moves
   MobileVector armature_;
   Vector3<double> gravity_{0.0, 0.0, -9.81};
 };
