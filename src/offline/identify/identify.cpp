@@ -230,21 +230,8 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
   }
   std::vector<std::vector<std::string>> notes(static_cast<std::size_t>(joints));
   // A joint whose gravity torque stays negligible (a vertical axis) has no load column to fit:
-  // α·|G| there would fit noise in |G| with an absurd α. Nor has one whose gravity torque stays
-  // the same at every pose (a vertical lift carries one weight): α_c·|G| and α_v·|G|·q̇ are then
-  // its Coulomb and viscous columns again, and the fit would split the friction between them at
-  // random. Both are measured against the arm's largest gravity torque (its joint named: N·m at
-  // a revolute joint, N at a prismatic one).
-  Eigen::Index heaviest_row = 0, heaviest_joint = 0;
-  const double arm_gravity = abs_gravity.array()
-                                 .isFinite()
-                                 .select(abs_gravity, 0.0)
-                                 .maxCoeff(&heaviest_row, &heaviest_joint);
-  std::string largest = "0.1 % of the arm's largest (joint ";
-  largest += std::to_string(heaviest_joint + 1);
-  largest += "'s, ";
-  largest += format_number(arm_gravity, 3);
-  largest += ")";
+  // α·|G| there would fit noise in |G| with an absurd α.
+  const double arm_gravity = abs_gravity.array().isFinite().select(abs_gravity, 0.0).maxCoeff();
   auto fit_joint = [&](int j) {
     std::vector<Eigen::Index> rows, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
@@ -288,19 +275,11 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
     linear_fit.viscous[j] = start.viscous;
     linear_fit.load_coulomb[j] = start.load_coulomb;
     linear_fit.load_viscous[j] = start.load_viscous;
-    const double load_max = all.col(1).maxCoeff(), load_min = all.col(1).minCoeff();
-    const bool negligible_load = load_max <= 1e-3 * arm_gravity;
-    const bool constant_load = !negligible_load && load_max - load_min <= 1e-3 * arm_gravity;
-    const bool fit_load_here = fit_load && !negligible_load && !constant_load;
-    const std::string joint_name = "joint " + std::to_string(j + 1);
-    if (fit_load && negligible_load)
-      notes[j].push_back(joint_name + ": its gravity torque stays below " + largest +
-                         ": no load-dependent friction fitted");
-    if (fit_load && constant_load)
-      notes[j].push_back(joint_name + ": its gravity torque stays at " +
-                         format_number(load_max, 4) + " at every pose (it varies by less than " +
-                         largest + "): a load-dependent friction would be its Coulomb and " +
-                         "viscous friction again; none fitted");
+    const bool fit_load_here = fit_load && all.col(1).maxCoeff() > 1e-3 * arm_gravity;
+    if (fit_load && !fit_load_here)
+      notes[j].push_back("joint " + std::to_string(j + 1) + ": its gravity torque stays below " +
+                         "0.1 % of the arm's largest (" + format_number(arm_gravity, 3) +
+                         " N·m): no load-dependent friction fitted");
     auto write_linear = [&] {
       out.linear_written[static_cast<std::size_t>(j)] = 1;
       out.parameters.coulomb[j] = out.parameters.static_friction[j] = linear_fit.coulomb[j];
