@@ -40,7 +40,8 @@ struct FeatureGroup {
   /// its gain is scored on their weighted held-out SSE. Empty: `joint`'s, or every joint.
   std::vector<int> joints;
   /// Indices in `columns` of a friction's Coulomb and viscous coefficients, which must come out
-  /// ≥ 0 for the group to be claimed (friction dissipates): a coupled motor's.
+  /// ≥ 0 for the group to be claimed (friction dissipates): a coupled motor's, and the Coulomb
+  /// increment of a friction growing with another joint's load.
   std::vector<int> dissipative;
 };
 

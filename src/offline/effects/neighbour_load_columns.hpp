@@ -27,8 +27,13 @@ struct NeighbourLoadColumns {
   }
   static GroupSpec group(const DesignContext& c, int joint) {
     const std::string n = joint_suffix(joint), k = joint_suffix(source(c.inputs, joint));
-    return {"friction growing with joint " + k + "'s load |G" + k + "|, " + joint_title(joint),
-            {"beta" + n + "_" + k, "gamma" + n + "_" + k}};
+    GroupSpec spec{
+        "friction growing with joint " + k + "'s load |G" + k + "|, " + joint_title(joint),
+        {"beta" + n + "_" + k, "gamma" + n + "_" + k}};
+    // Growing: a Coulomb level that falls as the load rises is some other effect's stand-in (on
+    // the twin's cooling arm, |G2|·q̇1 stood in for joint 1's thermal viscous friction with β < 0).
+    spec.dissipative = {0};
+    return spec;
   }
   static void fill(const SampleRow& row, int joint, double* out) {
     const double load = row.inputs.abs_gravity(row.k, source(row.inputs, joint));
