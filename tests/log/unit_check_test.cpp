@@ -217,5 +217,16 @@ TEST(UnitCheck, APrismaticJointRestsBelowALinearThreshold) {
   EXPECT_NEAR(linear.rest_factor[0], 1.0, 1e-3);
 }
 
+TEST(UnitCheck, APrismaticJointBeyondItsLimitsIsFlaggedInMetres) {
+  UnitCheckInput in = lift_joint();
+  in.prismatic = {true};
+  in.upper[0] = 0.05;  // the lift strokes between 0.1 and 0.14 m
+  const LogChecks checks = check_log_units(in);
+  ASSERT_EQ(checks.problems.size(), 1u);
+  EXPECT_NE(checks.problems[0].find("limits [0, 0.05] m in"), std::string::npos)
+      << checks.problems[0];
+  EXPECT_EQ(checks.problems[0].find("rad"), std::string::npos) << checks.problems[0];
+}
+
 }  // namespace
 }  // namespace tpf::offline

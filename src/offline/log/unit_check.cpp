@@ -187,12 +187,13 @@ void check_limits(const UnitCheckView& in, const UnitCheckOptions& o, LogChecks&
       worst = std::max(worst, beyond);
     }
     if (outside == 0) continue;
+    const std::string unit = joint_is_prismatic(in, j) ? " m" : " rad";
     out.problems.push_back(joint_name(j) + ": q outside the robot file's limits [" +
                            log_text::printed("%.4g", in.lower[j]) + ", " +
-                           log_text::printed("%.4g", in.upper[j]) + "] rad in " +
+                           log_text::printed("%.4g", in.upper[j]) + "]" + unit + " in " +
                            std::to_string(outside) + " of " + std::to_string(finite) +
-                           " samples (up to " + log_text::printed("%.4g", worst) +
-                           " rad beyond): are q's units, sign and zero right?");
+                           " samples (up to " + log_text::printed("%.4g", worst) + unit +
+                           " beyond): are q's units, sign and zero right?");
   }
 }
 
