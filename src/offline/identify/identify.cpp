@@ -232,8 +232,10 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
   // A joint whose gravity torque stays negligible (a vertical axis) has no load column to fit:
   // α·|G| there would fit noise in |G| with an absurd α.
   Eigen::Index largest_row = 0, largest_joint = 0;
-  const double arm_gravity = abs_gravity.array().isFinite().select(abs_gravity, 0.0).maxCoeff(
-      &largest_row, &largest_joint);
+  const double arm_gravity = abs_gravity.array()
+                                 .isFinite()
+                                 .select(abs_gravity, 0.0)
+                                 .maxCoeff(&largest_row, &largest_joint);
   auto fit_joint = [&](int j) {
     std::vector<Eigen::Index> rows, heldout;
     for (Eigen::Index k = 0; k < s.size(); ++k)
@@ -279,7 +281,7 @@ FrictionCurves friction_curves(const JointSamples& s, const Eigen::MatrixXd& rig
     linear_fit.load_viscous[j] = start.load_viscous;
     const bool fit_load_here = fit_load && all.col(1).maxCoeff() > 1e-3 * arm_gravity;
     if (fit_load && !fit_load_here)
-      notes[j].push_back("joint " + std::to_string(j + 1) + ": its gravity load stays below " +
+      notes[j].push_back("joint " + std::to_string(j + 1) + ": its gravity torque stays below " +
                          "0.1 % of the arm's largest (joint " + std::to_string(largest_joint + 1) +
                          "'s, " + format_number(arm_gravity, 3) +
                          " N·m, or N at a prismatic joint): no load-dependent friction fitted");
