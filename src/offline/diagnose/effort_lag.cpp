@@ -4,7 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include "offline/regimes/regime.hpp"
 #include "offline/signal/segments.hpp"
 
 namespace tpf::offline {
@@ -51,21 +50,6 @@ double difference_quotient(const Eigen::VectorXd& t, const Eigen::VectorXd& p, E
   return std::isfinite(value) ? value : 0.0;
 }
 
-/// Joint j's moving training samples, at most 20 000, evenly strided.
-std::vector<Eigen::Index> scored_samples(const JointSamples& s, const Eigen::MatrixXd& residual,
-                                         int j) {
-  std::vector<Eigen::Index> moving;
-  for (Eigen::Index k = 0; k < s.size(); ++k)
-    if (s.valid[k] && !s.heldout[k] && s.regimes[j][k] == Regime::Moving &&
-        std::isfinite(residual(k, j)))
-      moving.push_back(k);
-  const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
-  std::vector<Eigen::Index> out;
-  for (std::size_t i = 0; i < moving.size(); i += stride)
-    out.push_back(moving[i]);
-  return out;
-}
-
 }  // namespace
 
 EffortLag search_effort_lag(const JointSamples& s, const Eigen::MatrixXd& prediction,
@@ -79,9 +63,11 @@ EffortLag search_effort_lag(const JointSamples& s, const Eigen::MatrixXd& predic
   std::vector<std::vector<Eigen::Index>> rows(static_cast<std::size_t>(joints));
   Eigen::VectorXd energy = Eigen::VectorXd::Zero(joints);
   for (int j = 0; j < joints; ++j) {
-    rows[static_cast<std::size_t>(j)] = scored_samples(s, residual, j);
-    for (Eigen::Index k : rows[static_cast<std::size_t>(j)])
-      energy[j] += residual(k, j) * residual(k, j);
+    for (Eigen::Index k : moving_training_rows(s, j, 20000))
+      if (std::isfinite(residual(k, j))) {
+        rows[static_cast<std::size_t>(j)].push_back(k);
+        energy[j] += residual(k, j) * residual(k, j);
+      }
   }
   std::vector<Eigen::VectorXd> columns;  // copied once: a column block is no VectorXd
   for (int j = 0; j < joints; ++j)

@@ -5,25 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "offline/regimes/regime.hpp"
-
 namespace tpf::offline {
 namespace {
-
-/// Joint j's moving training samples with a finite residual, at most 20 000, evenly strided.
-std::vector<Eigen::Index> load_choice_rows(const JointSamples& s, const Eigen::MatrixXd& residual,
-                                           int j) {
-  std::vector<Eigen::Index> moving;
-  for (Eigen::Index k = 0; k < s.size(); ++k)
-    if (s.valid[k] && !s.heldout[k] && s.regimes[j][k] == Regime::Moving &&
-        std::isfinite(residual(k, j)))
-      moving.push_back(k);
-  const std::size_t stride = std::max<std::size_t>(1, moving.size() / 20000);
-  std::vector<Eigen::Index> out;
-  for (std::size_t i = 0; i < moving.size(); i += stride)
-    out.push_back(moving[i]);
-  return out;
-}
 
 /// The energy of j's residual on `rows` that (|G_k| − mean)·[sgn q̇_j, q̇_j] removes.
 double load_explained(const JointSamples& s, const Eigen::MatrixXd& residual,
@@ -55,7 +38,9 @@ Eigen::VectorXi choose_neighbour_loads(const JointSamples& s, const Eigen::Matri
   const int joints = static_cast<int>(residual.cols());
   Eigen::VectorXi source = Eigen::VectorXi::Constant(joints, -1);
   for (int j = 0; j < joints; ++j) {
-    const std::vector<Eigen::Index> rows = load_choice_rows(s, residual, j);
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index k : moving_training_rows(s, j, 20000))
+      if (std::isfinite(residual(k, j))) rows.push_back(k);
     if (rows.size() < 100) continue;
     double best = -1.0;
     for (int k = 0; k < joints; ++k)

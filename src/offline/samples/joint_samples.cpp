@@ -30,6 +30,18 @@ bool holds_rows_out(const JointSamples& samples) {
                      [](char held) { return held != 0; });
 }
 
+std::vector<Eigen::Index> moving_training_rows(const JointSamples& s, int j, std::size_t most) {
+  std::vector<Eigen::Index> moving;
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if (s.valid[k] && !s.heldout[k] && s.regimes[j][k] == Regime::Moving) moving.push_back(k);
+  if (most == 0 || moving.size() <= most) return moving;
+  const std::size_t stride = moving.size() / most;
+  std::vector<Eigen::Index> strided;
+  for (std::size_t i = 0; i < moving.size(); i += stride)
+    strided.push_back(moving[i]);
+  return strided;
+}
+
 std::string nothing_held_out_note(const JointSamples& s, const SampleOptions& options) {
   if (!options.hold_out) return {};
   for (Eigen::Index k = 0; k < s.size(); ++k)

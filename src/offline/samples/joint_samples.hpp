@@ -84,6 +84,11 @@ bool identification_column(std::string_view name);
 /// Some row is held out (a file or blocks).
 bool holds_rows_out(const JointSamples& samples);
 
+/// Joint j's moving training samples (valid, not held out, Regime::Moving), at most `most` of
+/// them evenly strided (0: all): the rows the residual searches of diagnose read.
+std::vector<Eigen::Index> moving_training_rows(const JointSamples& samples, int j,
+                                               std::size_t most = 0);
+
 /// Empty when some valid sample of `samples` is held out (or `options.hold_out` is false: the
 /// caller holds out other logs); else a sentence saying that nothing is held out, why (a one-file
 /// log shorter than its first held-out block) and what to do.
