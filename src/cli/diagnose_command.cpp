@@ -10,9 +10,9 @@
 
 #include "commands.hpp"
 #include "core/common/atomic_file.hpp"
+#include "core/common/unoptimised_when_sanitized.hpp"
 #include "heap_reuse.hpp"
 #include "identification_printout.hpp"
-#include "core/common/unoptimised_when_sanitized.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
 #include "offline/log/read_logs.hpp"
@@ -45,8 +45,8 @@ tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
                                                const DiagnoseArgs& a) {
   using namespace tpf::offline;
   const auto start = std::chrono::steady_clock::now();
-  Eigen::MatrixXd gravity;  // G(q) of the samples: the gravity load and the unit checks read it
-  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples, &gravity);
+  IdentificationSetup setup = prepare_diagnosis(log, model, options.samples);
+  const auto gravity = setup.gravity;  // G(q): the gravity load, the unit checks and diagnose's
   const tpf::BaseParameters base = setup.base;
   const auto regressors = setup.regressors;
   const auto abs_gravity = setup.abs_gravity;
@@ -58,9 +58,10 @@ tpf::offline::Diagnosis identify_then_diagnose(const tpf::offline::Log& log,
   identify_options.inertia_prior = a.inertia_prior;
   Identification id = identify(log, model, std::move(setup), identify_options);
   tpf::cli::print_and_save_identification(log, id, options.samples, a.identify_out, start,
-                                          tpf::cli::check_log_units(model, id.samples, gravity),
+                                          tpf::cli::check_log_units(model, id.samples, *gravity),
                                           a.verbose);
-  return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity}, id, options);
+  return diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity, gravity}, id,
+                  options);
 }
 
 /// The inertia prior's line, when identify's fits, and so diagnose's, needed one.

@@ -65,9 +65,10 @@ TEST(DiagnoseFromIdentify, RefusesTheIdentificationOfOtherSamples) {
   const auto abs_gravity = setup.abs_gravity;
   offline::Identification id = offline::identify(log, model, std::move(setup), {});
   id.residual.conservativeResize(id.residual.rows() - 1, Eigen::NoChange);
-  EXPECT_THROW(offline::diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity},
-                                 id, options),
-               Error);
+  EXPECT_THROW(
+      offline::diagnose(log, model, {std::move(id.samples), base, regressors, abs_gravity, nullptr},
+                        id, options),
+      Error);
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ TEST(IdentifyThenDiagnose, ScoresBothOnTheSameHeldOutRows) {
   const offline::Identification id =
       offline::identify(log, model, std::move(setup), identify_options);
   const offline::Diagnosis d =
-      offline::diagnose(log, model, {id.samples, base, regressors, abs_gravity}, options);
+      offline::diagnose(log, model, {id.samples, base, regressors, abs_gravity, nullptr}, options);
 
   // The first and last files repeat one motion: identify holds both out, not the last alone.
   const offline::JointSamples& s = id.samples;

@@ -15,7 +15,6 @@
 #include <string>
 #include <utility>
 
-#include "support/kinova_logs.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/effects/effect_columns.hpp"
 #include "offline/identify/effect_design.hpp"
@@ -23,6 +22,7 @@
 #include "offline/identify/inertia_prior.hpp"
 #include "offline/log/read_logs.hpp"
 #include "offline/samples/joint_samples.hpp"
+#include "support/kinova_logs.hpp"
 
 namespace tpf::test {
 namespace {
@@ -115,7 +115,7 @@ TEST(InertiaPriorKinova, DiagnoseWritesItsModelWithIdentifysStrength) {
   offline::Identification id = offline::identify(log, model, std::move(setup), {});
   ASSERT_GT(id.inertia_prior.written_strength, 0.0);
   const offline::Diagnosis d = offline::diagnose(
-      log, model, {std::move(id.samples), base, regressors, abs_gravity}, id, options);
+      log, model, {std::move(id.samples), base, regressors, abs_gravity, nullptr}, id, options);
   EXPECT_EQ(d.inertia_prior.judged_strength, id.inertia_prior.judged_strength);
   EXPECT_EQ(d.inertia_prior.written_strength, id.inertia_prior.written_strength);
   EXPECT_EQ(d.heldout_method, "by file: RecordTrajectory_quadratic.csv.gz");

@@ -373,12 +373,12 @@ std::shared_ptr<const SampleRegressors> diagnosis_regressors(const ModelX& model
 }  // namespace
 
 IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
-                                      const SampleOptions& options, Eigen::MatrixXd* gravity) {
+                                      const SampleOptions& options) {
   IdentificationSetup setup = prepare_identification(log, model, options);
   setup.regressors = diagnosis_regressors(model, setup.base, setup.samples);
-  if (gravity) *gravity = gravity_torque(model, setup.samples);
-  setup.abs_gravity = std::make_shared<const Eigen::MatrixXd>(
-      gravity ? gravity_load(*gravity, setup.samples) : gravity_load(model, setup.samples));
+  setup.gravity = std::make_shared<const Eigen::MatrixXd>(gravity_torque(model, setup.samples));
+  setup.abs_gravity =
+      std::make_shared<const Eigen::MatrixXd>(gravity_load(*setup.gravity, setup.samples));
   return setup;
 }
 
@@ -394,12 +394,14 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   const BaseParameters base = setup.base;
   const auto regressors = setup.regressors;
   const auto abs_gravity = setup.abs_gravity;
+  const auto gravity = setup.gravity;
   IdentifyOptions identify_options;
   identify_options.samples = options.samples;
   identify_options.inertia_prior = options.inertia_prior;
   identify_options.progress = options.progress;
   Identification identified = identify(log, model, std::move(setup), identify_options);
-  return diagnose(log, model, {std::move(identified.samples), base, regressors, abs_gravity},
+  return diagnose(log, model,
+                  {std::move(identified.samples), base, regressors, abs_gravity, gravity},
                   identified, options);
 }
 
@@ -457,7 +459,8 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
   if (joints == 1) out.notes.push_back("coupling between joints not checked: one joint");
 
   // A dead effort channel (mostly exact zeros) is kept out of every candidate of its joint.
-  const LogChecks checks = check_sample_units(model, s);
+  const LogChecks checks =
+      check_sample_units(model, s, setup.gravity ? *setup.gravity : Eigen::MatrixXd());
   for (const std::string& problem : checks.problems)
     if (problem.find("dead effort channel") != std::string::npos)
       out.notes.push_back(problem + ": no candidate effect is tried on it");

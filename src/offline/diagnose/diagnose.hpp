@@ -240,11 +240,10 @@ Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setu
 Diagnosis diagnose(const Log& log, const ModelX& model, IdentificationSetup setup,
                    const Identification& identified, const DiagnoseOptions& options);
 
-/// prepare_identification with the regressors diagnose reads (a superset of identify's) and the
-/// gravity load both read. `gravity`, where given, receives the samples' gravity torque
-/// (gravity_torque, for check_sample_units) the load is then taken from.
+/// prepare_identification with the regressors diagnose reads (a superset of identify's), the
+/// samples' gravity torque (gravity_torque, for check_sample_units) and the gravity load both
+/// read, taken from it.
 IdentificationSetup prepare_diagnosis(const Log& log, const ModelX& model,
-                                      const SampleOptions& options,
-                                      Eigen::MatrixXd* gravity = nullptr);
+                                      const SampleOptions& options);
 
 }  // namespace tpf::offline

@@ -9,7 +9,8 @@ namespace tpf::offline {
 
 IdentificationSetup prepare_identification(const Log& log, const ModelX& model,
                                            const SampleOptions& options) {
-  IdentificationSetup setup{extract_joint_samples(log, model.torque_constant, options), {}, {}, {}};
+  IdentificationSetup setup{
+      extract_joint_samples(log, model.torque_constant, options), {}, {}, {}, {}};
   setup.base = rigid_body_base_parameters(model);
   return setup;
 }

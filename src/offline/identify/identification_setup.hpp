@@ -21,6 +21,9 @@ struct IdentificationSetup {
   /// gravity_load of `samples`, computed once for both in the same way (prepare_diagnosis);
   /// empty: each computes it.
   std::shared_ptr<const Eigen::MatrixXd> abs_gravity;
+  /// G(q) of `samples` (gravity_torque) that abs_gravity was taken from, for diagnose's log
+  /// checks (prepare_diagnosis); empty: computed where needed.
+  std::shared_ptr<const Eigen::MatrixXd> gravity;
 };
 
 /// extract_joint_samples(log) with the model's torque constants (the log must have the model's

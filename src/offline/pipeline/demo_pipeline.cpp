@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/common/atomic_file.hpp"
-#include "offline/common/data_files.hpp"
 #include "core/common/unoptimised_when_sanitized.hpp"
+#include "offline/common/data_files.hpp"
 #include "offline/diagnose/diagnose.hpp"
 #include "offline/diagnose/diagnosis_report.hpp"
 #include "offline/diagnose/diagnosis_summary.hpp"
@@ -122,15 +122,16 @@ void run_twin(const DemoOptions& o, DemoResult& result, std::vector<SimulationJo
   const BaseParameters base = prepared.base;
   const auto regressors = prepared.regressors;
   const auto abs_gravity = prepared.abs_gravity;
+  const auto gravity = prepared.gravity;
   Identification identified = identify(training_log, model, std::move(prepared), identify_options);
   save_nominal_model(o.out / "identified.params.json", identified.nominal, training_log.source);
 
   // 3. Diagnose from identify's fit: name and add what the declared model misses; the result is
   // the nominal model.
   say("[3/7] diagnose: candidate effects on the training log's held-out blocks");
-  const Diagnosis diagnosis =
-      diagnose(training_log, model, {std::move(identified.samples), base, regressors, abs_gravity},
-               identified, diagnose_options);
+  const Diagnosis diagnosis = diagnose(
+      training_log, model, {std::move(identified.samples), base, regressors, abs_gravity, gravity},
+      identified, diagnose_options);
   for (const std::string& f : diagnosis.findings)
     say("diagnose: " + f);
   save_nominal_model(o.out / "nominal.params.json", diagnosis.nominal, training_log.source);
